@@ -1,0 +1,50 @@
+"""funcnet: functional networks from inter-system recurrence networks.
+
+One node per signal; directed, weighted edges from the asymmetry of cross-clustering and
+cross-transitivity between each pair of signals (El Dabett, Hansen & Geier, sections 2-3).
+"""
+
+from __future__ import annotations
+
+from importlib import import_module
+from typing import Any
+
+__version__ = "0.1.0"
+
+# Public names, resolved lazily so that `import funcnet` stays cheap (no Numba compilation, no
+# matplotlib) for the trace reader and the command line.
+_EXPORTS = {
+    "embed": "funcnet.recurrence",
+    "recurrence_matrix": "funcnet.recurrence",
+    "cross_recurrence_matrix": "funcnet.recurrence",
+    "isrn_adjacency": "funcnet.recurrence",
+    "estimate_delay": "funcnet.recurrence",
+    "estimate_dimension": "funcnet.recurrence",
+    "CrossMeasures": "funcnet.measures",
+    "cross_measures": "funcnet.measures",
+    "local_cross_clustering": "funcnet.measures",
+    "cross_degree": "funcnet.measures",
+    "normalize": "funcnet.preprocess",
+    "FunctionalNetwork": "funcnet.network",
+    "functional_network": "funcnet.network",
+    "FuncnetError": "funcnet.errors",
+    "ParameterError": "funcnet.errors",
+    "SignalError": "funcnet.errors",
+    "TraceError": "funcnet.errors",
+}
+
+__all__ = ["__version__", *_EXPORTS]
+
+
+def __getattr__(name: str) -> Any:
+    try:
+        module = _EXPORTS[name]
+    except KeyError:
+        raise AttributeError(f"module 'funcnet' has no attribute {name!r}") from None
+    value = getattr(import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
