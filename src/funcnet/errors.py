@@ -17,6 +17,9 @@ __all__ = [
     "ChannelError",
     "WindowError",
     "StudyError",
+    "FuncnetWarning",
+    "ThresholdWarning",
+    "StaircaseWarning",
 ]
 
 
@@ -57,3 +60,15 @@ class WindowError(FuncnetError, ValueError):
 
 class StudyError(FuncnetError, ValueError):
     """A study description is invalid; the message names the file and the key."""
+
+
+class FuncnetWarning(UserWarning):
+    """Base class of funcnet's warnings: the result is computed, but read it with care."""
+
+
+class ThresholdWarning(FuncnetWarning):
+    """``eps_XY`` is not below ``eps_X`` and ``eps_Y``, or ties pushed a rate above its target."""
+
+
+class StaircaseWarning(FuncnetWarning):
+    """A network is computed on a signal held constant between coarser native samples."""

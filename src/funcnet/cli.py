@@ -1,0 +1,483 @@
+"""The ``funcnet`` command line: a thin layer over the library.
+
+Commands: ``demo`` (simulate the paper's plan, analyse it, write the report), ``simulate``,
+``network`` (one functional network of one trace), ``study`` (a batch from a TOML file) and
+``report`` (HTML report of a study's results). ``funcnet COMMAND --help`` is each command's
+reference.
+
+Conventions:
+
+* An error in the input (every :class:`~funcnet.errors.FuncnetError`, and an operating-system
+  error on a file) prints exactly one plain-text line, ``funcnet: error: MESSAGE``, on stderr and
+  exits with status 2, as usage errors do. Nothing is left half-written: outputs are written to a
+  temporary file and renamed.
+* Warnings of the library print as one line each, ``funcnet: warning: MESSAGE``.
+* Progress bars go to stderr, only when stderr is a terminal and ``--quiet`` is not given.
+* ``funcnet study`` exits with status 1 when it finished but some tasks could not be analysed
+  (listed in ``study.json``), so that scripts notice.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import sys
+import warnings
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from funcnet import __version__
+from funcnet.errors import FuncnetError, ParameterError, WindowError
+
+__all__ = ["app", "main"]
+
+app = typer.Typer(
+    name="funcnet",
+    help=(
+        "Functional networks of robot-axis controller traces, from inter-system recurrence "
+        "networks (El Dabett, Hansen & Geier). Start with `funcnet demo`."
+    ),
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+    rich_markup_mode="rich",
+)
+
+_EXIT_INPUT_ERROR = 2
+_EXIT_TASKS_FAILED = 1
+_NETWORK_SUFFIXES = (".json", ".graphml", ".png", ".svg")
+
+
+# --------------------------------------------------------------------------------------------
+# errors, warnings and progress
+
+
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+def _os_error_message(exc: OSError) -> str:
+    if exc.filename is not None and exc.strerror:
+        return f"{exc.filename}: {exc.strerror}"
+    return str(exc)
+
+
+@contextlib.contextmanager
+def _reported_errors() -> Iterator[None]:
+    """Turn input errors into one plain line on stderr and exit status 2; warnings into lines."""
+
+    def show(message: Any, category: type, *_: Any, **__: Any) -> None:
+        sys.stderr.write(f"funcnet: warning: {_one_line(str(message))}\n")
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("default")
+        warnings.showwarning = show
+        try:
+            yield
+        except FuncnetError as exc:
+            sys.stderr.write(f"funcnet: error: {_one_line(str(exc))}\n")
+            raise typer.Exit(_EXIT_INPUT_ERROR) from None
+        except OSError as exc:
+            sys.stderr.write(f"funcnet: error: {_one_line(_os_error_message(exc))}\n")
+            raise typer.Exit(_EXIT_INPUT_ERROR) from None
+
+
+@contextlib.contextmanager
+def _progress(quiet: bool, label: str) -> Iterator[Callable[..., None] | None]:
+    """A rich progress bar on stderr, or ``None`` when quiet or stderr is not a terminal.
+
+    Yields a callback ``progress(done, total, description=None)``, the protocol of the library's
+    long-running functions.
+    """
+    if quiet or not sys.stderr.isatty():
+        yield None
+        return
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeRemainingColumn
+
+    with Progress(
+        "[progress.description]{task.description}",
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeRemainingColumn(),
+        console=Console(stderr=True),
+        transient=True,
+    ) as bar:
+        task = bar.add_task(label, total=None)
+
+        def update(done: int, total: int, description: str | None = None) -> None:
+            text = label if description is None else f"{label}: {description}"
+            bar.update(task, completed=done, total=total, description=text)
+
+        yield update
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"funcnet {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _main_options(
+    version: Annotated[
+        bool,
+        typer.Option("--version", callback=_version, is_eager=True, help="Print the version."),
+    ] = False,
+) -> None:
+    """Functional networks of robot-axis controller traces."""
+
+
+Quiet = Annotated[
+    bool, typer.Option("--quiet", "-q", help="No progress bar (also off when not on a terminal).")
+]
+
+
+# --------------------------------------------------------------------------------------------
+# demo, simulate
+
+
+@app.command()
+def demo(
+    out: Annotated[
+        Path, typer.Option("--out", help="Folder of the report (and of the simulated plan).")
+    ] = Path("out"),
+    quiet: Quiet = False,
+) -> None:
+    """Simulate the paper's plan of experiments, analyse it and write the HTML report.
+
+    The 36 trials of the paper's Table 1 are simulated into OUT/plan (trials already there with
+    the same parameters are kept), the analyses of the paper's section 4 run on them, and the
+    report is written to OUT. The path of the report is printed.
+    """
+    with _reported_errors():
+        from funcnet.report import build_demo_report
+        from funcnet.robot import paper_plan, write_plan
+
+        plan_dir = out / "plan"
+        with _progress(quiet, "simulating") as progress:
+            write_plan(paper_plan(), plan_dir, progress=progress)
+        with _progress(quiet, "analysing") as progress:
+            report = build_demo_report(plan_dir, out, progress=progress)
+    typer.echo(f"report: {report}")
+
+
+@app.command()
+def simulate(
+    out: Annotated[Path, typer.Option("--out", help="Folder of the traces (may exist).")],
+    plan: Annotated[
+        str,
+        typer.Option(
+            "--plan",
+            help="'paper' (the 36 trials of the paper's Table 1) or a plan TOML file.",
+        ),
+    ] = "paper",
+    seed: Annotated[int, typer.Option("--seed", min=0, help="Seed of the noise.")] = 0,
+    quiet: Quiet = False,
+) -> None:
+    """Simulate a plan of experiments on the model axis and write its traces.
+
+    One SINUMERIK-format XML trace per trial and a manifest of every trial's parameters and
+    ground truth are written to OUT. Trials already written with the same parameters are not
+    simulated again. The same seed gives the same bytes.
+    """
+    with _reported_errors():
+        from funcnet.robot import paper_plan, write_plan
+        from funcnet.robot.plan import read_plan
+
+        trials = paper_plan() if plan == "paper" else read_plan(plan)
+        with _progress(quiet, "simulating") as progress:
+            manifest = write_plan(trials, out, seed=seed, progress=progress)
+    typer.echo(f"{len(trials)} traces and {manifest.name} in {manifest.parent}")
+
+
+# --------------------------------------------------------------------------------------------
+# network
+
+
+def _parse_window(text: str) -> tuple[float, float]:
+    start_text, sep, stop_text = text.partition(":")
+    try:
+        if not sep:
+            raise ValueError
+        start, stop = float(start_text), float(stop_text)
+    except ValueError:
+        raise ParameterError(
+            f"--window must be START:STOP in seconds (e.g. 1.0:5.0), got {text!r}"
+        ) from None
+    if not start < stop:
+        raise ParameterError(f"--window: START must be less than STOP, got {text!r}")
+    return start, stop
+
+
+def _select_window(recording: Any, phase: str | None, window: str | None, trace: Path) -> Any:
+    """The analysis window the options ask for (default: the whole recording)."""
+    from funcnet.robot import detect_phases
+    from funcnet.robot.windows import Window, phase_windows
+
+    if phase is not None and window is not None:
+        raise ParameterError("give --phase or --window, not both")
+    if window is not None:
+        start, stop = _parse_window(window)
+        return Window(label=f"{start:g}-{stop:g} s", start=start, stop=stop)
+    if phase is None:
+        time = recording.data.index
+        return Window(label="whole recording", start=float(time[0]), stop=float(time[-1]))
+    windows = phase_windows(detect_phases(recording))
+    by_label = [w for w in windows if w.label == phase]
+    by_phase = by_label or [w for w in windows if w.phase == phase]
+    if len(by_phase) == 1:
+        return by_phase[0]
+    labels = ", ".join(repr(w.label) for w in windows) or "none"
+    if not by_phase:
+        raise WindowError(f"{trace}: no phase {phase!r} detected (phases: {labels})")
+    raise WindowError(
+        f"{trace}: phase {phase!r} occurs {len(by_phase)} times; give one of {labels}"
+    )
+
+
+@app.command()
+def network(
+    trace: Annotated[Path, typer.Argument(help="Trace file: SINUMERIK XML, CSV or Parquet.")],
+    signals: Annotated[
+        str | None,
+        typer.Option(
+            "--signals",
+            help="Comma-separated nodes, e.g. RP,AP,MP,V,RC,AC. Default: every role the trace "
+            "has plus V (velocity derived from AP, Eq. 11-12). FE (RP-AP) and TORSION (MP-AP) "
+            "are derived too when named.",
+        ),
+    ] = None,
+    phase: Annotated[
+        str | None,
+        typer.Option(
+            "--phase",
+            help="Analyse one detected motion phase (e.g. cruise, braking), by phase name or "
+            "window label.",
+        ),
+    ] = None,
+    window: Annotated[
+        str | None,
+        typer.Option("--window", help="Analyse START:STOP seconds, e.g. 1.0:5.0."),
+    ] = None,
+    dim: Annotated[
+        int | None, typer.Option(help="Embedding dimension m (Eq. 1). [default: 3]")
+    ] = None,
+    delay: Annotated[
+        int | None, typer.Option(help="Embedding delay tau in samples (Eq. 1). [default: 10]")
+    ] = None,
+    rr: Annotated[
+        float | None,
+        typer.Option(help="Recurrence rate in each signal, fixes eps_X (Eq. 5). [default: 0.05]"),
+    ] = None,
+    cr: Annotated[
+        float | None,
+        typer.Option(help="Cross-recurrence rate, fixes eps_XY (Eq. 3). [default: 0.05]"),
+    ] = None,
+    mu: Annotated[
+        float | None,
+        typer.Option(help="Edge threshold on C_diff and T_diff (section 2.4). [default: 0.05]"),
+    ] = None,
+    metric: Annotated[
+        str | None,
+        typer.Option(help="Distance: euclidean, supremum or manhattan. [default: euclidean]"),
+    ] = None,
+    normalize: Annotated[
+        str | None,
+        typer.Option(help="Per-window normalization: minmax, zscore or none. [default: minmax]"),
+    ] = None,
+    measure: Annotated[
+        str | None,
+        typer.Option(help="Edges from both, clustering or transitivity. [default: both]"),
+    ] = None,
+    rule: Annotated[
+        str | None,
+        typer.Option(help="Threshold rule: funcnet or pyunicorn. [default: funcnet]"),
+    ] = None,
+    theiler: Annotated[
+        int | None,
+        typer.Option(help="Theiler window: exclude pairs with |i-j| <= THEILER. [default: 0]"),
+    ] = None,
+    channels: Annotated[
+        Path | None,
+        typer.Option("--channels", help="Channel map TOML (controller signal names -> roles)."),
+    ] = None,
+    axis: Annotated[
+        int | None, typer.Option("--axis", help="Axis to read from a trace of several axes.")
+    ] = None,
+    output: Annotated[
+        Path | None,
+        typer.Option(
+            "--output",
+            "-o",
+            help="Write the network: .json (exact, reloadable), .graphml, or a drawing (.png, "
+            ".svg). Without it the pairs table is printed.",
+        ),
+    ] = None,
+) -> None:
+    """Compute the functional network of one trace (or one window of it).
+
+    Every pair of signals gets cross-clustering and cross-transitivity in both directions
+    (Eq. 6-9), their differences (Eq. 10) and an edge by the mu rule with the weight of Eq. 13.
+    A negative difference means X drives Y. Without -o the pairs table is printed.
+    """
+    with _reported_errors():
+        if output is not None and output.suffix.lower() not in _NETWORK_SUFFIXES:
+            raise ParameterError(
+                f"-o {output}: unknown format, use one of {', '.join(_NETWORK_SUFFIXES)}"
+            )
+        from funcnet.robot import phase_networks
+        from funcnet.study import read_recording
+
+        names = None if signals is None else [s.strip() for s in signals.split(",") if s.strip()]
+        recording = read_recording(trace, signals=names, channels=channels, axis=axis)
+        chosen = _select_window(recording, phase, window, trace)
+        given = {
+            "dim": dim,
+            "delay": delay,
+            "rr": rr,
+            "cr": cr,
+            "mu": mu,
+            "metric": metric,
+            "measure": measure,
+            "rule": rule,
+            "theiler": theiler,
+        }
+        parameters = {name: value for name, value in given.items() if value is not None}
+        if normalize is not None:
+            parameters["normalize"] = None if normalize.lower() == "none" else normalize
+        (net,) = phase_networks(recording, [chosen], signals=names, **parameters).values()
+        if output is None:
+            _print_pairs(net)
+            return
+        _write_network(net, output)
+    typer.echo(f"wrote {output}")
+
+
+def _write_network(net: Any, output: Path) -> None:
+    suffix = output.suffix.lower()
+    if suffix in (".json", ".graphml"):
+        net.write(output)
+        return
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from funcnet._io import atomic_path
+    from funcnet.plot import plot_network
+
+    figure = Figure(figsize=(4.5, 4.5))
+    plot_network(net, ax=figure.add_subplot(), title=net.label)
+    with atomic_path(output) as tmp:
+        figure.savefig(tmp, format=suffix[1:], bbox_inches="tight")
+
+
+def _print_pairs(net: Any) -> None:
+    pairs = net.pairs
+    if not sys.stdout.isatty():
+        typer.echo(pairs.to_string(index=False))
+        return
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title=net.label)
+    for column in pairs.columns:
+        table.add_column(str(column), justify="left" if pairs[column].dtype == object else "right")
+    for row in pairs.itertuples(index=False):
+        table.add_row(*(f"{v:.4g}" if isinstance(v, float) else str(v) for v in row))
+    Console().print(table)
+
+
+# --------------------------------------------------------------------------------------------
+# study, report
+
+
+@app.command()
+def study(
+    study_file: Annotated[Path, typer.Argument(metavar="STUDY.toml", help="Study description.")],
+    out: Annotated[
+        Path | None,
+        typer.Option("--out", help="Results folder. [default: out/<name of STUDY.toml>]"),
+    ] = None,
+    scheduler: Annotated[
+        str | None,
+        typer.Option(
+            "--scheduler",
+            help="Run on a Dask cluster: tcp://HOST:PORT of a running scheduler, or "
+            "'local-cluster' to start one on this machine. Default: local processes.",
+        ),
+    ] = None,
+    workers: Annotated[
+        int | None,
+        typer.Option("--workers", min=1, help="Local worker processes. [default: 2]"),
+    ] = None,
+    quiet: Quiet = False,
+) -> None:
+    """Run a batch study: recordings x windows x network parameters (see examples/study.toml).
+
+    Each (recording, window, parameter set) is an independent task; its rows (one per pair of
+    signals) are written to OUT/rows/<key>.parquet, keyed by content, so a re-run computes only
+    what is new and a killed run resumes where it stopped. OUT/study.json keeps the study and its
+    provenance. Exit status 1 when some windows could not be analysed (see study.json).
+    """
+    with _reported_errors():
+        from funcnet.study import load_study, run_study
+
+        described = load_study(study_file)
+        target = out if out is not None else Path("out") / study_file.stem
+        with _progress(quiet, "study") as progress:
+            result = run_study(
+                described, target, scheduler=scheduler, workers=workers, progress=progress
+            )
+    typer.echo(
+        f"{result.tasks} tasks: {result.computed} computed, {result.cached} already done, "
+        f"{len(result.failures)} failed; rows in {result.out_dir / 'rows'}"
+    )
+    for category, (count, example) in result.warnings.items():
+        sys.stderr.write(
+            f"funcnet: warning: {category} in {count} of {result.computed} networks computed, "
+            f"e.g. {_one_line(example)}\n"
+        )
+    for failure in result.failures:
+        sys.stderr.write(
+            f"funcnet: failed: {failure.recording} [{failure.window}]: "
+            f"{_one_line(failure.message)}\n"
+        )
+    if result.failures:
+        raise typer.Exit(_EXIT_TASKS_FAILED)
+
+
+@app.command()
+def report(
+    results_dir: Annotated[
+        Path, typer.Argument(metavar="RESULTS_DIR", help="Folder written by `funcnet study`.")
+    ],
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Report folder. [default: RESULTS_DIR/report]")
+    ] = None,
+    quiet: Quiet = False,
+) -> None:
+    """Write the static HTML report of a study's results (figures, tables, provenance).
+
+    For each recording and parameter set: its windows' networks, an edge timeline over the
+    windows, every pairs table; then the run counts, failures and provenance. The path of
+    index.html is printed.
+    """
+    with _reported_errors():
+        from funcnet.report import write_report
+
+        with _progress(quiet, "report") as progress:
+            written = write_report(results_dir, out, progress=progress)
+    typer.echo(f"report: {written}")
+
+
+def main() -> None:
+    """Entry point of the ``funcnet`` command."""
+    app(prog_name="funcnet")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,295 @@
+"""Controller signal names, their metadata, and the roles the paper gives them.
+
+A SINUMERIK trace names a signal by a path, a name and an address, e.g.
+``/Nck/!SD/nckServoDataCmdPos2ndEnc64 [u1, 7]``: the path ``/Nck/!SD/``, the base name
+``nckServoDataCmdPos2ndEnc64`` and the suffix ``[u1, 7]`` whose second number is the axis. A
+:class:`ChannelMap` assigns roles (the paper's node names RP, AP, MP, RC, AC; section 3.2) to base
+names, so one map serves every axis. A signal without a role keeps its base name as column name
+(``nckServoDataFlwErr64``, ``aaStat``): short, a valid identifier, and what the controller's own
+documentation calls it.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import tomllib
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import MappingProxyType
+
+from funcnet.errors import ChannelError, ParameterError
+
+__all__ = [
+    "ROLES",
+    "SignalInfo",
+    "SignalName",
+    "ChannelMap",
+    "DEFAULT_CHANNEL_MAP",
+    "parse_signal_name",
+    "channel_map",
+    "select_axis",
+]
+
+#: The five signals the paper records (section 3.2), in the paper's order.
+ROLES = ("RP", "AP", "MP", "RC", "AC")
+
+_SIGNAL_NAME = re.compile(
+    r"^\s*(?P<path>.*/)?(?P<base>[^/\[\]]*?)\s*(?:\[\s*u(?P<unit>\d+)\s*,\s*(?P<axis>\d+)\s*\])?\s*$"
+)
+_ROLE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+
+
+@dataclass(frozen=True)
+class SignalInfo:
+    """What a trace says about one signal.
+
+    Attributes
+    ----------
+    name : str
+        The controller's full signal name (``/Nck/!SEMA/measPos2 [u1, 7]``), or for a derived
+        signal the expression it was computed from (``RP - AP``).
+    units_type : str or None
+        The trace's ``unitsType`` (``posn``, ``velo``, ``veloRot``, ``accel``, ``current``,
+        ``none``); None when the file does not say (CSV).
+    data_type : str or None
+        The trace's ``dataType`` (``double``, ``float``, ``uword``); values are held as float64.
+    interval : float
+        The native interval in seconds: a value can change at most this often. A signal whose
+        interval is coarser than the recording's grid is a staircase on that grid.
+    """
+
+    name: str
+    units_type: str | None
+    data_type: str | None
+    interval: float
+
+
+@dataclass(frozen=True)
+class SignalName:
+    """A controller signal name split into its parts (see :func:`parse_signal_name`)."""
+
+    full: str
+    path: str
+    base: str
+    unit: int | None
+    axis: int | None
+
+
+def parse_signal_name(name: str) -> SignalName:
+    """Split a SINUMERIK signal name into path, base name, unit and axis.
+
+    Parameters
+    ----------
+    name : str
+        E.g. ``/Nck/!SD/nckServoDataActCurr32 [u1, 7]``; the path and the ``[uU, N]`` suffix are
+        optional.
+
+    Returns
+    -------
+    SignalName
+        ``base`` is the name without path and suffix, ``axis`` is ``N`` (None without a suffix).
+
+    Examples
+    --------
+    >>> parse_signal_name("/Nck/!SD/nckServoDataActCurr32 [u1, 7]")
+    SignalName(full='/Nck/!SD/nckServoDataActCurr32 [u1, 7]', path='/Nck/!SD/', base='nckServoDataActCurr32', unit=1, axis=7)
+    >>> parse_signal_name("measPos2").axis is None
+    True
+    """  # noqa: E501
+    match = _SIGNAL_NAME.match(name)
+    if match is None or not match["base"]:
+        return SignalName(name, "", name.strip(), None, None)
+    return SignalName(
+        full=name,
+        path=match["path"] or "",
+        base=match["base"],
+        unit=None if match["unit"] is None else int(match["unit"]),
+        axis=None if match["axis"] is None else int(match["axis"]),
+    )
+
+
+@dataclass(frozen=True)
+class ChannelMap:
+    """A map from controller signal names to roles.
+
+    A key without ``/`` matches a signal's base name on any path (``measPos2``); a key with a
+    ``/`` matches path and base name (``/Nck/!SEMA/measPos2``). The ``[uU, N]`` suffix is never
+    part of a key: the axis is chosen separately (``read_trace(..., axis=N)``).
+
+    Parameters
+    ----------
+    roles : Mapping[str, str]
+        Signal name (without suffix) -> role. Roles are identifiers; the paper's are
+        :data:`ROLES`.
+
+    Examples
+    --------
+    >>> cmap = DEFAULT_CHANNEL_MAP.updated({"nckServoDataCmdCurr32Alt": "RC"})
+    >>> cmap.role_of("/Nck/!SD/nckServoDataCmdCurr32Alt [u1, 1]")
+    'RC'
+    >>> cmap.role_of("/Nck/!SD/nckServoDataCmdCurr32 [u1, 1]") is None  # replaced for RC
+    True
+    >>> cmap.column_of("/Nck/!SD/nckServoDataFlwErr64 [u1, 1]")
+    'nckServoDataFlwErr64'
+    """
+
+    roles: Mapping[str, str] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        clean: dict[str, str] = {}
+        for key, role in dict(self.roles).items():
+            if not isinstance(key, str) or not isinstance(role, str) or not _ROLE.match(role):
+                raise ParameterError(
+                    f"channels: {key!r} -> {role!r}; a role must be an identifier such as 'RP'"
+                )
+            parts = parse_signal_name(key)
+            clean[parts.path + parts.base] = role
+        object.__setattr__(self, "roles", MappingProxyType(clean))
+
+    def role_of(self, name: str) -> str | None:
+        """Return the role of the signal ``name`` (full controller name), or None."""
+        parts = parse_signal_name(name)
+        qualified = parts.path + parts.base
+        if qualified in self.roles:
+            return self.roles[qualified]
+        return self.roles.get(parts.base)
+
+    def column_of(self, name: str) -> str:
+        """Return the column name for the signal ``name``: its role, else its base name."""
+        return self.role_of(name) or parse_signal_name(name).base
+
+    def updated(self, roles: Mapping[str, str]) -> ChannelMap:
+        """Return this map with ``roles`` added; a role given in ``roles`` replaces its old keys."""
+        new_roles = set(roles.values())
+        kept = {key: role for key, role in self.roles.items() if role not in new_roles}
+        return ChannelMap({**kept, **roles})
+
+
+#: SINUMERIK defaults (paper section 3.2; ``../shared/data/sinumerik/README.md``).
+#: ``nckServoDataCmdCurr32`` (RC) is an assumed name: no real trace with it is at hand.
+DEFAULT_CHANNEL_MAP = ChannelMap(
+    {
+        "nckServoDataCmdPos2ndEnc64": "RP",
+        "measPos2": "AP",
+        "measPos1": "MP",
+        "nckServoDataCmdCurr32": "RC",
+        "nckServoDataActCurr32": "AC",
+    }
+)
+
+
+def channel_map(
+    channels: ChannelMap | Mapping[str, str] | str | os.PathLike[str] | None = None,
+) -> ChannelMap:
+    """Resolve a channel map from a map, a dict of overrides, or a TOML file.
+
+    Parameters
+    ----------
+    channels : ChannelMap, dict, path or None
+        None gives :data:`DEFAULT_CHANNEL_MAP`. A dict ``{signal name: role}`` is applied over the
+        defaults (a role it names replaces the default signal for that role). A TOML file holds
+        the same pairs in a ``[channels]`` table, and ``defaults = false`` at top level to start
+        from an empty map instead of the defaults::
+
+            defaults = true
+            [channels]
+            nckServoDataCmdCurr32Set = "RC"
+
+    Returns
+    -------
+    ChannelMap
+
+    Raises
+    ------
+    ChannelError
+        The TOML file cannot be read or has the wrong shape (the message names the file).
+    ParameterError
+        A role is not an identifier.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> toml = pathlib.Path(tempfile.mkdtemp()) / "roles.toml"
+    >>> _ = toml.write_text('[channels]\\nmyCurrentSetpoint = "RC"\\n')
+    >>> channel_map(toml).role_of("/Nck/!SD/myCurrentSetpoint [u1, 1]")
+    'RC'
+    >>> channel_map({"measPos1": "AP", "measPos2": "MP"}).role_of("measPos2")
+    'MP'
+    """
+    if channels is None:
+        return DEFAULT_CHANNEL_MAP
+    if isinstance(channels, ChannelMap):
+        return channels
+    if isinstance(channels, Mapping):
+        return DEFAULT_CHANNEL_MAP.updated(channels)
+    path = Path(channels)
+    try:
+        document = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise ChannelError(path, f"cannot read the channel map: {exc}") from exc
+    table = document.get("channels", {})
+    use_defaults = document.get("defaults", True)
+    unknown = set(document) - {"channels", "defaults"}
+    if (
+        not isinstance(table, dict)
+        or not isinstance(use_defaults, bool)
+        or unknown
+        or not all(isinstance(role, str) for role in table.values())
+    ):
+        raise ChannelError(
+            path,
+            "a channel map is a [channels] table of 'signal name = \"ROLE\"' pairs and an "
+            "optional top-level 'defaults = true|false'"
+            + (f"; unknown keys {sorted(unknown)}" if unknown else ""),
+        )
+    try:
+        return (DEFAULT_CHANNEL_MAP if use_defaults else ChannelMap()).updated(table)
+    except ParameterError as exc:
+        raise ChannelError(path, str(exc)) from exc
+
+
+def select_axis(
+    names: Iterable[str], axis: int | None, path: object
+) -> tuple[list[bool], int | None]:
+    """Choose the signals of one axis.
+
+    Parameters
+    ----------
+    names : iterable of str
+        Full controller signal names.
+    axis : int or None
+        The axis to keep. None is allowed when at most one axis is present.
+    path : path-like
+        The file, named in errors.
+
+    Returns
+    -------
+    keep : list of bool
+        Per name: it belongs to ``axis`` or names no axis at all.
+    axis : int or None
+        The axis read (the only one present when ``axis`` was None).
+
+    Raises
+    ------
+    ChannelError
+        Several axes and none chosen, or the chosen axis is absent; the message lists the axes.
+        (When no signal names an axis, every signal is kept whatever ``axis`` says.)
+
+    Examples
+    --------
+    >>> select_axis(["measPos2 [u1, 1]", "measPos2 [u1, 2]", "aaStop"], 2, "t.xml")
+    ([False, True, True], 2)
+    """
+    axes = [parse_signal_name(name).axis for name in names]
+    present = sorted({a for a in axes if a is not None})
+    if axis is None:
+        if len(present) > 1:
+            raise ChannelError(
+                path, f"the trace holds axes {present}; choose one with axis=<one of them>"
+            )
+        axis = present[0] if present else None
+    elif present and axis not in present:
+        raise ChannelError(path, f"axis {axis} is not in the trace; it holds axes {present}")
+    return [a is None or a == axis for a in axes], axis

@@ -1,0 +1,236 @@
+"""Motion phases of a robot axis, from the reference motion (paper section 4).
+
+The paper computes one functional network per motion phase: early spin-up, late spin-up, cruise
+and braking (section 4.1, Fig. 9), and the reversal of a forward-and-reverse move (section 4.3,
+Fig. 11). :func:`detect_phases` finds them from the position set-point RP and its derivatives;
+:func:`phase_table` takes phases given by hand. Both give the same table: one row per phase with
+``phase``, ``start`` and ``stop`` (seconds, ``start <= time < stop``), in time order.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping
+
+import numpy as np
+import pandas as pd
+
+from funcnet.errors import ParameterError
+from funcnet.robot.preprocess import reference_speed, velocity
+from funcnet.robot.recording import Recording
+
+__all__ = ["PHASES", "detect_phases", "phase_table"]
+
+#: Phase names, as the paper writes them.
+PHASES = ("standstill", "early spin-up", "late spin-up", "cruise", "braking", "reversal")
+
+
+def _fraction(value: float, name: str) -> float:
+    if not (0.0 < value < 1.0):
+        raise ParameterError(f"{name}: must be a fraction in (0, 1), got {value}")
+    return value
+
+
+def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Maximal runs of True as (first, stop) tick pairs."""
+    edges = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
+    return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True))
+
+
+def detect_phases(
+    recording: Recording,
+    *,
+    reference: str = "RP",
+    standstill: float = 1e-4,
+    cruise: float = 0.98,
+    early: float = 0.95,
+    reversal: float = 0.5,
+    reversal_dwell: float = 0.5,
+) -> pd.DataFrame:
+    """Find the motion phases from the reference motion.
+
+    With ``v`` the velocity of the reference (:func:`~funcnet.robot.preprocess.velocity`, Eq.
+    11-12 applied to RP) and ``a`` the same derivative of ``v``:
+
+    - a *move* is a maximal run of ticks with ``|v| > standstill * max|v|``; every other tick is
+      **standstill**;
+    - in a move of peak speed ``p``, **cruise** runs from the first to the last tick with
+      ``|v| >= cruise * p``; before it is the spin-up, after it **braking**;
+    - the spin-up is **early spin-up** until ``|a|`` first reaches ``early`` times its maximum
+      over the spin-up (the jerk-limited build-up of acceleration, where static friction is
+      overcome; 0-220 ms in the paper's baseline), **late spin-up** after;
+    - two moves in opposite directions with at most ``reversal_dwell`` seconds of standstill
+      between them make a **reversal**: from the tick in the first move's braking where ``|v|``
+      falls below ``reversal * p`` to the tick in the second move's spin-up where it rises to
+      ``reversal * p`` of that move, the standstill between included. What remains of the
+      braking stays braking; what remains of the spin-up is late spin-up.
+
+    Parameters
+    ----------
+    recording : Recording
+    reference : str
+        Column of the position set-point (noise-free; a measured position would need looser
+        thresholds).
+    standstill, cruise, early, reversal : float
+        The fractions above, each in (0, 1).
+    reversal_dwell : float
+        Longest standstill, in seconds, between the two moves of a reversal.
+
+    Returns
+    -------
+    DataFrame
+        Columns ``phase`` (one of :data:`PHASES`), ``start``, ``stop`` (seconds; ``stop`` of one
+        row is ``start`` of the next), covering the whole recording; empty phases are left out.
+
+    Raises
+    ------
+    ChannelError
+        No ``reference`` column.
+    SignalError
+        The reference has NaN values.
+    ParameterError
+        A threshold outside its range.
+
+    References
+    ----------
+    Paper section 4.1 (phases early spin-up, late spin-up, cruise, braking; Fig. 9), 4.2 (fixed
+    windows per phase), 4.3 (reversal, Fig. 11).
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot.recording import Recording, SignalInfo
+    >>> t = np.arange(0, 5, 0.002)  # jerk-limited: acceleration ramps up, holds, ramps down
+    >>> acc = np.interp(t, [1, 1.2, 1.6, 1.8, 3, 3.2, 3.6, 3.8], [0, 1, 1, 0, 0, -1, -1, 0])
+    >>> rp = np.cumsum(np.cumsum(acc) * 0.002) * 0.002
+    >>> data = pd.DataFrame({"RP": rp}, index=pd.Index(t.round(9), name="time"))
+    >>> rec = Recording(data, {}, {"RP": SignalInfo("RP", "posn", None, 0.002)})
+    >>> detect_phases(rec).round(3)
+               phase  start   stop
+    0     standstill  0.000  1.004
+    1  early spin-up  1.004  1.190
+    2   late spin-up  1.190  1.730
+    3         cruise  1.730  3.068
+    4        braking  3.068  3.794
+    5     standstill  3.794  5.000
+    """
+    for value, name in (
+        (standstill, "standstill"),
+        (cruise, "cruise"),
+        (early, "early"),
+        (reversal, "reversal"),
+    ):
+        _fraction(value, name)
+    if not (reversal_dwell >= 0 and math.isfinite(reversal_dwell)):
+        raise ParameterError(f"reversal_dwell: must be >= 0 seconds, got {reversal_dwell}")
+    dt = recording.sample_period
+    speed = reference_speed(recording, reference)
+    n = speed.size
+    labels = np.zeros(n, dtype=np.int8)  # index into PHASES; 0 = standstill
+    if speed.max() > 0:
+        signed = velocity(recording.data[reference].to_numpy(dtype=np.float64), dt)
+        accel = np.abs(velocity(signed, dt))
+        moves = _runs(speed > standstill * speed.max())
+        for first, stop in moves:
+            peak = speed[first:stop].max()
+            cruising = np.flatnonzero(speed[first:stop] >= cruise * peak) + first
+            c0, c1 = cruising[0], cruising[-1] + 1
+            labels[first:c0] = PHASES.index("late spin-up")
+            if c0 > first:
+                reached = np.flatnonzero(accel[first:c0] >= early * accel[first:c0].max())
+                labels[first : first + reached[0]] = PHASES.index("early spin-up")
+            labels[c0:c1] = PHASES.index("cruise")
+            labels[c1:stop] = PHASES.index("braking")
+        for (first_a, stop_a), (first_b, stop_b) in zip(moves, moves[1:], strict=False):
+            opposite = np.sign(signed[first_a:stop_a].sum()) != np.sign(
+                signed[first_b:stop_b].sum()
+            )
+            if not opposite or (first_b - stop_a) * dt > reversal_dwell:
+                continue
+            level_a = reversal * speed[first_a:stop_a].max()
+            level_b = reversal * speed[first_b:stop_b].max()
+            fast_a = np.flatnonzero(speed[first_a:stop_a] >= level_a)
+            fast_b = np.flatnonzero(speed[first_b:stop_b] >= level_b)
+            r0, r1 = first_a + fast_a[-1] + 1, first_b + fast_b[0]
+            labels[r0:r1] = PHASES.index("reversal")
+            spin_up = labels[r1:stop_b] == PHASES.index("early spin-up")
+            labels[r1:stop_b][spin_up] = PHASES.index("late spin-up")
+    t0 = float(recording.data.index[0])
+    change = np.flatnonzero(np.diff(labels)) + 1
+    starts = np.concatenate([[0], change])
+    stops = np.concatenate([change, [n]])
+    return pd.DataFrame(
+        {
+            "phase": [PHASES[labels[i]] for i in starts],
+            "start": np.round(t0 + starts * dt, 9),
+            "stop": np.round(t0 + stops * dt, 9),
+        }
+    )
+
+
+def phase_table(
+    phases: pd.DataFrame | Mapping[str, tuple[float, float]] | Iterable[tuple[str, float, float]],
+) -> pd.DataFrame:
+    """Phases given by hand, as the table :func:`detect_phases` returns.
+
+    Parameters
+    ----------
+    phases : DataFrame, dict or iterable
+        A table with columns ``phase``, ``start``, ``stop``; a dict ``{phase: (start, stop)}``;
+        or ``(phase, start, stop)`` tuples. Times in seconds, ``start < stop``. Names are free
+        (the paper's are :data:`PHASES`); rows keep their order.
+
+    Returns
+    -------
+    DataFrame
+        Columns ``phase`` (str), ``start``, ``stop`` (float).
+
+    Raises
+    ------
+    ParameterError
+        A row without a name, or with ``start >= stop`` or a non-finite time.
+
+    References
+    ----------
+    Paper section 4.1: the baseline's phases 0-220, 220-1000, 1000-5000 and 5000-5700 ms.
+
+    Examples
+    --------
+    >>> phase_table({"early spin-up": (0.0, 0.22), "late spin-up": (0.22, 1.0),
+    ...              "cruise": (1.0, 5.0), "braking": (5.0, 5.7)})
+               phase  start  stop
+    0  early spin-up   0.00  0.22
+    1   late spin-up   0.22  1.00
+    2         cruise   1.00  5.00
+    3        braking   5.00  5.70
+    """
+    if isinstance(phases, pd.DataFrame):
+        missing = {"phase", "start", "stop"} - set(phases.columns)
+        if missing:
+            raise ParameterError(f"phases: the table lacks the columns {sorted(missing)}")
+        rows = list(zip(phases["phase"], phases["start"], phases["stop"], strict=True))
+    elif isinstance(phases, Mapping):
+        rows = [(name, *span) for name, span in phases.items()]
+    else:
+        rows = [tuple(row) for row in phases]
+    table = []
+    for row in rows:
+        if len(row) != 3:
+            raise ParameterError(f"phases: {row!r} is not (phase, start, stop)")
+        name, start, stop = row
+        try:
+            start, stop = float(start), float(stop)
+        except (TypeError, ValueError):
+            raise ParameterError(f"phases: {row!r} has a time that is not a number") from None
+        if not isinstance(name, str) or not name:
+            raise ParameterError(f"phases: {row!r} needs a phase name")
+        if not (math.isfinite(start) and math.isfinite(stop) and start < stop):
+            raise ParameterError(f"phases: {name!r} needs finite start < stop, got {start}, {stop}")
+        table.append((name, start, stop))
+    return pd.DataFrame(
+        {
+            "phase": pd.Series([r[0] for r in table], dtype=object),
+            "start": np.array([r[1] for r in table], dtype=np.float64),
+            "stop": np.array([r[2] for r in table], dtype=np.float64),
+        }
+    )

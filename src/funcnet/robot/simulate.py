@@ -1,0 +1,687 @@
+"""A simulated robot base axis: two-mass drivetrain with backlash, friction and a CNC cascade.
+
+The paper's recordings (first axis of a large milling robot, SINUMERIK 840D sl, 500 Hz) cannot be
+downloaded here, and nobody can check a diagnosis without ground truth. This module stands in for
+the machine: it produces the five signals the paper records -- reference position RP, arm-side
+(direct encoder) position AP, motor-encoder position MP, reference current RC and actual current
+AC -- every 2 ms, for any trial of the design of experiments (:mod:`funcnet.robot.plan`), together
+with the quantities a real trace never shows (gear torque, true lost motion, breakaway time).
+
+Model
+-----
+Mechanics (joint side angles in rad, motor angle on the motor shaft)::
+
+    J_m dw_m/dt = k_t i - tau / N - F_m(w_m)          motor + gear input stage
+    J_a dw_a/dt = tau - F_a(w_a)                      arm, J_a = J_0 + m_tcp r^2
+    delta = theta_m / N - theta_a                     gear torsion (joint side)
+    tau = k dz(delta) + c d(delta)/dt  if |delta| > b/2, else 0   (never pulls in contact)
+
+with ``dz`` the dead zone of full width ``b`` (backlash) and ``F`` the Coulomb + viscous +
+Stribeck friction ``sign(w) (F_c + (F_s - F_c) exp(-(w / w_s)^2)) + F_v w``. A body at rest
+sticks while the torque on it stays within its static friction ``F_s`` (Karnopp's model, which
+keeps a fixed step exact at zero velocity). The axis turns about the vertical: no gravity torque.
+
+Control, as the cascade of a CNC axis:
+
+- set-point generator (:func:`setpoint_profile`): jerk-limited step of a given size and speed,
+  optionally forward then back; the ramps have a constant duration (see below);
+- position loop on the arm-side (direct) encoder, gain ``position_gain`` (Kv) plus velocity
+  feed-forward, evaluated every speed-controller cycle (fine interpolation of the set-point);
+- speed PI loop on the differentiated motor encoder at ``speed_loop_rate``; its output is the
+  current set-point RC, limited to ``+-current_limit``;
+- current PI loop at ``current_loop_rate`` on the noisy, quantized current measurement, designed
+  for ``current_bandwidth`` (zero on the winding's pole), one sample of computation delay, acting
+  on a DC-equivalent q-axis winding ``L di/dt = u - R i - k_t w_m``.
+
+Everything is integrated at the current loop's rate (16 kHz by default) by one Numba-compiled
+kernel (semi-implicit Euler for the mechanics, the exact exponential step for the winding).
+
+Assumptions the docs must state
+-------------------------------
+- Ramp timing. A CNC would reach 35 deg/min in a few milliseconds; the paper's baseline (Fig. 9,
+  35 deg/min, 3 deg, 1.6 m) spins up for about 1 s (early spin-up 0-220 ms) and brakes for about
+  0.7 s. The set-point generator therefore uses ramps of *constant duration* -- 1.0 s to
+  accelerate, 0.7 s to decelerate -- whatever the speed, with jerk phases of 22 % of each ramp
+  (the acceleration has built up at 220 ms, the end of Fig. 9's early spin-up). A 3 deg step at
+  35 deg/min then cruises from 1.0 s to 5.3 s after the start; a 10 deg step at 350 deg/min still
+  has a 0.85 s cruise phase (paper, section 4.2). A step too short for both ramps at the requested
+  speed (1 or 3 deg at 350 deg/min, 1 deg at 175 deg/min) keeps the ramp durations and lowers
+  the peak speed to ``step / ((T_acc + T_dec) / 2)``: it never cruises.
+- Logging. All five signals are written every 2 ms (the paper: 500 Hz). In a real 840D sl trace
+  the measuring-system positions ``measPos1/2`` are IPO signals (4 ms); the simulator logs them
+  on the servo grid like the others, which the trace reader handles alike.
+- Numbers. The defaults describe a large milling robot's base axis (the paper's Flexmatik robot
+  is not documented in this detail); every field of :class:`AxisParameters` says where its value
+  comes from, and most are assumptions of the right order of magnitude.
+
+References
+----------
+.. [1] El Dabett, Hansen & Geier, "Functional networks of robot dynamics", sections 3.1-3.2
+   (experimental setup, 500 Hz acquisition of RP, AP, MP, RC, AC), section 4.1 and Fig. 9
+   (phase timing of the baseline), Table 1 (design of experiments).
+.. [2] D. Karnopp, "Computer simulation of stick-slip friction in mechanical dynamic systems",
+   J. Dyn. Sys., Meas., Control 107 (1985) 100-103.
+.. [3] B. Armstrong-Helouvry, P. Dupont, C. Canudas de Wit, "A survey of models, analysis tools
+   and compensation methods for the control of machines with friction", Automatica 30 (1994).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import zlib
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numba
+import numpy as np
+import pandas as pd
+
+from funcnet.errors import ParameterError
+
+if TYPE_CHECKING:
+    from funcnet.robot.plan import Trial
+
+__all__ = [
+    "AxisParameters",
+    "SimulatedTrial",
+    "setpoint_profile",
+    "simulate_trial",
+    "ROLES",
+]
+
+#: The logged signals, in the order of :attr:`SimulatedTrial.data`'s columns.
+ROLES = ("RP", "AP", "MP", "RC", "AC")
+
+#: Fields of :class:`AxisParameters` a :class:`~funcnet.robot.plan.Trial` may override.
+FAULT_KNOBS = ("backlash", "friction_scale", "stiffness_scale")
+
+
+@dataclass(frozen=True)
+class AxisParameters:
+    """Physical and control parameters of the simulated base axis (trial independent).
+
+    Angles and speeds without a suffix are on the joint (arm) side; ``motor_*`` friction acts on
+    the motor shaft. The three fault knobs -- ``backlash``, ``friction_scale``,
+    ``stiffness_scale`` -- are what a :class:`~funcnet.robot.plan.Trial` may override.
+
+    Parameters
+    ----------
+    gear_ratio : float
+        Motor turns per arm turn. 150: base axes of large robots use RV / cycloidal reducers of
+        ratio 100-200 (assumption).
+    motor_inertia : float
+        kg m^2 on the motor shaft, motor + brake + gear input stage. 0.012: a servo motor of
+        about 10 N m rated torque (catalogue order of magnitude; assumption).
+    arm_inertia_base : float
+        kg m^2 about the axis of everything whose inertia does not depend on the TCP distance
+        (turntable, column). 150 (assumption).
+    arm_tcp_mass : float
+        kg, the equivalent point mass at the TCP distance ``r`` (arm, swivel head, spindle), so
+        that the arm inertia is ``arm_inertia_base + arm_tcp_mass * r**2``: 510 / 790 /
+        1150 kg m^2 at 1.2 / 1.6 / 2.0 m (assumption). Its share is what makes a larger TCP
+        distance need more current to accelerate (paper, section 3.1).
+    gear_stiffness : float
+        N m/rad, torsional stiffness of the reducer, joint side. 4e6: catalogue values of RV
+        reducers for 300-500 kg robots are 1e6-1e7; with the inertias above the first mode lies
+        near 20 Hz, typical of large robots (assumption).
+    gear_damping : float
+        N m s/rad, structural damping of the gear in contact; 1.2e4 gives about 10 % damping of
+        the arm mode against a locked motor at 1.6 m (assumption).
+    backlash : float
+        Degrees, the full width of the gear's dead zone, joint side. 0.02 (72 arcsec): a worn-in
+        reducer slightly above the 1 arcmin lost motion of a new RV reducer (assumption).
+    motor_coulomb, motor_static : float
+        N m, sliding and breakaway friction on the motor shaft (bearings, seals, input stage):
+        0.8 and 1.2, about 10 % of the rated torque (assumption).
+    motor_viscous : float
+        N m s/rad on the motor shaft, 0.002 (assumption).
+    motor_stribeck_velocity : float
+        rad/s on the motor shaft, 1.0 (assumption).
+    arm_coulomb, arm_static : float
+        N m, sliding and breakaway friction of the slewing bearing and the gear output stage,
+        joint side: 150 and 220 (assumption, a few percent of the axis's rated torque).
+    arm_viscous : float
+        N m s/rad, joint side, 300 (assumption).
+    arm_stribeck_velocity : float
+        rad/s, joint side: 0.002 (0.11 deg/s), so that 1 deg/min creeps deep in the Stribeck
+        region -- the reason for the paper's static-friction trials (assumption).
+    friction_scale : float
+        Fault knob: multiplies every friction coefficient on both sides (1 = healthy).
+    stiffness_scale : float
+        Fault knob: multiplies ``gear_stiffness`` (1 = healthy; < 1 a worn, softer gear).
+    torque_constant : float
+        N m/A of the motor (q-axis current), 2.0 (catalogue order of magnitude; assumption).
+    winding_resistance, winding_inductance : float
+        Ohm and H of the DC-equivalent q-axis winding: 1.2 and 0.012 (assumption).
+    current_limit : float
+        A, the limit of the current set-point RC (motor peak current), 20 (assumption).
+    current_loop_rate : float
+        Hz, the current controller's rate and the integration rate: 16000 (SINUMERIK drives run
+        the current loop every 62.5 us; the reference trace's drive rate is 8 kHz).
+    current_bandwidth : float
+        Hz, closed-loop bandwidth of the current loop: 1000 (the paper, section 4.2: current
+        loops run at 1-2 kHz, well above the 500 Hz log).
+    speed_loop_rate : float
+        Hz, the speed controller's rate: 8000 (``driveSampleRate1`` = 125 us in the reference
+        trace). Must divide ``current_loop_rate``.
+    speed_gain : float
+        A s/rad, proportional gain of the speed PI loop on the motor speed: 3.0 (tuned here for a
+        crossover near 80 Hz on the motor inertia; assumption).
+    speed_integral_time : float
+        s, integral time of the speed PI loop: 0.02 (assumption).
+    position_gain : float
+        1/s, the position loop's Kv on the arm encoder: 10 (0.6 (m/min)/mm; kept well below the
+        arm's antiresonance because the loop is closed on the direct encoder; assumption).
+    velocity_feedforward : float
+        Weight of the velocity feed-forward, 0.9: leaves the constant cruise lag
+        ``(1 - 0.9) v / Kv`` that Fig. 9 shows between RP and AP (assumption).
+    motor_encoder_counts : int
+        Counts per motor turn: 2**22 (a 22-bit absolute motor encoder).
+    arm_encoder_counts : int
+        Counts per arm turn: 2**22, i.e. 8.6e-5 deg, the step of ``measPos2`` in the reference
+        trace.
+    current_noise : float
+        A, standard deviation of the current-sensor noise, 0.01 (assumption, of the order of
+        the standstill scatter in the reference trace).
+    current_resolution : float
+        A, quantum of the current measurement: 0.0066, the step of ``ActCurr32`` in the
+        reference trace.
+    acceleration_time, deceleration_time : float
+        s, constant ramp durations of the set-point generator, 1.0 and 0.7 (fitted to Fig. 9's
+        spin-up of about 1 s and braking of about 0.7 s; see the module notes).
+    jerk_fraction : float
+        Share of each ramp spent building up or removing acceleration, 0.22 (Fig. 9's early
+        spin-up ends at 220 ms).
+    lead_time : float
+        s of standstill logged before the set-point starts, 0.1.
+    dwell_time : float
+        s the set-point rests at the far end of a forward-then-reverse trial, 0.0 (the reverse
+        move follows at once).
+    settle_time : float
+        s logged after the set-point has arrived, 1.5, so every trace ends with the axis at rest
+        at its target.
+    log_period : float
+        s between logged samples, 0.002 (500 Hz, the paper's rate). Must be a multiple of the
+        speed-loop period.
+
+    References
+    ----------
+    .. [1] El Dabett, Hansen & Geier, sections 3.1-3.2 and Fig. 9.
+
+    Examples
+    --------
+    >>> p = AxisParameters()
+    >>> round(p.arm_inertia(1.6))
+    790
+    >>> p.replace(backlash=0.05).backlash
+    0.05
+    """
+
+    gear_ratio: float = 150.0
+    motor_inertia: float = 0.012
+    arm_inertia_base: float = 150.0
+    arm_tcp_mass: float = 250.0
+    gear_stiffness: float = 4.0e6
+    gear_damping: float = 1.2e4
+    backlash: float = 0.02
+    motor_coulomb: float = 0.8
+    motor_static: float = 1.2
+    motor_viscous: float = 0.002
+    motor_stribeck_velocity: float = 1.0
+    arm_coulomb: float = 150.0
+    arm_static: float = 220.0
+    arm_viscous: float = 300.0
+    arm_stribeck_velocity: float = 0.002
+    friction_scale: float = 1.0
+    stiffness_scale: float = 1.0
+    torque_constant: float = 2.0
+    winding_resistance: float = 1.2
+    winding_inductance: float = 0.012
+    current_limit: float = 20.0
+    current_loop_rate: float = 16000.0
+    current_bandwidth: float = 1000.0
+    speed_loop_rate: float = 8000.0
+    speed_gain: float = 3.0
+    speed_integral_time: float = 0.02
+    position_gain: float = 10.0
+    velocity_feedforward: float = 0.9
+    motor_encoder_counts: int = 2**22
+    arm_encoder_counts: int = 2**26
+    current_noise: float = 0.01
+    current_resolution: float = 0.0066
+    acceleration_time: float = 1.0
+    deceleration_time: float = 0.7
+    jerk_fraction: float = 0.22
+    lead_time: float = 0.1
+    dwell_time: float = 0.0
+    settle_time: float = 1.5
+    log_period: float = 0.002
+
+    def __post_init__(self) -> None:
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if not (isinstance(value, int | float) and math.isfinite(value)):
+                raise ParameterError(f"AxisParameters.{f.name} must be a finite number: {value!r}")
+        nonnegative = {
+            "backlash",
+            "lead_time",
+            "dwell_time",
+            "settle_time",
+            "current_noise",
+            "current_resolution",
+            "velocity_feedforward",
+            "gear_damping",
+        }
+        nonnegative |= {
+            f.name
+            for f in dataclasses.fields(self)
+            if "coulomb" in f.name or "static" in f.name or "viscous" in f.name
+        }
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if value < 0 or (value == 0 and f.name not in nonnegative):
+                kind = "non-negative" if f.name in nonnegative else "positive"
+                raise ParameterError(f"AxisParameters.{f.name} must be {kind}: {value!r}")
+        if self.jerk_fraction > 0.5:
+            raise ParameterError(
+                f"AxisParameters.jerk_fraction must be <= 0.5: {self.jerk_fraction}"
+            )
+        if self.motor_static < self.motor_coulomb or self.arm_static < self.arm_coulomb:
+            raise ParameterError(
+                "AxisParameters: static friction must not be below Coulomb friction"
+            )
+        ratio = self.current_loop_rate / self.speed_loop_rate
+        per_log = self.log_period * self.speed_loop_rate
+        if abs(ratio - round(ratio)) > 1e-9 or abs(per_log - round(per_log)) > 1e-6:
+            raise ParameterError(
+                "AxisParameters: current_loop_rate must be a multiple of speed_loop_rate and "
+                "log_period a multiple of the speed-loop period"
+            )
+
+    def arm_inertia(self, tcp: float) -> float:
+        """Arm inertia about the axis in kg m^2 at TCP distance ``tcp`` (m)."""
+        return self.arm_inertia_base + self.arm_tcp_mass * tcp**2
+
+    def replace(self, **changes: Any) -> AxisParameters:
+        """A copy with ``changes`` applied (validated like the constructor)."""
+        unknown = set(changes) - {f.name for f in dataclasses.fields(self)}
+        if unknown:
+            raise ParameterError(f"AxisParameters has no field(s) {sorted(unknown)}")
+        return dataclasses.replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class SimulatedTrial:
+    """One simulated trial: the logged signals, the hidden states and the ground truth.
+
+    Attributes
+    ----------
+    trial : Trial
+        What was simulated.
+    params : AxisParameters
+        The parameters in effect (the trial's fault knobs applied).
+    seed : int
+        The seed the noise was drawn from (combined with the trial's name).
+    data : pandas.DataFrame
+        Index ``time`` (s, every ``log_period``), columns RP, AP, MP (deg, joint side), RC, AC
+        (A): what the controller logs.
+    states : pandas.DataFrame
+        Same index; the true ``gear_torque`` (N m, transmitted by the gear), ``torsion`` (deg,
+        ``theta_m / N - theta_a`` before quantization), ``arm_velocity`` and
+        ``motor_velocity`` (deg/s, joint side).
+    truth : dict
+        ``backlash`` (deg), ``breakaway_time`` (s, when the arm first leaves static friction
+        after the set-point starts; NaN if it never does), ``motion_start`` (s), ``motion_end``
+        (s, the set-point arrives), and for a forward-then-reverse trial ``reversal_time`` (s,
+        the motor's turning point while the arm rests), ``restart_time`` (s, the arm starts
+        back), ``lost_motion`` (deg, the motor travel between the two: dead zone plus the gear's
+        torsional wind-up on both flanks), ``windup_forward`` and ``windup_reverse`` (deg); NaN
+        for a forward-only trial.
+    """
+
+    trial: Trial
+    params: AxisParameters
+    seed: int
+    data: pd.DataFrame = field(repr=False)
+    states: pd.DataFrame = field(repr=False)
+    truth: dict[str, float]
+
+
+def _ramp_velocity(u: np.ndarray, f: float) -> np.ndarray:
+    """Normalized velocity of a jerk-limited ramp (0 -> 1 over u in [0, 1], jerk share f)."""
+    a = 1.0 / (1.0 - f)
+    lo = np.minimum(u, 1.0 - u)  # the ramp is point-symmetric about (1/2, 1/2)
+    s = np.where(lo <= f, a * lo**2 / (2 * f) if f > 0 else 0.0, a * (lo - f / 2))
+    return np.where(u <= 0.5, s, 1.0 - s)
+
+
+def _ramp_distance(u: np.ndarray, f: float) -> np.ndarray:
+    """Integral of :func:`_ramp_velocity` from 0 to u; equals 1/2 at u = 1."""
+    a = 1.0 / (1.0 - f)
+    lo = np.minimum(u, 1.0 - u)
+    at_f = a * f**2 / 6
+    s = np.where(
+        lo <= f,
+        a * lo**3 / (6 * f) if f > 0 else 0.0,
+        at_f + a * ((lo - f / 2) ** 2 - (f / 2) ** 2) / 2,
+    )
+    return np.where(u <= 0.5, s, u - 0.5 + s)
+
+
+def _move(t: np.ndarray, step: float, speed: float, p: AxisParameters) -> tuple[np.ndarray, ...]:
+    """Position and velocity of one jerk-limited move starting at t = 0; and its duration."""
+    ta, td, f = p.acceleration_time, p.deceleration_time, p.jerk_fraction
+    peak = min(speed, abs(step) / ((ta + td) / 2))
+    cruise = abs(step) / peak - (ta + td) / 2
+    duration = ta + cruise + td
+    tc = np.clip(t, 0.0, duration)
+    in_acc, in_dec = tc < ta, tc > ta + cruise
+    u_dec = np.clip((tc - ta - cruise) / td, 0.0, 1.0)
+    pos = np.where(
+        in_acc,
+        ta * _ramp_distance(np.clip(tc / ta, 0.0, 1.0), f),
+        np.where(
+            in_dec, ta / 2 + cruise + td * (u_dec - _ramp_distance(u_dec, f)), ta / 2 + (tc - ta)
+        ),
+    )
+    vel = np.where(
+        in_acc,
+        _ramp_velocity(np.clip(tc / ta, 0.0, 1.0), f),
+        np.where(in_dec, 1.0 - _ramp_velocity(u_dec, f), 1.0),
+    )
+    vel = np.where((t < 0) | (t > duration), 0.0, vel)
+    sign = math.copysign(1.0, step)
+    return sign * peak * pos, sign * peak * vel, np.float64(duration)
+
+
+def setpoint_profile(
+    t: np.ndarray, step: float, speed: float, reverse: bool, params: AxisParameters
+) -> tuple[np.ndarray, np.ndarray, dict[str, float]]:
+    """Reference position and velocity of a trial's jerk-limited set-point generator.
+
+    Parameters
+    ----------
+    t : ndarray
+        Times in s from the start of the trace (the motion starts at ``params.lead_time``).
+    step : float
+        Step size in deg (its sign is the forward direction).
+    speed : float
+        Programmed speed in deg/min.
+    reverse : bool
+        Whether the axis goes back to its start after the forward move (and ``dwell_time``).
+    params : AxisParameters
+        Ramp durations (``acceleration_time``, ``deceleration_time``) and ``jerk_fraction``.
+
+    Returns
+    -------
+    position : ndarray
+        deg.
+    velocity : ndarray
+        deg/s.
+    timing : dict
+        ``motion_start``, ``forward_end``, ``reverse_start`` (NaN without reverse) and
+        ``motion_end``, in s.
+
+    References
+    ----------
+    .. [1] El Dabett, Hansen & Geier, Fig. 9 (spin-up about 1 s, braking about 0.7 s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> p = AxisParameters()
+    >>> pos, vel, timing = setpoint_profile(np.array([0.0, 3.0, 10.0]), 3.0, 35.0, False, p)
+    >>> pos.round(6).tolist(), round(vel[1] * 60, 6), round(timing["motion_end"], 4)
+    ([0.0, 1.458333, 3.0], 35.0, 6.0929)
+    """
+    t = np.asarray(t, dtype=np.float64)
+    start = params.lead_time
+    pos, vel, duration = _move(t - start, step, speed / 60.0, params)
+    forward_end = start + float(duration)
+    timing = {
+        "motion_start": start,
+        "forward_end": forward_end,
+        "reverse_start": math.nan,
+        "motion_end": forward_end,
+    }
+    if reverse:
+        back_start = forward_end + params.dwell_time
+        back_pos, back_vel, back_duration = _move(t - back_start, -step, speed / 60.0, params)
+        pos, vel = pos + back_pos, vel + back_vel
+        timing["reverse_start"] = back_start
+        timing["motion_end"] = back_start + float(back_duration)
+    return pos, vel, timing
+
+
+@numba.njit(cache=True)
+def _friction_step(w, torque, inertia, dt, coulomb, static, viscous, stribeck):
+    """New velocity of a body with Coulomb + viscous + Stribeck friction (Karnopp's stick)."""
+    if w == 0.0:
+        if abs(torque) <= static:
+            return 0.0
+        return dt / inertia * (torque - math.copysign(static, torque))
+    sliding = coulomb + (static - coulomb) * math.exp(-((w / stribeck) ** 2))
+    new = w + dt / inertia * (torque - math.copysign(sliding, w) - viscous * w)
+    if new * w < 0.0:  # passed through zero within the step: stick, decided again next step
+        return 0.0
+    return new
+
+
+@numba.njit(cache=True)
+def _axis_kernel(sp_pos, sp_vel, noise, dt, steps, mechanics, friction, control, sensors):
+    """Integrate the axis at ``dt``; log RP, AP, MP, RC, AC and the hidden states.
+
+    ``sp_pos``, ``sp_vel``: set-point (joint rad, rad/s) per speed-controller cycle; ``noise``:
+    current-sensor noise (A) per step; the tuples are unpacked below (SI units, joint side
+    except the motor's own quantities). Returns the log, the states and the truth events.
+    """
+    per_speed, per_log, n_start, n_reverse = steps
+    ratio, j_m, j_a, k, c, half_b, kt, r, l_ind = mechanics
+    m_coul, m_stat, m_visc, m_strib, a_coul, a_stat, a_visc, a_strib = friction
+    i_max, kp_i, ki_i, kp_v, ki_v, kv, ffw = control
+    q_m, q_a, q_i = sensors
+    n_steps = sp_pos.shape[0] * per_speed
+    n_log = (n_steps + per_log - 1) // per_log
+    log = np.empty((n_log, 5))
+    states = np.empty((n_log, 4))
+    events = np.full(6, np.nan)  # breakaway, reversal, restart, lost motion, windups fwd / rev
+    th_m = w_m = th_a = w_a = cur = 0.0
+    u_next = u_now = integ_i = integ_v = i_cmd = 0.0
+    enc_m_prev = enc_m = enc_a = 0.0
+    decay = math.exp(-dt * r / l_ind)
+    t_speed = dt * per_speed
+    d_max = -np.inf
+    t_d_max = np.nan
+    for n in range(n_steps):
+        if n % per_speed == 0:
+            kk = n // per_speed
+            enc_m = round(th_m / q_m) * q_m
+            enc_a = round(th_a / q_a) * q_a
+            w_meas = (enc_m - enc_m_prev) / t_speed
+            enc_m_prev = enc_m
+            w_cmd = ratio * (ffw * sp_vel[kk] + kv * (sp_pos[kk] - enc_a))
+            err_v = w_cmd - w_meas
+            wanted = kp_v * err_v + integ_v
+            i_cmd = min(max(wanted, -i_max), i_max)
+            if wanted == i_cmd or wanted * err_v < 0.0:  # anti-windup: freeze when saturated
+                integ_v += ki_v * t_speed * err_v
+        i_meas = round((cur + noise[n]) / q_i) * q_i
+        err_i = i_cmd - i_meas
+        u_now = u_next  # one controller cycle of computation delay
+        u_next = kp_i * err_i + integ_i
+        integ_i += ki_i * dt * err_i
+        delta = th_m / ratio - th_a
+        if delta > half_b:
+            tau = max(k * (delta - half_b) + c * (w_m / ratio - w_a), 0.0)
+        elif delta < -half_b:
+            tau = min(k * (delta + half_b) + c * (w_m / ratio - w_a), 0.0)
+        else:
+            tau = 0.0
+        if n % per_log == 0:
+            j = n // per_log
+            log[j, 0] = sp_pos[n // per_speed]
+            log[j, 1] = enc_a
+            log[j, 2] = enc_m / ratio
+            log[j, 3] = i_cmd
+            log[j, 4] = i_meas
+            states[j, 0] = tau
+            states[j, 1] = delta
+            states[j, 2] = w_a
+            states[j, 3] = w_m / ratio
+        cur = cur * decay + (1.0 - decay) * (u_now - kt * w_m) / r
+        w_m_new = _friction_step(
+            w_m, kt * cur - tau / ratio, j_m, dt, m_coul, m_stat, m_visc, m_strib
+        )
+        w_a_new = _friction_step(w_a, tau, j_a, dt, a_coul, a_stat, a_visc, a_strib)
+        if w_a == 0.0:
+            if w_a_new == 0.0:
+                if delta > d_max:  # the arm rests: follow the motor's forward extreme
+                    d_max, t_d_max = delta, n * dt
+            else:
+                if n >= n_start and np.isnan(events[0]):
+                    events[0] = (n + 1) * dt
+                if n_reverse >= 0 and n >= n_reverse and w_a_new < 0.0 and np.isnan(events[2]):
+                    events[1] = t_d_max
+                    events[2] = (n + 1) * dt
+                    events[3] = d_max - delta
+                    events[4] = d_max - half_b
+                    events[5] = -delta - half_b
+        elif w_a_new == 0.0:
+            d_max, t_d_max = delta, n * dt
+        w_m, w_a = w_m_new, w_a_new
+        th_m += w_m * dt
+        th_a += w_a * dt
+    return log, states, events
+
+
+def _trial_seed(seed: int, name: str) -> np.random.SeedSequence:
+    """Noise seed of one trial: the user's seed with the trial's name, independent of order."""
+    return np.random.SeedSequence([int(seed), zlib.crc32(name.encode("utf-8"))])
+
+
+def effective_parameters(trial: Trial, params: AxisParameters | None = None) -> AxisParameters:
+    """``params`` (default :class:`AxisParameters`) with the trial's fault knobs applied."""
+    params = AxisParameters() if params is None else params
+    overrides = {
+        knob: getattr(trial, knob) for knob in FAULT_KNOBS if getattr(trial, knob) is not None
+    }
+    return params.replace(**overrides) if overrides else params
+
+
+def simulate_trial(
+    trial: Trial, params: AxisParameters | None = None, *, seed: int = 0
+) -> SimulatedTrial:
+    """Simulate one trial of the axis and log it as the controller would.
+
+    Parameters
+    ----------
+    trial : Trial
+        Speed (deg/min), TCP distance (m), step (deg), forward or forward-then-reverse, and
+        optional fault knobs that override ``params``.
+    params : AxisParameters, optional
+        The axis; :class:`AxisParameters` defaults when omitted.
+    seed : int
+        Seed of the current-sensor noise, combined with ``trial.name`` so that a trial's
+        result does not depend on which other trials run or in what order. The same seed gives
+        the same numbers, bit for bit.
+
+    Returns
+    -------
+    SimulatedTrial
+        ``data`` (RP, AP, MP in deg; RC, AC in A; every ``log_period``), ``states`` and
+        ``truth``.
+
+    Raises
+    ------
+    ParameterError
+        If a parameter is out of its domain.
+
+    Notes
+    -----
+    The trace spans ``lead_time`` of standstill, the motion, and ``settle_time`` after the
+    set-point has arrived. The kernel runs at ``current_loop_rate``; its first call compiles it
+    (a few seconds, then cached on disk).
+
+    References
+    ----------
+    .. [1] El Dabett, Hansen & Geier, sections 3.1-3.2, Table 1, Fig. 9.
+
+    Examples
+    --------
+    >>> from funcnet.robot.plan import Trial
+    >>> sim = simulate_trial(Trial("demo", "main", speed=350, tcp=1.2, step=1.0), seed=1)
+    >>> list(sim.data.columns)
+    ['RP', 'AP', 'MP', 'RC', 'AC']
+    >>> round(float(sim.data["RP"].iloc[-1]), 6), abs(sim.data["AP"].iloc[-1] - 1.0) < 1e-3
+    (1.0, True)
+    """
+    p = effective_parameters(trial, params)
+    per_speed = round(p.current_loop_rate / p.speed_loop_rate)
+    per_log = round(p.log_period * p.current_loop_rate)
+    t_speed = 1.0 / p.speed_loop_rate
+    _, _, timing = setpoint_profile(np.zeros(1), trial.step, trial.speed, trial.reverse, p)
+    n_log = math.ceil((timing["motion_end"] + p.settle_time) / p.log_period) + 1
+    n_speed = n_log * (per_log // per_speed)
+    t = np.arange(n_speed) * t_speed
+    sp_pos, sp_vel, _ = setpoint_profile(t, trial.step, trial.speed, trial.reverse, p)
+    rng = np.random.default_rng(_trial_seed(seed, trial.name))
+    noise = rng.standard_normal(n_speed * per_speed) * p.current_noise
+
+    dt = 1.0 / p.current_loop_rate
+    rad = math.pi / 180.0
+    fs, ks = p.friction_scale, p.stiffness_scale
+    omega_i = 2 * math.pi * p.current_bandwidth
+    n_reverse = round(timing["forward_end"] / dt) if trial.reverse else -1
+    steps = (per_speed, per_log, round(timing["motion_start"] / dt), n_reverse)
+    mechanics = (p.gear_ratio, p.motor_inertia, p.arm_inertia(trial.tcp),
+                 p.gear_stiffness * ks, p.gear_damping, p.backlash * rad / 2,
+                 p.torque_constant, p.winding_resistance, p.winding_inductance)  # fmt: skip
+    friction = (p.motor_coulomb * fs, p.motor_static * fs, p.motor_viscous * fs,
+                p.motor_stribeck_velocity, p.arm_coulomb * fs, p.arm_static * fs,
+                p.arm_viscous * fs, p.arm_stribeck_velocity)  # fmt: skip
+    control = (p.current_limit, p.winding_inductance * omega_i, p.winding_resistance * omega_i,
+               p.speed_gain, p.speed_gain / p.speed_integral_time, p.position_gain,
+               p.velocity_feedforward)  # fmt: skip
+    sensors = (2 * math.pi / p.motor_encoder_counts, 2 * math.pi / p.arm_encoder_counts,
+               p.current_resolution)  # fmt: skip
+    log, states, events = _axis_kernel(
+        sp_pos * rad, sp_vel * rad, noise, dt, steps,
+        *(tuple(map(float, group)) for group in (mechanics, friction, control, sensors)),
+    )  # fmt: skip
+    log = log[:n_log]
+    index = pd.Index(np.arange(n_log) * p.log_period, name="time")
+    deg = 180.0 / math.pi
+    data = pd.DataFrame(
+        {
+            "RP": log[:, 0] * deg,
+            "AP": log[:, 1] * deg,
+            "MP": log[:, 2] * deg,
+            "RC": log[:, 3],
+            "AC": log[:, 4],
+        },
+        index=index,
+    )
+    hidden = pd.DataFrame(
+        {
+            "gear_torque": states[:n_log, 0],
+            "torsion": states[:n_log, 1] * deg,
+            "arm_velocity": states[:n_log, 2] * deg,
+            "motor_velocity": states[:n_log, 3] * deg,
+        },
+        index=index,
+    )
+    truth = {
+        "backlash": p.backlash,
+        "breakaway_time": float(events[0]),
+        "motion_start": timing["motion_start"],
+        "motion_end": timing["motion_end"],
+        "reversal_time": float(events[1]),
+        "restart_time": float(events[2]),
+        "lost_motion": float(events[3] * deg),
+        "windup_forward": float(events[4] * deg),
+        "windup_reverse": float(events[5] * deg),
+    }
+    return SimulatedTrial(
+        trial=trial, params=p, seed=int(seed), data=data, states=hidden, truth=truth
+    )

@@ -1,0 +1,194 @@
+"""Findings: the yes / partly / no decisions on hand-made networks with known edges."""
+
+from __future__ import annotations
+
+import itertools
+
+import pandas as pd
+import pytest
+
+from funcnet.errors import ParameterError
+from funcnet.findings import (
+    BASELINE,
+    REVERSAL_SEQUENCE,
+    Finding,
+    FindingSpec,
+    baseline_findings,
+    design_effect,
+    edge_thinning,
+    evaluate,
+    relation,
+    relation_holds,
+    reversal_findings,
+    reversal_sequence,
+    velocity_findings,
+)
+
+NODES = ("RP", "AP", "MP", "V", "RC", "AC")
+
+
+def make_pairs(edges: dict[str, float] | list[str], nodes=NODES, default="bidirectional"):
+    """A pairs table over all node pairs: listed relations set, every other pair ``default``.
+
+    ``edges`` holds ``"A->B"`` or ``"A<->B"`` or ``"A-/-B"`` (conflict), optionally with weights.
+    """
+    weights = edges if isinstance(edges, dict) else dict.fromkeys(edges, 0.1)
+    kinds = {}
+    for text, w in weights.items():
+        for op, kind in (("<->", "bidirectional"), ("-/-", "conflict"), ("->", "directed")):
+            if op in text:
+                a, b = text.split(op)
+                kinds[frozenset((a, b))] = (kind, a, b, w)
+                break
+    rows = []
+    for x, y in itertools.combinations(nodes, 2):
+        kind, a, b, w = kinds.get(frozenset((x, y)), (default, x, y, 0.01))
+        if kind == "directed":
+            kind = "x->y" if (a, b) == (x, y) else "y->x"
+        rows.append({"x": x, "y": y, "kind": kind, "weight": w})
+    return pd.DataFrame(rows)
+
+
+def test_relation_reads_all_four_kinds_in_both_orders():
+    pairs = make_pairs(["RP->AP", "MP->RP", "RC<->AC", "V-/-AP"])
+    assert relation(pairs, "RP", "AP") == "RP->AP"
+    assert relation(pairs, "AP", "RP") == "RP->AP"
+    assert relation(pairs, "RP", "MP") == "MP->RP"
+    assert relation(pairs, "AC", "RC") == "AC<->RC"
+    assert relation(pairs, "AP", "V") == "AP-/-V"
+    assert relation(pairs, "RP", "XX") is None
+
+
+def test_relation_holds_operators():
+    pairs = make_pairs(["RP->AP", "RC<->AC", "V-/-AP"])
+    assert relation_holds(pairs, "RP->AP") == (True, "RP->AP")
+    assert relation_holds(pairs, "AP->RP") == (False, "RP->AP")
+    assert relation_holds(pairs, "RC<->AC")[0] is True
+    assert relation_holds(pairs, "RP<->AP")[0] is False
+    assert relation_holds(pairs, "RP!<->AP")[0] is True  # directed counts as "not bidirectional"
+    assert relation_holds(pairs, "V!<->AP")[0] is True  # so does no edge (conflict)
+    assert relation_holds(pairs, "RC!<->AC")[0] is False
+    assert relation_holds(pairs, "RP->ZZ") == (None, None)
+    with pytest.raises(ParameterError, match="claim"):
+        relation_holds(pairs, "RP => AP")
+
+
+def test_evaluate_yes_partly_no():
+    spec = FindingSpec("t", "4.1", "RP drives AP and MP", {"early": ("RP->AP", "RP->MP")})
+    assert evaluate(spec, {"early": make_pairs(["RP->AP", "RP->MP"])}).reproduced == "yes"
+    partly = evaluate(spec, {"early": make_pairs(["RP->AP", "MP->RP"])})
+    assert partly.reproduced == "partly"
+    assert "1/2 relations hold" in partly.evidence
+    assert "[early] MP->RP" in partly.edges_seen
+    assert evaluate(spec, {"early": make_pairs(["AP->RP", "MP->RP"])}).reproduced == "no"
+    # nothing to evaluate is never a success
+    missing = evaluate(spec, {"early": None})
+    assert missing.reproduced == "no" and "not evaluable: early" in missing.evidence
+
+
+def test_evaluate_counts_trials_fully_matching():
+    spec = FindingSpec("t", "4.3", "V drives RP", {f"T{k}": ("V->RP",) for k in range(6)},
+                       unit="trials")
+    nets = {f"T{k}": make_pairs(["V->RP"] if k < 4 else ["RP->V"]) for k in range(6)}
+    finding = evaluate(spec, nets)
+    assert finding.reproduced == "partly"
+    assert finding.evidence.startswith("4/6 trials show all claimed relations")
+    assert evaluate(spec, {f"T{k}": make_pairs(["RP->V"]) for k in range(6)}).reproduced == "no"
+
+
+def test_finding_rejects_unknown_verdict():
+    with pytest.raises(ParameterError, match="reproduced"):
+        Finding("x", "4.1", "s", "maybe", "e")
+
+
+def paper_baseline():
+    """Networks drawn exactly as section 4.1 describes them."""
+    early = make_pairs(["RP->AP", "RP->MP", "AP<->V", "RC<->AC",
+                        *(f"{c}->{m}" for c in ("RC", "AC") for m in ("RP", "AP", "MP", "V"))])
+    cluster = ["RP<->AP", "RP<->MP", "AP<->MP",
+               *(f"{p}->{t}" for p in ("RP", "AP", "MP") for t in ("V", "RC", "AC"))]
+    braking = make_pairs([*(f"{c}->{m}" for c in ("RC", "AC") for m in ("RP", "AP", "MP", "V")),
+                          "AP->MP", "AP->RP"])
+    return {"early spin-up": early, "late spin-up": make_pairs(cluster),
+            "cruise": make_pairs(cluster), "braking": braking}
+
+
+def test_baseline_as_in_the_paper_is_reproduced_and_its_opposite_is_not():
+    networks = paper_baseline()
+    found = baseline_findings(networks)
+    assert [f.id for f in found] == [s.id for s in BASELINE]
+    assert all(f.reproduced == "yes" for f in found), [(f.id, f.evidence) for f in found]
+    # every edge flipped: no directed claim holds, bidirectional ones become directed
+    flipped = {k: v.assign(kind=v["kind"].map({"x->y": "y->x", "y->x": "x->y",
+                                                "bidirectional": "x->y"}))
+               for k, v in networks.items()}
+    assert all(f.reproduced == "no" for f in baseline_findings(flipped))
+
+
+def test_velocity_findings_on_paper_like_networks():
+    nets = {}
+    for v in ("V1", "V35", "V175", "V350"):
+        for p in ("spin-up", "cruise", "braking"):
+            nets[(v, p)] = make_pairs(["RC<->AC"])
+    nets[("V175", "spin-up")] = make_pairs(["RC<->AC", "V->AP"])
+    nets[("V350", "spin-up")] = make_pairs(["RC<->AC", "AP->V"])
+    found = {f.id: f for f in velocity_findings(nets)}
+    assert found["4.2-spinup-ap-v"].reproduced == "yes"
+    assert found["4.2-rc-ac-everywhere"].reproduced == "yes"
+    assert "12/12 conditions" in found["4.2-rc-ac-everywhere"].evidence
+    # everything bidirectional: one big cluster, not two (6 of 15 claimed relations hold)
+    assert found["4.2-v1-two-clusters"].reproduced == "no"
+    assert "6/15 relations hold" in found["4.2-v1-two-clusters"].evidence
+    assert found["4.2-v1-braking-mp-ap"].reproduced == "no"
+    # all weights equal: no thinning
+    assert found["4.2-edges-thin"].reproduced == "no"
+
+
+def test_edge_thinning_partly_and_weights():
+    weights = {"V1": 0.4, "V35": 0.3, "V175": 0.2, "V350": 0.1}
+    nets = {}
+    for p in ("spin-up", "cruise", "braking"):
+        for v, w in weights.items():
+            grow = p == "braking"
+            nets[(v, p)] = make_pairs({"RP->AP": 0.5 - w if grow else w}, default="conflict")
+    finding = edge_thinning(nets)
+    assert finding.reproduced == "partly"
+    assert finding.evidence.startswith("2/3 phases thin")
+    assert "350°/min 0.100" in finding.evidence
+
+
+def sequence_networks(shown: dict[int, list[str]]):
+    return {o: make_pairs(shown.get(o, list(REVERSAL_SEQUENCE[o])), default="conflict")
+            for o in REVERSAL_SEQUENCE}
+
+
+def test_reversal_signature_and_sequence_counts():
+    as_paper = {o: [c.replace("!<->", "->") for c in cs] for o, cs in REVERSAL_SEQUENCE.items()}
+    trials = {f"B{k}": sequence_networks(as_paper) for k in range(4)}
+    trials["B4"] = sequence_networks({0: ["RP->V"], 20: ["RP->V"]})  # no signature at all
+    trials["B5"] = sequence_networks({**as_paper, -20: ["V<->RC"]})  # half of -20 ms
+    found = {f.id: f for f in reversal_findings(trials)}
+    assert found["4.3-v-drives"].reproduced == "partly"
+    assert found["4.3-v-drives"].evidence.startswith("5/6 trials")
+    assert found["4.3-position-chain"].evidence.startswith("5/6 trials")
+    seq = found["4.3-sequence"]
+    assert seq.reproduced == "partly"
+    assert seq.evidence.startswith("whole sequence in 4/6 trials, at least half of each "
+                                   "window's claims in 5/6")
+    assert "-40 ms 6/6, -20 ms 5/6, +0 ms 5/6, +20 ms 5/6, +40 ms 6/6" in seq.evidence
+    assert reversal_sequence({k: sequence_networks(as_paper) for k in "ab"}).reproduced == "yes"
+
+
+def test_design_effect_counts_identical_relations():
+    trials = pd.DataFrame({"name": ["a", "b", "c", "d"], "speed": [35, 35, 175, 175],
+                           "tcp": [1.2, 1.6, 1.2, 1.6], "step": [3, 3, 3, 3]})
+    nets = {("a", "cruise"): make_pairs(["RP->AP"]), ("b", "cruise"): make_pairs(["RP->AP"]),
+            ("c", "cruise"): make_pairs(["AP->RP"]), ("d", "cruise"): make_pairs(["RP<->AP"])}
+    finding = design_effect(nets, trials, "tcp")
+    assert finding.reproduced == "n/a"
+    # speed 35: 15/15 identical; speed 175: 14/15 (RP-AP differs)
+    assert "identical across all TCP distance levels: 29/30" in finding.evidence
+    # across speeds (tcp 1.2: a vs c differ on one pair; tcp 1.6: b vs d likewise)
+    assert "across speeds, for comparison: 28/30" in finding.evidence
+    with pytest.raises(ParameterError, match="factor"):
+        design_effect(nets, trials, "colour")

@@ -1,0 +1,198 @@
+"""Figures: each draws, and draws the right content (edges, colours, nodes, spans, panels)."""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pandas as pd
+import pytest
+from matplotlib.colors import to_rgba
+from matplotlib.figure import Figure
+from matplotlib.patches import FancyArrowPatch
+
+import funcnet
+from funcnet import plot
+
+NODES = ("RP", "AP", "MP", "V", "RC", "AC")
+
+
+def gids(ax, prefix):
+    return sorted(p.get_gid() for p in ax.patches if (p.get_gid() or "").startswith(prefix))
+
+
+def edge_patches(ax):
+    return [p for p in ax.patches if isinstance(p, FancyArrowPatch)]
+
+
+@pytest.fixture(scope="module")
+def network():
+    """A real 6-signal network: smooth positions, a derivative, noisy currents."""
+    rng = np.random.default_rng(3)
+    t = np.linspace(0, 6, 400)
+    rp = np.sin(t) + 0.2 * t
+    data = pd.DataFrame({
+        "RP": rp,
+        "AP": np.roll(rp, 3) + 0.01 * rng.standard_normal(t.size),
+        "MP": np.roll(rp, 5) + 0.02 * rng.standard_normal(t.size),
+        "V": np.gradient(rp) + 0.05 * rng.standard_normal(t.size),
+        "RC": np.cos(2 * t) + 0.3 * rng.standard_normal(t.size),
+        "AC": np.cos(2 * t + 0.1) + 0.3 * rng.standard_normal(t.size),
+    })
+    return funcnet.functional_network(data, label="test")
+
+
+def test_plot_network_draws_every_edge_with_its_colour(network):
+    ax = plot.plot_network(network)
+    edges = network.edges
+    bidirectional = {frozenset(p) for p in
+                     edges.loc[edges["kind"] == "bidirectional", ["source", "target"]].values}
+    directed = edges[edges["kind"] == "directed"]
+    patches = edge_patches(ax)
+    assert len(patches) == len(directed) + len(bidirectional)
+    red = [p for p in patches if p.get_edgecolor() == to_rgba("red")]
+    black = [p for p in patches if p.get_edgecolor() == to_rgba("black")]
+    assert len(red) == len(bidirectional) and len(black) == len(directed)
+    # directed arrows point the network's way
+    drawn = {p.get_gid() for p in black}
+    assert drawn == {f"edge:{s}->{t}:directed" for s, t in directed[["source", "target"]].values}
+    # every node drawn, edges or not
+    assert gids(ax, "node:") == sorted(f"node:{n}" for n in network.nodes)
+
+
+def test_plot_network_from_pairs_matches_the_network(network):
+    from_net = sorted(p.get_gid() for p in edge_patches(plot.plot_network(network)))
+    from_pairs = sorted(p.get_gid() for p in edge_patches(plot.plot_network(network.pairs)))
+    # a bidirectional pair may be drawn from either end; compare as unordered pairs for those
+    def norm(g):
+        _, rest = g.split(":", 1)
+        pair, kind = rest.rsplit(":", 1)
+        a, b = pair.split("->")
+        return (frozenset((a, b)), kind) if kind == "bidirectional" else (a, b, kind)
+    assert sorted(map(str, map(norm, from_net))) == sorted(map(str, map(norm, from_pairs)))
+
+
+def test_plot_network_width_proportional_to_weight_and_isolated_nodes():
+    pairs = pd.DataFrame([{"x": a, "y": b, "kind": "conflict", "weight": 0.0}
+                          for a, b in itertools.combinations(NODES, 2)])
+    pairs.loc[0, ["kind", "weight"]] = ["x->y", 0.2]
+    pairs.loc[1, ["kind", "weight"]] = ["y->x", 0.05]
+    pairs.loc[2, ["kind", "weight"]] = ["bidirectional", 0.0]
+    ax = plot.plot_network(pairs, width_scale=40, min_width=0.5)
+    widths = {p.get_gid(): p.get_linewidth() for p in edge_patches(ax)}
+    assert widths == {"edge:RP->AP:directed": pytest.approx(8.0),
+                      "edge:MP->RP:directed": pytest.approx(2.0),
+                      "edge:RP->V:bidirectional": pytest.approx(0.5)}
+    assert len(gids(ax, "node:")) == 6  # nodes without any edge are drawn too
+
+
+def test_plot_recurrence_shows_the_recurrence_matrix():
+    x = np.sin(np.linspace(0, 8 * np.pi, 251))
+    ax = plot.plot_recurrence(x, eps=0.15)
+    image = np.asarray(ax.images[0].get_array())
+    expected = funcnet.recurrence_matrix(x, dim=3, delay=10, eps=0.15)
+    assert np.array_equal(image.astype(bool), np.asarray(expected, dtype=bool))
+
+
+def test_figure_embedding_network_graph_has_the_matrix_edges():
+    fig = plot.figure_embedding_network(n=121, periods=2)
+    assert isinstance(fig, Figure) and len(fig.axes) == 4
+    matrix = np.asarray(funcnet.recurrence_matrix(np.sin(np.linspace(0, 4 * np.pi, 121)),
+                                                  dim=3, delay=10, eps=0.15))
+    (lines,) = [c for c in fig.axes[3].collections if c.get_gid() == "isrn-edges"]
+    off_diagonal = np.triu(matrix, 1).sum()
+    assert len(lines.get_segments()) == off_diagonal
+    (nodes,) = [c for c in fig.axes[3].collections if c.get_gid() == "isrn-nodes"]
+    assert len(nodes.get_offsets()) == matrix.shape[0] == 121 - 20
+
+
+def test_figure_isrn_blocks_and_colours():
+    fig = plot.figure_isrn(n=121, periods=2)
+    t = np.linspace(0, 4 * np.pi, 121)
+    x, y = np.sin(t), np.sin(1.5 * t) + 0.3 * np.sin(t)
+    adjacency = np.asarray(funcnet.isrn_adjacency(x, y, dim=3, delay=10,
+                                                  eps=(0.15, 0.15, 0.05)))
+    assert np.array_equal(np.asarray(fig.axes[2].images[0].get_array()).astype(bool),
+                          adjacency.astype(bool))
+    (nodes,) = [c for c in fig.axes[3].collections if c.get_gid() == "isrn-nodes"]
+    colours = nodes.get_facecolors()
+    m = adjacency.shape[0] // 2
+    assert (colours[:m] == to_rgba("tab:blue")).all() and (colours[m:] == to_rgba("tab:red")).all()
+
+
+def test_figure_pair_network_uses_the_clustering_difference():
+    ax = plot.figure_pair_network()
+    t = np.linspace(0, 8 * np.pi, 251)
+    net = funcnet.functional_network(np.column_stack([np.sin(t), np.sin(1.5 * t)
+                                                      + 0.3 * np.sin(t)]), names=["x", "y"],
+                                     normalize=None, measure="clustering")
+    assert f"{float(net.pairs['c_diff'].iloc[0]):+.3f}" in ax.get_title()
+    assert len(edge_patches(ax)) == len(plot.network_edges(net))
+
+
+def trial_frame(n=600):
+    t = np.arange(n) * 0.002
+    ramp = np.clip(t - 0.2, 0, None)
+    return pd.DataFrame({"RP": ramp, "AP": ramp * 0.99, "MP": ramp * 1.01,
+                         "V": np.gradient(ramp), "RC": np.sin(t * 20), "AC": np.sin(t * 20 + .1)},
+                        index=pd.Index(t, name="time"))
+
+
+def test_figure_phases_marks_every_phase_and_draws_a_network_per_phase(network):
+    data = trial_frame()
+    phases = pd.DataFrame({"phase": ["early spin-up", "cruise", "braking"],
+                           "start": [0.0, 0.4, 0.9], "stop": [0.4, 0.9, 1.19]})
+    fig = plot.figure_phases(data, phases, {"early spin-up": network, "cruise": network,
+                                            "braking": network.pairs})
+    signal_axes = [ax for ax in fig.axes if ax.lines]
+    assert len(signal_axes) == 4  # normalized + three raw panels
+    for ax in signal_axes:
+        assert gids(ax, "phase:") == sorted(f"phase:{p}" for p in phases["phase"])
+    network_axes = [ax for ax in fig.axes if gids(ax, "node:")]
+    assert [ax.get_title() for ax in network_axes] == ["early spin-up", "cruise", "braking"]
+    normalized = signal_axes[0]
+    assert all(np.nanmax(line.get_ydata()) <= 1.0 for line in normalized.lines)
+
+
+def test_figure_velocity_grid_cells(network):
+    data = trial_frame(150)
+    cells = {(v, p): (data, None if (v, p) == ("V1", "cruise") else network)
+             for p in ("spin-up", "cruise", "braking") for v in ("V1", "V35", "V175", "V350")}
+    fig = plot.figure_velocity_grid(cells)
+    network_axes = [ax for ax in fig.axes if gids(ax, "node:")]
+    series_axes = [ax for ax in fig.axes if ax.lines]
+    assert len(network_axes) == 11 and len(series_axes) == 12
+    assert series_axes[0].get_title() == "V1 · spin-up"
+    for ax in network_axes:
+        assert len(edge_patches(ax)) == len(plot.network_edges(network))
+
+
+def test_figure_reversal_windows_and_networks(network):
+    data = trial_frame(1000)
+    from types import SimpleNamespace
+
+    windows = [SimpleNamespace(label=f"{o:+d} ms", start=1.0 + o / 1000 - 0.05,
+                               stop=1.0 + o / 1000 + 0.05) for o in (-40, -20, 0, 20, 40)]
+    nets = {w.label: network for w in windows}
+    nets["+40 ms"] = None
+    fig = plot.figure_reversal(data, windows, nets)
+    zoom = fig.axes[1]
+    assert gids(zoom, "window:") == sorted(f"window:{w.label}" for w in windows)
+    network_axes = [ax for ax in fig.axes if gids(ax, "node:")]
+    assert [ax.get_title() for ax in network_axes] == ["-40 ms", "-20 ms", "+0 ms", "+20 ms"]
+    # the zoom spans the windows (0.91-1.09 s) with half their span on either side
+    shown = zoom.lines[0].get_xdata()
+    assert min(shown) == pytest.approx(0.82) and max(shown) == pytest.approx(1.18)
+
+
+def test_plot_edge_timeline_one_point_per_pair_and_window(network):
+    timeline = {0.5: network, 1.0: network, 1.5: network.pairs}
+    ax = plot.plot_edge_timeline(timeline)
+    points = sum(len(c.get_offsets()) for c in ax.collections)
+    assert points == 3 * len(network.pairs)
+    kinds = network.pairs["kind"].value_counts()
+    for collection in ax.collections:
+        kind = collection.get_gid().split(":")[1]
+        name = {"forward": "x->y", "backward": "y->x"}.get(kind, kind)
+        assert len(collection.get_offsets()) == 3 * kinds[name]
+    assert len(ax.get_yticks()) == len(network.pairs)
