@@ -86,6 +86,15 @@ def test_evaluate_yes_partly_no():
     assert missing.reproduced == "no" and "not evaluable: early" in missing.evidence
 
 
+def test_claims_about_an_absent_node_are_not_evaluable_and_never_a_full_match():
+    spec = FindingSpec("t", "4.1", "RP drives AP and MP", {"early": ("RP->AP", "RP->MP")})
+    without_ap = make_pairs(["RP->MP"], nodes=("RP", "MP", "V"))
+    finding = evaluate(spec, {"early": without_ap})
+    assert finding.reproduced == "partly"
+    assert finding.evidence == ("0/1 networks show all claimed relations; 1/1 relations hold; "
+                                "not evaluable: [early] RP->AP")
+
+
 def test_evaluate_counts_trials_fully_matching():
     spec = FindingSpec("t", "4.3", "V drives RP", {f"T{k}": ("V->RP",) for k in range(6)},
                        unit="trials")

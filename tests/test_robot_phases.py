@@ -61,9 +61,7 @@ def test_jerk_limited_move_boundaries_match_the_closed_form():
     braking_start = 1.0 + 2 * TJ + TA + 1.0
     assert start["braking"] == pytest.approx(braking_start + s, abs=3 * DT)
     # Motion starts when v first exceeds 1e-4 VC: A t^2 / (2 TJ) = 1e-4 VC.
-    assert start["early spin-up"] == pytest.approx(
-        1.0 + math.sqrt(2e-4 * VC * TJ / A), abs=3 * DT
-    )
+    assert start["early spin-up"] == pytest.approx(1.0 + math.sqrt(2e-4 * VC * TJ / A), abs=3 * DT)
     # The table covers the recording without gaps.
     assert table["start"].iloc[0] == 0.0 and table["stop"].iloc[-1] == pytest.approx(5.0)
     np.testing.assert_array_equal(table["stop"].iloc[:-1], table["start"].iloc[1:])
@@ -120,8 +118,15 @@ def test_real_trace_phases():
     rec = read_trace(REAL_TRACE)
     table = detect_phases(rec)
     moving = ["early spin-up", "late spin-up", "cruise", "braking"]
-    assert rows(table) == ["standstill", *moving, "standstill", *moving, "standstill", *moving,
-                           "standstill"]
+    assert rows(table) == [
+        "standstill",
+        *moving,
+        "standstill",
+        *moving,
+        "standstill",
+        *moving,
+        "standstill",
+    ]
     rp = rec.data["RP"]
     for row in table.itertuples():
         part = rp[(rp.index >= row.start) & (rp.index < row.stop - 1e-9)]

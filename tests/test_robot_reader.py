@@ -4,11 +4,15 @@ from __future__ import annotations
 
 import math
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from funcnet.errors import ChannelError, ParameterError, TraceFormatError
 from funcnet.robot.channels import (
@@ -304,3 +308,55 @@ def test_recording_window_is_half_open(real):
     part = real.window(7.0, 7.01)
     assert part.data.index.tolist() == [7.0, 7.002, 7.004, 7.006, 7.008]
     assert part.source == real.source and part.signals == real.signals
+
+
+# -- properties ------------------------------------------------------------------------------
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    st.lists(
+        st.tuples(
+            st.integers(0, 40),  # tick
+            st.sampled_from(["f1", "f2"]),
+            st.floats(-1e6, 1e6, allow_nan=False).map(lambda v: round(v, 6)),
+        ),
+        min_size=1,
+        max_size=60,
+    )
+)
+def test_sparse_records_carry_forward_like_brute_force(tmp_path_factory, writes):
+    """Random sparse writes of a servo (f1) and an IPO (f2, odd ticks only) signal."""
+    records: dict[int, dict[str, float]] = {}
+    for tick, key, value in writes:
+        if key == "f2" and tick % 2 == 0:
+            tick += 1
+        records.setdefault(tick, {})[key] = value
+    records.setdefault(0, {}).setdefault("f1", 0.5)  # both signals get recorded
+    records.setdefault(1, {}).setdefault("f2", -0.5)
+    lines = [
+        f'<rec time="{tick * 0.002:.6f}"'
+        + "".join(f' {key}="{value:.6f}"' for key, value in sorted(fields.items()))
+        + "/>"
+        for tick, fields in sorted(records.items())
+    ]
+    path = tmp_path_factory.mktemp("prop") / "t.xml"
+    path.write_text(trace_xml(f"<dataFrame>{SIGNALS}{''.join(lines)}</dataFrame>"))
+    rec = read_trace(path)
+    last = {"f1": math.nan, "f2": math.nan}
+    for tick in range(max(records) + 1):
+        last.update(records.get(tick, {}))
+        assert rec.data["RP"].iloc[tick] == pytest.approx(last["f1"], nan_ok=True, abs=0)
+        assert rec.data["AP"].iloc[tick] == pytest.approx(last["f2"], nan_ok=True, abs=0)
+    assert len(rec.data) == max(records) + 1
+
+
+def test_reading_compiles_nothing():
+    # The reader must not pull in Numba: nothing is compiled on the first call.
+    code = (
+        "import sys; from funcnet.robot import read_trace; "
+        f"read_trace({str(REAL_TRACE)!r}); "
+        "print(sorted(m for m in ('numba', 'funcnet.recurrence') if m in sys.modules))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"

@@ -51,6 +51,11 @@ __all__ = [
     "VELOCITY",
     "REVERSAL_AT_ZERO",
     "REVERSAL_SEQUENCE",
+    "TrialAnalysis",
+    "PaperAnalyses",
+    "PAPER_PARAMETERS",
+    "main_move",
+    "run_paper_analyses",
     "baseline_findings",
     "velocity_findings",
     "edge_thinning",
@@ -264,16 +269,19 @@ def evaluate(spec: FindingSpec, networks: Mapping[Hashable, Any]) -> Finding:
         if net is None:
             missing.append(where)
             continue
-        results = [relation_holds(net, claim) for claim in claims]
-        if any(ok is None for ok, _ in results):
-            missing.append(where)
+        results = [(claim, *relation_holds(net, claim)) for claim in claims]
+        # A claim about a node the network lacks (a signal constant in the window) is not
+        # evaluable; the network still counts for its other claims, never as a full match.
+        missing.extend(f"[{where}] {claim}" for claim, ok, _ in results if ok is None)
+        results = [(claim, ok, seen) for claim, ok, seen in results if ok is not None]
+        if not results:
             continue
         evaluated += 1
-        n_held = sum(bool(ok) for ok, _ in results)
+        n_held = sum(bool(ok) for _, ok, _ in results)
         held += n_held
-        checked += len(claims)
+        checked += len(results)
         full += n_held == len(claims)
-        seen_all.extend(f"[{where}] {seen}" for _, seen in results)
+        seen_all.extend(f"[{where}] {seen}" for _, _, seen in results)
     evidence = (f"{full}/{evaluated} {spec.unit} show all claimed relations; "
                 f"{held}/{checked} relations hold")
     if missing:
@@ -680,6 +688,9 @@ class TrialAnalysis:
         Key -> :class:`funcnet.FunctionalNetwork`, or ``None`` where it could not be computed.
     errors : dict
         Key -> why there is no network.
+    dropped : dict
+        Key -> signals left out of that window's network because they are constant in it
+        (min-max normalization needs a range; e.g. AP before the breakaway).
     """
 
     trial: str
@@ -689,6 +700,7 @@ class TrialAnalysis:
     windows: dict[Hashable, Any]
     networks: dict[Hashable, Any]
     errors: dict[Hashable, str]
+    dropped: dict[Hashable, tuple[str, ...]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -761,6 +773,39 @@ def _select(trials: pd.DataFrame, **where: Any) -> pd.DataFrame:
     return trials[mask]
 
 
+def main_move(phases: pd.DataFrame) -> pd.DataFrame:
+    """The phases of a trial's longest motion (a run of phases between standstills).
+
+    A trial of the plan is one motion (a backlash trial's reversal joins its forward and reverse
+    moves into one); phase detection on a slow, quantized reference can add moves of a few ms
+    at its ends, which are left out here.
+
+    Parameters
+    ----------
+    phases : pandas.DataFrame
+        ``phase, start, stop`` from :func:`funcnet.robot.detect_phases`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The rows of the longest run, standstill excluded.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> table = pd.DataFrame({"phase": ["cruise", "standstill", "early spin-up", "cruise"],
+    ...                       "start": [0.0, 0.01, 0.5, 0.7], "stop": [0.01, 0.5, 0.7, 3.0]})
+    >>> main_move(table)["phase"].tolist()
+    ['early spin-up', 'cruise']
+    """
+    moving = (phases["phase"] != "standstill").to_numpy()
+    run_id = np.cumsum(~moving)
+    runs = [phases[moving & (run_id == k)] for k in np.unique(run_id[moving])]
+    if not runs:
+        return phases.iloc[:0]
+    return max(runs, key=lambda run: float(run["stop"].max() - run["start"].min()))
+
+
 def _analyse(path: Path, name: str, keyed_windows: Callable[[Any, pd.DataFrame], dict],
              signals: Sequence[str], parameters: Mapping[str, Any], warned: dict[str, int],
              recording: Any = None) -> TrialAnalysis:
@@ -776,18 +821,26 @@ def _analyse(path: Path, name: str, keyed_windows: Callable[[Any, pd.DataFrame],
     windows: dict[Hashable, Any] = {}
     networks: dict[Hashable, Any] = {}
     errors: dict[Hashable, str] = {}
+    dropped: dict[Hashable, tuple[str, ...]] = {}
     try:
         phases = detect_phases(recording)
-        windows = keyed_windows(recording, phases)
+        windows = keyed_windows(recording, main_move(phases))
     except FuncnetError as exc:
         return TrialAnalysis(name, str(path), data, pd.DataFrame(columns=["phase", "start",
                                                                           "stop"]),
                              {}, {}, {"windows": str(exc)})
     for key, window in windows.items():
+        used = list(signals)
+        if parameters.get("normalize") is not None:
+            part = data.loc[(data.index >= window.start) & (data.index < window.stop)]
+            constant = tuple(s for s in signals if len(part) and np.ptp(part[s].to_numpy()) == 0)
+            if constant:
+                dropped[key] = constant
+                used = [s for s in signals if s not in constant]
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             try:
-                (net,) = phase_networks(recording, [window], signals=list(signals),
+                (net,) = phase_networks(recording, [window], signals=used,
                                         **parameters).values()
             except FuncnetError as exc:
                 net = None
@@ -796,7 +849,7 @@ def _analyse(path: Path, name: str, keyed_windows: Callable[[Any, pd.DataFrame],
             message = f"{w.category.__name__}: {str(w.message).split(' for ')[0]}"
             warned[message] = warned.get(message, 0) + 1
         networks[key] = net
-    return TrialAnalysis(name, str(path), data, phases, windows, networks, errors)
+    return TrialAnalysis(name, str(path), data, phases, windows, networks, errors, dropped)
 
 
 def run_paper_analyses(
@@ -808,7 +861,7 @@ def run_paper_analyses(
     fixed_lengths: Mapping[str, float] | None = None,
     reversal_width: float | None = None,
     timeline_width: float = 0.6,
-    timeline_step: float = 0.1,
+    timeline_step: float = 0.2,
     **network_parameters: Any,
 ) -> PaperAnalyses:
     """The paper's section 4 analyses on a plan of trials, with every finding measured.
@@ -865,11 +918,13 @@ def run_paper_analyses(
 
     Notes
     -----
-    Windows whose network cannot be computed (a constant signal in the window, e.g. AP before
-    the breakaway at 1 °/min; a window reaching past the recording) are kept as ``None`` with
-    the reason; the findings count them as not evaluable. Nothing is tuned to the paper's
-    results: the parameters are the paper's where it gives them and fixed beforehand where it
-    does not.
+    Only the phases of each trial's main motion are used (:func:`main_move`). A signal constant
+    inside a window (AP before the breakaway, at low speed) cannot be min-max normalized: it is
+    left out of that window's network and listed in ``dropped``; the findings count claims
+    about it as not evaluable. Windows whose network cannot be computed at all (e.g. a window
+    reaching past the recording) are kept as ``None`` with the reason. Nothing is tuned to the
+    paper's results: the parameters are the paper's where it gives them and fixed beforehand
+    where it does not.
 
     References
     ----------

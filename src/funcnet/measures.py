@@ -60,36 +60,46 @@ __all__ = [
 ]
 
 
+@njit(cache=True)
+def _row_triangles(row, auto_rows, where, values):  # pragma: no cover - compiled
+    """``(k_v, tri_v)`` of one packed cross-recurrence row ``row`` against ``auto_rows``."""
+    # Only the words where v has cross-neighbours can contribute to the AND.
+    n_nonzero = 0
+    degree = 0
+    for w in range(row.size):
+        if row[w]:
+            where[n_nonzero] = np.uint64(w)
+            values[n_nonzero] = row[w]
+            n_nonzero += 1
+            degree += np.int64(_popcount(row[w]))
+    # Each unordered neighbour pair p < q is counted once: for neighbour p, only the
+    # neighbours above p (the rest of p's word, then the later words).
+    pairs = 0
+    for t in range(n_nonzero):
+        word = values[t]
+        base = np.int64(where[t]) * 64
+        later_where = where[t + 1 : n_nonzero]
+        later_values = values[t + 1 : n_nonzero]
+        while word:
+            p = base + np.int64(_lowest_bit(word))
+            word &= word - np.uint64(1)
+            neighbours = auto_rows[p]
+            pairs += np.int64(_popcount(neighbours[where[t]] & word))
+            for s in range(later_where.size):
+                pairs += np.int64(_popcount(neighbours[later_where[s]] & later_values[s]))
+    return degree, 2 * pairs
+
+
 @njit(cache=True, parallel=True)
 def _cross_triangles(cross_rows, auto_rows):  # pragma: no cover - compiled
-    """Per row v of ``cross_rows``: cross-degree k_v and ordered cross-triangles tri_v."""
+    """Per row v of ``cross_rows``: cross-degree k_v and ordered cross-triangles tri_v (Eq. 6-7)."""
     n_rows, n_words = cross_rows.shape
     degree = np.zeros(n_rows, dtype=np.int64)
     triangles = np.zeros(n_rows, dtype=np.int64)
     for v in prange(n_rows):
-        # Only the words where v has cross-neighbours can contribute to the AND.
-        where = np.empty(n_words, dtype=np.int64)
+        where = np.empty(n_words, dtype=np.uint64)
         values = np.empty(n_words, dtype=np.uint64)
-        n_nonzero = 0
-        k = 0
-        for w in range(n_words):
-            word = cross_rows[v, w]
-            if word:
-                where[n_nonzero] = w
-                values[n_nonzero] = word
-                n_nonzero += 1
-                k += np.int64(_popcount(word))
-        tri = 0
-        for t in range(n_nonzero):
-            word = values[t]
-            base = where[t] * 64
-            while word:
-                p = base + np.int64(_lowest_bit(word))
-                for s in range(n_nonzero):
-                    tri += np.int64(_popcount(auto_rows[p, where[s]] & values[s]))
-                word &= word - np.uint64(1)
-        degree[v] = k
-        triangles[v] = tri
+        degree[v], triangles[v] = _row_triangles(cross_rows[v], auto_rows, where, values)
     return degree, triangles
 
 

@@ -475,8 +475,10 @@ def _unpack(packed, n_cols):  # pragma: no cover - compiled
 # --------------------------------------------------------------------------------------------
 # exact thresholds without the distance matrix
 
-# Below this many candidate pairs every key is collected directly (at most 2 MB).
+# Below this many candidate pairs every key is collected directly (at most 2 MB); above, a
+# sample of this many pairs brackets the order statistic.
 _DIRECT_PAIRS = 1 << 18
+_SAMPLE_PAIRS = 1 << 14
 # Half-widths of the bracket around the sampled quantile, in binomial standard deviations; the
 # last, unbounded one always succeeds (it is needed with a probability far below 1e-9).
 _BRACKET_WIDTHS = (8.0, 64.0, math.inf)
@@ -511,17 +513,18 @@ def _sample_bracket(a, bt, auto, theiler, metric, quantile, width, rng):
     """Keys (lo, hi) that bracket the ``quantile`` of all candidate keys w.h.p."""
     if not math.isfinite(width):
         return -math.inf, math.inf
-    size = min(1 << 18, max(1 << 12, a.shape[0] * bt.shape[1] // 64))
-    rows = rng.integers(0, a.shape[0], size=2 * size)
-    cols = rng.integers(0, bt.shape[1], size=2 * size)
+    rows = rng.integers(0, a.shape[0], size=2 * _SAMPLE_PAIRS)
+    cols = rng.integers(0, bt.shape[1], size=2 * _SAMPLE_PAIRS)
     if auto:
         keep = np.abs(rows - cols) > theiler
-        rows, cols = rows[keep][:size], cols[keep][:size]
-    sample = np.sort(_sample_keys(a, bt, rows[:size], cols[:size], metric))
+        rows, cols = rows[keep], cols[keep]
+    sample = _sample_keys(a, bt, rows[:_SAMPLE_PAIRS], cols[:_SAMPLE_PAIRS], metric)
     n = sample.size
     spread = width * (math.sqrt(n * quantile * (1.0 - quantile)) + 1.0)
     lo_index = math.floor(quantile * n - spread)
     hi_index = math.ceil(quantile * n + spread)
+    inside = [index for index in (lo_index, hi_index) if 0 <= index < n]
+    sample = np.partition(sample, inside) if inside else sample
     lo = sample[lo_index] if lo_index >= 0 else -math.inf
     hi = sample[hi_index] if hi_index < n else math.inf
     return float(lo), float(hi)
@@ -721,7 +724,7 @@ def auto_recurrence(
     n_states = states.shape[0]
     pyunicorn = rule == "pyunicorn"
     n_candidates = (n_states - theiler) * (n_states - theiler - 1)
-    if n_candidates <= 0:
+    if theiler >= n_states - 1:
         raise ParameterError(
             f"theiler={theiler} excludes every pair of the {n_states} states of {name}"
         )
@@ -733,13 +736,13 @@ def auto_recurrence(
         target = _check_rate(rr, "rr")
         if pyunicorn:
             # Index into the sorted full M x M matrix, whose first M entries are the diagonal.
-            rank = int(target * (n_states * n_states - 1)) + 1 - n_states
+            rank = max(0, int(target * (n_states * n_states - 1)) + 1 - n_states)
         else:
             rank = _rank_from_rate(target, n_candidates)
     threshold, rows, n_recurrent = _threshold_rows(
         states, states, auto=True, theiler=theiler, metric=_METRIC_CODE[metric],
         # Each unordered pair appears twice among the ordered candidates.
-        rank=None if rank is None or rank <= 0 else (rank + 1) // 2,
+        rank=None if not rank else (rank + 1) // 2,
         n_pairs=n_candidates // 2, eps=0.0 if eps is None else eps, strict=pyunicorn,
     )
     return PackedRecurrence(

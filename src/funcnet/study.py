@@ -608,6 +608,7 @@ def _expand_windows(task: _WindowTask) -> _Outcome:
     """Worker side: the windows a specification gives on a recording."""
     from funcnet.robot import detect_phases
 
+    _one_thread_per_task()
     module = _windows_module()
     try:
         recording = _cached_recording(
@@ -638,6 +639,7 @@ def _network_rows(task: _NetworkTask) -> _Outcome:
     from funcnet.robot import phase_networks
     from funcnet.robot.windows import Window
 
+    _one_thread_per_task()
     try:
         recording = _cached_recording(
             task.source.path, task.source.sha256, task.signals, task.channels, task.axis
@@ -729,11 +731,14 @@ def _watch_parent(parent: int) -> None:
 def _init_worker(parent: int) -> None:
     """Initializer of the local worker processes."""
     _watch_parent(parent)
-    # One process per core already: Numba's parallel loops would only oversubscribe.
-    with contextlib.suppress(Exception):
-        import numba
 
-        numba.set_num_threads(1)
+
+def _one_thread_per_task() -> None:
+    # Tasks run in parallel already (one per process or Dask thread): Numba's parallel loops
+    # inside a task would only oversubscribe the cores. The setting is per thread.
+    import numba
+
+    numba.set_num_threads(1)
 
 
 class _Backend:
@@ -1193,8 +1198,9 @@ def load_results(out_dir: str | os.PathLike[str]) -> pd.DataFrame:
     Returns
     -------
     DataFrame
-        One row per pair per window per parameter set, sorted by recording, window start and
-        label, parameters and pair.
+        One row per pair per window per parameter set, sorted by recording, window (start,
+        stop, label), signals and parameters; the pairs of one network in its pairs table's
+        order.
 
     Raises
     ------
@@ -1207,7 +1213,8 @@ def load_results(out_dir: str | os.PathLike[str]) -> pd.DataFrame:
         raise StudyError(f"{Path(out_dir)}: no study results (no rows/*.parquet)")
     tables = [pq.read_table(f) for f in files]
     frame = pa.concat_tables(tables, promote_options="default").to_pandas()
-    order = ["recording", "start", "stop", "window", *_sort_parameters(), "x", "y"]
+    # Within one task the rows keep the pairs table's order (a stable sort of whole files).
+    order = ["recording", "start", "stop", "window", "signals", *_sort_parameters()]
     return frame.sort_values(order, na_position="first", kind="stable").reset_index(drop=True)
 
 

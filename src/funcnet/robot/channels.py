@@ -208,6 +208,10 @@ def channel_map(
     ParameterError
         A role is not an identifier.
 
+    References
+    ----------
+    Paper section 3.2: the recorded signals RP, AP, MP, RC and AC.
+
     Examples
     --------
     >>> import pathlib, tempfile

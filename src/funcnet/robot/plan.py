@@ -41,6 +41,7 @@ import io
 import itertools
 import json
 import math
+import multiprocessing
 import os
 import re
 import tomllib
@@ -52,7 +53,12 @@ from typing import Any
 
 from funcnet._io import write_text_atomic
 from funcnet.errors import ParameterError, StudyError
-from funcnet.robot.simulate import AxisParameters, effective_parameters, simulate_trial
+from funcnet.robot.simulate import (
+    FAULT_KNOBS,
+    AxisParameters,
+    effective_parameters,
+    simulate_trial,
+)
 from funcnet.robot.writer import write_trace
 
 __all__ = ["Trial", "paper_plan", "read_plan", "write_plan", "MANIFEST_COLUMNS"]
@@ -141,6 +147,7 @@ class Trial:
                 or not math.isfinite(value)
             ):
                 raise ParameterError(f"Trial {self.name}: {key} must be a finite number: {value!r}")
+            object.__setattr__(self, key, float(value))  # 35 and 35.0: one trial, one fingerprint
         if self.speed <= 0 or self.tcp <= 0 or self.step == 0:
             raise ParameterError(
                 f"Trial {self.name}: speed and tcp must be positive and step non-zero "
@@ -148,7 +155,7 @@ class Trial:
             )
         if not isinstance(self.reverse, bool):
             raise ParameterError(f"Trial {self.name}: reverse must be a bool: {self.reverse!r}")
-        for knob in ("backlash", "friction_scale", "stiffness_scale"):
+        for knob in FAULT_KNOBS:
             value = getattr(self, knob)
             if value is not None and (
                 isinstance(value, bool)
@@ -158,6 +165,8 @@ class Trial:
                 or (value == 0 and knob != "backlash")
             ):
                 raise ParameterError(f"Trial {self.name}: {knob} out of range: {value!r}")
+            if value is not None:
+                object.__setattr__(self, knob, float(value))
 
 
 def _trial_name(group: str, speed: float, tcp: float, step: float, knobs: dict[str, float]) -> str:
@@ -225,16 +234,7 @@ def paper_plan() -> list[Trial]:
     )
 
 
-_GROUP_KEYS = {
-    "name",
-    "speeds",
-    "tcps",
-    "steps",
-    "direction",
-    "backlash",
-    "friction_scale",
-    "stiffness_scale",
-}
+_GROUP_KEYS = {"name", "speeds", "tcps", "steps", "direction", *FAULT_KNOBS}
 _DIRECTIONS = {"forward": False, "forward+reverse": True}
 
 
@@ -291,7 +291,7 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
         if not isinstance(name, str) or not _NAME.fullmatch(name):
             raise StudyError(f"{where}: 'name' must be a file-name-safe string")
         lists = {}
-        for key in ("speeds", "tcps", "steps", "backlash", "friction_scale", "stiffness_scale"):
+        for key in ("speeds", "tcps", "steps", *FAULT_KNOBS):
             if key not in group:
                 if key in ("speeds", "tcps", "steps"):
                     raise StudyError(f"{where} ({name}): missing key '{key}'")
@@ -312,9 +312,7 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
                 f"{where} ({name}): 'direction' must be one of "
                 f"{sorted(_DIRECTIONS)}, got {direction!r}"
             )
-        knobs = {
-            k: lists[k] for k in ("backlash", "friction_scale", "stiffness_scale") if k in lists
-        }
+        knobs: dict[str, list[float]] = {k: lists[k] for k in FAULT_KNOBS if k in lists}
         trials += _expand(
             name, lists["speeds"], lists["tcps"], lists["steps"], _DIRECTIONS[direction], knobs
         )
@@ -388,7 +386,7 @@ def write_plan(
     seed: int = 0,
     params: AxisParameters | None = None,
     progress: Callable[[int, int, str], None] | None = None,
-    workers: int | None = None,
+    workers: int = 1,
 ) -> Path:
     """Simulate ``trials`` into ``out_dir``: one SINUMERIK trace per trial and ``manifest.csv``.
 
@@ -404,9 +402,10 @@ def write_plan(
         The axis; the defaults when omitted.
     progress : callable, optional
         Called as ``progress(done, total, name)`` after each trial is written or skipped.
-    workers : int, optional
-        Processes to simulate in; default ``min(2, os.cpu_count())`` when more than four
-        trials need writing, else 1 (the work is short, a process costs an import).
+    workers : int
+        Processes to simulate in (1: in this process). The paper's plan costs about 3 s of CPU
+        in one process; a spawned worker first spends about a second importing, so more than
+        one pays off only for long user plans on idle cores.
 
     Returns
     -------
@@ -418,7 +417,7 @@ def write_plan(
     Raises
     ------
     ParameterError
-        Two trials share a name.
+        Two trials share a name, or ``workers`` < 1.
 
     Notes
     -----
@@ -433,13 +432,15 @@ def write_plan(
     >>> out = tempfile.mkdtemp()
     >>> manifest = write_plan([Trial("quick", "main", speed=350, tcp=1.2, step=1)], out)
     >>> table = pd.read_csv(manifest)
-    >>> table.loc[0, "file"], table.loc[0, "backlash"]
+    >>> table.loc[0, "file"], float(table.loc[0, "backlash"])
     ('quick.xml', 0.02)
     """
     trials = list(trials)
     names = [t.name for t in trials]
     if len(set(names)) != len(names):
         raise ParameterError("write_plan: trial names must be unique")
+    if not isinstance(workers, int) or workers < 1:
+        raise ParameterError(f"write_plan: workers must be a positive integer, got {workers!r}")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     manifest = out / "manifest.csv"
@@ -465,10 +466,10 @@ def write_plan(
             done += 1
             if progress:
                 progress(done, total, name)
-    if workers is None:
-        workers = min(2, os.cpu_count() or 1) if len(todo) > 4 else 1
-    if workers > 1:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
+    if workers > 1 and len(todo) > 1:
+        # spawn, not fork: the caller may run threads (progress bars, a dask client)
+        spawn = multiprocessing.get_context("spawn")
+        with ProcessPoolExecutor(max_workers=workers, mp_context=spawn) as pool:
             futures = [pool.submit(_simulate_and_write, t, out, seed, params) for t in todo]
             for trial, future in zip(todo, futures, strict=True):
                 rows[trial.name] = future.result()

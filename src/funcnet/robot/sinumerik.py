@@ -87,8 +87,9 @@ class _Frame:
     number: int
     start_time: str | None = None
     stop_inc: float | None = None
-    ids: dict[str, int] = field(default_factory=dict)
+    ids: dict[str, int] = field(default_factory=dict)  # dataSignal id -> index in declared
     declared: list[tuple[str, float | None, dict[str, str]]] = field(default_factory=list)
+    columns: dict[str, int] = field(default_factory=dict)  # rec attribute -> column or _SKIP
     offset: int | None = None  # tick of the frame's time 0 on the common grid
     last_tick: int = -1
     records: int = 0
@@ -208,11 +209,11 @@ class _Reader:
             self.period = min(intervals) if intervals else self.servo_period
             if self.period is None:
                 raise self.error("no signal interval and no servoSampleRate: no time grid")
-        column_of_id: dict[str, int] = {"time": _SKIP}
+        frame.columns = {"time": _SKIP}
         for key, index in frame.ids.items():
             name, interval, attrs = frame.declared[index]
             if not keep[index]:
-                column_of_id[key] = _SKIP
+                frame.columns[key] = _SKIP
                 continue
             if name not in self.columns:
                 self.columns[name] = len(self.infos)
@@ -226,8 +227,7 @@ class _Reader:
                 )
                 self.ticks.append(array("q"))
                 self.values.append(array("d"))
-            column_of_id[key] = self.columns[name]
-        frame.ids = column_of_id
+            frame.columns[key] = self.columns[name]
         frame.offset = self.frame_offset(frame, element.sourceline)
 
     def frame_offset(self, frame: _Frame, line: int) -> int:
@@ -245,7 +245,14 @@ class _Reader:
             return 0
         if start is None or self.first_start is None:
             return self.end_tick + 1
-        offset = round((start - self.first_start).total_seconds() / self.period)
+        try:
+            offset = round((start - self.first_start).total_seconds() / self.period)
+        except TypeError:  # one start time with a time zone, the other without
+            raise self.error(
+                f"data frame {frame.number}: startTime {frame.start_time!r} and the first "
+                "frame's cannot be compared (time zone given in one only)",
+                line,
+            ) from None
         if offset <= self.end_tick:
             raise self.error(
                 f"data frame {frame.number} starts at {frame.start_time}, before the previous "
@@ -282,7 +289,7 @@ class _Reader:
             )
         frame.last_tick = tick
         frame.records += 1
-        columns = frame.ids
+        columns = frame.columns
         ticks, values = self.ticks, self.values
         for key, value in element.items():
             column = columns.get(key)

@@ -189,7 +189,7 @@ def write_trace(
         )
     ids = [f" f{number}=" for number in range(1, len(columns) + 1)]
     last = len(times) - 1
-    previous = [None] * len(columns)
+    previous: list[str | None] = [None] * len(columns)
     for row, stamp in enumerate(times):
         fields = []
         for k, column in enumerate(columns):

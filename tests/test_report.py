@@ -1,0 +1,168 @@
+"""Reports: built on a tiny simulated plan and on a tiny study; every figure loads in Chromium."""
+
+from __future__ import annotations
+
+import html.parser
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from funcnet.report import build_demo_report, write_report
+
+CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+
+# Marks each image in the DOM once the page has loaded; the test copies the page and injects
+# it, so the report itself stays free of scripts.
+_PROBE = """<script>
+window.addEventListener("load", () => {
+  for (const img of document.images) {
+    img.setAttribute("data-loaded", img.complete && img.naturalWidth > 0 ? "yes" : "no");
+  }
+  document.body.setAttribute("data-probed", "yes");
+});
+</script>"""
+
+
+class _Images(html.parser.HTMLParser):
+    def __init__(self) -> None:
+        super().__init__()
+        self.images: list[dict[str, str | None]] = []
+        self.probed = False
+
+    def handle_starttag(self, tag, attrs):
+        attributes = dict(attrs)
+        if tag == "img":
+            self.images.append(attributes)
+        if tag == "body" and attributes.get("data-probed") == "yes":
+            self.probed = True
+
+
+def images_of(page: Path) -> list[dict[str, str | None]]:
+    parser = _Images()
+    parser.feed(page.read_text(encoding="utf-8"))
+    return parser.images
+
+
+def load_in_chromium(page: Path, tmp_path: Path) -> _Images:
+    probe = page.with_name("_probe.html")
+    probe.write_text(page.read_text(encoding="utf-8").replace("</body>", _PROBE + "</body>"),
+                     encoding="utf-8")
+    profile = tmp_path / "chromium-profile"
+    result = subprocess.run(
+        [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+         "--no-first-run", "--disable-background-networking", "--disable-component-update",
+         "--disable-sync", f"--user-data-dir={profile}", "--virtual-time-budget=10000",
+         "--dump-dom", probe.as_uri()],
+        capture_output=True, text=True, timeout=120, check=True,
+    )
+    probe.unlink()
+    parser = _Images()
+    parser.feed(result.stdout)
+    return parser
+
+
+def check_page(page: Path, tmp_path: Path) -> list[dict[str, str | None]]:
+    """Every <img> is a file beside the page, and Chromium loads every one of them."""
+    text = page.read_text(encoding="utf-8")
+    assert not re.search(r"""(src|href)=["']?(https?:)?//""", text), "external resource"
+    images = images_of(page)
+    assert images
+    for image in images:
+        assert (page.parent / image["src"]).is_file(), image["src"]
+    dom = load_in_chromium(page, tmp_path)
+    assert dom.probed, "the page did not finish loading in Chromium"
+    assert len(dom.images) == len(images)
+    assert [i["src"] for i in dom.images if i.get("data-loaded") != "yes"] == []
+    return images
+
+
+@pytest.fixture(scope="module")
+def tiny_plan(tmp_path_factory):
+    """The baseline trial and one backlash trial, simulated."""
+    from funcnet.robot import write_plan
+    from funcnet.robot.plan import Trial
+
+    out = tmp_path_factory.mktemp("plan")
+    write_plan([Trial("main-v35-p16-s3", "main", speed=35, tcp=1.6, step=3),
+                Trial("backlash-v175-p16-s1", "backlash", speed=175, tcp=1.6, step=1,
+                      reverse=True)], out)
+    return out
+
+
+@pytest.fixture(scope="module")
+def demo_report(tiny_plan, tmp_path_factory):
+    out = tmp_path_factory.mktemp("report")
+    calls = []
+    page = build_demo_report(tiny_plan, out, progress=lambda *a: calls.append(a),
+                             max_phase_length=0.5, timeline_width=0.6, timeline_step=1.5)
+    return page, calls
+
+
+def test_demo_report_figures_load_in_chromium(demo_report, tmp_path):
+    page, calls = demo_report
+    assert page.name == "index.html" and calls
+    sources = [i["src"] for i in check_page(page, tmp_path)]
+    for name in ("fig1-embedding-network", "fig2-isrn", "fig5-pair-network",
+                 "fig9-baseline-phases", "fig10-velocity-grid", "fig11-reversal",
+                 "edge-timeline", "recurrence-cruise"):
+        assert f"figures/{name}.png" in sources
+    assert not list(page.parent.rglob("*.tmp")), "a temporary file was left behind"
+
+
+def test_demo_report_findings_tables_and_provenance(demo_report, tiny_plan):
+    page, _ = demo_report
+    text = page.read_text(encoding="utf-8")
+    tables = pd.read_html(page)
+    findings = next(t for t in tables if "reproduced" in t.columns)
+    assert set(findings["reproduced"]) <= {"yes", "partly", "no", "n/a"}
+    assert {"4.1-early-rp-drives", "4.2-edges-thin", "4.3-sequence", "3.1-tcp",
+            "3.1-step"} <= set(findings["finding"])
+    # V1 and V175/V350 are not in this plan: said, not hidden
+    thin = findings.set_index("finding").loc["4.2-rc-ac-everywhere", "evidence"]
+    assert "not evaluable" in thin and "V1" in thin
+    # provenance: versions and the SHA-256 of every input
+    import hashlib
+
+    import numba
+    import numpy
+
+    assert numpy.__version__ in text and numba.__version__ in text
+    for trace in [*tiny_plan.glob("*.xml"), tiny_plan / "manifest.csv"]:
+        assert hashlib.sha256(trace.read_bytes()).hexdigest() in text
+    # every computed network has its pairs table (15 pairs of 6 signals, or fewer if dropped)
+    pair_tables = [t for t in tables if {"x", "y", "kind", "c_diff", "t_diff"} <= set(t.columns)]
+    assert len(pair_tables) >= 10
+    assert all(set(t["kind"]) <= {"x->y", "y->x", "bidirectional", "conflict"}
+               for t in pair_tables)
+
+
+@pytest.fixture(scope="module")
+def tiny_study(tiny_plan, tmp_path_factory):
+    from funcnet.study import load_study, run_study
+
+    out = tmp_path_factory.mktemp("study")
+    toml = out / "study.toml"
+    trace = (tiny_plan / "main-v35-p16-s3.xml").as_posix()
+    toml.write_text(f'[recordings]\npaths = ["{trace}"]\n'
+                    '[[windows]]\nkind = "sliding"\nwidth = 0.6\nstep = 1.0\nstart = 0.5\n'
+                    'stop = 4.2\n', encoding="utf-8")
+    run_study(load_study(toml), out / "results", workers=1)
+    return out / "results"
+
+
+def test_study_report_networks_timeline_and_chromium(tiny_study, tmp_path):
+    from funcnet.study import load_results
+
+    page = write_report(tiny_study, tmp_path / "report")
+    rows = load_results(tiny_study)
+    sources = [i["src"] for i in check_page(page, tmp_path)]
+    assert any(s.endswith("-timeline.png") for s in sources)
+    assert any("-networks-" in s for s in sources)
+    tables = pd.read_html(page)
+    pair_tables = [t for t in tables if {"x", "y", "kind"} <= set(t.columns)]
+    assert len(pair_tables) == rows.groupby(["window", "start"]).ngroups
+    assert sum(len(t) for t in pair_tables) == len(rows)

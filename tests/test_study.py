@@ -1,0 +1,364 @@
+"""Tests of funcnet.study: study files, task keys, the cache, resuming, local vs Dask execution."""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pyarrow.parquet as pq
+import pytest
+
+from funcnet.errors import StudyError
+from funcnet.study import (
+    NETWORK_PARAMETERS,
+    Study,
+    WindowSpec,
+    load_results,
+    load_study,
+    parameter_grid,
+    run_study,
+)
+
+# Two short simulated trials (about 3 s each at 500 Hz) keep every network small.
+TRIALS = (
+    ("quick-p12", 1.2),
+    ("quick-p20", 2.0),
+)
+STUDY_TEXT = """
+[recordings]
+paths = ["plan/*.xml"]
+[[windows]]
+kind = "phases"
+[[windows]]
+kind = "range"
+start = 0.5
+stop = 1.1
+[network]
+delay = [5, 10]
+"""
+
+
+@pytest.fixture(scope="module")
+def plan_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    from funcnet.robot import Trial, write_plan
+
+    folder = tmp_path_factory.mktemp("study") / "plan"
+    trials = [Trial(name, "main", speed=350, tcp=tcp, step=1) for name, tcp in TRIALS]
+    write_plan(trials, folder, workers=1)
+    return folder
+
+
+@pytest.fixture(scope="module")
+def study_file(plan_dir: Path) -> Path:
+    path = plan_dir.parent / "study.toml"
+    path.write_text(STUDY_TEXT)
+    return path
+
+
+@pytest.fixture(scope="module")
+def baseline(study_file: Path) -> tuple[Path, object]:
+    """The uninterrupted local run every other run is compared with."""
+    out = study_file.parent / "baseline"
+    result = run_study(load_study(study_file), out, workers=2)
+    return out, result
+
+
+def _write(folder: Path, text: str, name: str = "s.toml") -> Path:
+    path = folder / name
+    path.write_text(text)
+    return path
+
+
+# --------------------------------------------------------------------------------------------
+# study files
+
+
+def test_load_study_reads_paths_windows_and_grid(tmp_path: Path) -> None:
+    (tmp_path / "traces").mkdir()
+    for name in ("b.xml", "a.xml", "c.csv"):
+        (tmp_path / "traces" / name).write_text("x")
+    path = _write(
+        tmp_path,
+        """
+signals = ["RP", "AP", "V"]
+[recordings]
+paths = ["traces/*.xml", "traces/c.csv"]
+axis = 7
+[[windows]]
+kind = "sliding"
+width = 0.6
+step = 0.3
+[[windows]]
+kind = "reversal"
+shifts = [-0.02, 0.0, 0.02]
+[network]
+dim = [2, 3]
+delay = [5, 10, 20]
+mu = 0.1
+normalize = "none"
+""",
+    )
+    study = load_study(path)
+    assert [p.relative_to(tmp_path).as_posix() for p in study.recordings] == [
+        "traces/a.xml",
+        "traces/b.xml",
+        "traces/c.csv",
+    ]
+    assert study.signals == ("RP", "AP", "V")
+    assert study.axis == 7
+    assert study.base_dir == tmp_path.resolve()
+    assert study.windows == (
+        WindowSpec("sliding", (("step", 0.3), ("width", 0.6))),
+        WindowSpec("reversal", (("shifts", [-0.02, 0.0, 0.02]),)),
+    )
+    grid = parameter_grid(study)
+    expected = [
+        {"dim": d, "delay": t, "mu": 0.1, "normalize": None}
+        for d, t in itertools.product([2, 3], [5, 10, 20])
+    ]
+    assert grid == expected
+
+
+@pytest.mark.parametrize(
+    ("text", "key"),
+    [
+        ("[recordings]\npaths = [", "not valid TOML"),
+        ('[recordings]\npaths = ["*.xml"]\ncolour = 1', "recordings.colour"),
+        ('[recordings]\npaths = ["nothing-*.xml"]', "recordings.paths"),
+        ("[recordings]\npaths = []", "recordings"),
+        ('[recordings]\npaths = ["*.xml"]\n[network]\nmux = 0.1', "network.mux"),
+        ('[recordings]\npaths = ["*.xml"]\n[network]\ndim = "3"', "network.dim"),
+        ('[recordings]\npaths = ["*.xml"]\n[network]\ndelay = []', "network.delay"),
+        ('[recordings]\npaths = ["*.xml"]\n[network]\ndelay = [5, 5]', "network.delay"),
+        ('[recordings]\npaths = ["*.xml"]\n[[windows]]\nkind = "hourly"', "windows[0].kind"),
+        ('[recordings]\npaths = ["*.xml"]\n[[windows]]\nkind = "sliding"\nwidth = 1', "step"),
+        (
+            '[recordings]\npaths = ["*.xml"]\n[[windows]]\nkind = "phases"\nwidht = 1',
+            "windows[0].widht",
+        ),
+        (
+            '[recordings]\npaths = ["*.xml"]\n[[windows]]\nkind = "range"\nstart = 2\nstop = 1',
+            "windows[0].stop",
+        ),
+        ('signals = ["RP"]\n[recordings]\npaths = ["*.xml"]', "signals"),
+        ('[recordings]\nsimulated = "missing-plan.toml"', "recordings.simulated"),
+        ('[recordings]\npaths = ["*.xml"]\nchannels = "none.toml"', "recordings.channels"),
+    ],
+)
+def test_load_study_errors_name_file_and_key(tmp_path: Path, text: str, key: str) -> None:
+    (tmp_path / "a.xml").write_text("x")
+    path = _write(tmp_path, text)
+    with pytest.raises(StudyError) as info:
+        load_study(path)
+    message = str(info.value)
+    assert str(path) in message
+    assert key in message
+
+
+# --------------------------------------------------------------------------------------------
+# a local run
+
+
+def test_rows_hold_every_pair_window_and_parameter(baseline, study_file: Path) -> None:
+    from funcnet import functional_network
+    from funcnet.robot import detect_phases
+    from funcnet.robot.windows import phase_windows
+    from funcnet.study import read_recording
+
+    out, result = baseline
+    rows = load_results(out)
+    assert result.computed == result.tasks and result.cached == 0 and not result.failures
+
+    nodes = ["RP", "AP", "MP", "V", "RC", "AC"]  # every role of a simulated trace, plus V
+    n_pairs = len(nodes) * (len(nodes) - 1) // 2
+    expected_tasks = 0
+    for name, _ in TRIALS:
+        trace = study_file.parent / "plan" / f"{name}.xml"
+        recording = read_recording(trace)
+        windows = phase_windows(detect_phases(recording))
+        expected_tasks += 2 * (len(windows) + 1)  # phases + one range, two delays
+        mine = rows[rows["recording"] == f"plan/{name}.xml"]
+        assert set(mine["trial"]) == {name}  # from manifest.csv
+        assert set(mine["source_sha256"]) == {hashlib.sha256(trace.read_bytes()).hexdigest()}
+        assert set(mine["window"]) == {w.label for w in windows} | {"0.500-1.100 s"}
+        # An independent computation of one of the networks gives the same numbers.
+        window = windows[-1]
+        part = recording.window(window.start, window.stop).data[nodes]
+        reference = functional_network(part, delay=5).pairs.reset_index(drop=True)
+        got = mine[(mine["window"] == window.label) & (mine["delay"] == 5)]
+        assert got["phase"].tolist() == [window.phase] * n_pairs
+        assert got[["start", "stop"]].drop_duplicates().values.tolist() == [
+            [window.start, window.stop]
+        ]
+        pd.testing.assert_frame_equal(
+            got[reference.columns].reset_index(drop=True), reference, check_dtype=False
+        )
+    assert result.tasks == expected_tasks
+    assert len(rows) == expected_tasks * n_pairs
+    assert rows.groupby(["recording", "window", "delay"]).size().eq(n_pairs).all()
+    for name in NETWORK_PARAMETERS:
+        assert {"rr": "rr_target", "cr": "cr_target"}.get(name, name) in rows.columns
+    assert set(rows["dim"]) == {3} and set(rows["delay"]) == {5, 10}
+
+
+def test_rows_are_plain_parquet_and_study_json_has_provenance(baseline) -> None:
+    out, result = baseline
+    files = sorted((out / "rows").glob("*.parquet"))
+    assert len(files) == result.tasks
+    for f in files[:3]:
+        assert pq.read_schema(f).metadata is None  # no pandas-only metadata
+    # The whole folder reads as one data set with pyarrow alone.
+    table = pq.ParquetDataset(out / "rows").read()
+    assert table.num_rows == len(load_results(out))
+    document = json.loads((out / "study.json").read_text())
+    assert document["status"] == "complete"
+    assert document["run"]["tasks"] == result.tasks
+    versions = document["provenance"]["versions"]
+    assert versions["numpy"] == np.__version__ and versions["funcnet"]
+    for name, _ in TRIALS:
+        trace = out.parent / "plan" / f"{name}.xml"
+        digest = hashlib.sha256(trace.read_bytes()).hexdigest()
+        assert document["provenance"]["inputs"][f"plan/{name}.xml"] == digest
+
+
+def test_rerun_computes_nothing_and_a_new_grid_only_what_is_new(baseline, study_file) -> None:
+    out, first = baseline
+    before = load_results(out)
+    again = run_study(load_study(study_file), out)
+    assert (again.computed, again.cached) == (0, first.tasks)
+    pd.testing.assert_frame_equal(load_results(out), before)
+
+    # Another grid: the shared half is reused, the old rows leave rows/ (kept in cache/) ...
+    grid_file = _write(study_file.parent, STUDY_TEXT.replace("[5, 10]", "[10, 20]"), "g.toml")
+    other = run_study(load_study(grid_file), out)
+    assert (other.computed, other.cached) == (first.tasks // 2, first.tasks // 2)
+    assert set(load_results(out)["delay"]) == {10, 20}
+    # ... and come back without being computed again.
+    back = run_study(load_study(study_file), out)
+    assert (back.computed, back.cached) == (0, first.tasks)
+    pd.testing.assert_frame_equal(load_results(out), before)
+
+
+def test_failed_windows_are_recorded_and_not_retried(plan_dir: Path, tmp_path: Path) -> None:
+    # Before the motion starts every position is constant: min-max normalization must refuse.
+    trace = plan_dir / f"{TRIALS[0][0]}.xml"
+    study = Study(
+        recordings=(trace,),
+        windows=(WindowSpec("range", (("start", 0.0), ("stop", 0.2))),),
+        signals=("RP", "AP"),
+        base_dir=plan_dir,
+    )
+    result = run_study(study, tmp_path, workers=1)
+    assert (result.tasks, result.computed, len(result.failures)) == (1, 1, 1)
+    assert "constant" in result.failures[0].message
+    assert not list((tmp_path / "rows").glob("*.parquet"))
+    again = run_study(study, tmp_path, workers=1)
+    assert (again.computed, again.cached, len(again.failures)) == (0, 1, 1)
+    with pytest.raises(StudyError, match="no study results"):
+        load_results(tmp_path)
+
+
+def test_invalid_parameter_value_stops_the_run(plan_dir: Path, tmp_path: Path) -> None:
+    study = Study(
+        recordings=(plan_dir / f"{TRIALS[0][0]}.xml",),
+        windows=(WindowSpec("range", (("start", 0.5), ("stop", 1.0))),),
+        parameters=(("mu", (-1.0,)),),
+        base_dir=plan_dir,
+    )
+    with pytest.raises(StudyError, match="mu"):
+        run_study(study, tmp_path, workers=1)
+
+
+def test_concurrent_run_on_same_folder_is_refused(tmp_path: Path) -> None:
+    import fcntl
+
+    with open(tmp_path / ".lock", "a") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        with pytest.raises(StudyError, match="another study run"):
+            run_study(Study(recordings=()), tmp_path)
+
+
+# --------------------------------------------------------------------------------------------
+# Dask, and a run killed with SIGKILL
+
+
+def test_dask_cluster_gives_the_same_rows(baseline, study_file: Path) -> None:
+    from distributed import LocalCluster
+
+    out, result = baseline
+    with LocalCluster(
+        n_workers=2,
+        threads_per_worker=1,
+        processes=True,
+        host="127.0.0.1",
+        dashboard_address=None,
+    ) as cluster:
+        assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
+        dask_out = study_file.parent / "dask"
+        on_dask = run_study(load_study(study_file), dask_out, scheduler=cluster.scheduler_address)
+    assert on_dask.computed == result.tasks
+    pd.testing.assert_frame_equal(load_results(dask_out), load_results(out))
+    assert sorted(p.name for p in (dask_out / "rows").iterdir()) == sorted(
+        p.name for p in (out / "rows").iterdir()
+    )
+
+
+def _children(pid: int) -> set[int]:
+    found = set()
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[1]) == pid:
+            found.add(int(stat.parent.name))
+    return found
+
+
+def _alive(pid: int) -> bool:
+    try:
+        state = (Path("/proc") / str(pid) / "stat").read_text().rsplit(")", 1)[1].split()[0]
+    except OSError:
+        return False
+    return state != "Z"
+
+
+def test_run_killed_with_sigkill_resumes_to_the_same_rows(baseline, study_file: Path) -> None:
+    out, result = baseline
+    killed_out = study_file.parent / "killed"
+    command = [sys.executable, "-m", "funcnet.cli", "study", str(study_file)]
+    command += ["--out", str(killed_out), "--workers", "2", "--quiet"]
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    rows = killed_out / "rows"
+    deadline = time.monotonic() + 120
+    workers: set[int] = set()
+    while time.monotonic() < deadline and process.poll() is None:
+        workers |= _children(process.pid)
+        if rows.is_dir() and any(rows.glob("*.parquet")):
+            break
+        time.sleep(0.01)
+    os.kill(process.pid, signal.SIGKILL)
+    process.wait()
+    done_at_kill = len(list(rows.glob("*.parquet")))
+    assert 0 < done_at_kill < result.tasks, "the kill must land mid-way"
+    # The workers notice their parent's death and exit: nothing is left running.
+    deadline = time.monotonic() + 20
+    while any(_alive(pid) for pid in workers) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert workers and not any(_alive(pid) for pid in workers)
+
+    resumed = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    assert resumed.returncode == 0, resumed.stderr
+    run = json.loads((killed_out / "study.json").read_text())["run"]
+    assert run["cached"] >= done_at_kill and run["computed"] + run["cached"] == result.tasks
+    pd.testing.assert_frame_equal(load_results(killed_out), load_results(out))
+    assert not [p for p in killed_out.rglob(".*.tmp")]
