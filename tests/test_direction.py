@@ -245,3 +245,14 @@ def test_uncoupled_logistic_maps_show_a_direction():
     rows = pair_rows(columns(logistic_pair(3.7, 4.0, SEEDS)), delay=1)
     assert kinds(rows)["y->x"] == len(SEEDS)
     assert all(row["c_diff"] >= 0.2 and row["t_diff"] >= 0.1 for row in rows)
+
+
+def test_the_papers_fig2_sine_pair_reads_backwards():
+    # x = sin(t) drives y = sin(1.5 t) + 0.3 x (N = 251, m = 3, tau = 10, the paper's Fig. 2):
+    # C_diff = +0.11 reads Y -> X, T_diff = -0.03 stays below mu; the combined edge is y -> x.
+    # The two-frequency response is the "richer" signal.
+    t = np.linspace(0, 8 * np.pi, 251)
+    (row,) = pair_rows([np.column_stack([np.sin(t), np.sin(1.5 * t) + 0.3 * np.sin(t)])],
+                       delay=10)
+    assert row["c_diff"] >= MU and abs(row["t_diff"]) < MU
+    assert row["kind"] == "y->x"

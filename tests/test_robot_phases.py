@@ -182,3 +182,27 @@ def test_phase_table_by_hand():
         with pytest.raises(ParameterError, match=match):
             phase_table(bad)
     assert PHASES[0] == "standstill"
+
+
+def test_a_slow_move_written_with_finite_decimals_is_one_move():
+    # At 1 deg/min a set-point written with 6 decimals stands still for a few ticks while it
+    # creeps off its start and onto its target; those ticks must not split the move.
+    times, accel = move_acceleration(1.0, cruise=2.0)
+    rec = recording_of(times, accel, 6.0)
+    slow = rec.data["RP"] * (1.0 / 60.0) / VC  # scale the cruise speed to 1 deg/min
+    quantized = Recording(
+        pd.DataFrame({"RP": np.round(slow.to_numpy(), 6)}, index=rec.data.index),
+        {},
+        rec.signals,
+        source="slow.xml",
+    )
+    assert rows(detect_phases(quantized, min_gap=0.0)).count("cruise") > 1  # the split it fixes
+    table = detect_phases(quantized)
+    assert rows(table) == [
+        "standstill",
+        "early spin-up",
+        "late spin-up",
+        "cruise",
+        "braking",
+        "standstill",
+    ]

@@ -412,7 +412,12 @@ def study(
     ] = None,
     workers: Annotated[
         int | None,
-        typer.Option("--workers", min=1, help="Local worker processes. [default: 2]"),
+        typer.Option(
+            "--workers",
+            min=0,
+            help="Worker processes of the local run or local cluster; 0 runs the tasks in this "
+            "process. [default: 2]",
+        ),
     ] = None,
     quiet: Quiet = False,
 ) -> None:

@@ -608,7 +608,6 @@ def _expand_windows(task: _WindowTask) -> _Outcome:
     """Worker side: the windows a specification gives on a recording."""
     from funcnet.robot import detect_phases
 
-    _one_thread_per_task()
     module = _windows_module()
     try:
         recording = _cached_recording(
@@ -639,14 +638,13 @@ def _network_rows(task: _NetworkTask) -> _Outcome:
     from funcnet.robot import phase_networks
     from funcnet.robot.windows import Window
 
-    _one_thread_per_task()
     try:
         recording = _cached_recording(
             task.source.path, task.source.sha256, task.signals, task.channels, task.axis
         )
         signals = None if task.signals is None else list(task.signals)
         window = Window(**task.window)
-        with warnings.catch_warnings(record=True) as caught:
+        with warnings.catch_warnings(record=True) as caught, _one_thread_per_task():
             warnings.simplefilter("always")
             networks = phase_networks(recording, [window], signals=signals, **task.parameters)
         (network,) = networks.values()
@@ -733,25 +731,37 @@ def _init_worker(parent: int) -> None:
     _watch_parent(parent)
 
 
-def _one_thread_per_task() -> None:
+@contextlib.contextmanager
+def _one_thread_per_task() -> Iterator[None]:
     # Tasks run in parallel already (one per process or Dask thread): Numba's parallel loops
-    # inside a task would only oversubscribe the cores. The setting is per thread.
+    # inside a task only oversubscribe the cores (measured: 10-20x slower on small windows of a
+    # loaded machine). The setting is per thread; it is restored for an in-process run.
     import numba
 
+    previous = numba.get_num_threads()
     numba.set_num_threads(1)
+    try:
+        yield
+    finally:
+        numba.set_num_threads(previous)
 
 
 class _Backend:
-    """``submit(fn, arg)`` and ``as_completed(futures)`` over processes or a Dask client."""
+    """Run task functions in this process, on local processes or on a Dask cluster."""
 
     def __init__(self, scheduler: str | None, workers: int | None) -> None:
         self._stack = contextlib.ExitStack()
-        n_workers = workers or _DEFAULT_WORKERS
-        if n_workers < 1:
-            raise ParameterError(f"workers must be at least 1, got {n_workers}")
+        self._client: Any = None
+        self._pool: Any = None
+        n_workers = _DEFAULT_WORKERS if workers is None else workers
+        if isinstance(n_workers, bool) or not isinstance(n_workers, int) or n_workers < 0:
+            raise ParameterError(f"workers must be an integer >= 0, got {workers!r}")
         if scheduler is None:
+            if n_workers == 0:
+                self.description = "this process"
+                return
             import multiprocessing
-            from concurrent.futures import ProcessPoolExecutor, as_completed
+            from concurrent.futures import ProcessPoolExecutor
 
             # spawn: the caller may run threads (progress bars, Dask) that fork must not copy.
             self._pool = self._stack.enter_context(
@@ -762,27 +772,25 @@ class _Backend:
                     initargs=(os.getpid(),),
                 )
             )
-            self._as_completed = as_completed
-            self._submit = lambda fn, arg: self._pool.submit(fn, arg)
             self.description = f"local processes ({n_workers})"
             return
-        from distributed import Client, LocalCluster, as_completed
+        from distributed import Client, LocalCluster
 
         if scheduler == "local-cluster":
             cluster = self._stack.enter_context(
                 LocalCluster(
-                    n_workers=n_workers,
+                    n_workers=max(n_workers, 1),
                     threads_per_worker=1,
                     processes=True,
                     host="127.0.0.1",
                     dashboard_address=None,
                 )
             )
-            client = self._stack.enter_context(Client(cluster))
-            self.description = f"dask LocalCluster ({n_workers} workers)"
+            self._client = self._stack.enter_context(Client(cluster))
+            self.description = f"dask LocalCluster ({max(n_workers, 1)} workers)"
         elif scheduler.startswith("tcp://"):
             try:
-                client = self._stack.enter_context(Client(scheduler, timeout="30s"))
+                self._client = self._stack.enter_context(Client(scheduler, timeout="30s"))
             except OSError as exc:
                 raise StudyError(f"scheduler {scheduler}: cannot connect: {exc}") from None
             self.description = f"dask cluster {scheduler}"
@@ -790,16 +798,26 @@ class _Backend:
             raise ParameterError(
                 f"scheduler must be 'tcp://HOST:PORT' or 'local-cluster', got {scheduler!r}"
             )
-        self._as_completed = as_completed
-        self._submit = lambda fn, arg: client.submit(fn, arg, key=f"funcnet-{arg.key}", pure=False)
 
     def map_unordered(self, fn: Callable[[Any], _Outcome], tasks: Sequence[Any]) -> Iterator[Any]:
         """Run ``fn`` on every task; yield the outcomes as they finish."""
-        if not tasks:
-            return
-        futures = [self._submit(fn, task) for task in tasks]
-        for future in self._as_completed(futures):
-            yield future.result()
+        if self._client is not None:
+            from distributed import as_completed
+
+            futures = [
+                self._client.submit(fn, task, key=f"funcnet-{task.key}", pure=False)
+                for task in tasks
+            ]
+            for future in as_completed(futures):
+                yield future.result()
+        elif self._pool is not None:
+            from concurrent.futures import as_completed
+
+            for future in as_completed([self._pool.submit(fn, task) for task in tasks]):
+                yield future.result()
+        else:
+            for task in tasks:
+                yield fn(task)
 
     def close(self) -> None:
         self._stack.close()
@@ -881,7 +899,8 @@ def run_study(
         ``"local-cluster"`` starts a Dask ``LocalCluster`` on the loopback interface for the run.
         The rows are identical either way.
     workers : int, optional
-        Worker processes for the local pool and the local cluster (default 2); ignored for an
+        Worker processes for the local pool and the local cluster (default 2); 0 runs the tasks
+        one after the other in this process (for debugging and tiny studies). Ignored for an
         external scheduler.
     progress : callable, optional
         Called as ``progress(done, total, description)`` as trials of a simulated plan are

@@ -37,6 +37,22 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
     return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True))
 
 
+def _merge_runs(
+    runs: list[tuple[int, int]], signed: np.ndarray, max_gap: float
+) -> list[tuple[int, int]]:
+    """Join runs in the same direction separated by fewer than ``max_gap`` ticks."""
+    merged: list[tuple[int, int]] = []
+    for first, stop in runs:
+        if merged:
+            prev_first, prev_stop = merged[-1]
+            same = np.sign(signed[prev_first:prev_stop].sum()) == np.sign(signed[first:stop].sum())
+            if same and first - prev_stop < max_gap:
+                merged[-1] = (prev_first, stop)
+                continue
+        merged.append((first, stop))
+    return merged
+
+
 def detect_phases(
     recording: Recording,
     *,
@@ -46,14 +62,17 @@ def detect_phases(
     early: float = 0.95,
     reversal: float = 0.5,
     reversal_dwell: float = 0.5,
+    min_gap: float = 0.05,
 ) -> pd.DataFrame:
     """Find the motion phases from the reference motion.
 
     With ``v`` the velocity of the reference (:func:`~funcnet.robot.preprocess.velocity`, Eq.
     11-12 applied to RP) and ``a`` the same derivative of ``v``:
 
-    - a *move* is a maximal run of ticks with ``|v| > standstill * max|v|``; every other tick is
-      **standstill**;
+    - a *move* is a maximal run of ticks with ``|v| > standstill * max|v|``; runs in the same
+      direction less than ``min_gap`` seconds apart are one move (a slow set-point written with
+      finite decimals stands still for a few ticks while it creeps off and onto its target);
+      every other tick is **standstill**;
     - in a move of peak speed ``p``, **cruise** runs from the first to the last tick with
       ``|v| >= cruise * p``; before it is the spin-up, after it **braking**;
     - the spin-up is **early spin-up** until ``|a|`` first reaches ``early`` times its maximum
@@ -75,6 +94,8 @@ def detect_phases(
         The fractions above, each in (0, 1).
     reversal_dwell : float
         Longest standstill, in seconds, between the two moves of a reversal.
+    min_gap : float
+        Shortest standstill, in seconds, that separates two moves in the same direction.
 
     Returns
     -------
@@ -121,8 +142,9 @@ def detect_phases(
         (reversal, "reversal"),
     ):
         _fraction(value, name)
-    if not (reversal_dwell >= 0 and math.isfinite(reversal_dwell)):
-        raise ParameterError(f"reversal_dwell: must be >= 0 seconds, got {reversal_dwell}")
+    for value, name in ((reversal_dwell, "reversal_dwell"), (min_gap, "min_gap")):
+        if not (value >= 0 and math.isfinite(value)):
+            raise ParameterError(f"{name}: must be >= 0 seconds, got {value}")
     dt = recording.sample_period
     speed = reference_speed(recording, reference)
     n = speed.size
@@ -130,7 +152,7 @@ def detect_phases(
     if speed.max() > 0:
         signed = velocity(recording.data[reference].to_numpy(dtype=np.float64), dt)
         accel = np.abs(velocity(signed, dt))
-        moves = _runs(speed > standstill * speed.max())
+        moves = _merge_runs(_runs(speed > standstill * speed.max()), signed, min_gap / dt)
         for first, stop in moves:
             peak = speed[first:stop].max()
             cruising = np.flatnonzero(speed[first:stop] >= cruise * peak) + first
