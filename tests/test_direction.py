@@ -4,8 +4,8 @@ Convention (DESIGN.md 1.6, the code the paper used): a NEGATIVE ``C_diff`` / ``T
 X -> Y (pair kind ``x->y``). Every case below builds a two-node functional network with the
 library's defaults (rr = cr = mu = 0.05, m = 3, min-max normalization, measure "both") from
 N = 1500 samples after a discarded transient, over the seeds in ``SEEDS``, and counts the pair
-kinds. The bounds were set after measuring 20 seeds (``/tmp`` script, same generators; numbers
-in the comments and in docs/direction.md) and leave a margin; they were not tuned.
+kinds. The bounds were set after measuring seeds 0-19 with these same generators (counts in
+the comments and in docs/direction.md) and leave a margin; the systems were not tuned to pass.
 
 Delays: tau = 1 for maps (one iterate); for the Rossler oscillators (sampled every 0.2 time
 units, mean period about 6.3) tau = 8 samples, the first zero of the autocorrelation of x and the
@@ -59,18 +59,26 @@ def rossler_pair(coupling, w_x, w_y, seeds, n=N, step=0.1, every=2, transient=20
     """
     a, b, c = 0.15, 0.2, 10.0
     rows = len(seeds)
-    coupling, w_x, w_y = (np.broadcast_to(np.asarray(v, float), (rows,)) for v in
-                          (coupling, w_x, w_y))
+    coupling, w_x, w_y = (
+        np.broadcast_to(np.asarray(v, float), (rows,)) for v in (coupling, w_x, w_y)
+    )
     state = np.zeros((rows, 6))
     for row, seed in enumerate(seeds):
         state[row, [0, 1, 3, 4]] = np.random.default_rng(seed).uniform(-5.0, 5.0, 4)
 
     def field(s):
         x1, y1, z1, x2, y2, z2 = s.T
-        return np.stack([
-            -w_x * y1 - z1, w_x * x1 + a * y1, b + z1 * (x1 - c),
-            -w_y * y2 - z2 + coupling * (x1 - x2), w_y * x2 + a * y2, b + z2 * (x2 - c),
-        ], axis=1)
+        return np.stack(
+            [
+                -w_x * y1 - z1,
+                w_x * x1 + a * y1,
+                b + z1 * (x1 - c),
+                -w_y * y2 - z2 + coupling * (x1 - x2),
+                w_y * x2 + a * y2,
+                b + z2 * (x2 - c),
+            ],
+            axis=1,
+        )
 
     def rk4(s):
         k1 = field(s)
@@ -150,8 +158,11 @@ def test_swapping_the_signals_mirrors_every_number():
     assert forward["kind"] == "x->y" and backward["kind"] == "y->x"
     for xy, yx in (("c_xy", "c_yx"), ("t_xy", "t_yx"), ("eps_x", "eps_y")):
         assert backward[xy] == forward[yx] and backward[yx] == forward[xy]
-    np.testing.assert_allclose(backward[["c_diff", "t_diff"]].to_numpy(float),
-                               -forward[["c_diff", "t_diff"]].to_numpy(float), atol=1e-15)
+    np.testing.assert_allclose(
+        backward[["c_diff", "t_diff"]].to_numpy(float),
+        -forward[["c_diff", "t_diff"]].to_numpy(float),
+        atol=1e-15,
+    )
 
 
 def test_uncoupled_identical_henon_maps_show_no_arrow():
@@ -177,8 +188,11 @@ def test_henon_direction_is_not_monotonic_in_the_coupling():
 @pytest.fixture(scope="module")
 def rossler():
     """Three configurations x SEEDS in one integration: faster driver, slower driver, uncoupled."""
-    configs = {"faster driver": (0.07, 1.015, 0.985), "slower driver": (0.07, 0.985, 1.015),
-               "uncoupled": (0.0, 1.015, 0.985)}
+    configs = {
+        "faster driver": (0.07, 1.015, 0.985),
+        "slower driver": (0.07, 0.985, 1.015),
+        "uncoupled": (0.0, 1.015, 0.985),
+    }
     seeds = list(SEEDS)
     batch = rossler_pair(
         [c for c, _, _ in configs.values() for _ in seeds],
@@ -186,8 +200,10 @@ def rossler():
         [w for _, _, w in configs.values() for _ in seeds],
         seeds * len(configs),
     )
-    return {name: pair_rows(columns(batch[:, k * len(seeds):(k + 1) * len(seeds)]), delay=8)
-            for k, name in enumerate(configs)}
+    return {
+        name: pair_rows(columns(batch[:, k * len(seeds) : (k + 1) * len(seeds)]), delay=8)
+        for k, name in enumerate(configs)
+    }
 
 
 def test_rossler_faster_driver_reads_the_true_direction(rossler):
@@ -252,7 +268,6 @@ def test_the_papers_fig2_sine_pair_reads_backwards():
     # C_diff = +0.11 reads Y -> X, T_diff = -0.03 stays below mu; the combined edge is y -> x.
     # The two-frequency response is the "richer" signal.
     t = np.linspace(0, 8 * np.pi, 251)
-    (row,) = pair_rows([np.column_stack([np.sin(t), np.sin(1.5 * t) + 0.3 * np.sin(t)])],
-                       delay=10)
+    (row,) = pair_rows([np.column_stack([np.sin(t), np.sin(1.5 * t) + 0.3 * np.sin(t)])], delay=10)
     assert row["c_diff"] >= MU and abs(row["t_diff"]) < MU
     assert row["kind"] == "y->x"

@@ -18,8 +18,20 @@ from funcnet.measures import CrossMeasures, cross_measures
 from funcnet.network import FunctionalNetwork, combine_kinds, edge_kind, functional_network
 from funcnet.preprocess import normalize
 
-MEASURE_COLUMNS = ["c_xy", "c_yx", "t_xy", "t_yx", "c_diff", "t_diff",
-                   "eps_x", "eps_y", "eps_xy", "rr_x", "rr_y", "cr"]
+MEASURE_COLUMNS = [
+    "c_xy",
+    "c_yx",
+    "t_xy",
+    "t_yx",
+    "c_diff",
+    "t_diff",
+    "eps_x",
+    "eps_y",
+    "eps_xy",
+    "rr_x",
+    "rr_y",
+    "cr",
+]
 
 
 # --- an independent dense float64 reference (DESIGN.md 1.4-1.5) ------------------------------
@@ -59,17 +71,30 @@ def brute_cross(cross, auto):
 def brute_pair(x, y, *, dim, delay, rr, cr, metric):
     xs, ys = brute_embed(x, dim, delay), brute_embed(y, dim, delay)
     off = ~np.eye(len(xs), dtype=bool)
-    d_x, d_y, d_xy = (brute_distances(xs, xs, metric), brute_distances(ys, ys, metric),
-                      brute_distances(xs, ys, metric))
+    d_x, d_y, d_xy = (
+        brute_distances(xs, xs, metric),
+        brute_distances(ys, ys, metric),
+        brute_distances(xs, ys, metric),
+    )
     eps_x, eps_y = kth_smallest(d_x[off], rr), kth_smallest(d_y[off], rr)
     eps_xy = kth_smallest(d_xy.ravel(), cr)
     a_x, a_y, c_xy_matrix = (d_x <= eps_x) & off, (d_y <= eps_y) & off, d_xy <= eps_xy
     c_xy, t_xy = brute_cross(c_xy_matrix, a_y)
     c_yx, t_yx = brute_cross(c_xy_matrix.T, a_x)
-    return dict(c_xy=c_xy, c_yx=c_yx, t_xy=t_xy, t_yx=t_yx, c_diff=c_xy - c_yx,
-                t_diff=t_xy - t_yx, eps_x=eps_x, eps_y=eps_y, eps_xy=eps_xy,
-                rr_x=a_x.sum() / off.sum(), rr_y=a_y.sum() / off.sum(),
-                cr=c_xy_matrix.sum() / c_xy_matrix.size)
+    return dict(
+        c_xy=c_xy,
+        c_yx=c_yx,
+        t_xy=t_xy,
+        t_yx=t_yx,
+        c_diff=c_xy - c_yx,
+        t_diff=t_xy - t_yx,
+        eps_x=eps_x,
+        eps_y=eps_y,
+        eps_xy=eps_xy,
+        rr_x=a_x.sum() / off.sum(),
+        rr_y=a_y.sum() / off.sum(),
+        cr=c_xy_matrix.sum() / c_xy_matrix.size,
+    )
 
 
 def brute_kind(c_diff, t_diff, mu, measure):
@@ -114,14 +139,26 @@ def quiet_network(data, **kwargs):
 @pytest.mark.parametrize("method", ["minmax", "zscore", None])
 def test_pairs_table_matches_brute_force(metric, method):
     data = signals()
-    net = quiet_network(data, names=["walk", "smooth", "map"], dim=3, delay=2, rr=0.08, cr=0.06,
-                        metric=metric, normalize=method)
+    net = quiet_network(
+        data,
+        names=["walk", "smooth", "map"],
+        dim=3,
+        delay=2,
+        rr=0.08,
+        cr=0.06,
+        metric=metric,
+        normalize=method,
+    )
     scaled = normalize(data, method)
     assert list(net.pairs[["x", "y"]].itertuples(index=False, name=None)) == [
-        ("walk", "smooth"), ("walk", "map"), ("smooth", "map")]
+        ("walk", "smooth"),
+        ("walk", "map"),
+        ("smooth", "map"),
+    ]
     for row, (i, j) in zip(net.pairs.itertuples(), [(0, 1), (0, 2), (1, 2)], strict=True):
-        expected = brute_pair(scaled[:, i], scaled[:, j], dim=3, delay=2, rr=0.08, cr=0.06,
-                              metric=metric)
+        expected = brute_pair(
+            scaled[:, i], scaled[:, j], dim=3, delay=2, rr=0.08, cr=0.06, metric=metric
+        )
         for name, value in expected.items():
             assert getattr(row, name) == pytest.approx(value, abs=1e-12, rel=0), name
         assert row.eps_ordered == (row.eps_xy < min(row.eps_x, row.eps_y))
@@ -147,12 +184,28 @@ def test_pairs_equal_cross_measures_of_each_normalized_pair():
 
 def crafted(c_diff, t_diff, *, eps_ordered=True, rate_exceeded=False):
     """A CrossMeasures with the given differences (other fields plausible placeholders)."""
-    values = dict(c_xy=0.5 + c_diff / 2, c_yx=0.5 - c_diff / 2, t_xy=0.5 + t_diff / 2,
-                  t_yx=0.5 - t_diff / 2, c_diff=c_diff, t_diff=t_diff, eps_x=0.2, eps_y=0.25,
-                  eps_xy=0.1 if eps_ordered else 0.3, rr_x=0.05, rr_y=0.05, cr=0.05,
-                  eps_ordered=eps_ordered, rate_exceeded=rate_exceeded, m_x=40, m_y=40,
-                  parameters={})
-    return CrossMeasures(**{f.name: values[f.name] for f in fields(CrossMeasures)})
+    values = dict(
+        c_xy=0.5 + c_diff / 2,
+        c_yx=0.5 - c_diff / 2,
+        t_xy=0.5 + t_diff / 2,
+        t_yx=0.5 - t_diff / 2,
+        c_diff=c_diff,
+        t_diff=t_diff,
+        eps_x=0.2,
+        eps_y=0.25,
+        eps_xy=0.1 if eps_ordered else 0.3,
+        rr_x=0.05,
+        rr_y=0.05,
+        cr=0.05,
+        eps_ordered=eps_ordered,
+        rate_exceeded=rate_exceeded,
+        m_x=40,
+        m_y=40,
+        parameters={},
+    )
+    return CrossMeasures(
+        **{f.name: values[f.name] for f in fields(CrossMeasures) if f.name in values}
+    )
 
 
 @pytest.fixture
@@ -212,16 +265,26 @@ def test_edge_rule(fake_measures, c_diff, t_diff, mu, both, measure):
         "bidirectional": [("X", "Y", "bidirectional")],
         "conflict": [],
     }[row["kind"]]
-    assert list(net.edges[["source", "target", "kind"]].itertuples(index=False, name=None)) == \
-        expected_edges
+    assert (
+        list(net.edges[["source", "target", "kind"]].itertuples(index=False, name=None))
+        == expected_edges
+    )
     assert edge_kind(c_diff, mu) == row["c_kind"]
     assert combine_kinds(row["c_kind"], row["t_kind"]) == both
 
 
 def four_node_network(fake_measures, **kwargs):
     # (A,B) x->y, (A,C) y->x, (A,D) conflict, (B,C) bidirectional, (B,D), (C,D) conflict.
-    fake_measures([crafted(-0.2, -0.1), crafted(0.1, 0.3), crafted(-0.2, 0.2),
-                   crafted(0.01, -0.02), crafted(0.1, -0.1), crafted(-0.3, 0.3)])
+    fake_measures(
+        [
+            crafted(-0.2, -0.1),
+            crafted(0.1, 0.3),
+            crafted(-0.2, 0.2),
+            crafted(0.01, -0.02),
+            crafted(0.1, -0.1),
+            crafted(-0.3, 0.3),
+        ]
+    )
     return functional_network(noise(4), names=["A", "B", "C", "D"], label="crafted", **kwargs)
 
 
@@ -232,8 +295,14 @@ def test_edges_table(fake_measures):
         ("C", "A", 0.2, "directed"),
         ("B", "C", 0.015, "bidirectional"),
     ]
-    assert list(net.pairs["kind"]) == ["x->y", "y->x", "conflict", "bidirectional", "conflict",
-                                       "conflict"]
+    assert list(net.pairs["kind"]) == [
+        "x->y",
+        "y->x",
+        "conflict",
+        "bidirectional",
+        "conflict",
+        "conflict",
+    ]
     assert list(net.edges.dtypes.astype(str)) == ["str", "str", "float64", "str"]
 
 
@@ -243,8 +312,9 @@ def test_to_networkx_keeps_every_node_and_doubles_bidirectional_edges(fake_measu
     assert list(graph.nodes) == ["A", "B", "C", "D"]  # D has no edge, only conflicts
     assert sorted(graph.edges) == [("A", "B"), ("B", "C"), ("C", "A"), ("C", "B")]
     assert graph.edges["C", "A"] == {"weight": 0.2, "kind": "directed"}
-    assert graph.edges["B", "C"] == graph.edges["C", "B"] == {"weight": 0.015,
-                                                              "kind": "bidirectional"}
+    assert (
+        graph.edges["B", "C"] == graph.edges["C", "B"] == {"weight": 0.015, "kind": "bidirectional"}
+    )
     assert graph.graph["label"] == "crafted"
     assert graph.graph["parameters"]["mu"] == 0.05
 
@@ -253,12 +323,23 @@ def test_edges_for_each_measure(fake_measures):
     net = four_node_network(fake_measures)
     by_clustering = net.edges_for("clustering")
     # C_diff alone: A->B, C->A, A->D, B-C, D->B, A->... (C,D) -0.3 -> C->D.
-    assert list(by_clustering[["source", "target", "kind"]].itertuples(index=False, name=None)) \
-        == [("A", "B", "directed"), ("C", "A", "directed"), ("A", "D", "directed"),
-            ("B", "C", "bidirectional"), ("D", "B", "directed"), ("C", "D", "directed")]
+    assert list(by_clustering[["source", "target", "kind"]].itertuples(index=False, name=None)) == [
+        ("A", "B", "directed"),
+        ("C", "A", "directed"),
+        ("A", "D", "directed"),
+        ("B", "C", "bidirectional"),
+        ("D", "B", "directed"),
+        ("C", "D", "directed"),
+    ]
     by_transitivity = net.edges_for("transitivity")
     assert list(by_transitivity[["source", "target"]].itertuples(index=False, name=None)) == [
-        ("A", "B"), ("C", "A"), ("D", "A"), ("B", "C"), ("B", "D"), ("D", "C")]
+        ("A", "B"),
+        ("C", "A"),
+        ("D", "A"),
+        ("B", "C"),
+        ("B", "D"),
+        ("D", "C"),
+    ]
     assert net.edges_for("both").equals(net.edges)
     with pytest.raises(ParameterError, match="measure must be one of"):
         net.edges_for("degree")
@@ -273,18 +354,25 @@ def test_network_built_with_one_measure_can_give_the_combined_edges(fake_measure
 
 def test_calls_pairwise_once_with_the_parameters(fake_measures):
     calls = fake_measures([crafted(0.0, 0.0)] * 3)
-    functional_network(noise(3), dim=4, delay=2, rr=0.1, cr=0.03, metric="supremum",
-                       rule="pyunicorn", theiler=1)
-    assert calls == [dict(dim=4, delay=2, rr=0.1, cr=0.03, metric="supremum", rule="pyunicorn",
-                          theiler=1)]
+    functional_network(
+        noise(3), dim=4, delay=2, rr=0.1, cr=0.03, metric="supremum", rule="pyunicorn", theiler=1
+    )
+    assert calls == [
+        dict(dim=4, delay=2, rr=0.1, cr=0.03, metric="supremum", rule="pyunicorn", theiler=1)
+    ]
 
 
 # --- warnings -----------------------------------------------------------------------------
 
 
 def test_threshold_warnings_name_the_pairs_once_each(fake_measures):
-    fake_measures([crafted(0.0, 0.0, eps_ordered=False), crafted(0.0, 0.0),
-                   crafted(0.0, 0.0, rate_exceeded=True)])
+    fake_measures(
+        [
+            crafted(0.0, 0.0, eps_ordered=False),
+            crafted(0.0, 0.0),
+            crafted(0.0, 0.0, rate_exceeded=True),
+        ]
+    )
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         net = functional_network(noise(3), names=["RP", "AP", "AC"])
@@ -308,8 +396,10 @@ def test_real_threshold_problems_warn_once_per_problem_with_names():
     problems = int((~net.pairs["eps_ordered"]).any()) + int(net.pairs["rate_exceeded"].any())
     assert net.pairs["rate_exceeded"].any()
     assert len(threshold) == problems  # core's own warnings are not repeated
-    assert all("(RP, AP)" in message or "(AP, AC)" in message or "(RP, AC)" in message
-               for message in threshold)
+    assert all(
+        "(RP, AP)" in message or "(AP, AC)" in message or "(RP, AC)" in message
+        for message in threshold
+    )
     assert not any("(0, 1)" in message for message in threshold)
 
 
@@ -329,11 +419,30 @@ def test_dataframe_columns_become_nodes_and_match_the_array_form():
 
 
 def test_parameters_and_label_are_recorded():
-    net = quiet_network(signals(n=60), delay=2, rr=0.1, mu=0.02, normalize="zscore",
-                        measure="transitivity", metric="manhattan", theiler=1, label="cruise")
-    assert net.parameters == dict(dim=3, delay=2, rr=0.1, cr=0.05, mu=0.02, metric="manhattan",
-                                  normalize="zscore", measure="transitivity", rule="funcnet",
-                                  theiler=1, n_samples=60)
+    net = quiet_network(
+        signals(n=60),
+        delay=2,
+        rr=0.1,
+        mu=0.02,
+        normalize="zscore",
+        measure="transitivity",
+        metric="manhattan",
+        theiler=1,
+        label="cruise",
+    )
+    assert net.parameters == dict(
+        dim=3,
+        delay=2,
+        rr=0.1,
+        cr=0.05,
+        mu=0.02,
+        metric="manhattan",
+        normalize="zscore",
+        measure="transitivity",
+        rule="funcnet",
+        theiler=1,
+        n_samples=60,
+    )
     assert net.label == "cruise"
 
 
@@ -379,14 +488,19 @@ def test_bad_signals_are_named():
 
 
 def test_json_round_trip_is_exact():
-    net = quiet_network(signals(n=80, seed=7), names=["RP", 'A"P', "Strom ÄC"], delay=2,
-                        label="braking 5000–5700 ms")
+    net = quiet_network(
+        signals(n=80, seed=7),
+        names=["RP", 'A"P', "Strom ÄC"],
+        delay=2,
+        label="braking 5000–5700 ms",
+    )
     text = net.to_json()
     back = FunctionalNetwork.from_json(text)
     assert back == net
     for name in MEASURE_COLUMNS + ["weight"]:
-        np.testing.assert_array_equal(back.pairs[name].to_numpy().view(np.int64),
-                                      net.pairs[name].to_numpy().view(np.int64))
+        np.testing.assert_array_equal(
+            back.pairs[name].to_numpy().view(np.int64), net.pairs[name].to_numpy().view(np.int64)
+        )
     pd.testing.assert_frame_equal(back.pairs, net.pairs)
     pd.testing.assert_frame_equal(back.edges, net.edges)
     assert back.to_json() == text
@@ -412,8 +526,9 @@ def test_from_json_rejects_other_documents():
 def test_equality_sees_a_changed_number(fake_measures):
     fake_measures([crafted(-0.2, -0.1)])
     net = functional_network(noise(2), names=["X", "Y"])
-    changed = FunctionalNetwork(net.nodes, net.pairs.assign(weight=0.5), net.edges,
-                                net.parameters, net.label)
+    changed = FunctionalNetwork(
+        net.nodes, net.pairs.assign(weight=0.5), net.edges, net.parameters, net.label
+    )
     assert changed != net
     assert FunctionalNetwork.from_json(net.to_json()) == net
 
@@ -431,8 +546,7 @@ def test_write_json_and_graphml(tmp_path, fake_measures):
     assert graph.graph["label"] == "crafted"
     assert json.loads(graph.graph["parameters"]) == net.parameters
     # Atomic writes leave no temporary files behind.
-    assert sorted(p.name for p in tmp_path.rglob("*") if p.is_file()) == ["net.GraphML",
-                                                                          "net.json"]
+    assert sorted(p.name for p in tmp_path.rglob("*") if p.is_file()) == ["net.GraphML", "net.json"]
     with pytest.raises(ParameterError, match=r"\.json or \.graphml"):
         net.write(tmp_path / "net.csv")
     assert not (tmp_path / "net.csv").exists()
@@ -440,8 +554,10 @@ def test_write_json_and_graphml(tmp_path, fake_measures):
 
 def test_repr_is_short(fake_measures):
     net = four_node_network(fake_measures)
-    assert repr(net) == ("FunctionalNetwork('crafted', 4 nodes, 2 directed, 1 bidirectional, "
-                         "3 conflict; measure='both', mu=0.05)")
+    assert repr(net) == (
+        "FunctionalNetwork('crafted', 4 nodes, 2 directed, 1 bidirectional, "
+        "3 conflict; measure='both', mu=0.05)"
+    )
     html_text = net._repr_html_()
     assert html_text.count("<tr") == 4  # header + three edges
     assert "0.1500" in html_text

@@ -86,6 +86,18 @@ def test_plot_network_width_proportional_to_weight_and_isolated_nodes():
     assert len(gids(ax, "node:")) == 6  # nodes without any edge are drawn too
 
 
+def test_plot_network_places_given_nodes_and_dashes_absent_ones():
+    pairs = pd.DataFrame({"x": ["RP"], "y": ["AC"], "kind": ["x->y"], "weight": [0.1]})
+    ax = plot.plot_network(pairs, nodes=NODES)
+    circles = {p.get_gid(): p for p in ax.patches if (p.get_gid() or "").startswith("node:")}
+    assert sorted(circles) == sorted(f"node:{n}" for n in NODES)
+    assert {n for n, c in circles.items() if c.get_linestyle() == "-"} == {"node:RP", "node:AC"}
+    # circle order follows `nodes`: RP at the top, AC last (clockwise)
+    assert circles["node:RP"].center == pytest.approx((0.0, 1.0))
+    assert circles["node:AC"].center == pytest.approx((np.cos(np.pi / 2 - 5 * np.pi / 3),
+                                                       np.sin(np.pi / 2 - 5 * np.pi / 3)))
+
+
 def test_plot_recurrence_shows_the_recurrence_matrix():
     x = np.sin(np.linspace(0, 8 * np.pi, 251))
     ax = plot.plot_recurrence(x, eps=0.15)

@@ -26,8 +26,9 @@ def test_minmax_reaches_both_ends_exactly():
     np.testing.assert_array_equal(out.min(axis=0), 0.0)
     np.testing.assert_array_equal(out.max(axis=0), 1.0)
     # Order inside each column is kept.
-    np.testing.assert_array_equal(np.argsort(out, axis=0, kind="stable"),
-                                  np.argsort(x, axis=0, kind="stable"))
+    np.testing.assert_array_equal(
+        np.argsort(out, axis=0, kind="stable"), np.argsort(x, axis=0, kind="stable")
+    )
 
 
 def test_zscore_against_closed_form():

@@ -116,7 +116,7 @@ def test_demo_report_figures_load_in_chromium(demo_report, tmp_path):
 def test_demo_report_findings_tables_and_provenance(demo_report, tiny_plan):
     page, _ = demo_report
     text = page.read_text(encoding="utf-8")
-    tables = pd.read_html(page)
+    tables = pd.read_html(page, keep_default_na=False)
     findings = next(t for t in tables if "reproduced" in t.columns)
     assert set(findings["reproduced"]) <= {"yes", "partly", "no", "n/a"}
     assert {"4.1-early-rp-drives", "4.2-edges-thin", "4.3-sequence", "3.1-tcp",
@@ -162,7 +162,7 @@ def test_study_report_networks_timeline_and_chromium(tiny_study, tmp_path):
     sources = [i["src"] for i in check_page(page, tmp_path)]
     assert any(s.endswith("-timeline.png") for s in sources)
     assert any("-networks-" in s for s in sources)
-    tables = pd.read_html(page)
+    tables = pd.read_html(page, keep_default_na=False)
     pair_tables = [t for t in tables if {"x", "y", "kind"} <= set(t.columns)]
     assert len(pair_tables) == rows.groupby(["window", "start"]).ngroups
     assert sum(len(t) for t in pair_tables) == len(rows)

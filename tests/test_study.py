@@ -28,6 +28,8 @@ from funcnet.study import (
     run_study,
 )
 
+pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+
 # Two short simulated trials (about 3 s each at 500 Hz) keep every network small.
 TRIALS = (
     ("quick-p12", 1.2),
@@ -265,6 +267,26 @@ def test_failed_windows_are_recorded_and_not_retried(plan_dir: Path, tmp_path: P
     assert (again.computed, again.cached, len(again.failures)) == (0, 1, 1)
     with pytest.raises(StudyError, match="no study results"):
         load_results(tmp_path)
+
+
+def test_simulated_plan_is_written_then_analysed(tmp_path: Path) -> None:
+    (tmp_path / "plan.toml").write_text(
+        '[[group]]\nname = "fast"\nspeeds = [350]\ntcps = [1.2, 2.0]\nsteps = [1]\n'
+    )
+    path = _write(
+        tmp_path,
+        'signals = ["RP", "AP"]\n[recordings]\nsimulated = "plan.toml"\nseed = 4\n'
+        '[[windows]]\nkind = "range"\nstart = 0.5\nstop = 1.0\n',
+    )
+    result = run_study(load_study(path), tmp_path / "out", workers=0)
+    assert (result.tasks, result.computed) == (2, 2)
+    rows = load_results(tmp_path / "out")
+    assert rows["recording"].tolist() == [
+        "out/plan/fast-v350-p12-s1.xml",
+        "out/plan/fast-v350-p20-s1.xml",
+    ]
+    assert rows["trial"].tolist() == ["fast-v350-p12-s1", "fast-v350-p20-s1"]
+    assert pd.read_csv(tmp_path / "out" / "plan" / "manifest.csv")["seed"].tolist() == [4, 4]
 
 
 def test_invalid_parameter_value_stops_the_run(plan_dir: Path, tmp_path: Path) -> None:

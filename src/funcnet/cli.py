@@ -345,7 +345,7 @@ def network(
             "rule": rule,
             "theiler": theiler,
         }
-        parameters = {name: value for name, value in given.items() if value is not None}
+        parameters: dict[str, Any] = {k: v for k, v in given.items() if v is not None}
         if normalize is not None:
             parameters["normalize"] = None if normalize.lower() == "none" else normalize
         (net,) = phase_networks(recording, [chosen], signals=names, **parameters).values()
@@ -375,19 +375,43 @@ def _write_network(net: Any, output: Path) -> None:
         figure.savefig(tmp, format=suffix[1:], bbox_inches="tight")
 
 
+# Columns of the pairs table shown on a terminal; piped output and -o .json hold them all.
+_TERMINAL_COLUMNS = (
+    "x",
+    "y",
+    "kind",
+    "weight",
+    "c_diff",
+    "t_diff",
+    "c_xy",
+    "c_yx",
+    "t_xy",
+    "t_yx",
+    "eps_ordered",
+    "rate_exceeded",
+)
+
+
+def _is_terminal(stream: Any) -> bool:
+    return bool(getattr(stream, "isatty", lambda: False)())
+
+
 def _print_pairs(net: Any) -> None:
+    """The pairs table: a rich table on a terminal, every column as plain text otherwise."""
     pairs = net.pairs
-    if not sys.stdout.isatty():
+    if not _is_terminal(sys.stdout):
         typer.echo(pairs.to_string(index=False))
         return
     from rich.console import Console
     from rich.table import Table
 
-    table = Table(title=net.label)
-    for column in pairs.columns:
-        table.add_column(str(column), justify="left" if pairs[column].dtype == object else "right")
-    for row in pairs.itertuples(index=False):
-        table.add_row(*(f"{v:.4g}" if isinstance(v, float) else str(v) for v in row))
+    shown = [c for c in _TERMINAL_COLUMNS if c in pairs.columns]
+    table = Table(title=net.label, caption="negative diff: x drives y (x->y)")
+    for column in shown:
+        numeric = pairs[column].dtype.kind == "f"
+        table.add_column(column, justify="right" if numeric else "left")
+    for row in pairs[shown].itertuples(index=False):
+        table.add_row(*(f"{v:.4f}" if isinstance(v, float) else str(v) for v in row))
     Console().print(table)
 
 

@@ -859,7 +859,7 @@ def run_paper_analyses(
     signals: Sequence[str] = PAPER_SIGNALS,
     max_phase_length: float = 4.0,
     fixed_lengths: Mapping[str, float] | None = None,
-    reversal_width: float | None = None,
+    reversal_width: float | None = 0.2,
     timeline_width: float = 0.6,
     timeline_step: float = 0.2,
     **network_parameters: Any,
@@ -896,8 +896,11 @@ def run_paper_analyses(
         its length; the paper's cruise is 4 s).
     fixed_lengths : mapping, optional
         Fixed window lengths by anchor; default 280 / 600 / 600 ms.
-    reversal_width : float, optional
-        Width of the reversal windows in seconds; default the detected reversal phase's span.
+    reversal_width : float or None
+        Width of the reversal windows in seconds, centred on the detected reversal phase's
+        middle (``None``: the phase's own span). The paper does not state it; its Fig. 11b shows
+        all five windows inside the 300 ms reversal region, so a window is at most 220 ms wide:
+        200 ms (100 samples) by default.
     timeline_width, timeline_step : float
         Sliding windows of the timeline, seconds.
     **network_parameters

@@ -64,8 +64,18 @@ MEASURES = ("both", "clustering", "transitivity")
 PAIR_KINDS = ("x->y", "y->x", "bidirectional", "conflict")
 
 _MEASURE_COLUMNS = (
-    "c_xy", "c_yx", "t_xy", "t_yx", "c_diff", "t_diff",
-    "eps_x", "eps_y", "eps_xy", "rr_x", "rr_y", "cr",
+    "c_xy",
+    "c_yx",
+    "t_xy",
+    "t_yx",
+    "c_diff",
+    "t_diff",
+    "eps_x",
+    "eps_y",
+    "eps_xy",
+    "rr_x",
+    "rr_y",
+    "cr",
 )
 _PAIR_DTYPES = {
     "x": "str",
@@ -210,6 +220,10 @@ class FunctionalNetwork:
     Notes
     -----
     Two networks compare equal when nodes, label, parameters and both tables are equal.
+
+    References
+    ----------
+    Eq. 10 (asymmetry), section 2.4 (edges, ``mu``), Eq. 13 (weights) of the paper.
     """
 
     nodes: tuple[str, ...]
@@ -407,9 +421,7 @@ class FunctionalNetwork:
             with atomic_path(path) as tmp:
                 nx.write_graphml(graph, tmp)
             return path
-        raise ParameterError(
-            f"path must end in .json or .graphml, got {path.name!r}"
-        )
+        raise ParameterError(f"path must end in .json or .graphml, got {path.name!r}")
 
     def _summary(self) -> str:
         kinds = self.pairs["kind"]
@@ -427,9 +439,8 @@ class FunctionalNetwork:
         return self._summary()
 
     def _repr_html_(self) -> str:
-        return (
-            f"<p><code>{html.escape(self._summary())}</code></p>"
-            + self.edges.to_html(index=False, float_format=lambda value: f"{value:.4f}")
+        return f"<p><code>{html.escape(self._summary())}</code></p>" + self.edges.to_html(
+            index=False, float_format=lambda value: f"{value:.4f}"
         )
 
 
@@ -455,8 +466,10 @@ def _warn_thresholds(
 ) -> None:
     """One ThresholdWarning per kind of problem, naming the pairs by their signals."""
     problems = (
-        ("eps_xy is not below eps_x and eps_y (section 2.2 asks for it)",
-         [not r.eps_ordered for r in results]),
+        (
+            "eps_xy is not below eps_x and eps_y (section 2.2 asks for it)",
+            [not r.eps_ordered for r in results],
+        ),
         ("ties pushed an achieved rate above its target", [r.rate_exceeded for r in results]),
     )
     for message, flags in problems:
@@ -592,7 +605,13 @@ def functional_network(
         warnings.simplefilter("ignore", ThresholdWarning)
         try:
             results = pairwise_cross_measures(
-                values, dim=dim, delay=delay, rr=rr, cr=cr, metric=metric, rule=rule,
+                values,
+                dim=dim,
+                delay=delay,
+                rr=rr,
+                cr=cr,
+                metric=metric,
+                rule=rule,
                 theiler=theiler,
             )
         except SignalError as error:

@@ -119,7 +119,8 @@ def plot_network(
     net: Any,
     ax: Axes | None = None,
     *,
-    width_scale: float = 40.0,
+    nodes: Sequence[str] | None = None,
+    width_scale: float = 10.0,
     min_width: float = 0.6,
     node_size: float = 0.13,
     node_color: str = "#f2f2f2",
@@ -134,6 +135,10 @@ def plot_network(
         The network, or its pairs table (see :func:`network_edges`).
     ax : matplotlib.axes.Axes, optional
         Where to draw; a new figure's axes when omitted.
+    nodes : sequence of str, optional
+        The nodes to place, in circle order (default the network's). Giving the same list to
+        every panel keeps each signal at the same place; a node the network lacks (e.g. a signal
+        left out of a window because it was constant there) is drawn dashed, without edges.
     width_scale : float
         Line width in points per unit of weight (Eq. 13). Absolute, so that widths compare across
         panels and figures.
@@ -170,13 +175,15 @@ def plot_network(
     ['edge:AP->MP:bidirectional', 'edge:RP->AP:directed', 'edge:RP->MP:directed']
     """
     ax = _new_axes(ax)
-    nodes = _network_nodes(net)
+    present = _network_nodes(net)
+    nodes = list(present) if nodes is None else [*nodes, *(n for n in present if n not in nodes)]
     # Clockwise from the top, as networkx.circular_layout places them in the paper's figures.
     angles = np.pi / 2 - 2 * np.pi * np.arange(len(nodes)) / max(len(nodes), 1)
     position = {name: (np.cos(a), np.sin(a)) for name, a in zip(nodes, angles, strict=True)}
     for name in nodes:
         circle = Circle(position[name], node_size, facecolor=node_color, edgecolor="0.2",
-                        linewidth=0.8, zorder=3)
+                        linewidth=0.8, zorder=3,
+                        linestyle="-" if name in present else "--")
         circle.set_gid(f"node:{name}")
         ax.add_patch(circle)
         ax.text(*position[name], str(name), ha="center", va="center", fontsize=fontsize,
@@ -283,9 +290,9 @@ def _mark_spans(ax: Axes, spans: Sequence[tuple[str, float, float]], prefix: str
         patch = ax.axvspan(start, stop, color=_PHASE_SHADES[k % len(_PHASE_SHADES)], alpha=0.7,
                            zorder=0, linewidth=0)
         patch.set_gid(f"{prefix}:{name}")
-        if label:
-            ax.text((start + stop) / 2, 1.01, str(name), transform=ax.get_xaxis_transform(),
-                    ha="center", va="bottom", fontsize=7)
+        if label:  # alternate heights so that the names of short phases do not overlap
+            ax.text((start + stop) / 2, 1.01 + 0.09 * (k % 2), str(name), fontsize=7,
+                    transform=ax.get_xaxis_transform(), ha="center", va="bottom")
 
 
 def _spans(phases: Any) -> list[tuple[str, float, float]]:
@@ -617,6 +624,13 @@ def figure_pair_network(
     return plot_network(net, ax, title=f"C_diff = {c_diff:+.3f} (μ = {mu})")
 
 
+def _no_network(ax: Axes, label: Any) -> None:
+    ax.set_axis_off()
+    if label is not None:
+        ax.set_title(str(label), fontsize=9)
+    ax.text(0.5, 0.5, "no network", ha="center", va="center", transform=ax.transAxes)
+
+
 def _raw_panels(axes: Sequence[Axes], data: pd.DataFrame, spans: Any) -> None:
     groups = (("positions [°]", [c for c in ("RP", "AP", "MP") if c in data]),
               ("velocity [°/s]", [c for c in ("V",) if c in data]),
@@ -646,8 +660,10 @@ def figure_phases(
         The trial's signals (time in seconds as index; columns RP, AP, MP, V, RC, AC or any).
     phases : phase table or sequence of Window
         The phases (``phase, start, stop`` from :func:`funcnet.robot.detect_phases`, or windows).
-    networks : mapping of label -> FunctionalNetwork
-        One network per phase, in drawing order (e.g. from :func:`funcnet.robot.phase_networks`).
+    networks : mapping of label -> FunctionalNetwork or None
+        One network per phase, in drawing order (e.g. from :func:`funcnet.robot.phase_networks`);
+        ``None`` where none could be computed. Nodes are placed in the order of ``data``'s
+        columns in every panel.
     title : str, optional
         Figure title.
 
@@ -671,7 +687,11 @@ def figure_phases(
     _raw_panels(raw_axes, data, phases)
     raw_axes[0].set_title("(b) raw", fontsize=9, loc="left")
     for k, (label, net) in enumerate(networks.items()):
-        plot_network(net, fig.add_subplot(grid[4, k]), title=str(label))
+        ax = fig.add_subplot(grid[4, k])
+        if net is None:
+            _no_network(ax, label)
+        else:
+            plot_network(net, ax, nodes=list(data.columns), title=str(label))
     if title:
         fig.suptitle(title, fontsize=10)
     return fig
@@ -717,11 +737,9 @@ def figure_velocity_grid(
         series.set_ylabel("")
         graph = fig.add_subplot(grid[row + 1, col])
         if net is None:
-            graph.set_axis_off()
-            graph.text(0.5, 0.5, "no network", ha="center", va="center",
-                       transform=graph.transAxes)
+            _no_network(graph, None)
         else:
-            plot_network(net, graph)
+            plot_network(net, graph, nodes=list(window.columns))
     if title:
         fig.suptitle(title, fontsize=10)
     return fig
@@ -785,11 +803,9 @@ def figure_reversal(
     for k, (label, net) in enumerate(networks.items()):
         ax = fig.add_subplot(grid[2, k])
         if net is None:
-            ax.set_axis_off()
-            ax.set_title(str(label), fontsize=9)
-            ax.text(0.5, 0.5, "no network", ha="center", va="center", transform=ax.transAxes)
+            _no_network(ax, label)
         else:
-            plot_network(net, ax, title=str(label))
+            plot_network(net, ax, nodes=list(data.columns), title=str(label))
     if title:
         fig.suptitle(title, fontsize=10)
     return fig

@@ -37,8 +37,7 @@ def _signal_names(names: Any, n_signals: int, default: Sequence[str]) -> list[st
 def _as_float_columns(x: Any, names: Any) -> tuple[np.ndarray, list[str]]:
     """``x`` as a 2-D float64 array (time x signals) and one name per column."""
     if isinstance(x, pd.DataFrame):
-        columns = [str(column) for column in x.columns]
-        names = _signal_names(names, len(columns), columns)
+        names = _signal_names(names, x.shape[1], [str(column) for column in x.columns])
         values = np.empty(x.shape, dtype=np.float64)
         for i, name in enumerate(names):
             try:
@@ -51,13 +50,13 @@ def _as_float_columns(x: Any, names: Any) -> tuple[np.ndarray, list[str]]:
         raise SignalError(
             f"signals must be 1-D or 2-D (time x signals), got an array of shape {array.shape}"
         )
-    columns = array if array.ndim == 2 else array[:, np.newaxis]
-    names = _signal_names(names, columns.shape[1], [str(i) for i in range(columns.shape[1])])
-    if columns.dtype.kind not in "biuf":
+    table = array if array.ndim == 2 else array[:, np.newaxis]
+    names = _signal_names(names, table.shape[1], [str(i) for i in range(table.shape[1])])
+    if table.dtype.kind not in "biuf":
         raise SignalError(
             f"signals must be real numbers, got dtype {array.dtype} (signals {', '.join(names)})"
         )
-    return columns.astype(np.float64), names
+    return table.astype(np.float64), names
 
 
 def normalize(x: Any, method: str | None = "minmax", *, names: Any = None) -> Any:
@@ -107,9 +106,7 @@ def normalize(x: Any, method: str | None = "minmax", *, names: Any = None) -> An
     funcnet.errors.SignalError: signal 'AC' is constant (value 1): min-max normalization needs ...
     """
     if method not in NORMALIZATIONS:
-        raise ParameterError(
-            f"normalize must be one of 'minmax', 'zscore' or None, got {method!r}"
-        )
+        raise ParameterError(f"normalize must be one of 'minmax', 'zscore' or None, got {method!r}")
     values, names = _as_float_columns(x, names)
     if values.shape[0] == 0:
         raise SignalError(f"signals {', '.join(map(repr, names))} are empty")

@@ -607,7 +607,8 @@ class PackedRecurrence:
     rank : int or None
         ``k``, the number of pairs the rule asked for (None with explicit ``eps``).
     rate_exceeded : bool
-        True when ties at ``eps`` made more than ``k`` pairs recurrent.
+        True when ties at ``eps`` made more than ``k`` pairs recurrent (for an auto-recurrence,
+        more than ``k`` rounded up to even: its pairs come in symmetric twins).
     """
 
     rows: np.ndarray
@@ -754,7 +755,8 @@ def auto_recurrence(
         n_recurrent=n_recurrent,
         n_candidates=n_candidates,
         rank=rank,
-        rate_exceeded=rank is not None and n_recurrent > rank,
+        # Recurrences come in symmetric pairs: an odd k always gives k + 1 without any tie.
+        rate_exceeded=rank is not None and n_recurrent > 2 * ((rank + 1) // 2),
     )
 
 

@@ -102,13 +102,13 @@ NETWORK_PARAMETERS: dict[str, tuple[type, ...]] = {
     "theiler": (int,),
 }
 
-#: Window kinds and the builder of :mod:`funcnet.robot.windows` each one calls.
-WINDOW_KINDS = {
+#: Window kinds of a study: one per builder of :mod:`funcnet.robot.windows`, and ``range``.
+WINDOW_KINDS = ("phases", "fixed", "reversal", "sliding", "range")
+_BUILDERS = {
     "phases": "phase_windows",
     "fixed": "fixed_windows",
     "reversal": "reversal_windows",
     "sliding": "sliding_windows",
-    "range": None,
 }
 
 _DEFAULT_WORKERS = 2
@@ -430,7 +430,7 @@ def _window_options(kind: str) -> tuple[set[str], set[str]]:
         return {"start", "stop"}, {"start", "stop"}
     from funcnet.robot import detect_phases
 
-    builder = getattr(_windows_module(), WINDOW_KINDS[kind])
+    builder = getattr(_windows_module(), _BUILDERS[kind])
     parameters = list(inspect.signature(builder).parameters.values())[1:]
     allowed = {p.name for p in parameters}
     required = {p.name for p in parameters if p.default is inspect.Parameter.empty}
@@ -621,10 +621,8 @@ def _expand_windows(task: _WindowTask) -> _Outcome:
             windows = module.sliding_windows(recording, **options)
         else:
             detect = set(inspect.signature(detect_phases).parameters)
-            phases = detect_phases(
-                recording, **{k: v for k, v in options.items() if k in detect}
-            )
-            builder = getattr(module, WINDOW_KINDS[task.spec.kind])
+            phases = detect_phases(recording, **{k: v for k, v in options.items() if k in detect})
+            builder = getattr(module, _BUILDERS[task.spec.kind])
             windows = builder(phases, **{k: v for k, v in options.items() if k not in detect})
         return _Outcome(task.key, value=[_window_record(w) for w in windows])
     except ParameterError as exc:
@@ -653,7 +651,7 @@ def _network_rows(task: _NetworkTask) -> _Outcome:
     except FuncnetError as exc:
         return _Outcome(task.key, error=str(exc))
     rows = _rows_table(task, network.nodes, network.pairs)
-    first = {}
+    first: dict[str, str] = {}
     for w in caught:
         first.setdefault(w.category.__name__, str(w.message))
     return _Outcome(task.key, value=rows, warnings=tuple(sorted(first.items())))
@@ -811,9 +809,10 @@ class _Backend:
             for future in as_completed(futures):
                 yield future.result()
         elif self._pool is not None:
-            from concurrent.futures import as_completed
+            import concurrent.futures
 
-            for future in as_completed([self._pool.submit(fn, task) for task in tasks]):
+            futures = [self._pool.submit(fn, task) for task in tasks]
+            for future in concurrent.futures.as_completed(futures):
                 yield future.result()
         else:
             for task in tasks:
@@ -956,7 +955,7 @@ def _run_locked(
 
     recordings = list(study.recordings)
     if study.simulated is not None:
-        recordings.extend(_simulated_recordings(study, out, progress))
+        recordings.extend(_simulated_recordings(study, study.simulated, out, progress))
     sources = [_source(path, study.base_dir) for path in recordings]
     channels = None if study.channels is None else str(study.channels)
     channels_sha = None if study.channels is None else file_sha256(study.channels)
@@ -1115,19 +1114,15 @@ def _failures(dirs: Mapping[str, Path], tasks: Sequence[_NetworkTask]) -> list[T
 
 
 def _simulated_recordings(
-    study: Study, out: Path, progress: Callable[[int, int, str], None] | None
+    study: Study, simulated: str, out: Path, progress: Callable[[int, int, str], None] | None
 ) -> list[Path]:
     """Simulate the study's plan (trials already written are kept) and list its traces."""
     from funcnet.robot import paper_plan, write_plan
     from funcnet.robot.plan import read_plan
 
-    trials = paper_plan() if study.simulated == "paper" else read_plan(study.simulated)
+    trials = paper_plan() if simulated == "paper" else read_plan(simulated)
     plan_dir = study.plan_dir if study.plan_dir is not None else out / "plan"
-    report = None
-    if progress is not None:
-        def report(done: int, total: int, name: str) -> None:
-            progress(done, total, f"simulating {name}")
-    write_plan(trials, plan_dir, seed=study.seed, progress=report)
+    write_plan(trials, plan_dir, seed=study.seed, progress=progress)
     return [plan_dir / f"{trial.name}.xml" for trial in trials]
 
 
@@ -1157,7 +1152,10 @@ def _trial_name(path: Path) -> str:
 def _provenance(study: Study, sources: Sequence[_Source]) -> dict[str, Any]:
     from importlib.metadata import PackageNotFoundError, version
 
-    versions = {"python": platform.python_version(), "funcnet": __version__}
+    versions: dict[str, str | None] = {
+        "python": platform.python_version(),
+        "funcnet": __version__,
+    }
     for package in ("numpy", "numba", "scipy", "pandas", "pyarrow", "dask", "distributed"):
         try:
             versions[package] = version(package)

@@ -1,0 +1,303 @@
+"""Tests of the ``funcnet`` command line, in process (CliRunner) and as real subprocesses."""
+
+from __future__ import annotations
+
+import io
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import networkx as nx
+import numpy as np
+import pandas as pd
+import pytest
+from typer.testing import CliRunner
+
+from funcnet import cli
+from funcnet.cli import app
+
+pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+
+REAL_TRACE = Path(__file__).parents[2] / "shared" / "data" / "sinumerik" / "axis7-braking-trace.xml"
+runner = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def trial(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A short simulated trial (about 3 s at 500 Hz) written as a SINUMERIK trace."""
+    from funcnet.robot import Trial, write_plan
+
+    folder = tmp_path_factory.mktemp("cli") / "plan"
+    write_plan([Trial("quick", "main", speed=350, tcp=1.6, step=1)], folder, workers=1)
+    return folder / "quick.xml"
+
+
+def _library_network(trace: Path, start: float, stop: float, signals=None, **parameters):
+    from funcnet.robot import phase_networks
+    from funcnet.robot.windows import Window
+    from funcnet.study import read_recording
+
+    recording = read_recording(trace, signals=signals)
+    window = Window(f"{start:g}-{stop:g} s", start, stop)
+    return phase_networks(recording, [window], signals=signals, **parameters)[window.label]
+
+
+def _assert_one_error_line(result, *needles: str) -> None:
+    assert result.exit_code == 2, (result.exit_code, result.output)
+    lines = [line for line in result.stderr.splitlines() if not line.startswith("funcnet: warn")]
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith("funcnet: error: ")
+    assert "Traceback" not in result.stderr + result.stdout
+    for needle in needles:
+        assert needle in lines[0]
+
+
+# --------------------------------------------------------------------------------------------
+# help
+
+
+@pytest.mark.parametrize(
+    ("command", "words"),
+    [
+        ([], ["demo", "simulate", "network", "study", "report"]),
+        (["demo"], ["--out", "report"]),
+        (["simulate"], ["--plan", "--seed", "manifest"]),
+        (["network"], ["--signals", "--phase", "--window", "--mu", "--theiler", "--channels"]),
+        (["study"], ["--scheduler", "local-cluster", "--workers", "resume"]),
+        (["report"], ["RESULTS_DIR", "--out"]),
+    ],
+)
+def test_help_is_the_reference(command: list[str], words: list[str]) -> None:
+    result = runner.invoke(app, [*command, "--help"], env={"COLUMNS": "200"})
+    assert result.exit_code == 0
+    for word in words:
+        assert word in result.output
+
+
+def test_version_and_usage_errors() -> None:
+    from funcnet import __version__
+
+    assert runner.invoke(app, ["--version"]).output.strip() == f"funcnet {__version__}"
+    assert runner.invoke(app, ["network"]).exit_code == 2  # missing TRACE
+    assert runner.invoke(app, ["network", "x.xml", "--dim", "three"]).exit_code == 2
+    assert runner.invoke(app, ["no-such-command"]).exit_code == 2
+
+
+# --------------------------------------------------------------------------------------------
+# network
+
+
+def test_network_prints_every_pair_of_the_real_trace() -> None:
+    result = runner.invoke(
+        app, ["network", str(REAL_TRACE), "--window", "7:8", "--signals", "RP,AP,AC,V"]
+    )
+    assert result.exit_code == 0, result.output
+    printed = pd.read_fwf(io.StringIO(result.stdout))
+    expected = _library_network(REAL_TRACE, 7.0, 8.0, signals=["RP", "AP", "AC", "V"]).pairs
+    assert list(printed.columns) == list(expected.columns)
+    columns = ["x", "y", "kind"]
+    assert printed[columns].values.tolist() == expected[columns].values.tolist()
+    np.testing.assert_allclose(printed["c_diff"], expected["c_diff"], atol=1e-6)
+    # The real trace's AP is a 4 ms staircase: the warning is one plain line.
+    assert "funcnet: warning: " in result.stderr and "staircase" in result.stderr
+
+
+def test_network_default_signals_are_the_roles_plus_v(trial: Path, tmp_path: Path) -> None:
+    out = tmp_path / "net.json"
+    result = runner.invoke(
+        app,
+        [
+            "network",
+            str(trial),
+            "--window",
+            "0.5:1.1",
+            "--dim",
+            "2",
+            "--delay",
+            "5",
+            "--mu",
+            "0.1",
+            "--normalize",
+            "zscore",
+            "--theiler",
+            "2",
+            "-o",
+            str(out),
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    from funcnet import FunctionalNetwork
+
+    written = FunctionalNetwork.from_json(out.read_text())
+    assert written.nodes == ("RP", "AP", "MP", "V", "RC", "AC")
+    expected = _library_network(
+        trial, 0.5, 1.1, dim=2, delay=5, mu=0.1, normalize="zscore", theiler=2
+    )
+    assert written == expected
+
+
+def test_network_phase_and_drawings(trial: Path, tmp_path: Path) -> None:
+    from funcnet.robot import detect_phases
+    from funcnet.robot.windows import phase_windows
+    from funcnet.study import read_recording
+
+    braking = [
+        w for w in phase_windows(detect_phases(read_recording(trial))) if w.phase == "braking"
+    ]
+    assert len(braking) == 1
+    graphml, png, svg = tmp_path / "n.graphml", tmp_path / "n.png", tmp_path / "n.svg"
+    for path in (graphml, png, svg):
+        result = runner.invoke(app, ["network", str(trial), "--phase", "braking", "-o", str(path)])
+        assert result.exit_code == 0, result.output
+        assert f"wrote {path}" in result.stdout
+    expected = _library_network(trial, braking[0].start, braking[0].stop)
+    graph = nx.read_graphml(graphml)
+    assert set(graph.nodes) == set(expected.nodes)
+    assert graph.number_of_edges() == expected.to_networkx().number_of_edges()
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    text = svg.read_text()
+    assert all(f'id="node:{name}"' in text for name in expected.nodes)
+
+
+def test_network_rich_table_on_a_terminal(trial: Path, monkeypatch) -> None:
+    monkeypatch.setattr(cli, "_is_terminal", lambda stream: True)
+    result = runner.invoke(
+        app, ["network", str(trial), "--window", "0.5:1.1"], env={"COLUMNS": "200"}
+    )
+    assert result.exit_code == 0, result.output
+    assert "┃" in result.stdout or "│" in result.stdout  # a box-drawn table
+    assert "c_diff" in result.stdout and "x drives y" in result.stdout
+
+
+@pytest.mark.parametrize(
+    ("arguments", "needles"),
+    [
+        (["--window", "5:1"], ["--window"]),
+        (["--window", "abc"], ["--window", "START:STOP"]),
+        (["--window", "0.5:1.1", "--mu", "-1"], ["mu"]),
+        (["--window", "0.5:1.1", "--signals", "RP,XX"], ["XX"]),
+        (["--window", "50:60"], ["window"]),
+        (["--window", "0.5:1.1", "--phase", "cruise"], ["--phase", "--window"]),
+        (["--phase", "reversal"], ["reversal"]),
+        (["--window", "0:0.2", "--signals", "RP,AP"], ["constant"]),
+    ],
+)
+def test_network_bad_options(trial: Path, tmp_path: Path, arguments, needles) -> None:
+    out = tmp_path / "net.json"
+    result = runner.invoke(app, ["network", str(trial), *arguments, "-o", str(out)])
+    _assert_one_error_line(result, *needles)
+    assert not out.exists() and list(tmp_path.iterdir()) == []
+
+
+def test_network_bad_files(tmp_path: Path) -> None:
+    out = tmp_path / "out" / "net.png"
+    missing = tmp_path / "missing.xml"
+    _assert_one_error_line(
+        runner.invoke(app, ["network", str(missing), "-o", str(out)]), str(missing)
+    )
+    truncated = tmp_path / "truncated.xml"
+    truncated.write_bytes(REAL_TRACE.read_bytes()[:5000])
+    _assert_one_error_line(
+        runner.invoke(app, ["network", str(truncated), "-o", str(out)]), str(truncated)
+    )
+    unknown = tmp_path / "net.pdf"
+    _assert_one_error_line(
+        runner.invoke(app, ["network", str(REAL_TRACE), "-o", str(unknown)]), ".pdf"
+    )
+    assert not (tmp_path / "out").exists() and not unknown.exists()
+
+
+def test_errors_in_a_real_subprocess(tmp_path: Path) -> None:
+    script = Path(sys.executable).parent / "funcnet"
+    command = [str(script)] if script.exists() else [sys.executable, "-m", "funcnet.cli"]
+    malformed = tmp_path / "bad.xml"
+    malformed.write_text("<traceSession><traceData><dataFrame>")
+    result = subprocess.run(
+        [*command, "network", str(malformed)], capture_output=True, text=True, timeout=120
+    )
+    assert result.returncode == 2
+    assert result.stderr.count("\n") == 1 and result.stderr.startswith("funcnet: error: ")
+    assert str(malformed) in result.stderr and result.stdout == ""
+    usage = subprocess.run([*command, "study"], capture_output=True, text=True, timeout=120)
+    assert usage.returncode == 2 and "Traceback" not in usage.stderr
+
+
+# --------------------------------------------------------------------------------------------
+# simulate, study, report, demo
+
+
+def test_simulate_a_plan_file(tmp_path: Path) -> None:
+    plan = tmp_path / "plan.toml"
+    plan.write_text('[[group]]\nname = "fast"\nspeeds = [350]\ntcps = [1.2]\nsteps = [1]\n')
+    out = tmp_path / "traces"
+    result = runner.invoke(app, ["simulate", "--plan", str(plan), "--out", str(out), "--seed", "3"])
+    assert result.exit_code == 0, result.output
+    manifest = pd.read_csv(out / "manifest.csv")
+    assert manifest["name"].tolist() == ["fast-v350-p12-s1"]
+    assert manifest["seed"].tolist() == [3]
+    trace = out / "fast-v350-p12-s1.xml"
+    first = trace.read_bytes()
+    again = runner.invoke(app, ["simulate", "--plan", str(plan), "--out", str(out), "--seed", "3"])
+    assert again.exit_code == 0 and trace.read_bytes() == first
+    bad = runner.invoke(app, ["simulate", "--plan", str(tmp_path / "none.toml"), "--out", str(out)])
+    _assert_one_error_line(bad, "none.toml")
+
+
+def test_study_and_report_commands(trial: Path, tmp_path: Path) -> None:
+    study = tmp_path / "study.toml"
+    study.write_text(
+        f'signals = ["RP", "AP", "V"]\n[recordings]\npaths = ["{trial}"]\n'
+        '[[windows]]\nkind = "range"\nstart = 0.5\nstop = 1.1\n'
+        '[[windows]]\nkind = "range"\nstart = 0.0\nstop = 0.2\n'
+        "[network]\ndelay = [5, 10]\n"
+    )
+    out = tmp_path / "results"
+    arguments = ["study", str(study), "--out", str(out), "--workers", "0"]
+    first = runner.invoke(app, arguments)
+    # The window before the motion has constant positions: reported, exit status 1.
+    assert first.exit_code == 1, first.output
+    assert "4 tasks: 4 computed, 0 already done, 2 failed" in first.stdout
+    assert first.stderr.count("funcnet: failed: ") == 2
+    second = runner.invoke(app, arguments)
+    assert "4 tasks: 0 computed, 4 already done, 2 failed" in second.stdout
+    from funcnet.study import load_results
+
+    rows = load_results(out)
+    assert len(rows) == 2 * 3 and set(rows["delay"]) == {5, 10}
+    document = json.loads((out / "study.json").read_text())
+    assert document["provenance"]["command"]  # the command line is kept
+
+    report = runner.invoke(app, ["report", str(out), "--out", str(tmp_path / "report")])
+    assert report.exit_code == 0, report.output
+    index = tmp_path / "report" / "index.html"
+    assert report.stdout.strip() == f"report: {index}" and index.is_file()
+    _assert_one_error_line(runner.invoke(app, ["report", str(tmp_path / "nothing")]), "nothing")
+
+    study.write_text(study.read_text() + "mux = 1\n")
+    _assert_one_error_line(runner.invoke(app, arguments), str(study), "network.mux")
+
+
+def test_demo_simulates_the_plan_then_writes_the_report(tmp_path: Path, monkeypatch) -> None:
+    import funcnet.report
+    import funcnet.robot
+    from funcnet._io import write_text_atomic
+    from funcnet.robot import Trial
+
+    # The whole paper plan takes minutes: the demo's wiring is tested on a one-trial plan.
+    monkeypatch.setattr(
+        funcnet.robot, "paper_plan", lambda: [Trial("tiny", "main", speed=350, tcp=1.2, step=1)]
+    )
+    calls = []
+
+    def build_demo_report(plan_dir, out_dir, *, progress=None):
+        calls.append((Path(plan_dir), Path(out_dir), progress))
+        return write_text_atomic(Path(out_dir) / "index.html", "<html></html>")
+
+    monkeypatch.setattr(funcnet.report, "build_demo_report", build_demo_report)
+    out = tmp_path / "out"
+    result = runner.invoke(app, ["demo", "--out", str(out), "--quiet"])
+    assert result.exit_code == 0, result.output
+    assert (out / "plan" / "tiny.xml").is_file() and (out / "plan" / "manifest.csv").is_file()
+    assert calls == [(out / "plan", out, None)]
+    assert result.stdout.strip() == f"report: {out / 'index.html'}"
