@@ -45,8 +45,8 @@ def _library_network(trace: Path, start: float, stop: float, signals=None, **par
 
 def _assert_one_error_line(result, *needles: str) -> None:
     assert result.exit_code == 2, (result.exit_code, result.output)
-    lines = [line for line in result.stderr.splitlines() if not line.startswith("funcnet: warn")]
-    assert len(lines) == 1, result.stderr
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1, result.stderr  # no warning lines either
     assert lines[0].startswith("funcnet: error: ")
     assert "Traceback" not in result.stderr + result.stdout
     for needle in needles:
@@ -276,6 +276,29 @@ def test_study_and_report_commands(trial: Path, tmp_path: Path) -> None:
 
     study.write_text(study.read_text() + "mux = 1\n")
     _assert_one_error_line(runner.invoke(app, arguments), str(study), "network.mux")
+
+
+def test_study_on_a_local_cluster_and_bad_schedulers(trial: Path, tmp_path: Path) -> None:
+    study = tmp_path / "study.toml"
+    study.write_text(
+        f'signals = ["RP", "AP"]\n[recordings]\npaths = ["{trial}"]\n'
+        '[[windows]]\nkind = "range"\nstart = 0.5\nstop = 1.1\n'
+    )
+    out = tmp_path / "results"
+    base = ["study", str(study), "--out", str(out), "--quiet"]
+    result = runner.invoke(app, [*base, "--scheduler", "local-cluster", "--workers", "1"])
+    assert result.exit_code == 0, result.output
+    assert "1 tasks: 1 computed" in result.stdout
+    in_process = runner.invoke(
+        app, ["study", str(study), "--out", str(tmp_path / "here"), "--workers", "0"]
+    )
+    assert in_process.exit_code == 0
+    from funcnet.study import load_results
+
+    pd.testing.assert_frame_equal(load_results(out), load_results(tmp_path / "here"))
+    for scheduler in ("http://127.0.0.1:8786", "tcp://nohost", "local"):
+        bad = runner.invoke(app, [*base, "--scheduler", scheduler])
+        _assert_one_error_line(bad, "scheduler", scheduler)
 
 
 def test_demo_simulates_the_plan_then_writes_the_report(tmp_path: Path, monkeypatch) -> None:

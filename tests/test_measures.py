@@ -12,14 +12,6 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from test_recurrence import (
-    KINDS,
-    METRICS,
-    make_signal,
-    reference_auto,
-    reference_cross,
-    reference_embed,
-)
 
 from funcnet.errors import ParameterError, SignalError, ThresholdWarning
 from funcnet.measures import (
@@ -31,6 +23,14 @@ from funcnet.measures import (
     pairwise_cross_measures,
 )
 from funcnet.recurrence import auto_recurrence, cross_recurrence, signal_states
+from test_recurrence import (
+    KINDS,
+    METRICS,
+    make_signal,
+    reference_auto,
+    reference_cross,
+    reference_embed,
+)
 
 
 def reference_direction(cr_xy, a_y):
@@ -44,8 +44,9 @@ def reference_direction(cr_xy, a_y):
     return local, local.mean(), transitivity, degree
 
 
-def reference_measures(x, y, *, dim, delay, rr, cr, eps=(None, None, None), metric, theiler=0,
-                       rule="funcnet"):
+def reference_measures(
+    x, y, *, dim, delay, rr, cr, eps=(None, None, None), metric, theiler=0, rule="funcnet"
+):
     if rule == "pyunicorn":
         x, y = np.float32(x), np.float32(y)
     xs, ys = reference_embed(x, dim, delay), reference_embed(y, dim, delay)
@@ -79,8 +80,9 @@ def assert_matches_reference(result, xy, yx, eps):
     rates=st.tuples(st.floats(0.01, 0.4), st.floats(0.01, 0.4)),
     theiler=st.integers(0, 3),
 )
-def test_cross_measures_by_rate_equal_brute_force(kinds, seed, lengths, dim, delay, metric,
-                                                  rates, theiler):
+def test_cross_measures_by_rate_equal_brute_force(
+    kinds, seed, lengths, dim, delay, metric, rates, theiler
+):
     x = make_signal(kinds[0], lengths[0], seed)
     y = make_signal(kinds[1], lengths[1], seed + 7)
     rr, cr = rates
@@ -89,8 +91,9 @@ def test_cross_measures_by_rate_equal_brute_force(kinds, seed, lengths, dim, del
     )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ThresholdWarning)
-        result = cross_measures(x, y, dim=dim, delay=delay, rr=rr, cr=cr, metric=metric,
-                                theiler=theiler)
+        result = cross_measures(
+            x, y, dim=dim, delay=delay, rr=rr, cr=cr, metric=metric, theiler=theiler
+        )
     assert_matches_reference(result, xy, yx, eps)
     a_x, a_y, cr_xy = blocks
     m_x, m_y = a_x.shape[0], a_y.shape[0]
@@ -173,10 +176,11 @@ def test_hand_built_network():
     def packed(dense):
         dense = np.asarray(dense, dtype=bool)
         rows = np.zeros((dense.shape[0], 1), dtype=np.uint64)
-        for i, j in zip(*np.nonzero(dense)):
+        for i, j in zip(*np.nonzero(dense), strict=True):
             rows[i, 0] |= np.uint64(1) << np.uint64(j)
-        return PackedRecurrence(rows, dense.shape[1], 1.0, 0.0, None, int(dense.sum()),
-                                dense.size, None, False)
+        return PackedRecurrence(
+            rows, dense.shape[1], 1.0, 0.0, None, int(dense.sum()), dense.size, None, False
+        )
 
     a_x = packed(np.zeros((2, 2)))
     a_y = packed([[0, 1, 0], [1, 0, 1], [0, 1, 0]])
@@ -206,19 +210,23 @@ def test_isrn_measures_reuses_precomputed_structures():
 
 
 def test_pairwise_equals_cross_measures_per_pair():
-    signals = [make_signal(kind, 200, seed) for seed, kind in enumerate(("sine", "walk", "noise",
-                                                                         "quantized"))]
+    signals = [
+        make_signal(kind, 200, seed)
+        for seed, kind in enumerate(("sine", "walk", "noise", "quantized"))
+    ]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ThresholdWarning)
         results = pairwise_cross_measures(signals, dim=2, delay=3, rr=0.08, cr=0.04, theiler=1)
         assert list(results) == [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
         for (i, j), result in results.items():
-            expected = cross_measures(signals[i], signals[j], dim=2, delay=3, rr=0.08, cr=0.04,
-                                      theiler=1)
+            expected = cross_measures(
+                signals[i], signals[j], dim=2, delay=3, rr=0.08, cr=0.04, theiler=1
+            )
             assert result == expected
         # A 2-D array holds one signal per column.
-        as_array = pairwise_cross_measures(np.column_stack(signals), dim=2, delay=3, rr=0.08,
-                                           cr=0.04, theiler=1)
+        as_array = pairwise_cross_measures(
+            np.column_stack(signals), dim=2, delay=3, rr=0.08, cr=0.04, theiler=1
+        )
     assert as_array == results
 
 
@@ -241,8 +249,12 @@ def test_pairwise_explicit_eps():
     [
         ([np.arange(50.0)], {}, SignalError, "at least two"),
         ([np.sin(np.arange(50.0)), np.sin(np.arange(60.0))], {}, SignalError, r"signals\[1\]"),
-        ([np.sin(np.arange(50.0)), np.r_[np.arange(49.0), np.nan]], {}, SignalError,
-         r"signals\[1\]"),
+        (
+            [np.sin(np.arange(50.0)), np.r_[np.arange(49.0), np.nan]],
+            {},
+            SignalError,
+            r"signals\[1\]",
+        ),
         ([np.sin(np.arange(50.0))] * 2, {"eps": {"auto": 0.1, "bad": 1}}, ParameterError, "eps"),
         ([np.sin(np.arange(50.0))] * 2, {"eps": {"auto": [0.1]}}, ParameterError, "one per"),
         ([np.sin(np.arange(50.0))] * 2, {"eps": {"cross": -1.0}}, ParameterError, "cross"),

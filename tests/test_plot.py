@@ -16,6 +16,10 @@ from funcnet import plot
 
 NODES = ("RP", "AP", "MP", "V", "RC", "AC")
 
+# The synthetic signals trip the eps ordering / ties warnings; they are about the data, and this
+# module tests drawing.
+pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.ThresholdWarning")
+
 
 def gids(ax, prefix):
     return sorted(p.get_gid() for p in ax.patches if (p.get_gid() or "").startswith(prefix))
@@ -151,13 +155,15 @@ def trial_frame(n=600):
 
 
 def test_figure_phases_marks_every_phase_and_draws_a_network_per_phase(network):
-    data = trial_frame()
+    data = trial_frame().assign(FE=lambda d: d["RP"] - d["AP"])
     phases = pd.DataFrame({"phase": ["early spin-up", "cruise", "braking"],
                            "start": [0.0, 0.4, 0.9], "stop": [0.4, 0.9, 1.19]})
     fig = plot.figure_phases(data, phases, {"early spin-up": network, "cruise": network,
                                             "braking": network.pairs})
     signal_axes = [ax for ax in fig.axes if ax.lines]
-    assert len(signal_axes) == 4  # normalized + three raw panels
+    # normalized + raw panels by units: positions, velocity, currents, other (FE)
+    assert len(signal_axes) == 5
+    assert [line.get_label() for line in signal_axes[-1].lines] == ["FE"]
     for ax in signal_axes:
         assert gids(ax, "phase:") == sorted(f"phase:{p}" for p in phases["phase"])
     network_axes = [ax for ax in fig.axes if gids(ax, "node:")]

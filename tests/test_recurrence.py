@@ -71,8 +71,7 @@ def reference_auto(states, *, rr=None, eps=None, metric="euclidean", theiler=0, 
     return adjacency, float(eps)
 
 
-def reference_cross(x_states, y_states, *, cr=None, eps=None, metric="euclidean",
-                    rule="funcnet"):
+def reference_cross(x_states, y_states, *, cr=None, eps=None, metric="euclidean", rule="funcnet"):
     d = reference_distances(x_states, y_states, metric)
     values = np.sort(d.ravel())
     if rule == "funcnet":
@@ -161,8 +160,9 @@ def test_embed_rejects_bad_input(kwargs, error, word):
     rr=st.floats(0.005, 0.6),
     theiler=st.integers(0, 4),
 )
-def test_recurrence_matrix_by_rate_equals_brute_force(kind, seed, n, dim, delay, metric, rr,
-                                                      theiler):
+def test_recurrence_matrix_by_rate_equals_brute_force(
+    kind, seed, n, dim, delay, metric, rr, theiler
+):
     x = make_signal(kind, n, seed)
     states = reference_embed(x, dim, delay)
     expected, eps = reference_auto(states, rr=rr, metric=metric, theiler=theiler)
@@ -190,8 +190,9 @@ def test_recurrence_matrix_by_rate_equals_brute_force(kind, seed, n, dim, delay,
     quantile=st.floats(0.0, 1.0),
     theiler=st.integers(0, 3),
 )
-def test_recurrence_matrix_with_explicit_eps_equals_brute_force(kind, seed, n, metric,
-                                                                quantile, theiler):
+def test_recurrence_matrix_with_explicit_eps_equals_brute_force(
+    kind, seed, n, metric, quantile, theiler
+):
     x = make_signal(kind, n, seed)
     states = reference_embed(x, 2, 2)
     # A threshold that is often exactly one of the distances (ties with "<=").
@@ -268,6 +269,22 @@ def test_sampled_bracket_path_is_exact(metric, kind):
     assert result.eps == eps
 
 
+@pytest.mark.parametrize("kind", ["noise", "levels"])
+def test_band_overflow_fallback_is_exact(monkeypatch, kind):
+    # No room for the pairs inside the bracket: a second pass collects them.
+    monkeypatch.setattr(recurrence, "_BAND_SLACK", 0.0)
+    x, y = make_signal(kind, 800, 6), make_signal("sine", 800, 7)
+    xs, ys = reference_embed(x, 2, 1), reference_embed(y, 2, 1)
+    expected, eps = reference_cross(xs, ys, cr=0.05)
+    result = cross_recurrence(xs, ys, cr=0.05)
+    assert result.eps == eps
+    np.testing.assert_array_equal(result.to_dense(), expected)
+    expected, eps = reference_auto(xs, rr=0.05, theiler=1)
+    result = auto_recurrence(xs, rr=0.05, theiler=1)
+    assert result.eps == eps
+    np.testing.assert_array_equal(result.to_dense(), expected)
+
+
 def test_bracket_fallback_when_the_sample_misses(monkeypatch):
     # A zero-width bracket almost surely misses the order statistic; the next, unbounded one
     # must still give the exact value.
@@ -320,8 +337,9 @@ def test_isrn_adjacency_blocks(rule):
 
 def test_isrn_adjacency_mixes_explicit_eps_and_rates():
     x, y = make_signal("sine", 90, 1), make_signal("walk", 90, 2)
-    adjacency = isrn_adjacency(x, y, dim=2, delay=3, rr=0.1, cr=0.05, eps=(None, 0.5, None),
-                               theiler=1)
+    adjacency = isrn_adjacency(
+        x, y, dim=2, delay=3, rr=0.1, cr=0.05, eps=(None, 0.5, None), theiler=1
+    )
     xs, ys = reference_embed(x, 2, 3), reference_embed(y, 2, 3)
     a_x, _ = reference_auto(xs, rr=0.1, theiler=1)
     a_y, _ = reference_auto(ys, eps=0.5, theiler=1)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import html
 import html.parser
 import re
 import shutil
@@ -121,6 +122,13 @@ def test_demo_report_findings_tables_and_provenance(demo_report, tiny_plan):
     assert set(findings["reproduced"]) <= {"yes", "partly", "no", "n/a"}
     assert {"4.1-early-rp-drives", "4.2-edges-thin", "4.3-sequence", "3.1-tcp",
             "3.1-step"} <= set(findings["finding"])
+    # a plain statement for every finding not fully reproduced
+    plain = html.unescape(re.sub(r"<[^>]+>", "", text))
+    for row in findings.itertuples(index=False):
+        verdict = {"no": "does not reproduce this", "partly": "reproduces this only in part"}
+        if row.reproduced in verdict:
+            assert re.search(re.escape(row.finding) + r" — the paper: “[^”]*” The simulation "
+                             + verdict[row.reproduced], plain)
     # V1 and V175/V350 are not in this plan: said, not hidden
     thin = findings.set_index("finding").loc["4.2-rc-ac-everywhere", "evidence"]
     assert "not evaluable" in thin and "V1" in thin
@@ -166,3 +174,45 @@ def test_study_report_networks_timeline_and_chromium(tiny_study, tmp_path):
     pair_tables = [t for t in tables if {"x", "y", "kind"} <= set(t.columns)]
     assert len(pair_tables) == rows.groupby(["window", "start"]).ngroups
     assert sum(len(t) for t in pair_tables) == len(rows)
+
+
+def test_run_paper_analyses_windows_networks_and_findings(tiny_plan):
+    import numpy as np
+
+    from funcnet.findings import run_paper_analyses
+    from funcnet.robot import add_derived_signals, phase_networks, read_trace
+
+    analyses = run_paper_analyses(tiny_plan, max_phase_length=0.5, timeline_step=2.0)
+    base = analyses.baseline
+    assert base.trial == "main-v35-p16-s3"
+    assert set(base.networks) <= {"early spin-up", "late spin-up", "cruise", "braking"}
+    assert "cruise" in base.networks
+    for window in base.windows.values():
+        assert window.stop - window.start <= 0.5 + 1e-9
+    # V35 is the baseline trial in fixed windows; V1, V175, V350 are not in this plan
+    assert list(analyses.velocity) == ["V35"]
+    assert analyses.velocity["V35"] is analyses.main["main-v35-p16-s3"]
+    assert set(analyses.velocity["V35"].windows) == {"spin-up", "cruise", "braking"}
+    (reversal,) = analyses.reversal.values()
+    assert list(reversal.windows) == [-40, -20, 0, 20, 40]
+    widths = {round(w.stop - w.start, 9) for w in reversal.windows.values()}
+    assert widths == {0.2}
+    assert reversal.windows[40].start - reversal.windows[0].start == pytest.approx(0.04)
+    # the networks are funcnet.robot.phase_networks' own, on the same windows
+    recording = add_derived_signals(read_trace(reversal.path), ["V"])
+    (expected,) = phase_networks(recording, [reversal.windows[0]]).values()
+    assert reversal.networks[0] == expected
+    # a signal constant in a window is left out of that network, and only then
+    for trial in (base, *analyses.main.values(), reversal):
+        for key, net in trial.networks.items():
+            window = trial.windows[key]
+            part = trial.data[(trial.data.index >= window.start)
+                              & (trial.data.index < window.stop)]
+            constant = {c for c in part if np.ptp(part[c].to_numpy()) == 0}
+            assert set(trial.dropped.get(key, ())) == constant
+            if net is not None:
+                assert set(net.nodes) == set(part.columns) - constant
+    ids = [f.id for f in analyses.findings]
+    assert len(ids) == len(set(ids)) == 8 + 8 + 3 + 2
+    assert {f.reproduced for f in analyses.findings if f.section == "3.1"} == {"n/a"}
+    assert set(analyses.inputs) == {"manifest.csv", *(p.name for p in tiny_plan.glob("*.xml"))}

@@ -130,6 +130,15 @@ normalize = "none"
     assert grid == expected
 
 
+def test_documented_example_study_loads() -> None:
+    example = Path(__file__).parents[1] / "examples" / "study.toml"
+    study = load_study(example)
+    assert study.simulated == "paper" and study.recordings == ()
+    assert [w.kind for w in study.windows] == ["fixed", "reversal"]
+    assert study.signals == ("RP", "AP", "MP", "V", "RC", "AC")
+    assert len(parameter_grid(study)) == 2
+
+
 @pytest.mark.parametrize(
     ("text", "key"),
     [
@@ -287,6 +296,27 @@ def test_simulated_plan_is_written_then_analysed(tmp_path: Path) -> None:
     ]
     assert rows["trial"].tolist() == ["fast-v350-p12-s1", "fast-v350-p20-s1"]
     assert pd.read_csv(tmp_path / "out" / "plan" / "manifest.csv")["seed"].tolist() == [4, 4]
+
+
+def test_sliding_windows_and_a_missing_reversal(plan_dir: Path, tmp_path: Path) -> None:
+    from funcnet.robot import sliding_windows
+    from funcnet.study import read_recording
+
+    trace = plan_dir / f"{TRIALS[1][0]}.xml"
+    study = Study(
+        recordings=(trace,),
+        windows=(WindowSpec("reversal"), WindowSpec("sliding", (("step", 0.8), ("width", 0.4)))),
+        signals=("AP", "V"),
+        base_dir=plan_dir,
+    )
+    result = run_study(study, tmp_path, workers=0)
+    expected = sliding_windows(read_recording(trace), 0.4, 0.8)
+    assert not result.failures  # a forward-only trial simply has no reversal windows
+    assert result.tasks == len(expected) > 2
+    rows = load_results(tmp_path)
+    assert rows["window"].tolist() == [w.label for w in expected]
+    assert rows["start"].tolist() == [w.start for w in expected]
+    assert rows["phase"].isna().all() and (rows["x"] + rows["y"] == "APV").all()
 
 
 def test_invalid_parameter_value_stops_the_run(plan_dir: Path, tmp_path: Path) -> None:

@@ -11,7 +11,8 @@ Conventions:
   error on a file) prints exactly one plain-text line, ``funcnet: error: MESSAGE``, on stderr and
   exits with status 2, as usage errors do. Nothing is left half-written: outputs are written to a
   temporary file and renamed.
-* Warnings of the library print as one line each, ``funcnet: warning: MESSAGE``.
+* Warnings of the library print as one line each, ``funcnet: warning: MESSAGE``, once per
+  distinct message, after the command succeeded (an error prints its one line only).
 * Progress bars go to stderr, only when stderr is a terminal and ``--quiet`` is not given.
 * ``funcnet study`` exits with status 1 when it finished but some tasks could not be analysed
   (listed in ``study.json``), so that scripts notice.
@@ -66,14 +67,21 @@ def _os_error_message(exc: OSError) -> str:
 
 @contextlib.contextmanager
 def _reported_errors() -> Iterator[None]:
-    """Turn input errors into one plain line on stderr and exit status 2; warnings into lines."""
+    """Turn input errors into one plain line on stderr and exit status 2.
 
-    def show(message: Any, category: type, *_: Any, **__: Any) -> None:
-        sys.stderr.write(f"funcnet: warning: {_one_line(str(message))}\n")
+    Warnings are collected (each distinct message once) and printed as plain lines when the
+    command succeeds; a failed command prints its error line only.
+    """
+    messages: list[str] = []
+
+    def collect(message: Any, *_: Any, **__: Any) -> None:
+        text = _one_line(str(message))
+        if text not in messages:
+            messages.append(text)
 
     with warnings.catch_warnings():
-        warnings.simplefilter("default")
-        warnings.showwarning = show
+        warnings.simplefilter("always")
+        warnings.showwarning = collect
         try:
             yield
         except FuncnetError as exc:
@@ -82,6 +90,8 @@ def _reported_errors() -> Iterator[None]:
         except OSError as exc:
             sys.stderr.write(f"funcnet: error: {_one_line(_os_error_message(exc))}\n")
             raise typer.Exit(_EXIT_INPUT_ERROR) from None
+    for text in messages:
+        sys.stderr.write(f"funcnet: warning: {text}\n")
 
 
 @contextlib.contextmanager
@@ -91,7 +101,7 @@ def _progress(quiet: bool, label: str) -> Iterator[Callable[..., None] | None]:
     Yields a callback ``progress(done, total, description=None)``, the protocol of the library's
     long-running functions.
     """
-    if quiet or not sys.stderr.isatty():
+    if quiet or not _is_terminal(sys.stderr):
         yield None
         return
     from rich.console import Console
@@ -263,42 +273,42 @@ def network(
         typer.Option("--window", help="Analyse START:STOP seconds, e.g. 1.0:5.0."),
     ] = None,
     dim: Annotated[
-        int | None, typer.Option(help="Embedding dimension m (Eq. 1). [default: 3]")
+        int | None, typer.Option(help="Embedding dimension m (Eq. 1). \\[default: 3]")
     ] = None,
     delay: Annotated[
-        int | None, typer.Option(help="Embedding delay tau in samples (Eq. 1). [default: 10]")
+        int | None, typer.Option(help="Embedding delay tau in samples (Eq. 1). \\[default: 10]")
     ] = None,
     rr: Annotated[
         float | None,
-        typer.Option(help="Recurrence rate in each signal, fixes eps_X (Eq. 5). [default: 0.05]"),
+        typer.Option(help="Recurrence rate in each signal, fixes eps_X (Eq. 5). \\[default: 0.05]"),
     ] = None,
     cr: Annotated[
         float | None,
-        typer.Option(help="Cross-recurrence rate, fixes eps_XY (Eq. 3). [default: 0.05]"),
+        typer.Option(help="Cross-recurrence rate, fixes eps_XY (Eq. 3). \\[default: 0.05]"),
     ] = None,
     mu: Annotated[
         float | None,
-        typer.Option(help="Edge threshold on C_diff and T_diff (section 2.4). [default: 0.05]"),
+        typer.Option(help="Edge threshold on C_diff and T_diff (section 2.4). \\[default: 0.05]"),
     ] = None,
     metric: Annotated[
         str | None,
-        typer.Option(help="Distance: euclidean, supremum or manhattan. [default: euclidean]"),
+        typer.Option(help="Distance: euclidean, supremum or manhattan. \\[default: euclidean]"),
     ] = None,
     normalize: Annotated[
         str | None,
-        typer.Option(help="Per-window normalization: minmax, zscore or none. [default: minmax]"),
+        typer.Option(help="Per-window normalization: minmax, zscore or none. \\[default: minmax]"),
     ] = None,
     measure: Annotated[
         str | None,
-        typer.Option(help="Edges from both, clustering or transitivity. [default: both]"),
+        typer.Option(help="Edges from both, clustering or transitivity. \\[default: both]"),
     ] = None,
     rule: Annotated[
         str | None,
-        typer.Option(help="Threshold rule: funcnet or pyunicorn. [default: funcnet]"),
+        typer.Option(help="Threshold rule: funcnet or pyunicorn. \\[default: funcnet]"),
     ] = None,
     theiler: Annotated[
         int | None,
-        typer.Option(help="Theiler window: exclude pairs with |i-j| <= THEILER. [default: 0]"),
+        typer.Option(help="Theiler window: exclude pairs with |i-j| <= THEILER. \\[default: 0]"),
     ] = None,
     channels: Annotated[
         Path | None,
@@ -317,11 +327,15 @@ def network(
         ),
     ] = None,
 ) -> None:
-    """Compute the functional network of one trace (or one window of it).
+    """Compute the functional network of one trace, or of one window of it.
 
     Every pair of signals gets cross-clustering and cross-transitivity in both directions
     (Eq. 6-9), their differences (Eq. 10) and an edge by the mu rule with the weight of Eq. 13.
-    A negative difference means X drives Y. Without -o the pairs table is printed.
+    A negative difference means X drives Y (kind x->y). Without -o the pairs table is printed:
+    the main columns as a table on a terminal, every column as plain text when piped.
+
+    Without --phase or --window the whole recording is one window: slow for long traces (the
+    cost grows with the cube of the window's length).
     """
     with _reported_errors():
         if output is not None and output.suffix.lower() not in _NETWORK_SUFFIXES:
@@ -421,10 +435,12 @@ def _print_pairs(net: Any) -> None:
 
 @app.command()
 def study(
-    study_file: Annotated[Path, typer.Argument(metavar="STUDY.toml", help="Study description.")],
+    study_file: Annotated[Path, typer.Argument(help="Study description (TOML).")],
     out: Annotated[
         Path | None,
-        typer.Option("--out", help="Results folder. [default: out/<name of STUDY.toml>]"),
+        typer.Option(
+            "--out", help="Results folder. \\[default: out/<STUDY_FILE's name without .toml>]"
+        ),
     ] = None,
     scheduler: Annotated[
         str | None,
@@ -440,7 +456,7 @@ def study(
             "--workers",
             min=0,
             help="Worker processes of the local run or local cluster; 0 runs the tasks in this "
-            "process. [default: 2]",
+            "process. \\[default: 2]",
         ),
     ] = None,
     quiet: Quiet = False,
@@ -481,11 +497,9 @@ def study(
 
 @app.command()
 def report(
-    results_dir: Annotated[
-        Path, typer.Argument(metavar="RESULTS_DIR", help="Folder written by `funcnet study`.")
-    ],
+    results_dir: Annotated[Path, typer.Argument(help="Folder written by `funcnet study`.")],
     out: Annotated[
-        Path | None, typer.Option("--out", help="Report folder. [default: RESULTS_DIR/report]")
+        Path | None, typer.Option("--out", help="Report folder. \\[default: RESULTS_DIR/report]")
     ] = None,
     quiet: Quiet = False,
 ) -> None:

@@ -31,7 +31,7 @@ References
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Hashable, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -40,6 +40,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet.errors import ParameterError
+from funcnet.robot.windows import PAPER_NODES
 
 __all__ = [
     "Finding",
@@ -125,7 +126,7 @@ class FindingSpec:
     id: str
     section: str
     statement: str
-    claims: Mapping[Hashable, tuple[str, ...]] = field(default_factory=dict)
+    claims: Mapping[Any, tuple[str, ...]] = field(default_factory=dict)
     unit: str = "networks"
 
 
@@ -212,7 +213,7 @@ def relation_holds(net: Any, claim: str) -> tuple[bool | None, str | None]:
     return seen != f"{a}<->{b}", seen
 
 
-def _where(key: Hashable) -> str:
+def _where(key: Any) -> str:
     if isinstance(key, tuple):
         return " · ".join(str(k) for k in key)
     return str(key)
@@ -228,7 +229,7 @@ def _decide(full: int, evaluated: int, held: int, checked: int) -> str:
     return "no"
 
 
-def evaluate(spec: FindingSpec, networks: Mapping[Hashable, Any]) -> Finding:
+def evaluate(spec: FindingSpec, networks: Mapping[Any, Any]) -> Finding:
     """Measure one finding on the networks it is about.
 
     Parameters
@@ -384,7 +385,7 @@ REVERSAL_SEQUENCE: Mapping[int, tuple[str, ...]] = {
 }
 
 
-def baseline_findings(networks: Mapping[str, Any]) -> list[Finding]:
+def baseline_findings(networks: Mapping[Any, Any]) -> list[Finding]:
     """Section 4.1 on the baseline trial's phase networks.
 
     Parameters
@@ -404,7 +405,7 @@ def baseline_findings(networks: Mapping[str, Any]) -> list[Finding]:
     return [evaluate(spec, networks) for spec in BASELINE]
 
 
-def velocity_findings(networks: Mapping[tuple[str, str], Any]) -> list[Finding]:
+def velocity_findings(networks: Mapping[Any, Any]) -> list[Finding]:
     """Section 4.2 on the networks of the four velocity trials.
 
     Parameters
@@ -440,7 +441,7 @@ def _spearman(a: Sequence[float], b: Sequence[float]) -> float:
     return float(np.corrcoef(ra, rb)[0, 1])
 
 
-def edge_thinning(networks: Mapping[tuple[str, str], Any], *,
+def edge_thinning(networks: Mapping[Any, Any], *,
                   speeds: Mapping[str, float] | None = None, rho: float = -0.8) -> Finding:
     """Section 4.2: "as velocity increases, the connections generally become thinner".
 
@@ -497,7 +498,7 @@ def edge_thinning(networks: Mapping[tuple[str, str], Any], *,
                    evidence + "; ".join(parts), tuple(parts), ())
 
 
-def reversal_findings(networks: Mapping[str, Mapping[int, Any]]) -> list[Finding]:
+def reversal_findings(networks: Mapping[str, Mapping[Any, Any]]) -> list[Finding]:
     """Section 4.3 on the backlash trials' reversal windows.
 
     Parameters
@@ -524,7 +525,7 @@ def reversal_findings(networks: Mapping[str, Mapping[int, Any]]) -> list[Finding
     return found
 
 
-def reversal_sequence(networks: Mapping[str, Mapping[int, Any]]) -> Finding:
+def reversal_sequence(networks: Mapping[str, Mapping[Any, Any]]) -> Finding:
     """Section 4.3: the reversal signature develops over -40, -20, 0, +20, +40 ms.
 
     In each trial every offset's window is checked against :data:`REVERSAL_SEQUENCE`. The
@@ -577,7 +578,7 @@ def reversal_sequence(networks: Mapping[str, Mapping[int, Any]]) -> Finding:
 
 
 def design_effect(
-    networks: Mapping[Hashable, Any],
+    networks: Mapping[Any, Any],
     trials: pd.DataFrame,
     factor: str,
     *,
@@ -663,7 +664,7 @@ def design_effect(
 PAPER_PARAMETERS: dict[str, Any] = {"dim": 3, "delay": 10, "rr": 0.05, "cr": 0.05, "mu": 0.05,
                                     "metric": "euclidean", "normalize": "minmax",
                                     "measure": "both", "rule": "funcnet", "theiler": 0}
-PAPER_SIGNALS = ("RP", "AP", "MP", "V", "RC", "AC")
+PAPER_SIGNALS = PAPER_NODES
 BASELINE_PHASES = (EARLY, LATE, CRUISE, BRAKING)
 
 
@@ -697,10 +698,10 @@ class TrialAnalysis:
     path: str
     data: pd.DataFrame
     phases: pd.DataFrame
-    windows: dict[Hashable, Any]
-    networks: dict[Hashable, Any]
-    errors: dict[Hashable, str]
-    dropped: dict[Hashable, tuple[str, ...]] = field(default_factory=dict)
+    windows: dict[Any, Any]
+    networks: dict[Any, Any]
+    errors: dict[Any, str]
+    dropped: dict[Any, tuple[str, ...]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -818,10 +819,10 @@ def _analyse(path: Path, name: str, keyed_windows: Callable[[Any, pd.DataFrame],
     if recording is None:
         recording = add_derived_signals(read_trace(path), ["V"])
     data = recording.data[list(signals)]
-    windows: dict[Hashable, Any] = {}
-    networks: dict[Hashable, Any] = {}
-    errors: dict[Hashable, str] = {}
-    dropped: dict[Hashable, tuple[str, ...]] = {}
+    windows: dict[Any, Any] = {}
+    networks: dict[Any, Any] = {}
+    errors: dict[Any, str] = {}
+    dropped: dict[Any, tuple[str, ...]] = {}
     try:
         phases = detect_phases(recording)
         windows = keyed_windows(recording, main_move(phases))
@@ -1053,6 +1054,10 @@ def run_paper_analyses(
     recorded = {
         **parameters,
         "signals": ", ".join(signals),
+        "dim, delay (choice)": ("the paper states neither for the robot data; its section 2.1 "
+                                "illustration's m = 3, τ = 10 samples (20 ms at 500 Hz) are "
+                                "used"),
+        "phases": "detected from RP (funcnet.robot.detect_phases), main motion only",
         "baseline phase windows": f"detected phases, each cut to at most {max_phase_length:g} s",
         "fixed windows [s]": ", ".join(f"{k} {v:g}" for k, v in (
             fixed_lengths or {"spin-up": 0.28, "cruise": 0.6, "braking": 0.6}).items()),

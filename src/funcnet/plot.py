@@ -631,18 +631,14 @@ def _no_network(ax: Axes, label: Any) -> None:
     ax.text(0.5, 0.5, "no network", ha="center", va="center", transform=ax.transAxes)
 
 
-def _raw_panels(axes: Sequence[Axes], data: pd.DataFrame, spans: Any) -> None:
-    groups = (("positions [°]", [c for c in ("RP", "AP", "MP") if c in data]),
+def _raw_groups(data: pd.DataFrame) -> list[tuple[str, list[str]]]:
+    """Panels of raw signals that share units: positions, velocity, currents, the rest."""
+    groups = [("positions [°]", [c for c in ("RP", "AP", "MP") if c in data]),
               ("velocity [°/s]", [c for c in ("V",) if c in data]),
-              ("currents [A]", [c for c in ("RC", "AC") if c in data]))
-    groups = tuple(g for g in groups if g[1])
-    others = [c for c in data.columns if not any(c in g[1] for g in groups)]
-    if others:
-        groups = (*groups, ("other", others))
-    for ax, (ylabel, columns) in zip(axes, groups, strict=False):
-        plot_signals(data[columns], normalize=False, spans=spans, ax=ax)
-        ax.set_ylabel(ylabel, fontsize=7)
-        ax.set_xlabel("")
+              ("currents [A]", [c for c in ("RC", "AC") if c in data])]
+    grouped = {c for _, columns in groups for c in columns}
+    groups.append(("other", [c for c in data.columns if c not in grouped]))
+    return [(label, columns) for label, columns in groups if columns]
 
 
 def figure_phases(
@@ -670,24 +666,43 @@ def figure_phases(
     Returns
     -------
     matplotlib.figure.Figure
-        (a) normalized signals, (b) raw signals in three panels (positions, velocity in °/s as in
-        the paper, currents), phases shaded (gid ``phase:NAME``) on each; below, one network per
-        phase.
+        (a) normalized signals, (b) raw signals in panels of shared units (positions [°],
+        velocity [°/s] as in the paper, currents [A], any other column), phases shaded (gid
+        ``phase:NAME``) on each; below, one network per phase.
 
     References
     ----------
     Paper section 4.1 and Fig. 9.
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> t = np.arange(500) * 0.002
+    >>> data = pd.DataFrame({"RP": t ** 2, "AC": np.cos(9 * t)}, index=t)
+    >>> net = pd.DataFrame({"x": ["RP"], "y": ["AC"], "kind": ["y->x"], "weight": [0.2]})
+    >>> phases = pd.DataFrame({"phase": ["spin-up", "cruise"], "start": [0.0, 0.4],
+    ...                        "stop": [0.4, 1.0]})
+    >>> fig = figure_phases(data, phases, {"spin-up": net, "cruise": None})
+    >>> [ax.get_title() for ax in fig.axes if ax.patches and not ax.lines]
+    ['spin-up']
     """
-    fig = Figure(figsize=(max(8.0, 2.4 * len(networks)), 9.0), layout="constrained")
-    grid = fig.add_gridspec(5, max(len(networks), 1), height_ratios=[1.2, 0.8, 0.8, 0.8, 1.6])
+    groups = _raw_groups(data)
+    fig = Figure(figsize=(max(8.0, 2.4 * len(networks)), 4.6 + 1.5 * len(groups)),
+                 layout="constrained")
+    grid = fig.add_gridspec(2 + len(groups), max(len(networks), 1),
+                            height_ratios=[1.2, *[0.8] * len(groups), 1.6])
     top = fig.add_subplot(grid[0, :])
     plot_signals(data, normalize=True, spans=phases, ax=top)
     top.set_title("(a) min–max normalized", fontsize=9, loc="left")
-    raw_axes = [fig.add_subplot(grid[k, :], sharex=top) for k in (1, 2, 3)]
-    _raw_panels(raw_axes, data, phases)
-    raw_axes[0].set_title("(b) raw", fontsize=9, loc="left")
+    for k, (ylabel, columns) in enumerate(groups):
+        ax = fig.add_subplot(grid[1 + k, :], sharex=top)
+        plot_signals(data[columns], normalize=False, spans=phases, ax=ax)
+        ax.set_ylabel(ylabel, fontsize=7)
+        ax.set_xlabel("")
+        if k == 0:
+            ax.set_title("(b) raw", fontsize=9, loc="left")
     for k, (label, net) in enumerate(networks.items()):
-        ax = fig.add_subplot(grid[4, k])
+        ax = fig.add_subplot(grid[-1, k])
         if net is None:
             _no_network(ax, label)
         else:
@@ -721,6 +736,15 @@ def figure_velocity_grid(
     References
     ----------
     Paper section 4.2 and Fig. 10.
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> window = pd.DataFrame({"RP": np.arange(10.0), "AC": np.ones(10)})
+    >>> net = pd.DataFrame({"x": ["RP"], "y": ["AC"], "kind": ["bidirectional"], "weight": [0.0]})
+    >>> cells = {(v, p): (window, net) for v in ("V35", "V175") for p in ("cruise", "braking")}
+    >>> len(figure_velocity_grid(cells).axes)
+    8
     """
     velocities = list(dict.fromkeys(v for v, _ in cells))
     phases = list(dict.fromkeys(p for _, p in cells))
@@ -782,6 +806,19 @@ def figure_reversal(
     References
     ----------
     Paper section 4.3 and Fig. 11.
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot.windows import Window
+    >>> t = np.arange(1000) * 0.002
+    >>> data = pd.DataFrame({"RP": np.abs(t - 1.0), "V": np.sign(t - 1.0)}, index=t)
+    >>> windows = [Window(f"{s:+d} ms", 0.9 + s / 1000, 1.1 + s / 1000, offset=s / 1000)
+    ...            for s in (-20, 0, 20)]
+    >>> net = pd.DataFrame({"x": ["V"], "y": ["RP"], "kind": ["x->y"], "weight": [0.1]})
+    >>> fig = figure_reversal(data, windows, {w.label: net for w in windows})
+    >>> sorted(p.get_gid() for p in fig.axes[1].patches)
+    ['window:+0 ms', 'window:+20 ms', 'window:-20 ms']
     """
     fig = Figure(figsize=(max(8.0, 2.4 * len(networks)), 6.5), layout="constrained")
     grid = fig.add_gridspec(3, max(len(networks), 1), height_ratios=[1.0, 1.0, 1.5])

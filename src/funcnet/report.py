@@ -26,6 +26,7 @@ import json
 import os
 import platform
 import sys
+import warnings
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
@@ -165,9 +166,15 @@ def _findings_html(findings: Sequence[Any]) -> str:
                f"</b> partly and <b>{counts.get('no', 0)}</b> not at all.</p>")
     missed = paper[paper["reproduced"] != "yes"] if len(paper) else paper
     verdicts = {"partly": "reproduces this only in part", "no": "does not reproduce this"}
+    seen = {f.id: f.edges_seen for f in findings}
+
+    def shown(edges: Sequence[str], limit: int = 12) -> str:
+        text = "; ".join(edges[:limit]) + ("; …" if len(edges) > limit else "")
+        return f" What the simulated networks show: {text}." if edges else ""
+
     plain = "".join(
         f"<li><b>{_esc(r.finding)}</b> — the paper: “{_esc(r.statement)}” The simulation "
-        f"{verdicts[r.reproduced]}: {_esc(r.evidence)}.</li>"
+        f"{verdicts[r.reproduced]} ({_esc(r.evidence)}).{_esc(shown(seen[r.finding]))}</li>"
         for r in missed.itertuples(index=False))
     details = "".join(
         f"<details><summary>{_esc(f.id)}: relations seen</summary><p><b>claimed:</b> "
@@ -182,19 +189,22 @@ def _findings_html(findings: Sequence[Any]) -> str:
 def _network_tables(title: str, analyses: Mapping[str, Any]) -> str:
     parts = [f"<h3>{_esc(title)}</h3>"]
     for trial in analyses.values():
-        if trial is None:
-            continue
         inner = []
         for key, net in trial.networks.items():
             window = trial.windows.get(key)
+            name = window.label if window is not None else key
             span = (f" ({float(window.start):.3f}–{float(window.stop):.3f} s)"
                     if window is not None else "")
+            if key in trial.dropped:
+                span += f" — constant, left out: {', '.join(trial.dropped[key])}"
             if net is None:
-                inner.append(f"<p><b>{_esc(key)}</b>{span}: not computed — "
+                inner.append(f"<p><b>{_esc(name)}</b>{_esc(span)}: not computed — "
                              f"{_esc(trial.errors.get(key, ''))}</p>")
             else:
-                inner.append(f"<details><summary>{_esc(key)}{span}</summary>"
+                inner.append(f"<details><summary>{_esc(name)}{_esc(span)}</summary>"
                              f"{_pairs_table(net.pairs)}</details>")
+        if "windows" in trial.errors:
+            inner.append(f"<p>no windows: {_esc(trial.errors['windows'])}</p>")
         parts.append(f"<details><summary><b>{_esc(trial.trial)}</b> — {len(trial.networks)} "
                      f"windows</summary>{''.join(inner)}</details>")
     return "".join(parts)
@@ -210,9 +220,13 @@ def _demo_figures(analyses: Any, out_dir: Path, progress: Progress) -> list[str]
 
     def add(k: int, name: str, make: Callable[[], Any], caption: str) -> None:
         _step(progress, k, steps, f"figure: {name}")
-        made = make()
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            made = make()
         fig = made if isinstance(made, Figure) else made.figure
-        parts.append(_figure_html(out_dir, name, fig, caption))
+        # The computation's warnings belong to the figure they concern, not to the console.
+        notes = sorted({f"{w.category.__name__}: {w.message}" for w in caught})
+        parts.append(_figure_html(out_dir, name, fig, " ".join([caption, *notes])))
 
     add(0, "fig1-embedding-network", plot.figure_embedding_network,
         "Fig. 1 — sine (N = 251), its embedding (m = 3, τ = 10), recurrence matrix (ε = 0.15) "
@@ -330,7 +344,10 @@ def build_demo_report(
         "<p class=\"note\">All data here are simulated (funcnet's two-mass axis model, the "
         "paper's Table 1 plan), not the paper's robot recordings. Every verdict below is "
         "measured on the networks computed from these traces with the parameters listed; "
-        "nothing was tuned towards the paper's results.</p>",
+        "nothing was tuned towards the paper's results. Read an arrow with care: the asymmetry "
+        "of cross-clustering and cross-transitivity follows the relative complexity of two "
+        "signals as well as their coupling, and the positions here are smooth while the "
+        "currents are noisy (paper section 2.4; funcnet DESIGN.md section 1.6).</p>",
         "<h2>Findings of the paper's section 4</h2>",
         _findings_html(analyses.findings),
         "<p>Decision rule: <i>yes</i> — every evaluated network (or trial) shows every relation "
@@ -344,9 +361,20 @@ def build_demo_report(
         "<h2>Networks (pairs tables)</h2>",
         *(_network_tables(title, group) for title, group in analyses.groups().items()),
     ]
+    dropped = [(t.trial, t.windows[k].label if k in t.windows else k, ", ".join(signals))
+               for group in analyses.groups().values() for t in group.values()
+               for k, signals in t.dropped.items()]
     if failures:
         body += ["<h2>Windows without a network</h2>",
                  _table(pd.DataFrame(failures, columns=["trial", "window", "reason"]))]
+    if dropped:
+        body += ["<h2>Signals left out of a window (constant there)</h2>",
+                 "<p>Min–max normalization needs a range; claims about these signals in these "
+                 "windows are counted as not evaluable.</p>",
+                 _table(pd.DataFrame(dropped, columns=["trial", "window", "signals"]))]
+    if analyses.warnings:
+        body += ["<h2>Warnings while computing the networks</h2>",
+                 _mapping_table(analyses.warnings, "warning", "networks")]
     body += ["<h2>Provenance</h2>", _mapping_table(provenance, "item"),
              "<h3>Inputs (SHA-256)</h3>", _mapping_table(analyses.inputs, "file", "sha256")]
     index = write_text_atomic(out / "index.html", _page("funcnet demo report", body))
@@ -437,7 +465,9 @@ def write_report(
             fig = Figure(figsize=(2.3 * cols, 2.5 * -(-len(chunk) // cols)), layout="constrained")
             for j, ((label, t0, t1), pairs) in enumerate(chunk):
                 ax = fig.add_subplot(-(-len(chunk) // cols), cols, j + 1)
-                plot.plot_network(pairs, ax, title=f"{label}\n{t0:.2f}–{t1:.2f} s", fontsize=7)
+                # sliding windows are labelled by their span already
+                title = label if str(label).endswith(" s") else f"{label}\n{t0:.2f}–{t1:.2f} s"
+                plot.plot_network(pairs, ax, title=title, fontsize=7)
             parts.append(_figure_html(out, f"{slug}-networks-{start // _GRID}", fig,
                                       f"{recording}: networks of windows {start + 1}–"
                                       f"{start + len(chunk)} of {len(windows)}"))

@@ -38,6 +38,8 @@ Decisions (where the specification leaves room):
   :class:`~funcnet.errors.StudyError`, since it would fail every task.
 * Warnings raised while computing a task (thresholds, staircase signals) are counted per message
   in ``study.json`` rather than printed by the workers.
+* A window kind that does not occur in a recording gives it no windows (a ``reversal``
+  specification over trials without a reversal), not a failure.
 * Without ``signals``, a recording's nodes are its roles (RP, AP, MP, RC, AC, those present) plus
   the velocity V derived from AP (Eq. 11-12), computed on the whole recording before windowing.
 """
@@ -623,7 +625,10 @@ def _expand_windows(task: _WindowTask) -> _Outcome:
             detect = set(inspect.signature(detect_phases).parameters)
             phases = detect_phases(recording, **{k: v for k, v in options.items() if k in detect})
             builder = getattr(module, _BUILDERS[task.spec.kind])
-            windows = builder(phases, **{k: v for k, v in options.items() if k not in detect})
+            if task.spec.kind == "reversal" and not phases["phase"].eq("reversal").any():
+                windows = []  # a trial without a reversal has no reversal windows
+            else:
+                windows = builder(phases, **{k: v for k, v in options.items() if k not in detect})
         return _Outcome(task.key, value=[_window_record(w) for w in windows])
     except ParameterError as exc:
         return _Outcome(task.key, fatal=str(exc))
@@ -744,61 +749,77 @@ def _one_thread_per_task() -> Iterator[None]:
         numba.set_num_threads(previous)
 
 
+def _check_execution(scheduler: str | None, workers: int | None) -> int:
+    """Validate ``scheduler`` and ``workers``; return the number of local workers."""
+    n_workers = _DEFAULT_WORKERS if workers is None else workers
+    if isinstance(n_workers, bool) or not isinstance(n_workers, int) or n_workers < 0:
+        raise ParameterError(f"workers must be an integer >= 0, got {workers!r}")
+    if scheduler is not None and scheduler != "local-cluster":
+        host, _, port = scheduler.removeprefix("tcp://").rpartition(":")
+        if not scheduler.startswith("tcp://") or not host or not port.isdigit():
+            raise ParameterError(
+                f"scheduler must be 'tcp://HOST:PORT' or 'local-cluster', got {scheduler!r}"
+            )
+    return n_workers
+
+
 class _Backend:
-    """Run task functions in this process, on local processes or on a Dask cluster."""
+    """Run task functions in this process, on local processes or on a Dask cluster.
+
+    Nothing is started until the first :meth:`map_unordered`: a run with nothing to compute
+    starts no process and connects to no scheduler.
+    """
 
     def __init__(self, scheduler: str | None, workers: int | None) -> None:
+        self._scheduler = scheduler
+        self._workers = _check_execution(scheduler, workers)
         self._stack = contextlib.ExitStack()
+        self._started = False
         self._client: Any = None
         self._pool: Any = None
-        n_workers = _DEFAULT_WORKERS if workers is None else workers
-        if isinstance(n_workers, bool) or not isinstance(n_workers, int) or n_workers < 0:
-            raise ParameterError(f"workers must be an integer >= 0, got {workers!r}")
-        if scheduler is None:
-            if n_workers == 0:
-                self.description = "this process"
+
+    def _start(self) -> None:
+        self._started = True
+        if self._scheduler is None:
+            if self._workers == 0:
                 return
             import multiprocessing
             from concurrent.futures import ProcessPoolExecutor
 
             # spawn: the caller may run threads (progress bars, Dask) that fork must not copy.
-            self._pool = self._stack.enter_context(
-                ProcessPoolExecutor(
-                    max_workers=n_workers,
-                    mp_context=multiprocessing.get_context("spawn"),
-                    initializer=_init_worker,
-                    initargs=(os.getpid(),),
-                )
+            self._pool = ProcessPoolExecutor(
+                max_workers=self._workers,
+                mp_context=multiprocessing.get_context("spawn"),
+                initializer=_init_worker,
+                initargs=(os.getpid(),),
             )
-            self.description = f"local processes ({n_workers})"
+            # On an error or Ctrl-C, tasks not yet started are dropped rather than awaited.
+            self._stack.callback(self._pool.shutdown, wait=True, cancel_futures=True)
             return
         from distributed import Client, LocalCluster
 
-        if scheduler == "local-cluster":
-            cluster = self._stack.enter_context(
-                LocalCluster(
-                    n_workers=max(n_workers, 1),
-                    threads_per_worker=1,
-                    processes=True,
-                    host="127.0.0.1",
-                    dashboard_address=None,
-                )
+        if self._scheduler == "local-cluster":
+            cluster = LocalCluster(
+                n_workers=max(self._workers, 1),
+                threads_per_worker=1,
+                processes=True,
+                host="127.0.0.1",
+                dashboard_address=None,
             )
+            self._stack.enter_context(cluster)
             self._client = self._stack.enter_context(Client(cluster))
-            self.description = f"dask LocalCluster ({max(n_workers, 1)} workers)"
-        elif scheduler.startswith("tcp://"):
-            try:
-                self._client = self._stack.enter_context(Client(scheduler, timeout="30s"))
-            except OSError as exc:
-                raise StudyError(f"scheduler {scheduler}: cannot connect: {exc}") from None
-            self.description = f"dask cluster {scheduler}"
-        else:
-            raise ParameterError(
-                f"scheduler must be 'tcp://HOST:PORT' or 'local-cluster', got {scheduler!r}"
-            )
+            return
+        try:
+            self._client = self._stack.enter_context(Client(self._scheduler, timeout="30s"))
+        except OSError as exc:
+            raise StudyError(f"scheduler {self._scheduler}: cannot connect: {exc}") from None
 
     def map_unordered(self, fn: Callable[[Any], _Outcome], tasks: Sequence[Any]) -> Iterator[Any]:
         """Run ``fn`` on every task; yield the outcomes as they finish."""
+        if not tasks:
+            return
+        if not self._started:
+            self._start()
         if self._client is not None:
             from distributed import as_completed
 
@@ -819,6 +840,7 @@ class _Backend:
                 yield fn(task)
 
     def close(self) -> None:
+        """Stop what :meth:`map_unordered` started."""
         self._stack.close()
 
 
@@ -923,6 +945,7 @@ def run_study(
     uninterrupted run: each finished task is one file written atomically, and a task is
     computed again only if its file is missing.
     """
+    _check_execution(scheduler, workers)
     out = Path(out_dir).resolve()
     out.mkdir(parents=True, exist_ok=True)
     with _exclusive(out):
@@ -957,110 +980,117 @@ def _run_locked(
     if study.simulated is not None:
         recordings.extend(_simulated_recordings(study, study.simulated, out, progress))
     sources = [_source(path, study.base_dir) for path in recordings]
-    channels = None if study.channels is None else str(study.channels)
-    channels_sha = None if study.channels is None else file_sha256(study.channels)
     provenance = _provenance(study, sources)
     _write_study_json(out, study, provenance, status="running")
 
-    backend: _Backend | None = None
-    try:
-        # Stage 1: windows of every (recording, specification), cached by content.
-        window_tasks = [
-            _WindowTask(
-                key=_content_key(
-                    stage="windows",
-                    source_sha256=source.sha256,
-                    spec=spec.as_dict(),
-                    channels_sha256=channels_sha,
-                    axis=study.axis,
-                    funcnet=__version__,
-                ),
-                source=source,
-                spec=spec,
-                signals=study.signals,
-                channels=channels,
-                axis=study.axis,
-            )
-            for source in sources
-            for spec in study.windows
-        ]
-        failures: list[TaskFailure] = []
-        todo = [t for t in window_tasks if not (dirs["windows"] / f"{t.key}.json").exists()]
-        if todo:
-            backend = _Backend(scheduler, workers)
-            for outcome in backend.map_unordered(_expand_windows, todo):
-                _check_fatal(outcome, study)
-                write_text_atomic(
-                    dirs["windows"] / f"{outcome.key}.json",
-                    json.dumps({"windows": outcome.value, "error": outcome.error}),
-                )
-
-        # Stage 2: one network per (recording, window, parameter set).
-        defaults = _network_defaults()
-        grid = [{**defaults, **p} for p in parameter_grid(study)] or [dict(defaults)]
-        tasks: list[_NetworkTask] = []
-        for wt in window_tasks:
-            expanded = json.loads((dirs["windows"] / f"{wt.key}.json").read_text())
-            if expanded["error"] is not None:
-                spec_text = json.dumps(wt.spec.as_dict())
-                failures.append(TaskFailure(wt.source.name, spec_text, {}, expanded["error"]))
-                continue
-            for window in expanded["windows"]:
-                for parameters in grid:
-                    key = _content_key(
-                        stage="network",
-                        source_sha256=wt.source.sha256,
-                        recording=wt.source.name,
-                        trial=wt.source.trial,
-                        window=window,
-                        parameters=parameters,
-                        signals=None if study.signals is None else list(study.signals),
-                        channels_sha256=channels_sha,
-                        axis=study.axis,
-                        funcnet=__version__,
-                    )
-                    tasks.append(
-                        _NetworkTask(
-                            key, wt.source, window, parameters, study.signals, channels, study.axis
-                        )
-                    )
-        tasks = list({t.key: t for t in tasks}.values())
+    with contextlib.closing(_Backend(scheduler, workers)) as backend:
+        window_tasks = _window_tasks(study, sources)
+        _expand_missing_windows(window_tasks, dirs["windows"], backend, study)
+        tasks, failures = _network_tasks(study, window_tasks, dirs["windows"])
         _select_current(dirs, {t.key for t in tasks})
-        todo_networks = [t for t in tasks if not _done(dirs, t.key)]
-        cached = len(tasks) - len(todo_networks)
+        todo = [t for t in tasks if not _done(dirs, t.key)]
         warning_counts: Counter[str] = Counter()
         warning_examples: dict[str, str] = {}
-        computed = 0
         if progress is not None:
-            progress(0, len(todo_networks), "networks")
-        if todo_networks:
-            if backend is None:
-                backend = _Backend(scheduler, workers)
-            by_key = {t.key: t for t in todo_networks}
-            for outcome in backend.map_unordered(_network_rows, todo_networks):
-                _check_fatal(outcome, study)
-                _store(dirs, by_key[outcome.key], outcome)
-                for category, message in outcome.warnings:
-                    warning_counts[category] += 1
-                    warning_examples.setdefault(category, message)
-                computed += 1
-                if progress is not None:
-                    progress(computed, len(todo_networks), "networks")
-    finally:
-        if backend is not None:
-            backend.close()
+            progress(0, len(todo), "networks")
+        by_key = {t.key: t for t in todo}
+        for done, outcome in enumerate(backend.map_unordered(_network_rows, todo), start=1):
+            _check_fatal(outcome, study)
+            _store(dirs, by_key[outcome.key], outcome)
+            for category, message in outcome.warnings:
+                warning_counts[category] += 1
+                warning_examples.setdefault(category, message)
+            if progress is not None:
+                progress(done, len(todo), "networks")
 
     failures.extend(_failures(dirs, tasks))
     result = StudyResult(
         out_dir=out,
         tasks=len(tasks),
-        computed=computed,
-        cached=cached,
+        computed=len(todo),
+        cached=len(tasks) - len(todo),
         failures=tuple(failures),
         warnings={c: (n, warning_examples[c]) for c, n in sorted(warning_counts.items())},
     )
     _write_study_json(out, study, provenance, status="complete", result=result)
     return result
+
+
+def _channels(study: Study) -> tuple[str | None, str | None]:
+    """The channel map's path and content hash (None, None without one)."""
+    if study.channels is None:
+        return None, None
+    return str(study.channels), file_sha256(study.channels)
+
+
+def _window_tasks(study: Study, sources: Sequence[_Source]) -> list[_WindowTask]:
+    """One task per (recording, window specification), keyed by content."""
+    channels, channels_sha = _channels(study)
+    return [
+        _WindowTask(
+            key=_content_key(
+                stage="windows",
+                source_sha256=source.sha256,
+                spec=spec.as_dict(),
+                channels_sha256=channels_sha,
+                axis=study.axis,
+                funcnet=__version__,
+            ),
+            source=source,
+            spec=spec,
+            signals=study.signals,
+            channels=channels,
+            axis=study.axis,
+        )
+        for source in sources
+        for spec in study.windows
+    ]
+
+
+def _expand_missing_windows(
+    tasks: Sequence[_WindowTask], folder: Path, backend: _Backend, study: Study
+) -> None:
+    """Stage 1: the windows of every (recording, specification) not expanded before."""
+    todo = [t for t in tasks if not (folder / f"{t.key}.json").exists()]
+    for outcome in backend.map_unordered(_expand_windows, todo):
+        _check_fatal(outcome, study)
+        record = {"windows": outcome.value, "error": outcome.error}
+        write_text_atomic(folder / f"{outcome.key}.json", json.dumps(record))
+
+
+def _network_tasks(
+    study: Study, window_tasks: Sequence[_WindowTask], folder: Path
+) -> tuple[list[_NetworkTask], list[TaskFailure]]:
+    """Stage 2's tasks: every (recording, window, parameter set), keyed by content."""
+    channels, channels_sha = _channels(study)
+    defaults = _network_defaults()
+    grid = [{**defaults, **p} for p in parameter_grid(study)]
+    signals = None if study.signals is None else list(study.signals)
+    tasks: dict[str, _NetworkTask] = {}
+    failures = []
+    for wt in window_tasks:
+        expanded = json.loads((folder / f"{wt.key}.json").read_text())
+        if expanded["error"] is not None:
+            spec = json.dumps(wt.spec.as_dict())
+            failures.append(TaskFailure(wt.source.name, spec, {}, expanded["error"]))
+            continue
+        for window, parameters in itertools.product(expanded["windows"], grid):
+            key = _content_key(
+                stage="network",
+                source_sha256=wt.source.sha256,
+                recording=wt.source.name,
+                trial=wt.source.trial,
+                window=window,
+                parameters=parameters,
+                signals=signals,
+                channels_sha256=channels_sha,
+                axis=study.axis,
+                funcnet=__version__,
+            )
+            tasks[key] = _NetworkTask(
+                key, wt.source, window, parameters, study.signals, channels, study.axis
+            )
+    return list(tasks.values()), failures
 
 
 def _check_fatal(outcome: _Outcome, study: Study) -> None:
