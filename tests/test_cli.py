@@ -201,6 +201,9 @@ def test_network_bad_files(tmp_path: Path) -> None:
     _assert_one_error_line(
         runner.invoke(app, ["network", str(truncated), "-o", str(out)]), str(truncated)
     )
+    # The real trace's staircase warning is not printed when the command fails.
+    negative = runner.invoke(app, ["network", str(REAL_TRACE), "--window", "7:8", "--mu", "-1"])
+    _assert_one_error_line(negative, "mu")
     unknown = tmp_path / "net.pdf"
     _assert_one_error_line(
         runner.invoke(app, ["network", str(REAL_TRACE), "-o", str(unknown)]), ".pdf"

@@ -216,3 +216,11 @@ def test_run_paper_analyses_windows_networks_and_findings(tiny_plan):
     assert len(ids) == len(set(ids)) == 8 + 8 + 3 + 2
     assert {f.reproduced for f in analyses.findings if f.section == "3.1"} == {"n/a"}
     assert set(analyses.inputs) == {"manifest.csv", *(p.name for p in tiny_plan.glob("*.xml"))}
+
+
+def test_write_report_without_results_names_the_folder(tmp_path):
+    from funcnet.errors import StudyError
+
+    with pytest.raises(StudyError, match=re.escape(str(tmp_path))):
+        write_report(tmp_path)
+    assert not (tmp_path / "report").exists()

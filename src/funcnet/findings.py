@@ -847,7 +847,9 @@ def _analyse(path: Path, name: str, keyed_windows: Callable[[Any, pd.DataFrame],
                 net = None
                 errors[key] = str(exc)
         for w in caught:
-            message = f"{w.category.__name__}: {str(w.message).split(' for ')[0]}"
+            # Count by kind of warning: the list of pairs differs from window to window.
+            text = re.sub(r" for \d+ pair\(s\):[^;]*", "", str(w.message))
+            message = f"{w.category.__name__}: {text}"
             warned[message] = warned.get(message, 0) + 1
         networks[key] = net
     return TrialAnalysis(name, str(path), data, phases, windows, networks, errors, dropped)

@@ -256,7 +256,11 @@ def _demo_figures(analyses: Any, out_dir: Path, progress: Progress) -> list[str]
             "Fig. 10 — velocities (V1, V35, V175, V350; TCP 1.6 m) × phases (fixed windows "
             "of 280 / 600 / 600 ms): normalized series over each network.")
     if analyses.reversal:
-        rev = next(iter(analyses.reversal.values()))
+        # The backlash trial closest to the baseline (35 °/min, TCP 1.6 m) if the plan has it.
+        trials = analyses.trials.set_index("name")
+        rev = min(analyses.reversal.values(),
+                  key=lambda a: (abs(float(trials.loc[a.trial, "speed"]) - 35),
+                                 abs(float(trials.loc[a.trial, "tcp"]) - 1.6)))
         add(5, "fig11-reversal",
             lambda: plot.figure_reversal(rev.data, list(rev.windows.values()),
                                          {f"{k:+d} ms": v for k, v in rev.networks.items()},

@@ -222,7 +222,7 @@ def load_study(path: str | os.PathLike[str]) -> Study:
         seed = 0                     # optional, seed of the simulated plan
         channels = "channels.toml"   # optional channel map
         axis = 7                     # optional
-        [[windows]]
+        [[windows]]                  # default: one table with kind = "phases"
         kind = "sliding"             # phases | fixed | reversal | sliding | range
         width = 0.6
         step = 0.3
@@ -944,6 +944,30 @@ def run_study(
     A run killed at any moment (even SIGKILL) and started again ends with the same rows as an
     uninterrupted run: each finished task is one file written atomically, and a task is
     computed again only if its file is missing.
+
+    Examples
+    --------
+    Two signals of a small CSV trace, one window, two delays, run in this process:
+
+    >>> import pathlib, tempfile
+    >>> import numpy as np, pandas as pd
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> t = np.arange(0, 2, 0.002)
+    >>> trace = pd.DataFrame({"time": t, "RP": np.sin(5 * t), "AP": np.sin(5 * t - 0.3)})
+    >>> trace.to_csv(folder / "trace.csv", index=False)
+    >>> study = Study(recordings=(folder / "trace.csv",), signals=("RP", "AP"),
+    ...               windows=(WindowSpec("range", (("start", 0.5), ("stop", 1.5))),),
+    ...               parameters=(("delay", (5, 10)),), base_dir=folder)
+    >>> result = run_study(study, folder / "out", workers=0)
+    >>> result.tasks, result.computed, result.cached
+    (2, 2, 0)
+    >>> rows = load_results(folder / "out")
+    >>> rows[["recording", "window", "delay", "x", "y"]]
+       recording         window  delay   x   y
+    0  trace.csv  0.500-1.500 s      5  RP  AP
+    1  trace.csv  0.500-1.500 s     10  RP  AP
+    >>> run_study(study, folder / "out", workers=0).computed  # nothing new to compute
+    0
     """
     _check_execution(scheduler, workers)
     out = Path(out_dir).resolve()
