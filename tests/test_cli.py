@@ -39,7 +39,7 @@ def _library_network(trace: Path, start: float, stop: float, signals=None, **par
     from funcnet.study import read_recording
 
     recording = read_recording(trace, signals=signals)
-    window = Window(f"{start:g}-{stop:g} s", start, stop)
+    window = Window(f"{start:.3f}-{stop:.3f} s", start, stop)
     return phase_networks(recording, [window], signals=signals, **parameters)[window.label]
 
 
@@ -135,6 +135,20 @@ def test_network_default_signals_are_the_roles_plus_v(trial: Path, tmp_path: Pat
         trial, 0.5, 1.1, dim=2, delay=5, mu=0.1, normalize="zscore", theiler=2
     )
     assert written == expected
+
+
+def test_network_of_the_whole_recording(trial: Path, tmp_path: Path) -> None:
+    from funcnet import FunctionalNetwork, functional_network
+    from funcnet.study import read_recording
+
+    out = tmp_path / "whole.json"
+    result = runner.invoke(app, ["network", str(trial), "--signals", "RP,MP", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    written = FunctionalNetwork.from_json(out.read_text())
+    data = read_recording(trial).data[["RP", "MP"]]  # every sample, none left out
+    expected = functional_network(data, label="whole recording")
+    assert written.parameters["n_samples"] == len(data)
+    pd.testing.assert_frame_equal(written.pairs, expected.pairs)
 
 
 def test_network_phase_and_drawings(trial: Path, tmp_path: Path) -> None:

@@ -285,16 +285,24 @@ def test_band_overflow_fallback_is_exact(monkeypatch, kind):
     np.testing.assert_array_equal(result.to_dense(), expected)
 
 
-def test_bracket_fallback_when_the_sample_misses(monkeypatch):
+@pytest.mark.parametrize("limit", [1 << 22, 1000])
+def test_bracket_fallback_when_the_sample_misses(monkeypatch, limit):
     # A zero-width bracket almost surely misses the order statistic; the next, unbounded one
-    # must still give the exact value.
+    # (bisection of the key range down to `limit` pairs) must still give the exact value.
     monkeypatch.setattr(recurrence, "_BRACKET_WIDTHS", (0.0, math.inf))
+    monkeypatch.setattr(recurrence, "_BAND_LIMIT", limit)
+    calls = []
+    bisect = recurrence._bisect_bracket
+    monkeypatch.setattr(
+        recurrence, "_bisect_bracket", lambda *args: calls.append(args) or bisect(*args)
+    )
     x = make_signal("noise", 800, 5)
     xs = reference_embed(x, 2, 1)
     expected, eps = reference_cross(xs, xs[::-1].copy(), cr=0.05)
     result = cross_recurrence(xs, xs[::-1].copy(), cr=0.05)
     assert result.eps == eps
     np.testing.assert_array_equal(result.to_dense(), expected)
+    assert calls
 
 
 @settings(max_examples=200, deadline=None)

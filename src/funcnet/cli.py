@@ -231,10 +231,10 @@ def _select_window(recording: Any, phase: str | None, window: str | None, trace:
         raise ParameterError("give --phase or --window, not both")
     if window is not None:
         start, stop = _parse_window(window)
-        return Window(label=f"{start:g}-{stop:g} s", start=start, stop=stop)
+        return Window(label=f"{start:.3f}-{stop:.3f} s", start=start, stop=stop)
     if phase is None:
-        time = recording.data.index
-        return Window(label="whole recording", start=float(time[0]), stop=float(time[-1]))
+        start = float(recording.data.index[0])
+        return Window(label="whole recording", start=start, stop=start + recording.duration)
     windows = phase_windows(detect_phases(recording))
     by_label = [w for w in windows if w.label == phase]
     by_phase = by_label or [w for w in windows if w.phase == phase]
@@ -486,9 +486,13 @@ def study(
             f"funcnet: warning: {category} in {count} of {result.computed} networks computed, "
             f"e.g. {_one_line(example)}\n"
         )
+    varied = [name for name, values in described.parameters if len(values) > 1]
     for failure in result.failures:
+        setting = "".join(
+            f" {k}={failure.parameters[k]}" for k in varied if k in failure.parameters
+        )
         sys.stderr.write(
-            f"funcnet: failed: {failure.recording} [{failure.window}]: "
+            f"funcnet: failed: {failure.recording} [{failure.window}]{setting}: "
             f"{_one_line(failure.message)}\n"
         )
     if result.failures:

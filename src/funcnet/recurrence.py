@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
 from dataclasses import dataclass
 from typing import Any
 
@@ -48,6 +49,12 @@ from numba import njit, prange, types
 from numba.extending import intrinsic
 
 from funcnet.errors import ParameterError, SignalError
+
+# The kernels run many short parallel loops. OpenMP's default lets idle threads spin between
+# them, which on a shared or busy machine takes the cores the work needs; sleeping threads cost
+# microseconds instead. Numba starts its OpenMP runtime at the first parallel call, after this
+# line; a user's own setting wins.
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 __all__ = [
     "METRICS",
@@ -563,8 +570,10 @@ def _unpack(packed, n_cols):  # pragma: no cover - compiled
 # random sample of pairs brackets the order statistic.
 _DIRECT_PAIRS = 1 << 18
 # Half-widths of the bracket around the sampled quantile, in binomial standard deviations; the
-# last, unbounded one always succeeds (it is needed with a probability far below 1e-9).
+# last, unbounded one always succeeds (it is needed with a probability far below 1e-9): it is
+# found by bisection of the key range with counting passes, down to at most _BAND_LIMIT pairs.
 _BRACKET_WIDTHS = (8.0, 64.0, math.inf)
+_BAND_LIMIT = 1 << 22
 # Band buffers hold this many times the pairs the sample expects inside the bracket (plus two
 # rows); a buffer that overflows costs one more pass, not a wrong result.
 _BAND_SLACK = 2.0
@@ -598,8 +607,6 @@ def _key_distance(key: float, metric: int) -> float:
 def _sample_bracket(a, bt, auto, theiler, metric, quantile, width, rng):
     """Keys (lo, hi) that bracket the ``quantile`` of all candidate keys w.h.p., and the share
     of the sample inside (lo, hi] (what the band is expected to hold)."""
-    if not math.isfinite(width):
-        return -math.inf, math.inf, 1.0
     # About one pair in a thousand: the bracket then holds about 2 % of the pairs at M = 2000
     # and 0.7 % at M = 20000 (its width shrinks as 1 / sqrt(sample size)).
     size = min(1 << 18, max(1 << 14, a.shape[0] * bt.shape[1] >> 10))
@@ -620,6 +627,30 @@ def _sample_bracket(a, bt, auto, theiler, metric, quantile, width, rng):
     return float(lo), float(hi), (min(hi_index, n) - max(lo_index, 0)) / n
 
 
+def _bisect_bracket(a, bt, auto, theiler, metric, rank):
+    """A bracket (lo, hi] of keys holding the rank-th key and, unless ties forbid, at most
+    _BAND_LIMIT pairs; slow (a counting pass per halving) but with memory O(M)."""
+
+    def count_upto(key):
+        return int(_scan_rows(a, bt, auto, theiler, metric, key, key, 1, 0)[0][:, 1].sum())
+
+    lo, hi, n_lo = -1.0, 1.0, 0  # every key is >= 0
+    n_hi = count_upto(hi)
+    while n_hi < rank:
+        hi *= 2.0
+        n_hi = count_upto(hi)
+    while n_hi - n_lo > _BAND_LIMIT:
+        middle = lo + (hi - lo) / 2
+        if middle in (lo, hi):  # the band is one value, tied
+            break
+        n_middle = count_upto(middle)
+        if n_middle >= rank:
+            hi, n_hi = middle, n_middle
+        else:
+            lo, n_lo = middle, n_middle
+    return lo, hi, (n_hi - n_lo) / max(1, a.shape[0] * bt.shape[1])
+
+
 def _rate_rows(a, bt, auto, theiler, metric, rank, n_pairs, strict):
     """Threshold at the ``rank``-th smallest candidate distance, exactly, and the packed rows.
 
@@ -638,11 +669,13 @@ def _rate_rows(a, bt, auto, theiler, metric, rank, n_pairs, strict):
     for width in _BRACKET_WIDTHS:
         if n_pairs <= _DIRECT_PAIRS:
             lo, hi, share = -math.inf, math.inf, 1.0
-        else:
+        elif math.isfinite(width):
             lo, hi, share = _sample_bracket(
                 a, bt, auto, theiler, metric, rank / n_pairs, width, rng
             )
-        n_chunks = 1 if share >= 1.0 else 16
+        else:
+            lo, hi, share = _bisect_bracket(a, bt, auto, theiler, metric, rank)
+        n_chunks = 1 if share >= 1.0 or n_pairs <= _DIRECT_PAIRS else 16
         capacity = int(_BAND_SLACK * (min(n_pairs, share * n_pairs) / n_chunks + n_cols))
         counts, packed, chunk_keys, chunk_index, filled = _scan_rows(
             a, bt, auto, theiler, metric, lo, hi, n_chunks, capacity
