@@ -9,6 +9,7 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
+import pandas as pd
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -223,11 +224,14 @@ def test_pairwise_equals_cross_measures_per_pair():
                 signals[i], signals[j], dim=2, delay=3, rr=0.08, cr=0.04, theiler=1
             )
             assert result == expected
-        # A 2-D array holds one signal per column.
+        # A 2-D array or a DataFrame holds one signal per column.
         as_array = pairwise_cross_measures(
             np.column_stack(signals), dim=2, delay=3, rr=0.08, cr=0.04, theiler=1
         )
+        frame = pd.DataFrame(np.column_stack(signals), columns=list("abcd"))
+        as_frame = pairwise_cross_measures(frame, dim=2, delay=3, rr=0.08, cr=0.04, theiler=1)
     assert as_array == results
+    assert as_frame == results
 
 
 def test_pairwise_explicit_eps():

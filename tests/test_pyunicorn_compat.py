@@ -110,9 +110,8 @@ def test_rule_pyunicorn_reproduces_pyunicorn(case, dim, delay, metric, rates, th
     # pyunicorn's internal rates count the diagonal; funcnet's count off-diagonal candidates.
     m_x, m_y = x_states.shape[0], y_states.shape[0]
     rr_x, rr_y = network.internal_recurrence_rates()
-    if rates is not None or min(thresholds[:2]) > 0:
-        assert result.rr_x * m_x * (m_x - 1) == pytest.approx(rr_x * m_x**2 - m_x, abs=1e-6)
-        assert result.rr_y * m_y * (m_y - 1) == pytest.approx(rr_y * m_y**2 - m_y, abs=1e-6)
+    assert result.rr_x * m_x * (m_x - 1) == pytest.approx(rr_x * m_x**2 - m_x, abs=1e-6)
+    assert result.rr_y * m_y * (m_y - 1) == pytest.approx(rr_y * m_y**2 - m_y, abs=1e-6)
 
 
 @pytest.mark.parametrize("metric", ["supremum", "euclidean"])

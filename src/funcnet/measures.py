@@ -16,10 +16,12 @@ X -> Y, a positive one as Y -> X. It holds for systems of similar character only
 also follows the relative complexity of the two signals (a smooth response of a rough driver can
 look like the driver), and near-zero differences mean "bidirectional or uncoupled".
 
-The triangle counts use bit-packed rows: ``tri_v = sum_{p in N(v)} popcount(A_Y[p] & CR_XY[v])``,
-restricted to the words where ``CR_XY[v]`` has bits, in a compiled parallel kernel. Thresholds
-follow the rule of :mod:`funcnet.recurrence` (k-th order statistic of the candidate distances,
-``k = max(1, ceil(rate * P - 1e-9))``, ``d <= eps``; or ``rule="pyunicorn"``).
+The triangle counts use bit-packed rows: ``tri_v = sum_{p in N(v)} popcount(A_Y[p] & CR_XY[v])``
+over the words between v's first and last cross-neighbour, each unordered pair once, in a
+compiled parallel kernel (about ``M_X * k * M_Y / 128`` word operations for mean cross-degree
+``k``). Thresholds follow the rule of :mod:`funcnet.recurrence` (exact k-th order statistic of
+the candidate distances, ``k = max(1, ceil(rate * P - 1e-9))``, ``d <= eps``; or
+``rule="pyunicorn"``). Rates default to the paper's ``RR = CR = 0.05`` (section 3.4).
 """
 
 from __future__ import annotations
@@ -60,7 +62,7 @@ __all__ = [
 
 
 @njit(cache=True)
-def _row_triangles(row, auto_rows):  # pragma: no cover - compiled
+def _row_triangles(row, auto_rows):
     """``(k_v, tri_v)`` of one packed cross-recurrence row against the packed ``auto_rows``."""
     first = -1
     last = -1
@@ -90,7 +92,7 @@ def _row_triangles(row, auto_rows):  # pragma: no cover - compiled
 
 
 @njit(cache=True, parallel=True)
-def _cross_triangles(cross_rows, auto_rows):  # pragma: no cover - compiled
+def _cross_triangles(cross_rows, auto_rows):
     """Per row v of ``cross_rows``: cross-degree k_v and ordered cross-triangles tri_v (Eq. 6-7)."""
     n_rows = cross_rows.shape[0]
     degree = np.zeros(n_rows, dtype=np.int64)
@@ -387,8 +389,9 @@ def pairwise_cross_measures(
 
     Parameters
     ----------
-    signals : sequence of array_like (N,), or ndarray (N, n_signals)
-        At least two signals of the same length; a 2-D array holds one signal per column.
+    signals : sequence of array_like (N,), or 2-D array_like (N, n_signals)
+        At least two signals of the same length; a 2-D array (or DataFrame) holds one signal per
+        column, time on axis 0.
     dim, delay, rr, cr, metric, rule, theiler
         As in :func:`cross_measures`.
     eps : dict, optional
@@ -426,8 +429,9 @@ def pairwise_cross_measures(
     >>> round(results[(0, 1)].c_diff, 4)
     0.0173
     """
-    if isinstance(signals, np.ndarray) and signals.ndim == 2:
-        signals = [signals[:, column] for column in range(signals.shape[1])]
+    if getattr(signals, "ndim", 1) == 2:  # an array or DataFrame, one signal per column
+        table = np.asarray(signals)
+        signals = [table[:, column] for column in range(table.shape[1])]
     signals = list(signals)
     if len(signals) < 2:
         raise SignalError(f"pairwise_cross_measures needs at least two signals, got {len(signals)}")

@@ -30,9 +30,12 @@ Compatibility rule (``rule="pyunicorn"``)
 Achieved rates are reported as the fraction of candidate pairs that are recurrent (diagonal and
 Theiler-excluded pairs are not candidates, under both rules).
 
-The full ``M x M`` distance matrix of a long signal is never stored: recurrence structures are
-bit-packed rows (:class:`PackedRecurrence`), computed block-wise by compiled kernels, and the
-order statistic is found by bracketing it from a sample and counting exactly.
+Memory and speed: the ``M x M`` distance matrix is never stored, in any precision. Recurrence
+structures are bit-packed rows (:class:`PackedRecurrence`, ``M^2 / 8`` bytes) built by compiled,
+parallel kernels that compute one row of distances at a time. The exact order statistic costs
+one pass over the pairs: a random sample of distances brackets it, the pass packs the pairs below
+the bracket, counts, and keeps only the few pairs inside it (a few per cent), whose partial sort
+gives the exact value. At M = 20000 one pair of signals needs about 0.4 GB.
 """
 
 from __future__ import annotations
@@ -290,7 +293,7 @@ def _lowest_bit(typingctx: Any, word: Any) -> Any:
 
 
 @njit(cache=True)
-def _row_keys(a, i, bt, start, metric, keys):  # pragma: no cover - compiled
+def _row_keys(a, i, bt, start, metric, keys):
     """keys[j - start] = key of (a[i], b[j]) for j >= start; ``bt`` is b transposed, (dim, n)."""
     # Loops run over views from 0 so that the compiler sees non-negative indices and
     # vectorizes (a runtime start index costs a wrap-around check per element).
@@ -325,7 +328,7 @@ def _row_keys(a, i, bt, start, metric, keys):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def _row_of(r, side, n_rows, auto):  # pragma: no cover - compiled
+def _row_of(r, side, n_rows, auto):
     # For the triangle j > i of an auto-recurrence, iteration r handles rows r and n - 1 - r, so
     # that every iteration does the same work; -1 marks "no row".
     if not auto:
@@ -335,7 +338,7 @@ def _row_of(r, side, n_rows, auto):  # pragma: no cover - compiled
 
 
 @njit(cache=True, parallel=True)
-def _sample_keys(a, bt, rows, cols, metric):  # pragma: no cover - compiled
+def _sample_keys(a, bt, rows, cols, metric):
     out = np.empty(rows.size, dtype=np.float64)
     for t in prange(rows.size):
         acc = 0.0
@@ -356,18 +359,17 @@ def _sample_keys(a, bt, rows, cols, metric):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def _padded_row_keys(a, i, bt, start, metric, keys):  # pragma: no cover - compiled
-    """Keys of row i indexed by column, +inf (never recurrent) before start and after the end.
-
-    ``keys`` holds whole words, so that each word is assembled by a fixed loop of 64 compares.
+def _padded_row_keys(a, i, bt, start, metric, keys):
+    """Keys of row i indexed by column, NaN (false in every comparison) before start and after
+    the end. ``keys`` holds whole words: each word is assembled by a fixed loop of 64 compares.
     """
     _row_keys(a, i, bt, start, metric, keys[start:])
-    keys[(start // 64) * 64 : start] = np.inf
-    keys[bt.shape[1] :] = np.inf
+    keys[(start // 64) * 64 : start] = np.nan
+    keys[bt.shape[1] :] = np.nan
 
 
 @njit(cache=True)
-def _pack_keys(keys, first_word, bound, packed_row):  # pragma: no cover - compiled
+def _pack_keys(keys, first_word, bound, packed_row):
     """packed_row[w] = bits of keys <= bound for the words from first_word on; bits set."""
     count = 0
     for w in range(first_word, packed_row.size):
@@ -381,65 +383,62 @@ def _pack_keys(keys, first_word, bound, packed_row):  # pragma: no cover - compi
 
 
 @njit(cache=True)
-def _pack_row(a, i, bt, start, metric, bound, keys, packed):  # pragma: no cover - compiled
+def _pack_row(a, i, bt, start, metric, bound, keys, packed):
     _padded_row_keys(a, i, bt, start, metric, keys)
     return _pack_keys(keys, start // 64, bound, packed[i])
 
 
 @njit(cache=True)
-def _scan_row(
-    a, i, bt, start, metric, lo, hi, keys, counts, packed, band_keys, band_index, position
-):  # pragma: no cover - compiled
-    """Pack key <= lo of row i, count #key < lo, #key <= lo, #key <= hi, and append the pairs
-    with lo < key <= hi (key, flat index i * n + j) to the band buffers while they have room.
-
-    Returns the new band position (beyond the buffer size on overflow)."""
+def _scan_row(a, i, bt, start, metric, lo, hi, keys, counts, packed, band_keys, band_index, at):
+    """Pack key < lo of row i, count #key < lo and #key <= hi, and append the band pairs
+    lo <= key <= hi (key, flat index i * n + j) to the band buffers from ``at`` on while they
+    have room. Returns the new band position (beyond the buffer size on overflow)."""
     _padded_row_keys(a, i, bt, start, metric, keys)
-    _pack_keys(keys, start // 64, lo, packed[i])
-    below_lo = 0
-    upto_lo = 0
-    upto_hi = 0
     n_cols = bt.shape[1]
-    valid = keys[start:n_cols]
-    for t in range(valid.size):
-        key = valid[t]
-        below_lo += key < lo
-        upto_lo += key <= lo
-        upto_hi += key <= hi
-    counts[i, 0] = below_lo
-    counts[i, 1] = upto_lo
-    counts[i, 2] = upto_hi
-    in_band = upto_hi - upto_lo
-    if in_band and position + in_band <= band_keys.size:
-        for t in range(valid.size):
-            key = valid[t]
-            if lo < key <= hi:
-                band_keys[position] = key
-                band_index[position] = i * n_cols + start + t
-                position += 1
-        return position
-    return position + in_band
+    below = 0
+    upto = 0
+    for w in range(start // 64, packed.shape[1]):
+        block = keys[w * 64 : w * 64 + 64]
+        below_word = np.uint64(0)
+        upto_word = np.uint64(0)
+        for b in range(64):
+            below_word |= np.uint64(block[b] < lo) << np.uint64(b)
+            upto_word |= np.uint64(block[b] <= hi) << np.uint64(b)
+        packed[i, w] = below_word
+        below += np.int64(_popcount(below_word))
+        upto += np.int64(_popcount(upto_word))
+        band = upto_word & ~below_word
+        while band:
+            if at < band_keys.size:
+                j = w * 64 + np.int64(_lowest_bit(band))
+                band_keys[at] = keys[j]
+                band_index[at] = i * n_cols + j
+            at += 1
+            band &= band - np.uint64(1)
+    counts[i, 0] = below
+    counts[i, 1] = upto
+    return at
 
 
 @njit(cache=True)
 def _collect_row(a, i, bt, start, metric, lo, hi, keys, position, band_keys, band_index):
-    """Write key and flat index of every lo < key <= hi of row i from ``position`` on."""
+    """Write key and flat index of every lo <= key <= hi of row i from ``position`` on."""
     n = _row_keys(a, i, bt, start, metric, keys)
     for t in range(n):
-        if lo < keys[t] <= hi:
+        if lo <= keys[t] <= hi:
             band_keys[position] = keys[t]
             band_index[position] = i * bt.shape[1] + start + t
             position += 1
 
 
 @njit(cache=True, parallel=True)
-def _scan_rows(a, bt, auto, theiler, metric, lo, hi, n_chunks, capacity):  # pragma: no cover
-    """One pass (see _rate_rows): packed rows of key <= lo, per-row counts of key < lo,
-    key <= lo, key <= hi, and the band lo < key <= hi in ``n_chunks`` buffers of ``capacity``
-    (each chunk is a block of rows; ``filled[c] > capacity`` means chunk c overflowed)."""
+def _scan_rows(a, bt, auto, theiler, metric, lo, hi, n_chunks, capacity):
+    """One pass (see _rate_rows): packed rows of key < lo, per-row counts of key < lo and
+    key <= hi, and the band lo <= key <= hi in ``n_chunks`` buffers of ``capacity`` (each
+    chunk is a block of rows; ``filled[c] > capacity`` means chunk c overflowed)."""
     n_rows = a.shape[0]
     n_iterations = (n_rows + 1) // 2 if auto else n_rows
-    counts = np.zeros((n_rows, 3), dtype=np.int64)
+    counts = np.zeros((n_rows, 2), dtype=np.int64)
     packed = np.zeros((n_rows, (bt.shape[1] + 63) // 64), dtype=np.uint64)
     band_keys = np.empty((n_chunks, capacity), dtype=np.float64)
     band_index = np.empty((n_chunks, capacity), dtype=np.int64)
@@ -474,7 +473,7 @@ def _scan_rows(a, bt, auto, theiler, metric, lo, hi, n_chunks, capacity):  # pra
 
 @njit(cache=True, parallel=True)
 def _collect_band(a, bt, auto, theiler, metric, lo, hi, offsets, band_keys, band_index):
-    """Pass 2 when a band buffer overflowed: keys and flat indices of lo < key <= hi, row i
+    """Pass 2 when a band buffer overflowed: keys and flat indices of lo <= key <= hi, row i
     from offsets[i] on."""
     n_rows = a.shape[0]
     for r in prange((n_rows + 1) // 2 if auto else n_rows):
@@ -489,7 +488,7 @@ def _collect_band(a, bt, auto, theiler, metric, lo, hi, offsets, band_keys, band
 
 
 @njit(cache=True)
-def _add_band_bits(packed, n_cols, band_keys, band_index, bound):  # pragma: no cover - compiled
+def _add_band_bits(packed, n_cols, band_keys, band_index, bound):
     """Set the bits of the band pairs with key <= bound; return how many were set."""
     count = 0
     for t in range(band_keys.size):
@@ -502,7 +501,7 @@ def _add_band_bits(packed, n_cols, band_keys, band_index, bound):  # pragma: no 
 
 
 @njit(cache=True, parallel=True)
-def _pack_rows(a, bt, auto, theiler, metric, bound):  # pragma: no cover - compiled
+def _pack_rows(a, bt, auto, theiler, metric, bound):
     """Bit-packed rows of key <= bound, and the number of bits set.
 
     For an auto-recurrence only the triangle j > i + theiler is filled (see _threshold_rows).
@@ -521,7 +520,7 @@ def _pack_rows(a, bt, auto, theiler, metric, bound):  # pragma: no cover - compi
 
 
 @njit(cache=True, parallel=True)
-def _transpose_packed(packed, n_cols):  # pragma: no cover - compiled
+def _transpose_packed(packed, n_cols):
     n_rows, n_words = packed.shape
     out = np.zeros((n_cols, (n_rows + 63) // 64), dtype=np.uint64)
     # Each iteration owns the 64 output rows of one input word column: no write conflicts.
@@ -537,14 +536,14 @@ def _transpose_packed(packed, n_cols):  # pragma: no cover - compiled
 
 
 @njit(cache=True, parallel=True)
-def _merge_into(packed, other):  # pragma: no cover - compiled
+def _merge_into(packed, other):
     for i in prange(packed.shape[0]):
         for w in range(packed.shape[1]):
             packed[i, w] |= other[i, w]
 
 
 @njit(cache=True, parallel=True)
-def _row_popcounts(packed):  # pragma: no cover - compiled
+def _row_popcounts(packed):
     sums = np.zeros(packed.shape[0], dtype=np.int64)
     for i in prange(packed.shape[0]):
         count = 0
@@ -555,7 +554,7 @@ def _row_popcounts(packed):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def _unpack(packed, n_cols):  # pragma: no cover - compiled
+def _unpack(packed, n_cols):
     dense = np.zeros((packed.shape[0], n_cols), dtype=np.bool_)
     for i in range(packed.shape[0]):
         for j in range(n_cols):
@@ -605,8 +604,8 @@ def _key_distance(key: float, metric: int) -> float:
 
 
 def _sample_bracket(a, bt, auto, theiler, metric, quantile, width, rng):
-    """Keys (lo, hi) that bracket the ``quantile`` of all candidate keys w.h.p., and the share
-    of the sample inside (lo, hi] (what the band is expected to hold)."""
+    """Keys [lo, hi] that bracket the ``quantile`` of all candidate keys w.h.p., and the share
+    of the sample inside (what the band is expected to hold)."""
     # About one pair in a thousand: the bracket then holds about 2 % of the pairs at M = 2000
     # and 0.7 % at M = 20000 (its width shrinks as 1 / sqrt(sample size)).
     size = min(1 << 18, max(1 << 14, a.shape[0] * bt.shape[1] >> 10))
@@ -628,7 +627,7 @@ def _sample_bracket(a, bt, auto, theiler, metric, quantile, width, rng):
 
 
 def _bisect_bracket(a, bt, auto, theiler, metric, rank):
-    """A bracket (lo, hi] of keys holding the rank-th key and, unless ties forbid, at most
+    """A bracket [lo, hi] of keys holding the rank-th key and, unless ties forbid, at most
     _BAND_LIMIT pairs; slow (a counting pass per halving) but with memory O(M)."""
 
     def count_upto(key):
@@ -655,10 +654,10 @@ def _rate_rows(a, bt, auto, theiler, metric, rank, n_pairs, strict):
     """Threshold at the ``rank``-th smallest candidate distance, exactly, and the packed rows.
 
     Candidates are the pairs ``j > i + theiler`` when ``auto``, else all ``(i, j)``. A random
-    sample gives a bracket (lo, hi] of keys that holds the order statistic with overwhelming
-    probability. One pass over the pairs packs those with key <= lo, counts the keys below, at
-    and up to the bracket, and keeps key and position of the few inside (lo, hi]; a partial sort
-    of these picks the exact value, and their bits are added. Memory: O(M + pairs inside the
+    sample gives a bracket [lo, hi] of keys that holds the order statistic with overwhelming
+    probability. One pass over the pairs packs those with key < lo, counts the keys below and
+    up to the bracket, and keeps key and position of the few inside [lo, hi]; a partial sort of
+    these picks the exact value, and their bits are added. Memory: O(M + pairs inside the
     bracket), a few per cent of the pairs; never the distance matrix. (If a band buffer
     overflows, a second pass collects the band; if the sample missed, a wider bracket is tried.)
 
@@ -680,32 +679,28 @@ def _rate_rows(a, bt, auto, theiler, metric, rank, n_pairs, strict):
         counts, packed, chunk_keys, chunk_index, filled = _scan_rows(
             a, bt, auto, theiler, metric, lo, hi, n_chunks, capacity
         )
-        below_lo, upto_lo, upto_hi = (int(c) for c in counts.sum(axis=0))
+        below_lo, upto_hi = (int(c) for c in counts.sum(axis=0))
         if below_lo < rank <= upto_hi:
             break
-    else:  # pragma: no cover - the last bracket is unbounded
+    else:  # unreachable: the last bracket is unbounded
         raise AssertionError("unreachable: the unbounded bracket holds every key")
 
     if (filled <= capacity).all():
         band_keys = np.concatenate([chunk_keys[c, : filled[c]] for c in range(n_chunks)])
         band_index = np.concatenate([chunk_index[c, : filled[c]] for c in range(n_chunks)])
     else:
-        inside = counts[:, 2] - counts[:, 1]
+        inside = counts[:, 1] - counts[:, 0]
         offsets = np.zeros(inside.size, dtype=np.int64)
         np.cumsum(inside[:-1], out=offsets[1:])
         band_keys = np.empty(int(inside.sum()), dtype=np.float64)
         band_index = np.empty(band_keys.size, dtype=np.int64)
         _collect_band(a, bt, auto, theiler, metric, lo, hi, offsets, band_keys, band_index)
     del chunk_keys, chunk_index
-    if rank <= upto_lo:
-        key = lo
-    else:
-        position = rank - upto_lo - 1
-        key = float(np.partition(band_keys, position)[position])
-    eps = _key_distance(key, metric)
+    position = rank - below_lo - 1
+    eps = _key_distance(float(np.partition(band_keys, position)[position]), metric)
     bound = _key_bound(eps, strict, metric)
     if lo <= bound <= hi:
-        return eps, packed, upto_lo + _add_band_bits(packed, n_cols, band_keys, band_index, bound)
+        return eps, packed, below_lo + _add_band_bits(packed, n_cols, band_keys, band_index, bound)
     # Strict comparison at lo, or distinct keys with the same square root across a bracket end.
     packed, n_recurrent = _pack_rows(a, bt, auto, theiler, metric, bound)
     return eps, packed, n_recurrent
