@@ -34,6 +34,7 @@ _EXPORTS = {
     "functional_network": "funcnet.network",
     "edge_kind": "funcnet.network",
     "combine_kinds": "funcnet.network",
+    "edges_from_pairs": "funcnet.network",
     "pairwise_cross_measures": "funcnet.measures",
     "Study": "funcnet.study",
     "load_study": "funcnet.study",

@@ -58,6 +58,7 @@ __all__ = [
     "functional_network",
     "edge_kind",
     "combine_kinds",
+    "edges_from_pairs",
 ]
 
 MEASURES = ("both", "clustering", "transitivity")
@@ -176,8 +177,35 @@ def _kinds(pairs: pd.DataFrame | dict[str, list[Any]], measure: str) -> list[str
     return [combine_kinds(c, t) for c, t in zip(pairs["c_kind"], pairs["t_kind"], strict=True)]
 
 
-def _edges_from_kinds(pairs: pd.DataFrame, kinds: Any) -> pd.DataFrame:
-    """One row per edge: directed ones point source -> target; conflicts have none."""
+def edges_from_pairs(pairs: pd.DataFrame, kinds: Any = None) -> pd.DataFrame:
+    """The edges table of a pairs table: directed edges point source -> target; no conflicts.
+
+    Parameters
+    ----------
+    pairs : pandas.DataFrame
+        At least the columns ``x, y, weight`` and, unless ``kinds`` is given, ``kind`` -- a
+        :attr:`FunctionalNetwork.pairs` table, or one window's rows of a study's results.
+    kinds : sequence of str, optional
+        The kind of each pair (``x->y``, ``y->x``, ``bidirectional``, ``conflict``); default
+        ``pairs["kind"]``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``source, target, weight, kind`` (``directed`` or ``bidirectional``), one row per
+        directed edge or bidirectional pair; a conflict has no edge (DESIGN.md section 1.7).
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> pairs = pd.DataFrame({"x": ["A", "A", "B"], "y": ["B", "C", "C"],
+    ...                       "kind": ["y->x", "bidirectional", "conflict"],
+    ...                       "weight": [0.2, 0.01, 0.3]})
+    >>> edges_from_pairs(pairs)[["source", "target", "kind"]].values.tolist()
+    [['B', 'A', 'directed'], ['A', 'C', 'bidirectional']]
+    """
+    if kinds is None:
+        kinds = pairs["kind"]
     columns: dict[str, list[Any]] = {name: [] for name in _EDGE_DTYPES}
     for x, y, weight, kind in zip(pairs["x"], pairs["y"], pairs["weight"], kinds, strict=True):
         if kind == "conflict":
@@ -275,7 +303,7 @@ class FunctionalNetwork:
           source target    weight           kind
         0      x      y  0.027588  bidirectional
         """
-        return _edges_from_kinds(self.pairs, _kinds(self.pairs, _check_measure(measure)))
+        return edges_from_pairs(self.pairs, _kinds(self.pairs, _check_measure(measure)))
 
     def to_networkx(self) -> nx.DiGraph:
         """The network as a :class:`networkx.DiGraph`.
@@ -652,7 +680,7 @@ def functional_network(
     return FunctionalNetwork(
         nodes=tuple(nodes),
         pairs=pairs,
-        edges=_edges_from_kinds(pairs, pairs["kind"]),
+        edges=edges_from_pairs(pairs),
         parameters=parameters,
         label=None if label is None else str(label),
     )

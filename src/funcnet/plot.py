@@ -31,6 +31,8 @@ from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle, FancyArrowPatch
 
+from funcnet.network import edges_from_pairs
+
 __all__ = [
     "DIRECTED_COLOR",
     "BIDIRECTIONAL_COLOR",
@@ -61,52 +63,22 @@ def _new_axes(ax: Axes | None, figsize: tuple[float, float] = (4.0, 4.0)) -> Axe
 
 
 def network_edges(net: Any) -> pd.DataFrame:
-    """The edges to draw for a network: one row per directed edge or bidirectional pair.
+    """The edges to draw: a network's ``.edges``, or those of a pairs table.
 
     Parameters
     ----------
     net : FunctionalNetwork or pandas.DataFrame
-        A :class:`funcnet.FunctionalNetwork` (its ``.edges`` are used) or a pairs table with at
-        least the columns ``x, y, kind, weight`` (``kind`` one of ``x->y``, ``y->x``,
-        ``bidirectional``, ``conflict``), e.g. rows of a study's results.
+        A :class:`funcnet.FunctionalNetwork`, or a pairs table with at least the columns
+        ``x, y, kind, weight`` (e.g. one window's rows of a study's results).
 
     Returns
     -------
     pandas.DataFrame
-        Columns ``source, target, weight, kind`` (``kind`` ``directed`` or ``bidirectional``); a
-        bidirectional relation appears once, however the input lists it; conflicts have no edge
-        (DESIGN.md section 1.7).
-
-    Examples
-    --------
-    >>> import pandas as pd
-    >>> pairs = pd.DataFrame({"x": ["A", "A", "B"], "y": ["B", "C", "C"],
-    ...                       "kind": ["y->x", "bidirectional", "conflict"],
-    ...                       "weight": [0.2, 0.01, 0.3]})
-    >>> network_edges(pairs)[["source", "target", "kind"]].values.tolist()
-    [['B', 'A', 'directed'], ['A', 'C', 'bidirectional']]
+        Columns ``source, target, weight, kind`` (:func:`funcnet.network.edges_from_pairs`).
     """
     if isinstance(net, pd.DataFrame):
-        rows = []
-        for pair in net.itertuples(index=False):
-            if pair.kind == "x->y":
-                rows.append((pair.x, pair.y, float(pair.weight), "directed"))
-            elif pair.kind == "y->x":
-                rows.append((pair.y, pair.x, float(pair.weight), "directed"))
-            elif pair.kind == "bidirectional":
-                rows.append((pair.x, pair.y, float(pair.weight), "bidirectional"))
-        return pd.DataFrame(rows, columns=["source", "target", "weight", "kind"])
-    edges = net.edges
-    seen: set[frozenset[str]] = set()
-    rows = []
-    for edge in edges.itertuples(index=False):
-        if edge.kind == "bidirectional":
-            key = frozenset((edge.source, edge.target))
-            if key in seen:
-                continue
-            seen.add(key)
-        rows.append((edge.source, edge.target, float(edge.weight), edge.kind))
-    return pd.DataFrame(rows, columns=["source", "target", "weight", "kind"])
+        return edges_from_pairs(net)
+    return net.edges
 
 
 def _network_nodes(net: Any) -> list[str]:
