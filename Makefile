@@ -37,7 +37,9 @@ lint: $(VENV)/.installed-test
 	$(BIN)/mypy
 
 bench: $(VENV)/.installed-test
-	$(BIN)/python -m benchmarks.run
+	$(BIN)/python -m benchmarks.bench_core
+	$(BIN)/python -m benchmarks.bench_reader
+	$(BIN)/python -m benchmarks.bench_simulate
 
 clean:
 	rm -rf $(VENV) out .pytest_cache

@@ -225,13 +225,12 @@ def _parse_window(text: str) -> tuple[float, float]:
 def _select_window(recording: Any, phase: str | None, window: str | None, trace: Path) -> Any:
     """The analysis window the options ask for (default: the whole recording)."""
     from funcnet.robot import detect_phases
-    from funcnet.robot.windows import Window, phase_windows
+    from funcnet.robot.windows import Window, phase_windows, span_window
 
     if phase is not None and window is not None:
         raise ParameterError("give --phase or --window, not both")
     if window is not None:
-        start, stop = _parse_window(window)
-        return Window(label=f"{start:.3f}-{stop:.3f} s", start=start, stop=stop)
+        return span_window(*_parse_window(window))
     if phase is None:
         start = float(recording.data.index[0])
         return Window(label="whole recording", start=start, stop=start + recording.duration)

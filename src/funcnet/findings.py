@@ -30,6 +30,7 @@ References
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -807,17 +808,15 @@ def main_move(phases: pd.DataFrame) -> pd.DataFrame:
     return max(runs, key=lambda run: float(run["stop"].max() - run["start"].min()))
 
 
-def _analyse(path: Path, name: str, keyed_windows: Callable[[Any, pd.DataFrame], dict],
-             signals: Sequence[str], parameters: Mapping[str, Any], warned: dict[str, int],
-             recording: Any = None) -> TrialAnalysis:
-    """Read a trial, derive V, detect phases, build its windows and one network per window."""
+def _analyse(name: str, path: Path, recording: Any,
+             keyed_windows: Callable[[Any, pd.DataFrame], dict], signals: Sequence[str],
+             parameters: Mapping[str, Any], warned: dict[str, int]) -> TrialAnalysis:
+    """Detect a trial's phases, build its windows and compute one network per window."""
     import warnings
 
     from funcnet.errors import FuncnetError
-    from funcnet.robot import add_derived_signals, detect_phases, phase_networks, read_trace
+    from funcnet.robot import detect_phases, phase_networks
 
-    if recording is None:
-        recording = add_derived_signals(read_trace(path), ["V"])
     data = recording.data[list(signals)]
     windows: dict[Any, Any] = {}
     networks: dict[Any, Any] = {}
@@ -939,14 +938,13 @@ def run_paper_analyses(
     import time
 
     from funcnet.errors import TraceError
-    from funcnet.robot import add_derived_signals, read_trace
     from funcnet.robot.windows import (
         fixed_windows,
         phase_windows,
         reversal_windows,
         sliding_windows,
     )
-    from funcnet.study import file_sha256
+    from funcnet.study import file_sha256, read_recording
 
     started = time.perf_counter()
     unknown = sorted(set(network_parameters) - set(PAPER_PARAMETERS))
@@ -962,10 +960,15 @@ def run_paper_analyses(
     inputs = {"manifest.csv": file_sha256(manifest)}
     warned: dict[str, int] = {}
 
-    def path_of(row: Any) -> Path:
-        path = plan / str(row["file"])
-        inputs[path.name] = file_sha256(path)
-        return path
+    loaded: dict[str, tuple[Path, Any]] = {}
+
+    def load(row: Any) -> tuple[Path, Any]:
+        """A trial's trace, with V derived over the whole recording; read and hashed once."""
+        if row["name"] not in loaded:
+            path = plan / str(row["file"])
+            inputs[path.name] = file_sha256(path)
+            loaded[row["name"]] = (path, read_recording(path, signals=signals))
+        return loaded[row["name"]]
 
     def fixed(recording: Any, phases: pd.DataFrame) -> dict:
         return {w.label: w for w in fixed_windows(phases, fixed_lengths)}
@@ -974,7 +977,7 @@ def run_paper_analyses(
         windows = {}
         for w in phase_windows(phases, include=BASELINE_PHASES):
             stop = min(w.stop, w.start + max_phase_length)
-            windows[w.label] = type(w)(w.label, w.start, stop, w.phase, w.offset)
+            windows[w.label] = dataclasses.replace(w, stop=stop)
         return windows
 
     def reversal(recording: Any, phases: pd.DataFrame) -> dict:
@@ -995,21 +998,14 @@ def run_paper_analyses(
         done += 1
 
     main_analyses: dict[str, TrialAnalysis] = {}
-    recordings: dict[str, Any] = {}
     for _, row in main.iterrows():
         tick(f"main trial {row['name']}")
-        path = path_of(row)
-        recording = add_derived_signals(read_trace(path), ["V"])
-        if row["name"] in set(baseline_rows["name"]):
-            recordings[row["name"]] = recording
-        main_analyses[row["name"]] = _analyse(path, row["name"], fixed, signals, parameters,
-                                              warned, recording)
+        main_analyses[row["name"]] = _analyse(row["name"], *load(row), fixed, signals,
+                                              parameters, warned)
     baseline = timeline = None
     for _, row in baseline_rows.head(1).iterrows():
         tick(f"baseline phases {row['name']}")
-        recording = recordings[row["name"]]
-        baseline = _analyse(path_of(row), row["name"], by_phase, signals, parameters, warned,
-                            recording)
+        baseline = _analyse(row["name"], *load(row), by_phase, signals, parameters, warned)
         tick(f"baseline timeline {row['name']}")
         moving = baseline.phases[baseline.phases["phase"] != "standstill"]
         span = ((float(moving["start"].min()), float(moving["stop"].max()))
@@ -1020,12 +1016,11 @@ def run_paper_analyses(
                     sliding_windows(recording, timeline_width, timeline_step, start=span[0],
                                     stop=span[1])}
 
-        timeline = _analyse(path_of(row), row["name"], sliding, signals, parameters, warned,
-                            recording)
+        timeline = _analyse(row["name"], *load(row), sliding, signals, parameters, warned)
     velocity: dict[str, TrialAnalysis] = {}
     for _, row in v1_rows.head(1).iterrows():
         tick(f"static-friction trial {row['name']}")
-        velocity["V1"] = _analyse(path_of(row), row["name"], fixed, signals, parameters, warned)
+        velocity["V1"] = _analyse(row["name"], *load(row), fixed, signals, parameters, warned)
     for label, speed, step in (("V35", 35, 3), ("V175", 175, 3), ("V350", 350, 10)):
         rows = _select(main, speed=speed, step=step, tcp=1.6)
         if len(rows):
@@ -1033,7 +1028,7 @@ def run_paper_analyses(
     reversal_analyses: dict[str, TrialAnalysis] = {}
     for _, row in backlash.iterrows():
         tick(f"backlash trial {row['name']}")
-        reversal_analyses[row["name"]] = _analyse(path_of(row), row["name"], reversal, signals,
+        reversal_analyses[row["name"]] = _analyse(row["name"], *load(row), reversal, signals,
                                                   parameters, warned)
     velocity = {k: velocity[k] for k in VELOCITIES if k in velocity}
 

@@ -27,6 +27,8 @@ the candidate distances, ``k = max(1, ceil(rate * P - 1e-9))``, ``d <= eps``; or
 from __future__ import annotations
 
 import numbers
+import os
+import sys
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -100,6 +102,18 @@ def _cross_triangles(cross_rows, auto_rows):
     for v in prange(n_rows):
         degree[v], triangles[v] = _row_triangles(cross_rows[v], auto_rows)
     return degree, triangles
+
+
+def _cross_counts(
+    a_x: PackedRecurrence,
+    a_y: PackedRecurrence,
+    cr_xy: PackedRecurrence,
+    cr_yx: PackedRecurrence | None = None,
+) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """``(k_v, tri_v)`` of every node of X towards Y, then of every node of Y towards X."""
+    if cr_yx is None:
+        cr_yx = cr_xy.transposed()
+    return _cross_triangles(cr_xy.rows, a_y.rows), _cross_triangles(cr_yx.rows, a_x.rows)
 
 
 def _local_clustering(degree: np.ndarray, triangles: np.ndarray) -> np.ndarray:
@@ -190,6 +204,11 @@ def isrn_measures(
     -------
     CrossMeasures
 
+    Raises
+    ------
+    ParameterError
+        ``cr_xy`` is not ``M_X x M_Y``.
+
     References
     ----------
     Eq. 4 and 6-10 (section 2.2-2.4).
@@ -209,14 +228,11 @@ def isrn_measures(
         raise ParameterError(
             f"cr_xy has shape {cr_xy.shape}, expected (M_x, M_y) = ({a_x.shape[0]}, {a_y.shape[0]})"
         )
-    if cr_yx is None:
-        cr_yx = cr_xy.transposed()
-    degree_xy, triangles_xy = _cross_triangles(cr_xy.rows, a_y.rows)
-    degree_yx, triangles_yx = _cross_triangles(cr_yx.rows, a_x.rows)
-    c_xy = float(_local_clustering(degree_xy, triangles_xy).mean())
-    c_yx = float(_local_clustering(degree_yx, triangles_yx).mean())
-    t_xy = _transitivity(degree_xy, triangles_xy)
-    t_yx = _transitivity(degree_yx, triangles_yx)
+    xy, yx = _cross_counts(a_x, a_y, cr_xy, cr_yx)
+    c_xy = float(_local_clustering(*xy).mean())
+    c_yx = float(_local_clustering(*yx).mean())
+    t_xy = _transitivity(*xy)
+    t_yx = _transitivity(*yx)
     return CrossMeasures(
         c_xy=c_xy,
         c_yx=c_yx,
@@ -238,27 +254,43 @@ def isrn_measures(
     )
 
 
-def _warn_thresholds(results: Mapping[str, CrossMeasures], stacklevel: int) -> None:
-    unordered = [label for label, r in results.items() if not r.eps_ordered]
-    exceeded = [label for label, r in results.items() if r.rate_exceeded]
-    if unordered:
-        first = results[unordered[0]]
-        warnings.warn(
-            f"eps_xy is not below eps_x and eps_y for {', '.join(unordered)} (e.g. eps_xy="
-            f"{first.eps_xy:.6g}, eps_x={first.eps_x:.6g}, eps_y={first.eps_y:.6g}); section "
-            f"2.2 of the paper asks eps_xy < eps_x, eps_y for a modular ISRN",
-            ThresholdWarning,
-            stacklevel=stacklevel,
-        )
-    if exceeded:
-        first = results[exceeded[0]]
-        warnings.warn(
-            f"ties at a threshold pushed an achieved rate above its target for "
-            f"{', '.join(exceeded)} (e.g. rr_x={first.rr_x:.6g}, rr_y={first.rr_y:.6g}, "
-            f"cr={first.cr:.6g})",
-            ThresholdWarning,
-            stacklevel=stacklevel,
-        )
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def _caller_stacklevel() -> int:
+    """``stacklevel`` of the first frame outside funcnet, seen from this function's caller.
+
+    A warning then points at the user's call, whether it reached the measures directly or
+    through :func:`funcnet.network.functional_network` or a study.
+    """
+    frame, level = sys._getframe(1), 1
+    while frame.f_back is not None and frame.f_code.co_filename.startswith(_PACKAGE_DIR):
+        frame, level = frame.f_back, level + 1
+    return level
+
+
+def _warn_thresholds(results: Mapping[str, CrossMeasures]) -> None:
+    """One ThresholdWarning per kind of problem, listing the pairs (labels) that have it."""
+    problems = (
+        (
+            [label for label, r in results.items() if not r.eps_ordered],
+            "eps_xy is not below eps_x and eps_y",
+            "section 2.2 of the paper asks eps_xy < eps_x, eps_y for a modular ISRN "
+            "(eps_ordered is False)",
+        ),
+        (
+            [label for label, r in results.items() if r.rate_exceeded],
+            "ties at a threshold pushed an achieved rate above its target",
+            "see rr_x, rr_y, cr (rate_exceeded is True)",
+        ),
+    )
+    for labels, problem, advice in problems:
+        if labels:
+            warnings.warn(
+                f"{problem} for {len(labels)} pair(s): {', '.join(labels)}; {advice}",
+                ThresholdWarning,
+                stacklevel=_caller_stacklevel(),
+            )
 
 
 def cross_measures(
@@ -335,12 +367,20 @@ def cross_measures(
     >>> round(result.c_xy, 4), round(result.c_yx, 4), result.eps_ordered
     (0.0866, 0.0519, True)
     """
-    parameters = {"dim": dim, "delay": delay, "rr": rr, "cr": cr, "eps": eps}
-    parameters.update(metric=metric, rule=rule, theiler=theiler)
+    parameters: dict[str, Any] = {
+        "dim": dim,
+        "delay": delay,
+        "rr": rr,
+        "cr": cr,
+        "eps": eps,
+        "metric": metric,
+        "rule": rule,
+        "theiler": theiler,
+    }
     a_x, a_y, cr_xy = _isrn_blocks(x, y, **parameters)
     parameters["eps"] = None if eps is None else tuple(eps)
     result = isrn_measures(a_x, a_y, cr_xy, parameters=parameters)
-    _warn_thresholds({"(x, y)": result}, stacklevel=3)
+    _warn_thresholds({"(x, y)": result})
     return result
 
 
@@ -372,6 +412,7 @@ def _auto_eps(eps: Any, n_signals: int) -> tuple[list[float | None], float | Non
 def pairwise_cross_measures(
     signals: Sequence[Any] | np.ndarray,
     *,
+    names: Sequence[str] | None = None,
     dim: int = 3,
     delay: int = 10,
     rr: float = 0.05,
@@ -392,6 +433,9 @@ def pairwise_cross_measures(
     signals : sequence of array_like (N,), or 2-D array_like (N, n_signals)
         At least two signals of the same length; a 2-D array (or DataFrame) holds one signal per
         column, time on axis 0.
+    names : sequence of str, optional
+        How error messages (``signal 'AP' ...``) and warnings (``(RP, AP)``) call the signals;
+        by default by position (``signal signals[1] ...``, ``(0, 1)``).
     dim, delay, rr, cr, metric, rule, theiler
         As in :func:`cross_measures`.
     eps : dict, optional
@@ -405,8 +449,8 @@ def pairwise_cross_measures(
     Raises
     ------
     ParameterError, SignalError
-        As :func:`cross_measures`; also fewer than two signals or unequal lengths (named
-        ``signals[i]``).
+        As :func:`cross_measures`; also fewer than two signals, unequal lengths, or ``names`` of
+        the wrong length.
 
     Warns
     -----
@@ -435,6 +479,14 @@ def pairwise_cross_measures(
     signals = list(signals)
     if len(signals) < 2:
         raise SignalError(f"pairwise_cross_measures needs at least two signals, got {len(signals)}")
+    if names is None:
+        called = [f"signals[{i}]" for i in range(len(signals))]  # in messages
+        labels = [str(i) for i in range(len(signals))]  # in pair labels
+    else:
+        labels = [str(name) for name in names]
+        if len(labels) != len(signals):
+            raise ParameterError(f"names has {len(labels)} entries for {len(signals)} signals")
+        called = [repr(name) for name in labels]
     metric = _check_metric(metric)
     rule = _check_rule(rule)
     theiler = _check_theiler(theiler, rule)
@@ -444,24 +496,29 @@ def pairwise_cross_measures(
     if cross_eps is None:
         cr = _check_rate(cr, "cr")
     states = [
-        signal_states(s, dim=dim, delay=delay, rule=rule, name=f"signals[{i}]")
-        for i, s in enumerate(signals)
+        signal_states(s, dim=dim, delay=delay, rule=rule, name=name)
+        for s, name in zip(signals, called, strict=True)
     ]
     for i, s in enumerate(states[1:], start=1):
         if s.shape[0] != states[0].shape[0]:
             raise SignalError(
-                f"signals must have equal lengths: signals[{i}] differs from signals[0] "
+                f"signals must have equal lengths: {called[i]} differs from {called[0]} "
                 f"({len(signals[i])} vs {len(signals[0])} samples)"
             )
     autos = [
-        auto_recurrence(
-            s, rr=rr, eps=e, metric=metric, theiler=theiler, rule=rule, name=f"signals[{i}]"
-        )
-        for i, (s, e) in enumerate(zip(states, auto_eps, strict=True))
+        auto_recurrence(s, rr=rr, eps=e, metric=metric, theiler=theiler, rule=rule, name=name)
+        for s, e, name in zip(states, auto_eps, called, strict=True)
     ]
-    parameters = {"dim": dim, "delay": delay, "rr": rr, "cr": cr}
-    parameters.update(eps=None if eps is None else dict(eps), metric=metric, rule=rule)
-    parameters["theiler"] = theiler
+    parameters: dict[str, Any] = {
+        "dim": dim,
+        "delay": delay,
+        "rr": rr,
+        "cr": cr,
+        "eps": None if eps is None else dict(eps),
+        "metric": metric,
+        "rule": rule,
+        "theiler": theiler,
+    }
     results = {}
     for i in range(len(signals)):
         for j in range(i + 1, len(signals)):
@@ -469,7 +526,7 @@ def pairwise_cross_measures(
                 states[i], states[j], cr=cr, eps=cross_eps, metric=metric, rule=rule
             )
             results[(i, j)] = isrn_measures(autos[i], autos[j], cr_ij, parameters=parameters)
-    _warn_thresholds({f"({i}, {j})": r for (i, j), r in results.items()}, stacklevel=3)
+    _warn_thresholds({f"({labels[i]}, {labels[j]})": r for (i, j), r in results.items()})
     return results
 
 
@@ -518,13 +575,11 @@ def local_cross_clustering(
     >>> c_xy.shape, float(c_xy.max()) <= 1.0
     ((231,), True)
     """
-    parameters = {"dim": dim, "delay": delay, "rr": rr, "cr": cr, "eps": eps}
-    parameters.update(metric=metric, rule=rule, theiler=theiler)
-    a_x, a_y, cr_xy = _isrn_blocks(x, y, **parameters)
-    return (
-        _local_clustering(*_cross_triangles(cr_xy.rows, a_y.rows)),
-        _local_clustering(*_cross_triangles(cr_xy.transposed().rows, a_x.rows)),
+    a_x, a_y, cr_xy = _isrn_blocks(
+        x, y, dim=dim, delay=delay, rr=rr, cr=cr, eps=eps, metric=metric, theiler=theiler, rule=rule
     )
+    xy, yx = _cross_counts(a_x, a_y, cr_xy)
+    return _local_clustering(*xy), _local_clustering(*yx)
 
 
 def cross_degree(
@@ -571,7 +626,7 @@ def cross_degree(
     >>> int(k_xy.sum()) == int(k_yx.sum())
     True
     """
-    parameters = {"dim": dim, "delay": delay, "rr": rr, "cr": cr, "eps": eps}
-    parameters.update(metric=metric, rule=rule, theiler=theiler)
-    _, _, cr_xy = _isrn_blocks(x, y, **parameters)
+    _, _, cr_xy = _isrn_blocks(
+        x, y, dim=dim, delay=delay, rr=rr, cr=cr, eps=eps, metric=metric, theiler=theiler, rule=rule
+    )
     return cr_xy.row_sums(), cr_xy.transposed().row_sums()

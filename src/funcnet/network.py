@@ -24,8 +24,8 @@ every pair is ``w = (|C_diff| + |T_diff|) / 2`` (Eq. 13), whatever the measure.
 both signs; the convention here is that of the code the paper ran, and it is checked by
 ``tests/test_direction.py`` on identical Henon maps driven one by the other. The asymmetry follows
 the relative roughness of the two signals as much as the coupling: the rougher (faster, more
-complex) signal tends to look like the driver, coupled or not. Read ``docs/direction.md`` before
-reading an arrow between a smooth position and a rough current.
+complex) signal tends to look like the driver, coupled or not. Read the README's "Direction"
+section before reading an arrow between a smooth position and a rough current.
 """
 
 from __future__ import annotations
@@ -36,8 +36,6 @@ import math
 import numbers
 import operator
 import os
-import re
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -46,8 +44,8 @@ import networkx as nx
 import pandas as pd
 
 from funcnet._io import atomic_path, write_text_atomic
-from funcnet.errors import ParameterError, SignalError, ThresholdWarning
-from funcnet.measures import CrossMeasures, pairwise_cross_measures
+from funcnet.errors import ParameterError, SignalError
+from funcnet.measures import pairwise_cross_measures
 from funcnet.preprocess import _as_float_columns
 from funcnet.preprocess import normalize as normalize_signals
 
@@ -90,7 +88,6 @@ _PAIR_DTYPES = {
     "weight": "float64",
 }
 _EDGE_DTYPES = {"source": "str", "target": "str", "weight": "float64", "kind": "str"}
-_SIGNAL_INDEX = re.compile(r"signals\[(\d+)\]")
 _JSON_FORMAT = "funcnet.FunctionalNetwork"
 _JSON_VERSION = 1
 
@@ -489,28 +486,6 @@ def _check_mu(mu: Any) -> float:
     return mu
 
 
-def _warn_thresholds(
-    pair_names: list[tuple[str, str]], results: list[CrossMeasures], stacklevel: int
-) -> None:
-    """One ThresholdWarning per kind of problem, naming the pairs by their signals."""
-    problems = (
-        (
-            "eps_xy is not below eps_x and eps_y (section 2.2 asks for it)",
-            [not r.eps_ordered for r in results],
-        ),
-        ("ties pushed an achieved rate above its target", [r.rate_exceeded for r in results]),
-    )
-    for message, flags in problems:
-        named = [f"({x}, {y})" for (x, y), flag in zip(pair_names, flags, strict=True) if flag]
-        if named:
-            warnings.warn(
-                f"{message} for {len(named)} pair(s): {', '.join(named)}; see the pairs table's "
-                "eps_ordered / rate_exceeded columns",
-                ThresholdWarning,
-                stacklevel=stacklevel,
-            )
-
-
 def functional_network(
     data: Any,
     *,
@@ -586,7 +561,7 @@ def functional_network(
     References
     ----------
     Eq. 10 (asymmetry), section 2.4 (edges and ``mu``), Eq. 13 (weights), section 3.4 (rates and
-    ``mu`` of the robot study). Direction convention: DESIGN.md 1.6 and ``docs/direction.md``.
+    ``mu`` of the robot study). Direction convention: the README's "Direction" section.
 
     Examples
     --------
@@ -612,7 +587,7 @@ def functional_network(
     2      z      y  0.433247       directed
 
     ``z -> y`` has no coupling behind it: the rougher signal looks like the driver
-    (``docs/direction.md``). At rr = cr = 0.05, ``eps_xy`` is rarely below ``eps_x`` and
+    (the README's "Direction" section). At rr = cr = 0.05, ``eps_xy`` is rarely below ``eps_x`` and
     ``eps_y`` for signals this different; the pairs table flags it and a warning says so:
 
     >>> sorted({w.category.__name__ for w in caught}), bool(network.pairs["eps_ordered"].all())
@@ -628,27 +603,19 @@ def functional_network(
         source = "names" if names is not None else "the columns of data"
         raise ParameterError(f"{source} must be unique; repeated: {', '.join(duplicates)}")
     values = normalize_signals(values, normalize, names=nodes)
-    with warnings.catch_warnings():
-        # Re-issued below with the signals' names instead of their column indices.
-        warnings.simplefilter("ignore", ThresholdWarning)
-        try:
-            results = pairwise_cross_measures(
-                values,
-                dim=dim,
-                delay=delay,
-                rr=rr,
-                cr=cr,
-                metric=metric,
-                rule=rule,
-                theiler=theiler,
-            )
-        except SignalError as error:
-            # The core calls the signals by position; name them as the user did.
-            message = _SIGNAL_INDEX.sub(lambda match: repr(nodes[int(match[1])]), str(error))
-            raise SignalError(message) from None
+    results = pairwise_cross_measures(
+        values,
+        names=nodes,
+        dim=dim,
+        delay=delay,
+        rr=rr,
+        cr=cr,
+        metric=metric,
+        rule=rule,
+        theiler=theiler,
+    )
     pair_names = [(nodes[i], nodes[j]) for i, j in results]
     measures = list(results.values())
-    _warn_thresholds(pair_names, measures, stacklevel=3)
 
     columns: dict[str, list[Any]] = {
         "x": [x for x, _ in pair_names],

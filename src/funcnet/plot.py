@@ -603,6 +603,17 @@ def _no_network(ax: Axes, label: Any) -> None:
     ax.text(0.5, 0.5, "no network", ha="center", va="center", transform=ax.transAxes)
 
 
+def _network_row(fig: Figure, grid: Any, row: int, networks: Mapping[str, Any],
+                 nodes: Sequence[str]) -> None:
+    """One network per column of a grid row, each node at the same place in every panel."""
+    for k, (label, net) in enumerate(networks.items()):
+        ax = fig.add_subplot(grid[row, k])
+        if net is None:
+            _no_network(ax, label)
+        else:
+            plot_network(net, ax, nodes=nodes, title=str(label))
+
+
 def _raw_groups(data: pd.DataFrame) -> list[tuple[str, list[str]]]:
     """Panels of raw signals that share units: positions, velocity, currents, the rest."""
     groups = [("positions [°]", [c for c in ("RP", "AP", "MP") if c in data]),
@@ -673,12 +684,7 @@ def figure_phases(
         ax.set_xlabel("")
         if k == 0:
             ax.set_title("(b) raw", fontsize=9, loc="left")
-    for k, (label, net) in enumerate(networks.items()):
-        ax = fig.add_subplot(grid[-1, k])
-        if net is None:
-            _no_network(ax, label)
-        else:
-            plot_network(net, ax, nodes=list(data.columns), title=str(label))
+    _network_row(fig, grid, -1, networks, list(data.columns))
     if title:
         fig.suptitle(title, fontsize=10)
     return fig
@@ -809,12 +815,7 @@ def figure_reversal(
                                 ymax=0.06 + 0.04 * k, color=f"C{k}", alpha=0.8)
         patch.set_gid(f"window:{window.label}")
     ax_zoom.set_title("(b) reversal, shifted windows", fontsize=9, loc="left")
-    for k, (label, net) in enumerate(networks.items()):
-        ax = fig.add_subplot(grid[2, k])
-        if net is None:
-            _no_network(ax, label)
-        else:
-            plot_network(net, ax, nodes=list(data.columns), title=str(label))
+    _network_row(fig, grid, 2, networks, list(data.columns))
     if title:
         fig.suptitle(title, fontsize=10)
     return fig

@@ -24,18 +24,16 @@ import datetime as _dt
 import html
 import json
 import os
-import platform
 import sys
 import warnings
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 from typing import Any
 
 import pandas as pd
 
-from funcnet import __version__
 from funcnet._io import atomic_path, write_text_atomic
+from funcnet.study import package_versions
 
 __all__ = ["build_demo_report", "write_report", "save_figure"]
 
@@ -88,16 +86,6 @@ def _esc(value: Any) -> str:
     return html.escape(str(value), quote=True)
 
 
-def _versions() -> dict[str, str | None]:
-    versions: dict[str, str | None] = {"python": platform.python_version(), "funcnet": __version__}
-    for package in _PACKAGES:
-        try:
-            versions[package] = version(package)
-        except PackageNotFoundError:
-            versions[package] = None
-    return versions
-
-
 def _format(value: Any) -> str:
     if isinstance(value, float):
         return f"{value:.4g}"
@@ -139,6 +127,11 @@ def _page(title: str, body: Iterable[str]) -> str:
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             f"<title>{_esc(title)}</title><style>{_STYLE}</style></head><body>"
             + "\n".join(body) + "</body></html>\n")
+
+
+def _window_data(data: pd.DataFrame, window: Any) -> pd.DataFrame:
+    """The rows of ``data`` inside a window, ``start <= time < stop`` as its network saw them."""
+    return data.loc[(data.index >= window.start) & (data.index < window.stop)]
 
 
 def _step(progress: Progress, done: int, total: int, description: str) -> None:
@@ -214,6 +207,7 @@ def _demo_figures(analyses: Any, out_dir: Path, progress: Progress) -> list[str]
     from matplotlib.figure import Figure
 
     from funcnet import plot
+    from funcnet.preprocess import normalize
 
     parts: list[str] = []
     steps = 9
@@ -247,10 +241,7 @@ def _demo_figures(analyses: Any, out_dir: Path, progress: Progress) -> list[str]
     cells = {}
     for label, trial in analyses.velocity.items():
         for phase, net in trial.networks.items():
-            window = trial.windows[phase]
-            data = trial.data.loc[(trial.data.index >= window.start)
-                                  & (trial.data.index <= window.stop)]
-            cells[(label, phase)] = (data, net)
+            cells[(label, phase)] = (_window_data(trial.data, trial.windows[phase]), net)
     if cells:
         add(4, "fig10-velocity-grid", lambda: plot.figure_velocity_grid(cells),
             "Fig. 10 — velocities (V1, V35, V175, V350; TCP 1.6 m) × phases (fixed windows "
@@ -275,25 +266,27 @@ def _demo_figures(analyses: Any, out_dir: Path, progress: Progress) -> list[str]
             f"Beyond the paper — every pair's edge kind and weight (marker area) over the "
             f"baseline trial {timeline.trial}, from sliding windows.")
     if base is not None and "cruise" in base.windows:
-        window = base.windows["cruise"]
-        data = base.data.loc[(base.data.index >= window.start) & (base.data.index <= window.stop)]
+        data = _window_data(base.data, base.windows["cruise"])
         parameters = analyses.parameters
+        # A signal constant in the window was left out of its network: left out here too.
+        shown = [c for c in ("AP", "V", "AC")
+                 if c in data and c not in base.dropped.get("cruise", ())]
 
         def recurrence_plots() -> Any:
             fig = Figure(figsize=(9.0, 3.2), layout="constrained")
-            axes = fig.subplots(1, 3)
-            for ax, column in zip(axes, ("AP", "V", "AC"), strict=True):
-                if column in data:
-                    values = data[column].to_numpy(dtype=float)
-                    span = values.max() - values.min()
-                    plot.plot_recurrence((values - values.min()) / (span if span else 1.0),
-                                         dim=parameters["dim"], delay=parameters["delay"],
-                                         rr=parameters["rr"], ax=ax, title=column)
+            for ax, column in zip(fig.subplots(1, 3), ("AP", "V", "AC"), strict=True):
+                if column in shown:
+                    values = normalize(data[column].to_numpy(dtype=float),
+                                       parameters["normalize"], names=column)
+                    plot.plot_recurrence(values, dim=parameters["dim"], delay=parameters["delay"],
+                                         rr=parameters["rr"], metric=parameters["metric"],
+                                         theiler=parameters["theiler"], ax=ax, title=column)
             return fig
 
         add(7, "recurrence-cruise", recurrence_plots,
             f"Beyond the paper — recurrence plots (RR = {parameters['rr']}) of AP, V and AC in "
-            f"the baseline cruise window, min–max normalized as for the networks.")
+            f"the baseline cruise window, normalized ({parameters['normalize']}) as for the "
+            "networks.")
     _step(progress, steps, steps, "figures done")
     return parts
 
@@ -341,7 +334,7 @@ def build_demo_report(
         "command": " ".join(sys.argv),
         "plan folder": str(Path(plan_dir).resolve()),
         "analysis time [s]": f"{analyses.elapsed:.1f}",
-        **{f"version of {k}": v for k, v in _versions().items()},
+        **{f"version of {k}": v for k, v in package_versions(_PACKAGES).items()},
     }
     body = [
         "<h1>funcnet — the paper's analyses on the simulated axis</h1>",
@@ -393,13 +386,6 @@ _WINDOW_KEYS = ["recording", "window", "start", "stop"]
 _GRID = 24  # networks per figure of a recording
 
 
-def _parameter_columns(rows: pd.DataFrame) -> list[str]:
-    from funcnet.study import NETWORK_PARAMETERS
-
-    names = [{"rr": "rr_target", "cr": "cr_target"}.get(n, n) for n in NETWORK_PARAMETERS]
-    return [n for n in names if n in rows.columns]
-
-
 def _slug(text: str) -> str:
     keep = "".join(ch if ch.isalnum() else "-" for ch in text)
     return "-".join(part for part in keep.split("-") if part)[:80] or "x"
@@ -442,14 +428,14 @@ def write_report(
     from matplotlib.figure import Figure
 
     from funcnet import plot
-    from funcnet.study import load_results
+    from funcnet.study import PARAMETER_COLUMNS, load_results
 
     results = Path(results_dir)
     out = Path(out_dir) if out_dir is not None else results / "report"
     rows = load_results(results)
     document_path = results / "study.json"
     document = json.loads(document_path.read_text()) if document_path.is_file() else {}
-    parameters = _parameter_columns(rows)
+    parameters = [c for c in PARAMETER_COLUMNS.values() if c in rows.columns]
     body = [f"<h1>funcnet study report — {_esc(results.resolve().name)}</h1>"]
     groups = list(rows.groupby(["recording", *parameters], sort=False, dropna=False))
     index_rows = []
@@ -504,7 +490,7 @@ def write_report(
         "study command": " ".join(study_provenance.get("command", [])),
         **{f"version of {k} (study)": v
            for k, v in study_provenance.get("versions", {}).items()},
-        **{f"version of {k} (report)": v for k, v in _versions().items()},
+        **{f"version of {k} (report)": v for k, v in package_versions(_PACKAGES).items()},
     }
     inputs = study_provenance.get("inputs") or dict(
         zip(rows["recording"], rows.get("source_sha256", ""), strict=False))

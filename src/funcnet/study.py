@@ -77,6 +77,7 @@ from funcnet.errors import FuncnetError, ParameterError, StudyError
 
 __all__ = [
     "NETWORK_PARAMETERS",
+    "PARAMETER_COLUMNS",
     "WINDOW_KINDS",
     "Study",
     "StudyResult",
@@ -84,6 +85,7 @@ __all__ = [
     "WindowSpec",
     "read_recording",
     "file_sha256",
+    "package_versions",
     "load_results",
     "load_study",
     "parameter_grid",
@@ -102,6 +104,12 @@ NETWORK_PARAMETERS: dict[str, tuple[type, ...]] = {
     "measure": (str,),
     "rule": (str,),
     "theiler": (int,),
+}
+
+#: The results' column of each network parameter: the target rates are ``rr_target`` and
+#: ``cr_target``, since the pairs table's ``cr`` is the achieved cross-recurrence rate.
+PARAMETER_COLUMNS: dict[str, str] = {
+    name: {"rr": "rr_target", "cr": "cr_target"}.get(name, name) for name in NETWORK_PARAMETERS
 }
 
 #: Window kinds of a study: one per builder of :mod:`funcnet.robot.windows`, and ``range``.
@@ -431,8 +439,9 @@ def _window_options(kind: str) -> tuple[set[str], set[str]]:
     if kind == "range":
         return {"start", "stop"}, {"start", "stop"}
     from funcnet.robot import detect_phases
+    from funcnet.robot import windows as builders
 
-    builder = getattr(_windows_module(), _BUILDERS[kind])
+    builder = getattr(builders, _BUILDERS[kind])
     parameters = list(inspect.signature(builder).parameters.values())[1:]
     allowed = {p.name for p in parameters}
     required = {p.name for p in parameters if p.default is inspect.Parameter.empty}
@@ -440,12 +449,6 @@ def _window_options(kind: str) -> tuple[set[str], set[str]]:
         detect = list(inspect.signature(detect_phases).parameters.values())[1:]
         allowed |= {p.name for p in detect}
     return allowed, required
-
-
-def _windows_module() -> Any:
-    from funcnet.robot import windows
-
-    return windows
 
 
 def parameter_grid(study: Study) -> list[dict[str, Any]]:
@@ -609,22 +612,21 @@ def _window_record(window: Any) -> dict[str, Any]:
 def _expand_windows(task: _WindowTask) -> _Outcome:
     """Worker side: the windows a specification gives on a recording."""
     from funcnet.robot import detect_phases
+    from funcnet.robot import windows as builders
 
-    module = _windows_module()
     try:
         recording = _cached_recording(
             task.source.path, task.source.sha256, task.signals, task.channels, task.axis
         )
         options = dict(task.spec.options)
         if task.spec.kind == "range":
-            start, stop = options["start"], options["stop"]
-            windows = [module.Window(f"{start:.3f}-{stop:.3f} s", start, stop)]
+            windows = [builders.span_window(options["start"], options["stop"])]
         elif task.spec.kind == "sliding":
-            windows = module.sliding_windows(recording, **options)
+            windows = builders.sliding_windows(recording, **options)
         else:
             detect = set(inspect.signature(detect_phases).parameters)
             phases = detect_phases(recording, **{k: v for k, v in options.items() if k in detect})
-            builder = getattr(module, _BUILDERS[task.spec.kind])
+            builder = getattr(builders, _BUILDERS[task.spec.kind])
             if task.spec.kind == "reversal" and not phases["phase"].eq("reversal").any():
                 windows = []  # a trial without a reversal has no reversal windows
             else:
@@ -685,7 +687,6 @@ _IDENTITY_SCHEMA = pa.schema(
         ("theiler", pa.int64()),
     ]
 )
-_PARAMETER_COLUMNS = {"rr": "rr_target", "cr": "cr_target"}
 
 
 def _rows_table(task: _NetworkTask, nodes: Sequence[str], pairs: pd.DataFrame) -> pa.Table:
@@ -700,7 +701,7 @@ def _rows_table(task: _NetworkTask, nodes: Sequence[str], pairs: pd.DataFrame) -
         "start": task.window["start"],
         "stop": task.window["stop"],
         "signals": ",".join(nodes),
-        **{_PARAMETER_COLUMNS.get(k, k): v for k, v in task.parameters.items()},
+        **{PARAMETER_COLUMNS[k]: v for k, v in task.parameters.items()},
     }
     columns = {
         field.name: pa.array([identity[field.name]] * n, type=field.type)
@@ -1003,7 +1004,7 @@ def _run_locked(
     recordings = list(study.recordings)
     if study.simulated is not None:
         recordings.extend(_simulated_recordings(study, study.simulated, out, progress))
-    sources = [_source(path, study.base_dir) for path in recordings]
+    sources = _sources(recordings, study.base_dir)
     provenance = _provenance(study, sources)
     _write_study_json(out, study, provenance, status="running")
 
@@ -1180,41 +1181,73 @@ def _simulated_recordings(
     return [plan_dir / f"{trial.name}.xml" for trial in trials]
 
 
-def _source(path: Path, base_dir: Path) -> _Source:
-    path = Path(path).resolve()
-    try:
-        name = path.relative_to(base_dir.resolve()).as_posix()
-    except ValueError:
-        name = path.as_posix()
-    return _Source(path=str(path), name=name, trial=_trial_name(path), sha256=file_sha256(path))
+def _sources(paths: Iterable[Path], base_dir: Path) -> list[_Source]:
+    """The recordings as the tasks see them; each folder's ``manifest.csv`` is read once."""
+    base = base_dir.resolve()
+    trial_names: dict[Path, dict[str, str]] = {}
+    sources = []
+    for path in paths:
+        path = Path(path).resolve()
+        try:
+            name = path.relative_to(base).as_posix()
+        except ValueError:
+            name = path.as_posix()
+        if path.parent not in trial_names:
+            trial_names[path.parent] = _manifest_trials(path.parent / "manifest.csv")
+        trial = trial_names[path.parent].get(path.name, path.stem)
+        sources.append(_Source(str(path), name, trial, file_sha256(path)))
+    return sources
 
 
-def _trial_name(path: Path) -> str:
-    """The trial's name from ``manifest.csv`` beside the trace, else the file's stem."""
-    manifest = path.parent / "manifest.csv"
-    if manifest.is_file():
-        table = pd.read_csv(manifest, dtype=str)
-        for column in ("file", "path", "trace", "filename"):
-            if column in table.columns:
-                match = table[table[column].map(lambda v: Path(str(v)).name) == path.name]
-                for name_column in ("name", "trial"):
-                    if len(match) == 1 and name_column in table.columns:
-                        return str(match[name_column].iloc[0])
-    return path.stem
+def _manifest_trials(manifest: Path) -> dict[str, str]:
+    """File name -> trial name from a plan's manifest (:func:`funcnet.robot.write_plan`)."""
+    if not manifest.is_file():
+        return {}
+    table = pd.read_csv(manifest, dtype=str)
+    if not {"file", "name"} <= set(table.columns):
+        return {}
+    files = table["file"].map(lambda v: Path(v).name)
+    unique = ~files.duplicated(keep=False)  # a file listed twice names no trial
+    return dict(zip(files[unique], table["name"][unique], strict=True))
 
 
-def _provenance(study: Study, sources: Sequence[_Source]) -> dict[str, Any]:
+def package_versions(packages: Iterable[str]) -> dict[str, str | None]:
+    """Versions of Python, funcnet and the given packages, for provenance.
+
+    Parameters
+    ----------
+    packages : iterable of str
+        Distribution names.
+
+    Returns
+    -------
+    dict
+        ``python``, ``funcnet``, then each package's installed version (``None`` if absent).
+
+    Examples
+    --------
+    >>> versions = package_versions(["numpy", "no-such-distribution"])
+    >>> list(versions), versions["no-such-distribution"]
+    (['python', 'funcnet', 'numpy', 'no-such-distribution'], None)
+    """
     from importlib.metadata import PackageNotFoundError, version
 
     versions: dict[str, str | None] = {
         "python": platform.python_version(),
         "funcnet": __version__,
     }
-    for package in ("numpy", "numba", "scipy", "pandas", "pyarrow", "dask", "distributed"):
+    for package in packages:
         try:
             versions[package] = version(package)
         except PackageNotFoundError:
             versions[package] = None
+    return versions
+
+
+def _provenance(study: Study, sources: Sequence[_Source]) -> dict[str, Any]:
+    versions = package_versions(
+        ("numpy", "numba", "scipy", "pandas", "pyarrow", "dask", "distributed")
+    )
     inputs = {s.name: s.sha256 for s in sources}
     if study.channels is not None:
         inputs[str(study.channels)] = file_sha256(study.channels)
@@ -1285,9 +1318,6 @@ def load_results(out_dir: str | os.PathLike[str]) -> pd.DataFrame:
     tables = [pq.read_table(f) for f in files]
     frame = pa.concat_tables(tables, promote_options="default").to_pandas()
     # Within one task the rows keep the pairs table's order (a stable sort of whole files).
-    order = ["recording", "start", "stop", "window", "signals", *_sort_parameters()]
+    order = ["recording", "start", "stop", "window", "signals", *PARAMETER_COLUMNS.values()]
     return frame.sort_values(order, na_position="first", kind="stable").reset_index(drop=True)
 
-
-def _sort_parameters() -> list[str]:
-    return [_PARAMETER_COLUMNS.get(name, name) for name in NETWORK_PARAMETERS]

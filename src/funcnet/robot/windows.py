@@ -29,6 +29,7 @@ __all__ = [
     "FIXED_LENGTHS",
     "REVERSAL_SHIFTS",
     "PAPER_NODES",
+    "span_window",
     "phase_windows",
     "fixed_windows",
     "reversal_windows",
@@ -82,6 +83,32 @@ class Window:
     def duration(self) -> float:
         """``stop - start`` in seconds, rounded to the nanosecond."""
         return round(self.stop - self.start, 9)
+
+
+def span_window(start: float, stop: float) -> Window:
+    """A window over a time range, labelled by its span (``1.000-1.280 s``).
+
+    Parameters
+    ----------
+    start, stop : float
+        Seconds on the recording's time axis, ``start < stop``.
+
+    Returns
+    -------
+    Window
+        Without a phase; the label of sliding windows and of explicit time ranges.
+
+    Raises
+    ------
+    WindowError
+        ``start >= stop``.
+
+    Examples
+    --------
+    >>> span_window(1.0, 1.28)
+    Window(label='1.000-1.280 s', start=1.0, stop=1.28, phase=None, offset=0.0)
+    """
+    return Window(f"{start:.3f}-{stop:.3f} s", start, stop)
 
 
 def _numbered(names: Sequence[str]) -> list[str]:
@@ -305,12 +332,8 @@ def sliding_windows(
             f"{last - first:g} s it should slide over"
         )
     count = math.floor((last - first - width) / step + 1e-9) + 1
-    windows = []
-    for k in range(count):
-        begin = round(first + k * step, 9)
-        end = round(begin + width, 9)
-        windows.append(Window(f"{begin:.3f}-{end:.3f} s", begin, end))
-    return windows
+    starts = [round(first + k * step, 9) for k in range(count)]
+    return [span_window(begin, round(begin + width, 9)) for begin in starts]
 
 
 def phase_networks(
