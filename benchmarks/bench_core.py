@@ -205,7 +205,7 @@ def main(argv: list[str] | None = None) -> None:
     rules = {"pyunicorn": ([], [], None), "funcnet": ([], [], None)}
     for _ in range(7):
         for rule, (walls, cpus, _) in rules.items():
-            wall, best, cpu, result = timed(lambda rule=rule: cross_measures(x, y, rule=rule), 1)
+            wall, _, cpu, result = timed(lambda rule=rule: cross_measures(x, y, rule=rule), 1)
             walls.append(wall)
             cpus.append(cpu)
             rules[rule] = (walls, cpus, result)

@@ -19,7 +19,6 @@ from funcnet.cli import app
 
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 
-REAL_TRACE = Path(__file__).parents[2] / "shared" / "data" / "sinumerik" / "axis7-braking-trace.xml"
 runner = CliRunner()
 
 
@@ -88,13 +87,13 @@ def test_version_and_usage_errors() -> None:
 # network
 
 
-def test_network_prints_every_pair_of_the_real_trace() -> None:
+def test_network_prints_every_pair_of_the_real_trace(real_trace) -> None:
     result = runner.invoke(
-        app, ["network", str(REAL_TRACE), "--window", "7:8", "--signals", "RP,AP,AC,V"]
+        app, ["network", str(real_trace), "--window", "7:8", "--signals", "RP,AP,AC,V"]
     )
     assert result.exit_code == 0, result.output
     printed = pd.read_fwf(io.StringIO(result.stdout))
-    expected = _library_network(REAL_TRACE, 7.0, 8.0, signals=["RP", "AP", "AC", "V"]).pairs
+    expected = _library_network(real_trace, 7.0, 8.0, signals=["RP", "AP", "AC", "V"]).pairs
     assert list(printed.columns) == list(expected.columns)
     columns = ["x", "y", "kind"]
     assert printed[columns].values.tolist() == expected[columns].values.tolist()
@@ -204,23 +203,23 @@ def test_network_bad_options(trial: Path, tmp_path: Path, arguments, needles) ->
     assert not out.exists() and list(tmp_path.iterdir()) == []
 
 
-def test_network_bad_files(tmp_path: Path) -> None:
+def test_network_bad_files(real_trace, tmp_path: Path) -> None:
     out = tmp_path / "out" / "net.png"
     missing = tmp_path / "missing.xml"
     _assert_one_error_line(
         runner.invoke(app, ["network", str(missing), "-o", str(out)]), str(missing)
     )
     truncated = tmp_path / "truncated.xml"
-    truncated.write_bytes(REAL_TRACE.read_bytes()[:5000])
+    truncated.write_bytes(real_trace.read_bytes()[:5000])
     _assert_one_error_line(
         runner.invoke(app, ["network", str(truncated), "-o", str(out)]), str(truncated)
     )
     # The real trace's staircase warning is not printed when the command fails.
-    negative = runner.invoke(app, ["network", str(REAL_TRACE), "--window", "7:8", "--mu", "-1"])
+    negative = runner.invoke(app, ["network", str(real_trace), "--window", "7:8", "--mu", "-1"])
     _assert_one_error_line(negative, "mu")
     unknown = tmp_path / "net.pdf"
     _assert_one_error_line(
-        runner.invoke(app, ["network", str(REAL_TRACE), "-o", str(unknown)]), ".pdf"
+        runner.invoke(app, ["network", str(real_trace), "-o", str(unknown)]), ".pdf"
     )
     assert not (tmp_path / "out").exists() and not unknown.exists()
 

@@ -286,7 +286,11 @@ def test_cross_measures_rejects_bad_input(kwargs, error, word):
     x = np.sin(np.arange(80.0))
     with pytest.raises(error, match=word):
         cross_measures(x, x, **kwargs)
-    with pytest.raises(SignalError, match="signal y"):
+
+
+def test_cross_measures_names_the_bad_signal():
+    x = np.sin(np.arange(80.0))
+    with pytest.raises(SignalError, match="signal y has 1 NaN or infinite"):
         cross_measures(x, np.r_[x[:-1], np.inf])
 
 
@@ -314,6 +318,27 @@ def test_pairwise_warns_once_listing_the_pairs():
     messages = [str(w.message) for w in record if issubclass(w.category, ThresholdWarning)]
     assert len(messages) == 1
     assert "(0, 1), (0, 2), (1, 2)" in messages[0]
+
+
+def test_pairwise_names_the_signals_in_warnings_and_errors():
+    signals = [np.sin(np.linspace(0, 20, 200) * (1 + k / 10)) for k in range(3)]
+    # eps_xy = 0.5 is below eps_x = eps_y = 1.0 for (RP, AP) only.
+    eps = {"auto": [1.0, 1.0, 0.1], "cross": 0.5}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        results = pairwise_cross_measures(signals, names=["RP", "AP", "AC"], eps=eps)
+    assert [r.eps_ordered for r in results.values()] == [True, False, False]
+    assert [str(w.message) for w in caught] == [
+        "eps_xy is not below eps_x and eps_y for 2 pair(s): (RP, AC), (AP, AC); section 2.2 of "
+        "the paper asks eps_xy < eps_x, eps_y for a modular ISRN (eps_ordered is False)"
+    ]
+    assert caught[0].filename == __file__  # the caller's line, not funcnet's
+    with pytest.raises(SignalError, match="signal 'AC' has 1 NaN"):
+        pairwise_cross_measures(
+            [*signals[:2], np.r_[signals[2][:-1], np.nan]], names="RP AP AC".split()
+        )
+    with pytest.raises(ParameterError, match="names has 2 entries for 3 signals"):
+        pairwise_cross_measures(signals, names=["RP", "AP"])
 
 
 def test_cross_measures_is_a_frozen_result():

@@ -12,12 +12,11 @@ import warnings
 
 import numpy as np
 import pytest
+from pyunicorn import timeseries as pyunicorn_timeseries  # a test dependency: never skipped
 
 from funcnet.errors import ThresholdWarning
 from funcnet.measures import cross_degree, cross_measures, local_cross_clustering
 from funcnet.recurrence import embed
-
-pyunicorn_timeseries = pytest.importorskip("pyunicorn.timeseries")
 
 
 def fig2_pair():

@@ -3,15 +3,12 @@
 from __future__ import annotations
 
 import resource
-from pathlib import Path
 
 import pytest
 
 from funcnet.errors import ChannelError, FuncnetError, TraceFormatError, WindowError
 from funcnet.robot.recording import read_trace
 from funcnet.robot.sinumerik import GRID_BYTES_FLOOR
-
-REAL_TRACE = Path(__file__).resolve().parents[2] / "shared/data/sinumerik/axis7-braking-trace.xml"
 
 HEAD = '<?xml version="1.0" encoding="utf-8" ?>\n<traceSession>\n<traceData>\n<dataFrame>\n'
 SIGNALS = (
@@ -91,8 +88,8 @@ def test_malformed_xml_names_the_line(tmp_path):
     assert "line 10" in message
 
 
-def test_truncated_real_trace(tmp_path):
-    data = REAL_TRACE.read_bytes()
+def test_truncated_real_trace(real_trace, tmp_path):
+    data = real_trace.read_bytes()
     expect(tmp_path, data[: len(data) // 2], TraceFormatError, "not well-formed")
 
 

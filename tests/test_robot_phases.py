@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -13,7 +12,6 @@ from funcnet.errors import ChannelError, ParameterError, SignalError
 from funcnet.robot.phases import PHASES, detect_phases, phase_table
 from funcnet.robot.recording import Recording, SignalInfo, read_trace
 
-REAL_TRACE = Path(__file__).resolve().parents[2] / "shared/data/sinumerik/axis7-braking-trace.xml"
 DT = 0.002
 A, TJ, TA = 2.0, 0.2, 0.3  # acceleration, jerk time, constant-acceleration time
 VC = A * (TJ + TA)  # cruise speed
@@ -114,8 +112,8 @@ def test_same_direction_moves_are_no_reversal():
     assert "reversal" not in rows(table) and rows(table).count("cruise") == 2
 
 
-def test_real_trace_phases():
-    rec = read_trace(REAL_TRACE)
+def test_real_trace_phases(real_trace):
+    rec = read_trace(real_trace)
     table = detect_phases(rec)
     moving = ["early spin-up", "late spin-up", "cruise", "braking"]
     assert rows(table) == [

@@ -3,36 +3,25 @@
 from __future__ import annotations
 
 import math
+import textwrap
 
 import numpy as np
 import pandas as pd
 import pytest
 from lxml import etree
 
+import funcnet.robot.plan as plan_module
 from funcnet.errors import ParameterError, SignalError, StudyError
 from funcnet.robot.plan import MANIFEST_COLUMNS, Trial, paper_plan, read_plan, write_plan
 from funcnet.robot.recording import read_trace
 from funcnet.robot.simulate import simulate_trial
 from funcnet.robot.writer import role_names, write_trace
 
-EXAMPLE_PLAN = """
-[[group]]
-name = "main"
-speeds = [35, 175, 350]
-tcps = [1.2, 1.6, 2.0]
-steps = [1, 3, 10]
-direction = "forward"
 
-[[group]]
-name = "worn-gear"
-speeds = [35]
-tcps = [1.6]
-steps = [1]
-direction = "forward+reverse"
-backlash = [0.02, 0.05, 0.1]
-friction_scale = 1.5
-stiffness_scale = 0.7
-"""
+def documented_plan() -> str:
+    """The plan file shown in the module's docstring: the documentation itself is tested."""
+    block = plan_module.__doc__.split("::\n", 1)[1].split("\nEvery key", 1)[0]
+    return textwrap.dedent(block)
 
 
 @pytest.fixture(scope="module")
@@ -141,7 +130,7 @@ def test_write_plan_rejects_duplicate_names(tmp_path):
 
 def test_read_plan_expands_groups(tmp_path):
     path = tmp_path / "plan.toml"
-    path.write_text(EXAMPLE_PLAN)
+    path.write_text(documented_plan())
     trials = read_plan(path)
     assert len(trials) == 27 + 3
     main = {(t.speed, t.tcp, t.step) for t in trials if t.group == "main"}

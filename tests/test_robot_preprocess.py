@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pandas as pd
 import pytest
@@ -18,12 +16,10 @@ from funcnet.robot.preprocess import (
 )
 from funcnet.robot.recording import Recording, SignalInfo, read_trace
 
-REAL_TRACE = Path(__file__).resolve().parents[2] / "shared/data/sinumerik/axis7-braking-trace.xml"
-
 
 @pytest.fixture(scope="module")
-def real() -> Recording:
-    return read_trace(REAL_TRACE)
+def real(real_trace) -> Recording:
+    return read_trace(real_trace)
 
 
 def velocity_by_hand(x: list[float], dt: float) -> list[float]:

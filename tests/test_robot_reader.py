@@ -23,13 +23,10 @@ from funcnet.robot.channels import (
 )
 from funcnet.robot.recording import Recording, read_trace
 
-# The real trace lives beside the repository: ../shared/data/sinumerik/ (see its README.md).
-REAL_TRACE = Path(__file__).resolve().parents[2] / "shared/data/sinumerik/axis7-braking-trace.xml"
-
 
 @pytest.fixture(scope="module")
-def real() -> Recording:
-    return read_trace(REAL_TRACE)
+def real(real_trace) -> Recording:
+    return read_trace(real_trace)
 
 
 def brute_force_grid(path: Path) -> tuple[list[str], dict[str, str], np.ndarray]:
@@ -58,18 +55,18 @@ def brute_force_grid(path: Path) -> tuple[list[str], dict[str, str], np.ndarray]
 # -- the real trace --------------------------------------------------------------------------
 
 
-def test_real_trace_equals_an_independent_reading_of_its_text(real):
-    order, ids, grid = brute_force_grid(REAL_TRACE)
+def test_real_trace_equals_an_independent_reading_of_its_text(real_trace, real):
+    order, ids, grid = brute_force_grid(real_trace)
     by_name = {info.name: column for column, info in real.signals.items()}
     columns = [by_name[ids[key]] for key in order]
     np.testing.assert_array_equal(real.data[columns].to_numpy(), grid)
 
 
-def test_real_trace_metadata(real):
+def test_real_trace_metadata(real_trace, real):
     assert real.sample_period == 0.002
     assert real.axis == 7
     assert real.start_time == "2012-01-20T20:01:47.526Z"
-    assert real.source == str(REAL_TRACE)
+    assert real.source == str(real_trace)
     assert real.data.shape == (22709, 10)  # 45.416 s / 2 ms + 1 ticks, 10 channels
     assert real.data.index.name == "time" and real.data.index.dtype == np.float64
     # Tick k is the float of the decimal the controller writes for k * 2 ms.
@@ -272,17 +269,17 @@ def test_default_channel_map_roles():
         assert DEFAULT_CHANNEL_MAP.role_of(name) == role
 
 
-def test_channel_map_from_dict_toml_and_path_keys(real, tmp_path):
+def test_channel_map_from_dict_toml_and_path_keys(real_trace, real, tmp_path):
     toml = tmp_path / "roles.toml"
     toml.write_text('[channels]\nnckServoDataFlwErr64 = "FE"\n"/Nck/!SEMA/measPos1" = "AP"\n')
-    rec = read_trace(REAL_TRACE, channels=toml)
+    rec = read_trace(real_trace, channels=toml)
     assert rec.roles["FE"] == "/Nck/!SD/nckServoDataFlwErr64 [u1, 7]"
     assert rec.roles["AP"] == "/Nck/!SEMA/measPos1 [u1, 7]"  # AP reassigned, measPos2 unmapped
     np.testing.assert_array_equal(rec.data["AP"], real.data["MP"])
     assert "measPos2" in rec.data.columns and "MP" not in rec.data.columns
     no_defaults = tmp_path / "bare.toml"
     no_defaults.write_text('defaults = false\n[channels]\nmeasPos2 = "AP"\n')
-    assert read_trace(REAL_TRACE, channels=no_defaults).roles == {"AP": real.roles["AP"]}
+    assert read_trace(real_trace, channels=no_defaults).roles == {"AP": real.roles["AP"]}
     assert channel_map({"x": "RC"}).role_of("/a/x [u1, 1]") == "RC"
 
 
@@ -298,10 +295,10 @@ def test_bad_channel_maps(tmp_path):
         ChannelMap({"measPos2": "not a role"})
 
 
-def test_two_signals_for_one_role_are_refused(tmp_path):
+def test_two_signals_for_one_role_are_refused(real_trace, tmp_path):
     with pytest.raises(ChannelError, match="role AP is given by two signals") as err:
-        read_trace(REAL_TRACE, channels=ChannelMap({"measPos1": "AP", "measPos2": "AP"}))
-    assert str(REAL_TRACE) in str(err.value)
+        read_trace(real_trace, channels=ChannelMap({"measPos1": "AP", "measPos2": "AP"}))
+    assert str(real_trace) in str(err.value)
 
 
 def test_recording_window_is_half_open(real):
@@ -351,11 +348,11 @@ def test_sparse_records_carry_forward_like_brute_force(tmp_path_factory, writes)
     assert len(rec.data) == max(records) + 1
 
 
-def test_reading_compiles_nothing():
+def test_reading_compiles_nothing(real_trace):
     # The reader must not pull in Numba: nothing is compiled on the first call.
     code = (
         "import sys; from funcnet.robot import read_trace; "
-        f"read_trace({str(REAL_TRACE)!r}); "
+        f"read_trace({str(real_trace)!r}); "
         "print(sorted(m for m in ('numba', 'funcnet.recurrence') if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

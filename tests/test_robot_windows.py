@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,12 +21,10 @@ from funcnet.robot.windows import (
     sliding_windows,
 )
 
-REAL_TRACE = Path(__file__).resolve().parents[2] / "shared/data/sinumerik/axis7-braking-trace.xml"
-
 
 @pytest.fixture(scope="module")
-def real() -> Recording:
-    return add_derived_signals(read_trace(REAL_TRACE), ["V"])
+def real(real_trace) -> Recording:
+    return add_derived_signals(read_trace(real_trace), ["V"])
 
 
 @pytest.fixture(scope="module")

@@ -704,6 +704,14 @@ class TrialAnalysis:
     errors: dict[Any, str]
     dropped: dict[Any, tuple[str, ...]] = field(default_factory=dict)
 
+    def window_data(self, key: Any) -> pd.DataFrame:
+        """The analysed signals inside window ``key``, ``start <= time < stop``."""
+        return _inside(self.data, self.windows[key])
+
+
+def _inside(data: pd.DataFrame, window: Any) -> pd.DataFrame:
+    return data.loc[(data.index >= window.start) & (data.index < window.stop)]
+
 
 @dataclass(frozen=True)
 class PaperAnalyses:
@@ -832,7 +840,7 @@ def _analyse(name: str, path: Path, recording: Any,
     for key, window in windows.items():
         used = list(signals)
         if parameters.get("normalize") is not None:
-            part = data.loc[(data.index >= window.start) & (data.index < window.stop)]
+            part = _inside(data, window)
             constant = tuple(s for s in signals if len(part) and np.ptp(part[s].to_numpy()) == 0)
             if constant:
                 dropped[key] = constant

@@ -41,10 +41,8 @@ from funcnet.errors import ParameterError, SignalError, ThresholdWarning
 from funcnet.recurrence import (
     PackedRecurrence,
     _check_eps,
-    _check_metric,
+    _check_options,
     _check_rate,
-    _check_rule,
-    _check_theiler,
     _isrn_blocks,
     _lowest_bit,
     _popcount,
@@ -309,9 +307,9 @@ def cross_measures(
     """Global cross-clustering and cross-transitivity of two signals, both directions.
 
     Builds the ISRN of Eq. 4 (thresholds by rate: ``eps`` is the k-th smallest candidate distance,
-    ``k = max(1, ceil(rate * P - 1e-9))``, ``P = M(M - 1)`` ordered pairs outside the Theiler
-    window for ``A_X``, ``A_Y`` and ``M_X M_Y`` for ``CR_XY``) and returns ``C^XY``, ``C^YX``,
-    ``T^XY``, ``T^YX`` and their differences (Eq. 6-10).
+    ``k = max(1, ceil(rate * P - 1e-9))``, with ``P = (M - w)(M - w - 1)`` ordered pairs
+    ``|i - j| > w`` (``w = theiler``) for ``A_X``, ``A_Y`` and ``P = M_X M_Y`` for ``CR_XY``) and
+    returns ``C^XY``, ``C^YX``, ``T^XY``, ``T^YX`` and their differences (Eq. 6-10).
 
     Parameters
     ----------
@@ -384,7 +382,7 @@ def cross_measures(
     return result
 
 
-def _auto_eps(eps: Any, n_signals: int) -> tuple[list[float | None], float | None]:
+def _pairwise_eps(eps: Any, n_signals: int) -> tuple[list[float | None], float | None]:
     """Split pairwise ``eps`` (None or {"auto": float | sequence, "cross": float})."""
     if eps is None:
         return [None] * n_signals, None
@@ -487,10 +485,8 @@ def pairwise_cross_measures(
         if len(labels) != len(signals):
             raise ParameterError(f"names has {len(labels)} entries for {len(signals)} signals")
         called = [repr(name) for name in labels]
-    metric = _check_metric(metric)
-    rule = _check_rule(rule)
-    theiler = _check_theiler(theiler, rule)
-    auto_eps, cross_eps = _auto_eps(eps, len(signals))
+    metric, rule, theiler = _check_options(metric, rule, theiler)
+    auto_eps, cross_eps = _pairwise_eps(eps, len(signals))
     if any(e is None for e in auto_eps):
         rr = _check_rate(rr, "rr")
     if cross_eps is None:

@@ -192,6 +192,10 @@ def edges_from_pairs(pairs: pd.DataFrame, kinds: Any = None) -> pd.DataFrame:
         Columns ``source, target, weight, kind`` (``directed`` or ``bidirectional``), one row per
         directed edge or bidirectional pair; a conflict has no edge (DESIGN.md section 1.7).
 
+    References
+    ----------
+    Section 2.4 (edges) and Eq. 13 (weights) of the paper.
+
     Examples
     --------
     >>> import pandas as pd
@@ -555,8 +559,9 @@ def functional_network(
     Warns
     -----
     ThresholdWarning
-        For pairs whose ``eps_xy`` is not below ``eps_x`` and ``eps_y``, or whose achieved rates
-        exceed their targets (ties); the pairs table flags them too.
+        At most one per kind of problem, naming the pairs by their signals: ``eps_xy`` not below
+        ``eps_x`` and ``eps_y``, or achieved rates above their targets (ties); the pairs table
+        flags them too (``eps_ordered``, ``rate_exceeded``).
 
     References
     ----------

@@ -15,8 +15,8 @@ Threshold rule (``rule="funcnet"``, the default)
 
     The order statistic is exact (not estimated from a sample) and reported in float64. Ties at the
     threshold can make more than ``k`` pairs recurrent; the achieved rate is reported next to each
-    ``eps`` and :class:`~funcnet.errors.ThresholdWarning` is raised by the measures when it
-    exceeds its target.
+    ``eps``, and the measures issue a :class:`~funcnet.errors.ThresholdWarning` when it exceeds
+    its target.
 
 Compatibility rule (``rule="pyunicorn"``)
     Reproduces pyunicorn 1.0.0's ``InterSystemRecurrenceNetwork``: the input series are cast to
@@ -112,6 +112,12 @@ def _check_theiler(theiler: Any, rule: str) -> int:
             f"got {theiler}"
         )
     return theiler
+
+
+def _check_options(metric: Any, rule: Any, theiler: Any) -> tuple[str, str, int]:
+    """Validated ``(metric, rule, theiler)``, shared by every function that takes them."""
+    rule = _check_rule(rule)
+    return _check_metric(metric), rule, _check_theiler(theiler, rule)
 
 
 def _check_rate(rate: Any, name: str) -> float:
@@ -243,6 +249,10 @@ def signal_states(
     ParameterError, SignalError
         Bad ``dim``, ``delay`` or ``rule``; a signal that is not finite or too short (M < 2).
 
+    References
+    ----------
+    Eq. 1 (section 2.1); DESIGN.md 1.4 for the pyunicorn cast.
+
     Examples
     --------
     >>> float(signal_states([0.1, 0.2, 0.3, 0.4], dim=2, delay=1, rule="pyunicorn")[0, 0])
@@ -325,6 +335,13 @@ def _row_keys(a, i, bt, start, metric, keys):
                 for t in range(n):
                     keys[t] += abs(value - column[t])
     return n
+
+
+@njit(cache=True)
+def _n_iterations(n_rows, auto):
+    # A conditional expression written inside prange(...) keeps Numba from parallelizing the
+    # loop (silently, when other parts of the function are parallel): call this instead.
+    return (n_rows + 1) // 2 if auto else n_rows
 
 
 @njit(cache=True)
@@ -437,7 +454,7 @@ def _scan_rows(a, bt, auto, theiler, metric, lo, hi, n_chunks, capacity):
     key <= hi, and the band lo <= key <= hi in ``n_chunks`` buffers of ``capacity`` (each
     chunk is a block of rows; ``filled[c] > capacity`` means chunk c overflowed)."""
     n_rows = a.shape[0]
-    n_iterations = (n_rows + 1) // 2 if auto else n_rows
+    n_iterations = _n_iterations(n_rows, auto)
     counts = np.zeros((n_rows, 2), dtype=np.int64)
     packed = np.zeros((n_rows, (bt.shape[1] + 63) // 64), dtype=np.uint64)
     band_keys = np.empty((n_chunks, capacity), dtype=np.float64)
@@ -476,7 +493,7 @@ def _collect_band(a, bt, auto, theiler, metric, lo, hi, offsets, band_keys, band
     """Pass 2 when a band buffer overflowed: keys and flat indices of lo <= key <= hi, row i
     from offsets[i] on."""
     n_rows = a.shape[0]
-    for r in prange((n_rows + 1) // 2 if auto else n_rows):
+    for r in prange(_n_iterations(n_rows, auto)):
         keys = np.empty(bt.shape[1], dtype=np.float64)
         for side in range(2):
             i = _row_of(np.int64(r), side, n_rows, auto)
@@ -509,7 +526,7 @@ def _pack_rows(a, bt, auto, theiler, metric, bound):
     n_rows = a.shape[0]
     packed = np.zeros((n_rows, (bt.shape[1] + 63) // 64), dtype=np.uint64)
     degree = np.zeros(n_rows, dtype=np.int64)
-    for r in prange((n_rows + 1) // 2 if auto else n_rows):
+    for r in prange(_n_iterations(n_rows, auto)):
         keys = np.empty(packed.shape[1] * 64, dtype=np.float64)
         for side in range(2):
             i = _row_of(np.int64(r), side, n_rows, auto)
@@ -870,17 +887,15 @@ def auto_recurrence(
     >>> round(a_x.eps, 6)
     0.188357
     """
-    metric = _check_metric(metric)
-    rule = _check_rule(rule)
-    theiler = _check_theiler(theiler, rule)
+    metric, rule, theiler = _check_options(metric, rule, theiler)
     states = _check_states(states, name)
     n_states = states.shape[0]
-    pyunicorn = rule == "pyunicorn"
-    n_candidates = (n_states - theiler) * (n_states - theiler - 1)
     if theiler >= n_states - 1:
         raise ParameterError(
             f"theiler={theiler} excludes every pair of the {n_states} states of {name}"
         )
+    pyunicorn = rule == "pyunicorn"
+    n_candidates = (n_states - theiler) * (n_states - theiler - 1)
     rank: int | None = None
     if eps is not None:
         eps = _check_eps(eps, "eps" if name == "x" else f"eps of {name}")
@@ -888,7 +903,8 @@ def auto_recurrence(
     else:
         target = _check_rate(rr, "rr")
         if pyunicorn:
-            # Index into the sorted full M x M matrix, whose first M entries are the diagonal.
+            # Index into the sorted full M x M matrix, whose first M entries are the diagonal's
+            # zeros; an index among them gives eps = 0 (rank 0): nothing is recurrent (d < 0).
             rank = max(0, int(target * (n_states * n_states - 1)) + 1 - n_states)
         else:
             rank = _rank_from_rate(target, n_candidates)
@@ -1031,9 +1047,7 @@ def _eps_triple(eps: Any) -> tuple[float | None, float | None, float | None]:
 
 def _isrn_blocks(x, y, *, dim, delay, rr, cr, eps, metric, theiler, rule):
     """Validated ``(A_X, A_Y, CR_XY)`` of two signals (Eq. 4 blocks, packed)."""
-    metric = _check_metric(metric)
-    rule = _check_rule(rule)
-    theiler = _check_theiler(theiler, rule)
+    metric, rule, theiler = _check_options(metric, rule, theiler)
     eps_x, eps_y, eps_xy = _eps_triple(eps)
     if eps_x is None or eps_y is None:
         rr = _check_rate(rr, "rr")
@@ -1102,7 +1116,6 @@ def recurrence_matrix(
     >>> a_x.shape, int(a_x.sum()), bool((a_x == a_x.T).all())
     ((231, 231), 1944, True)
     """
-    rule = _check_rule(rule)
     states = signal_states(x, dim=dim, delay=delay, rule=rule, name="x")
     rate = 0.05 if rr is None and eps is None else rr
     return auto_recurrence(
@@ -1161,7 +1174,6 @@ def cross_recurrence_matrix(
     >>> cr_xy.shape, int(cr_xy.sum())
     ((231, 231), 64)
     """
-    rule = _check_rule(rule)
     x_states = signal_states(x, dim=dim, delay=delay, rule=rule, name="x")
     y_states = signal_states(y, dim=dim, delay=delay, rule=rule, name="y")
     rate = 0.05 if cr is None and eps is None else cr
@@ -1419,15 +1431,14 @@ def estimate_dimension(
         raise SignalError("signal x is constant: no embedding dimension can be estimated")
     n_states = _n_states(signal.size, max_dim + 2, delay, "x", 10)
     stretch = []
-    for d in range(1, max_dim + 2):
+    # Cao's E1(d) needs E(d + 1): one dimension more than the FNN test.
+    for d in range(1, max_dim + (2 if method == "cao" else 1)):
         states = _delay_rows(signal, d, delay, n_states)
         following = signal[d * delay : d * delay + n_states]
         neighbour, distance = _nearest_neighbours(states, 2.0 if method == "fnn" else np.inf)
         valid = neighbour >= 0
         gap = np.abs(following[valid] - following[neighbour[valid]])
         if method == "fnn":
-            if d > max_dim:
-                break
             false = (gap > rtol * distance[valid]) | (np.hypot(distance[valid], gap) > atol * std)
             if false.mean() < fraction:
                 return d

@@ -129,11 +129,6 @@ def _page(title: str, body: Iterable[str]) -> str:
             + "\n".join(body) + "</body></html>\n")
 
 
-def _window_data(data: pd.DataFrame, window: Any) -> pd.DataFrame:
-    """The rows of ``data`` inside a window, ``start <= time < stop`` as its network saw them."""
-    return data.loc[(data.index >= window.start) & (data.index < window.stop)]
-
-
 def _step(progress: Progress, done: int, total: int, description: str) -> None:
     if progress is not None:
         progress(done, total, description)
@@ -241,7 +236,7 @@ def _demo_figures(analyses: Any, out_dir: Path, progress: Progress) -> list[str]
     cells = {}
     for label, trial in analyses.velocity.items():
         for phase, net in trial.networks.items():
-            cells[(label, phase)] = (_window_data(trial.data, trial.windows[phase]), net)
+            cells[(label, phase)] = (trial.window_data(phase), net)
     if cells:
         add(4, "fig10-velocity-grid", lambda: plot.figure_velocity_grid(cells),
             "Fig. 10 — velocities (V1, V35, V175, V350; TCP 1.6 m) × phases (fixed windows "
@@ -266,7 +261,7 @@ def _demo_figures(analyses: Any, out_dir: Path, progress: Progress) -> list[str]
             f"Beyond the paper — every pair's edge kind and weight (marker area) over the "
             f"baseline trial {timeline.trial}, from sliding windows.")
     if base is not None and "cruise" in base.windows:
-        data = _window_data(base.data, base.windows["cruise"])
+        data = base.window_data("cruise")
         parameters = analyses.parameters
         # A signal constant in the window was left out of its network: left out here too.
         shown = [c for c in ("AP", "V", "AC")

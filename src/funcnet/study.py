@@ -719,8 +719,11 @@ def _rows_table(task: _NetworkTask, nodes: Sequence[str], pairs: pd.DataFrame) -
 
 
 def _watch_parent(parent: int) -> None:
-    # A worker whose parent was killed (SIGKILL leaves no chance to shut the pool down) exits
-    # instead of waiting forever for tasks.
+    """Initializer of the local worker processes: exit when the parent is gone.
+
+    A worker whose parent was killed (SIGKILL leaves no chance to shut the pool down) exits
+    instead of waiting forever for tasks.
+    """
     def watch() -> None:
         while True:
             if os.getppid() != parent:
@@ -728,11 +731,6 @@ def _watch_parent(parent: int) -> None:
             threading.Event().wait(0.5)
 
     threading.Thread(target=watch, name="funcnet-parent-watch", daemon=True).start()
-
-
-def _init_worker(parent: int) -> None:
-    """Initializer of the local worker processes."""
-    _watch_parent(parent)
 
 
 @contextlib.contextmanager
@@ -791,7 +789,7 @@ class _Backend:
             self._pool = ProcessPoolExecutor(
                 max_workers=self._workers,
                 mp_context=multiprocessing.get_context("spawn"),
-                initializer=_init_worker,
+                initializer=_watch_parent,
                 initargs=(os.getpid(),),
             )
             # On an error or Ctrl-C, tasks not yet started are dropped rather than awaited.
