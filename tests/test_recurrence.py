@@ -318,6 +318,18 @@ def test_squared_bound_decides_exactly_like_the_distance(eps, relative, strict):
         assert (key <= bound) == (distance < eps if strict else distance <= eps)
 
 
+def test_rate_times_pairs_a_hair_above_an_integer_takes_no_extra_pair():
+    # DESIGN.md 1.4: k = max(1, ceil(rate * P - 1e-9)). 0.07 * 100 is 7.000000000000001 in
+    # float64, so a plain ceil would take 8 of the 100 cross pairs.
+    assert 0.07 * 100 > 7
+    rng = np.random.default_rng(0)
+    xs, ys = rng.normal(size=(10, 2)), rng.normal(size=(10, 2))
+    result = cross_recurrence(xs, ys, cr=0.07)
+    assert (result.rank, result.n_recurrent) == (7, 7)
+    assert result.eps == np.sort(reference_distances(xs, ys, "euclidean").ravel())[6]
+    assert not result.rate_exceeded
+
+
 def test_ties_push_the_rate_above_target():
     # Three levels: most distances are 0, 1 or 2, so the k-th value is shared by many pairs.
     x = np.tile([0.0, 1.0, 2.0, 1.0], 20)

@@ -43,7 +43,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -801,16 +801,8 @@ class PackedRecurrence:
 
     def transposed(self) -> PackedRecurrence:
         """The transposed matrix (``CR_YX = CR_XY^T``), with the same threshold and counts."""
-        return PackedRecurrence(
-            rows=_transpose_packed(self.rows, self.n_cols),
-            n_cols=self.rows.shape[0],
-            eps=self.eps,
-            rate=self.rate,
-            target=self.target,
-            n_recurrent=self.n_recurrent,
-            n_candidates=self.n_candidates,
-            rank=self.rank,
-            rate_exceeded=self.rate_exceeded,
+        return replace(
+            self, rows=_transpose_packed(self.rows, self.n_cols), n_cols=self.rows.shape[0]
         )
 
 
