@@ -1,9 +1,9 @@
 """The direction convention, fixed on systems whose coupling is known, and where it fails.
 
-Convention (DESIGN.md 1.6, the code the paper used): a NEGATIVE ``C_diff`` / ``T_diff`` reads as
-X -> Y (pair kind ``x->y``). Every case below builds a two-node functional network with the
-library's defaults (rr = cr = mu = 0.05, m = 3, min-max normalization, measure "both") from
-N = 1500 samples after a discarded transient, over the seeds in ``SEEDS``, and counts the pair
+Convention (README "Direction", as in the code the paper used): a NEGATIVE ``C_diff`` /
+``T_diff`` reads as X -> Y (pair kind ``x->y``). Every case below builds a two-node functional
+network with the library's defaults (rr = cr = mu = 0.05, m = 3, min-max normalization, measure
+"both") from N = 1500 samples after a discarded transient, over the seeds in ``SEEDS``, and counts the pair
 kinds. The bounds were set after measuring seeds 0-19 with these same generators (counts in
 the comments and in the README's "Direction" section) and leave a margin; the systems were not
 tuned to pass.

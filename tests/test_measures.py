@@ -1,7 +1,7 @@
 """Cross-clustering, cross-transitivity and their per-node parts against a brute-force reference.
 
 The reference builds the dense ISRN blocks with test_recurrence's reference and counts
-cross-triangles with einsum: tri_v = sum_{p,q} CR[v,p] A_Y[p,q] CR[v,q] (DESIGN.md 1.5).
+cross-triangles with einsum: tri_v = sum_{p,q} CR[v,p] A_Y[p,q] CR[v,q] (README method step 5).
 """
 
 from __future__ import annotations

@@ -34,7 +34,7 @@ MEASURE_COLUMNS = [
 ]
 
 
-# --- an independent dense float64 reference (DESIGN.md 1.4-1.5) ------------------------------
+# --- an independent dense float64 reference (README method steps 4-5) ---------------------
 
 
 def brute_embed(x, dim, delay):

@@ -1,8 +1,8 @@
 """Embedding, thresholds and (cross-)recurrence matrices against a brute-force float64 reference.
 
 The reference below holds the full distance matrix (fine for the small sizes used here) and
-applies the threshold rules of DESIGN.md 1.4 literally: sort the candidate distances, take the
-k-th with k = max(1, ceil(rate * P - 1e-9)); or pyunicorn's sorted full matrix at index
+applies the threshold rules of README method step 4 literally: sort the candidate distances,
+take the k-th with k = max(1, ceil(rate * P - 1e-9)); or pyunicorn's sorted full matrix at index
 int(rate * (P - 1)) with strict comparison.
 """
 
@@ -319,7 +319,7 @@ def test_squared_bound_decides_exactly_like_the_distance(eps, relative, strict):
 
 
 def test_rate_times_pairs_a_hair_above_an_integer_takes_no_extra_pair():
-    # DESIGN.md 1.4: k = max(1, ceil(rate * P - 1e-9)). 0.07 * 100 is 7.000000000000001 in
+    # README method step 4: k = max(1, ceil(rate * P - 1e-9)). 0.07 * 100 is 7.000000000000001 in
     # float64, so a plain ceil would take 8 of the 100 cross pairs.
     assert 0.07 * 100 > 7
     rng = np.random.default_rng(0)

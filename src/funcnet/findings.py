@@ -18,7 +18,7 @@ How a finding is decided (one rule for all of them, chosen before looking at any
 
 Relations are read from a network's pairs table (``kind`` of each pair: ``x->y``, ``y->x``,
 ``bidirectional``, ``conflict``), so the same code runs on :class:`funcnet.FunctionalNetwork`
-objects and on rows of a study's results. The edge rule itself (``μ``, DESIGN.md section 1.7) is
+objects and on rows of a study's results. The edge rule itself (``μ``, README method step 7) is
 applied once, in :mod:`funcnet.network`, never here.
 
 References
@@ -945,6 +945,7 @@ def run_paper_analyses(
     """
     import time
 
+    from funcnet._io import file_sha256
     from funcnet.errors import TraceError
     from funcnet.robot.windows import (
         fixed_windows,
@@ -952,7 +953,7 @@ def run_paper_analyses(
         reversal_windows,
         sliding_windows,
     )
-    from funcnet.study import file_sha256, read_recording
+    from funcnet.study import read_recording
 
     started = time.perf_counter()
     unknown = sorted(set(network_parameters) - set(PAPER_PARAMETERS))

@@ -11,10 +11,11 @@ For an ISRN with blocks ``A_X``, ``A_Y``, ``CR_XY`` (Eq. 4) and a node ``v`` of 
 * ``C^YX``, ``T^YX``: the same with the roles of X and Y swapped (``CR_XY^T`` and ``A_X``);
 * ``C_diff = C^XY - C^YX``, ``T_diff = T^XY - T^YX`` (Eq. 10).
 
-Direction convention (DESIGN.md 1.6, the code the paper used): a **negative** difference reads as
-X -> Y, a positive one as Y -> X. It holds for systems of similar character only: the asymmetry
-also follows the relative complexity of the two signals (a smooth response of a rough driver can
-look like the driver), and near-zero differences mean "bidirectional or uncoupled".
+Direction convention (README "Direction", as in the code the paper used): a **negative**
+difference reads as X -> Y, a positive one as Y -> X. It holds for systems of similar character
+only: the asymmetry also follows the relative complexity of the two signals (a smooth response of
+a rough driver can look like the driver), and near-zero differences mean "bidirectional or
+uncoupled".
 
 The triangle counts use bit-packed rows: ``tri_v = sum_{p in N(v)} popcount(A_Y[p] & CR_XY[v])``
 over the words between v's first and last cross-neighbour, each unordered pair once, in a
@@ -351,7 +352,7 @@ def cross_measures(
 
     References
     ----------
-    Eq. 1-10 (section 2); DESIGN.md 1.4-1.6.
+    Eq. 1-10 (section 2); README "The method, exactly", steps 4-7.
 
     Examples
     --------

@@ -110,7 +110,7 @@ def edge_kind(diff: float, mu: float) -> str:
 
     References
     ----------
-    Eq. 10 and section 2.4 of the paper; DESIGN.md 1.6-1.7 for the sign.
+    Eq. 10 and section 2.4 of the paper; README "Direction" for the sign.
 
     Examples
     --------
@@ -125,7 +125,7 @@ def edge_kind(diff: float, mu: float) -> str:
 
 
 def combine_kinds(c_kind: str, t_kind: str) -> str:
-    """Intersect the clustering and transitivity kinds of a pair (DESIGN.md 1.7).
+    """Intersect the clustering and transitivity kinds of a pair (README method step 7).
 
     Parameters
     ----------
@@ -190,7 +190,7 @@ def edges_from_pairs(pairs: pd.DataFrame, kinds: Any = None) -> pd.DataFrame:
     -------
     pandas.DataFrame
         Columns ``source, target, weight, kind`` (``directed`` or ``bidirectional``), one row per
-        directed edge or bidirectional pair; a conflict has no edge (DESIGN.md section 1.7).
+        directed edge or bidirectional pair; a conflict has no edge (README method step 7).
 
     References
     ----------
@@ -281,7 +281,7 @@ class FunctionalNetwork:
         ----------
         measure : {"both", "clustering", "transitivity"}
             ``"clustering"`` uses ``C_diff`` only, ``"transitivity"`` ``T_diff`` only, ``"both"``
-            their intersection (DESIGN.md 1.7). Weights stay those of Eq. 13.
+            their intersection (README method step 7). Weights stay those of Eq. 13.
 
         Returns
         -------

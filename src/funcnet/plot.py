@@ -5,7 +5,7 @@ Every figure is drawn from funcnet's own computations (:func:`funcnet.recurrence
 Single-panel functions take ``ax=`` and return it; multi-panel ones return a
 :class:`matplotlib.figure.Figure`. Everything works on the Agg backend (no display needed).
 
-Drawing conventions (DESIGN.md section 1.8, paper section 3.4): nodes on a circle, one per signal,
+Drawing conventions (README method step 8, paper section 3.4): nodes on a circle, one per signal,
 every node drawn even without edges; directed edges black with an arrow head at the target,
 bidirectional edges red; line width proportional to the weight of Eq. 13 on an absolute scale, so
 that widths compare across panels (the paper reads "edges thinning as speed grows" from them).

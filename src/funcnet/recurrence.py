@@ -251,7 +251,7 @@ def signal_states(
 
     References
     ----------
-    Eq. 1 (section 2.1); DESIGN.md 1.4 for the pyunicorn cast.
+    Eq. 1 (section 2.1); README "pyunicorn compatibility" for the cast.
 
     Examples
     --------
@@ -819,7 +819,7 @@ def _check_states(states: Any, name: str) -> np.ndarray:
 
 
 def _rank_from_rate(rate: float, n_candidates: int) -> int:
-    # DESIGN.md 1.4: ceil in float64, minus 1e-9 so that rate * P a hair above an integer
+    # README method step 4: ceil in float64, minus 1e-9 so that rate * P a hair above an integer
     # does not take one element too many.
     return max(1, math.ceil(rate * n_candidates - 1e-9))
 

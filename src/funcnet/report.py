@@ -339,7 +339,7 @@ def build_demo_report(
         "nothing was tuned towards the paper's results. Read an arrow with care: the asymmetry "
         "of cross-clustering and cross-transitivity follows the relative complexity of two "
         "signals as well as their coupling, and the positions here are smooth while the "
-        "currents are noisy (paper section 2.4; funcnet DESIGN.md section 1.6).</p>",
+        "currents are noisy (paper section 2.4; funcnet README, 'Direction').</p>",
         "<h2>Findings of the paper's section 4</h2>",
         _findings_html(analyses.findings),
         "<p>Decision rule: <i>yes</i> — every evaluated network (or trial) shows every relation "

@@ -72,7 +72,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from funcnet import __version__
-from funcnet._io import atomic_path, write_text_atomic
+from funcnet._io import atomic_path, file_sha256, write_text_atomic
 from funcnet.errors import FuncnetError, ParameterError, StudyError
 
 __all__ = [
@@ -84,7 +84,6 @@ __all__ = [
     "TaskFailure",
     "WindowSpec",
     "read_recording",
-    "file_sha256",
     "package_versions",
     "load_results",
     "load_study",
@@ -535,15 +534,6 @@ def _cached_recording(
     if file_sha256(path) != sha256:
         raise StudyError(f"{path}: the file changed while the study was running")
     return read_recording(path, signals=signals, channels=channels, axis=axis)
-
-
-def file_sha256(path: str | os.PathLike[str]) -> str:
-    """SHA-256 of a file's content, as hex."""
-    digest = hashlib.sha256()
-    with open(path, "rb") as fh:
-        for block in iter(lambda: fh.read(1 << 20), b""):
-            digest.update(block)
-    return digest.hexdigest()
 
 
 # --------------------------------------------------------------------------------------------

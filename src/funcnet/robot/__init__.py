@@ -24,6 +24,7 @@ _EXPORTS = {
     "fixed_windows": "funcnet.robot.windows",
     "reversal_windows": "funcnet.robot.windows",
     "sliding_windows": "funcnet.robot.windows",
+    "span_window": "funcnet.robot.windows",
     "phase_networks": "funcnet.robot.windows",
     "AxisParameters": "funcnet.robot.simulate",
     "SimulatedTrial": "funcnet.robot.simulate",

@@ -51,7 +51,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from funcnet._io import write_text_atomic
+from funcnet._io import file_sha256, write_text_atomic
 from funcnet.errors import ParameterError, StudyError
 from funcnet.robot.simulate import (
     FAULT_KNOBS,
@@ -334,10 +334,6 @@ def _fingerprint(trial: Trial, params: AxisParameters, seed: int) -> str:
     return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()
 
 
-def _sha256(path: Path) -> str:
-    return hashlib.sha256(path.read_bytes()).hexdigest()
-
-
 def _simulate_and_write(
     trial: Trial, out_dir: Path, seed: int, params: AxisParameters | None
 ) -> dict[str, Any]:
@@ -364,7 +360,7 @@ def _simulate_and_write(
     }
     row.update({k: sim.truth[k] for k in MANIFEST_COLUMNS if k in sim.truth and k not in row})
     row["fingerprint"] = _fingerprint(trial, p, seed)
-    row["sha256"] = _sha256(target)
+    row["sha256"] = file_sha256(target)
     return row
 
 
@@ -455,7 +451,7 @@ def write_plan(
             old
             and old.get("fingerprint") == fingerprint
             and target.is_file()
-            and old.get("sha256") == _sha256(target)
+            and old.get("sha256") == file_sha256(target)
         ):
             rows[trial.name] = old
         else:
