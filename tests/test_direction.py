@@ -3,10 +3,10 @@
 Convention (README "Direction", as in the code the paper used): a NEGATIVE ``C_diff`` /
 ``T_diff`` reads as X -> Y (pair kind ``x->y``). Every case below builds a two-node functional
 network with the library's defaults (rr = cr = mu = 0.05, m = 3, min-max normalization, measure
-"both") from N = 1500 samples after a discarded transient, over the seeds in ``SEEDS``, and counts the pair
-kinds. The bounds were set after measuring seeds 0-19 with these same generators (counts in
-the comments and in the README's "Direction" section) and leave a margin; the systems were not
-tuned to pass.
+"both") from N = 1500 samples after a discarded transient, over the seeds in ``SEEDS``, and
+counts the pair kinds. The bounds were set after measuring seeds 0-19 with these same generators
+(counts in the comments and in the README's "Direction" section) and leave a margin; the systems
+were not tuned to pass.
 
 Delays: tau = 1 for maps (one iterate); for the Rossler oscillators (sampled every 0.2 time
 units, mean period about 6.3) tau = 8 samples, the first zero of the autocorrelation of x and the
