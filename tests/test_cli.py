@@ -340,3 +340,25 @@ def test_demo_simulates_the_plan_then_writes_the_report(tmp_path: Path, monkeypa
     assert (out / "plan" / "tiny.xml").is_file() and (out / "plan" / "manifest.csv").is_file()
     assert calls == [(out / "plan", out, None)]
     assert result.stdout.strip() == f"report: {out / 'index.html'}"
+
+
+def test_whole_recording_starts_where_every_signal_has_a_value(real_trace, tmp_path: Path) -> None:
+    # In the real trace AP and MP are IPO signals: no value at the first 2 ms tick. A piece of
+    # its first motion, with that gap put back at its start:
+    import dataclasses
+
+    from funcnet import FunctionalNetwork
+    from funcnet.robot import read_trace
+
+    moving = read_trace(real_trace).window(7.0, 7.6)
+    data = moving.data.copy()
+    data.iloc[0, data.columns.get_indexer(["AP", "MP"])] = float("nan")
+    piece = tmp_path / "piece.parquet"
+    dataclasses.replace(moving, data=data).to_parquet(piece)
+    out = tmp_path / "net.json"
+    nodes = "RP,AP,MP,AC"
+    result = runner.invoke(app, ["network", str(piece), "--signals", nodes, "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    net = FunctionalNetwork.from_json(out.read_text())
+    expected = _library_network(piece, 7.002, 7.6, signals=nodes.split(","))
+    pd.testing.assert_frame_equal(net.pairs, expected.pairs)

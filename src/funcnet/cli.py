@@ -232,8 +232,13 @@ def _select_window(recording: Any, phase: str | None, window: str | None, trace:
     if window is not None:
         return span_window(*_parse_window(window))
     if phase is None:
-        start = float(recording.data.index[0])
-        return Window(label="whole recording", start=start, stop=start + recording.duration)
+        # Signals logged on a coarser grid (IPO, 4 ms) have no value at the first tick: the
+        # whole recording is the span where every signal has one.
+        recorded = recording.data.index[recording.data.notna().all(axis=1).to_numpy()]
+        if recorded.empty:
+            raise WindowError(f"{trace}: no tick where every signal has a recorded value")
+        start, stop = float(recorded[0]), float(recorded[-1]) + recording.sample_period
+        return Window(label="whole recording", start=start, stop=stop)
     windows = phase_windows(detect_phases(recording))
     by_label = [w for w in windows if w.label == phase]
     by_phase = by_label or [w for w in windows if w.phase == phase]
