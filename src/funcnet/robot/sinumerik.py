@@ -37,6 +37,7 @@ from array import array
 from dataclasses import dataclass, field
 from datetime import datetime
 from pathlib import Path
+from typing import BinaryIO
 
 import numpy as np
 from lxml import etree
@@ -333,8 +334,14 @@ class _Reader:
     # -- the pass -------------------------------------------------------------------------------
 
     def parse(self) -> None:
+        # The file is opened here, not by lxml, so that it is closed however the pass ends
+        # (lxml keeps a file it opened itself until its iterator is exhausted).
+        with open(self.path, "rb") as source:
+            self._parse(source)
+
+    def _parse(self, source: BinaryIO) -> None:
         context = etree.iterparse(
-            str(self.path),
+            source,
             events=("end",),
             resolve_entities=False,
             no_network=True,
