@@ -11,6 +11,11 @@ Run from the repository root::
    signals under the default SINUMERIK names (four servo signals every 2 ms, two IPO signals
    every 4 ms, as in the real trace), read in a fresh interpreter whose peak resident memory is
    taken from ``resource.getrusage``. Target: under 1 GB.
+
+The competitor, run on both files in the same way: what one writes without funcnet,
+``pandas.read_xml(path, xpath="//rec")`` (the whole document as one lxml tree) and a forward
+fill. It is not equivalent -- it keeps only the ticks that have a record and knows nothing of
+the grids, the metadata or hostile files -- so its figures are a floor for a naive reader.
 """
 
 from __future__ import annotations
@@ -38,6 +43,18 @@ seconds = time.perf_counter() - start
 usage = resource.getrusage(resource.RUSAGE_SELF)
 print(json.dumps({"seconds": seconds, "cpu": usage.ru_utime + usage.ru_stime,
                   "shape": list(recording.data.shape), "max_rss_kib": usage.ru_maxrss}))
+"""
+
+# The competitor: the whole document through pandas.read_xml, then a forward fill.
+_NAIVE_CHILD = """
+import json, resource, sys, time
+start = time.perf_counter()
+import pandas as pd
+data = pd.read_xml(sys.argv[1], xpath="//rec", parser="lxml").set_index("time").ffill()
+seconds = time.perf_counter() - start
+usage = resource.getrusage(resource.RUSAGE_SELF)
+print(json.dumps({"seconds": seconds, "cpu": usage.ru_utime + usage.ru_stime,
+                  "shape": list(data.shape), "max_rss_kib": usage.ru_maxrss}))
 """
 
 SERVO = [
@@ -89,9 +106,9 @@ def write_long_trace(path: Path, seconds: float, *, seed: int = 0) -> int:
     return n
 
 
-def read_in_child(path: Path) -> dict:
+def read_in_child(path: Path, code: str = _CHILD) -> dict:
     result = subprocess.run(
-        [sys.executable, "-c", _CHILD, str(path)], capture_output=True, text=True, check=True
+        [sys.executable, "-c", code, str(path)], capture_output=True, text=True, check=True
     )
     return json.loads(result.stdout.strip().splitlines()[-1])
 
@@ -115,6 +132,12 @@ def main(argv: list[str] | None = None) -> None:
         f"(CPU {first['cpu']:.3f} s)"
     )
     print(f"  best of 3 in one process: {min(timings):.3f} s")
+    naive = read_in_child(REAL_TRACE, _NAIVE_CHILD)
+    print(
+        f"  competitor pandas.read_xml + ffill, fresh interpreter: {naive['seconds']:.3f} s, "
+        f"shape {tuple(naive['shape'])}; ratio competitor/funcnet "
+        f"{naive['seconds'] / first['seconds']:.1f}x"
+    )
 
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "long.xml"
@@ -132,6 +155,13 @@ def main(argv: list[str] | None = None) -> None:
             f"shape {tuple(long['shape'])}"
         )
         print(f"  peak RSS of the reading process: {long['max_rss_kib'] / 1024:.0f} MiB")
+        naive = read_in_child(path, _NAIVE_CHILD)
+        print(
+            f"  competitor pandas.read_xml + ffill: {naive['seconds']:.1f} s, peak RSS "
+            f"{naive['max_rss_kib'] / 1024:.0f} MiB; ratios competitor/funcnet: time "
+            f"{naive['seconds'] / long['seconds']:.1f}x, memory "
+            f"{naive['max_rss_kib'] / long['max_rss_kib']:.1f}x"
+        )
 
 
 if __name__ == "__main__":
