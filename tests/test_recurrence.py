@@ -367,6 +367,18 @@ def test_isrn_adjacency_mixes_explicit_eps_and_rates():
     np.testing.assert_array_equal(adjacency, np.block([[a_x, cr_xy], [cr_xy.T, a_y]]))
 
 
+def test_cross_recurrence_matrix_takes_theiler_and_keeps_its_diagonal():
+    # A Theiler window concerns states of one system; the cross block compares two and keeps
+    # every pair, so the same signal against itself is recurrent on the whole diagonal.
+    x = make_signal("sine", 90, 1)
+    plain = cross_recurrence_matrix(x, x, dim=2, delay=3, cr=0.05)
+    windowed = cross_recurrence_matrix(x, x, dim=2, delay=3, cr=0.05, theiler=3)
+    np.testing.assert_array_equal(windowed, plain)
+    assert windowed.diagonal().all()
+    with pytest.raises(ParameterError, match="theiler"):
+        cross_recurrence_matrix(x, x, theiler=-1)
+
+
 # ----------------------------------------------------------------------------------------------
 # bad parameters
 

@@ -241,6 +241,24 @@ def test_rows_are_plain_parquet_and_study_json_has_provenance(baseline) -> None:
         assert document["provenance"]["inputs"][f"plan/{name}.xml"] == digest
 
 
+def test_rows_load_with_polars_and_duckdb(baseline) -> None:
+    import duckdb
+    import polars as pl
+
+    out, _ = baseline
+    key = ["source_sha256", "window", "delay", "x", "y"]
+    expected = load_results(out).sort_values(key).reset_index(drop=True)
+    pattern = str(out / "rows" / "*.parquet")
+    from_polars = pl.read_parquet(pattern).to_pandas().sort_values(key).reset_index(drop=True)
+    from_duckdb = duckdb.sql(f"SELECT * FROM '{pattern}'").df().sort_values(key)
+    for frame in (from_polars, from_duckdb.reset_index(drop=True)):
+        assert len(frame) == len(expected)
+        for column in ("x", "y", "kind", "window"):
+            assert frame[column].astype(str).tolist() == expected[column].astype(str).tolist()
+        for column in ("c_xy", "c_yx", "t_xy", "t_yx", "c_diff", "t_diff", "weight"):
+            np.testing.assert_array_equal(frame[column].to_numpy(), expected[column].to_numpy())
+
+
 def test_rerun_computes_nothing_and_a_new_grid_only_what_is_new(baseline, study_file) -> None:
     out, first = baseline
     before = load_results(out)

@@ -1125,6 +1125,7 @@ def cross_recurrence_matrix(
     eps: float | None = None,
     metric: str = "euclidean",
     rule: str = "funcnet",
+    theiler: int = 0,
 ) -> np.ndarray:
     """Dense cross-recurrence matrix ``CR_XY`` of two signals (Eq. 3).
 
@@ -1143,6 +1144,10 @@ def cross_recurrence_matrix(
         Distance in the common phase space.
     rule : {"funcnet", "pyunicorn"}
         Threshold rule (module notes).
+    theiler : int, optional
+        Accepted, and validated, like every call of this module takes it; it changes nothing
+        here: a Theiler window excludes temporally close states of *one* system from ``A_X``
+        and ``A_Y``, while ``CR_XY`` compares states of two systems and keeps its diagonal.
 
     Returns
     -------
@@ -1166,6 +1171,7 @@ def cross_recurrence_matrix(
     >>> cr_xy.shape, int(cr_xy.sum())
     ((231, 231), 64)
     """
+    _check_options(metric, rule, theiler)
     x_states = signal_states(x, dim=dim, delay=delay, rule=rule, name="x")
     y_states = signal_states(y, dim=dim, delay=delay, rule=rule, name="y")
     rate = 0.05 if cr is None and eps is None else cr
