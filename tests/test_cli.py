@@ -47,7 +47,8 @@ def _assert_one_error_line(result, *needles: str) -> None:
     lines = result.stderr.splitlines()
     assert len(lines) == 1, result.stderr  # no warning lines either
     assert lines[0].startswith("funcnet: error: ")
-    assert "Traceback" not in result.stderr + result.stdout
+    assert "Traceback" not in result.output and "Usage:" not in result.output
+    assert not set("╭│╰─") & set(result.output)  # no rich box
     for needle in needles:
         assert needle in lines[0]
 
@@ -74,13 +75,27 @@ def test_help_is_the_reference(command: list[str], words: list[str]) -> None:
         assert word in result.output
 
 
-def test_version_and_usage_errors() -> None:
+def test_version_and_bare_command() -> None:
     from funcnet import __version__
 
-    assert runner.invoke(app, ["--version"]).output.strip() == f"funcnet {__version__}"
-    assert runner.invoke(app, ["network"]).exit_code == 2  # missing TRACE
-    assert runner.invoke(app, ["network", "x.xml", "--dim", "three"]).exit_code == 2
-    assert runner.invoke(app, ["no-such-command"]).exit_code == 2
+    version = runner.invoke(app, ["--version"])
+    assert version.exit_code == 0 and version.stdout.strip() == f"funcnet {__version__}"
+    bare = runner.invoke(app, [], env={"COLUMNS": "200"})  # the help, not an error line
+    assert "Commands" in bare.stdout and "network" in bare.stdout and bare.stderr == ""
+
+
+@pytest.mark.parametrize(
+    ("arguments", "needles"),
+    [
+        (["network", "x.xml", "--bogus"], ["No such option", "--bogus"]),
+        (["network"], ["Missing argument", "trace"]),
+        (["no-such-command"], ["No such command", "no-such-command"]),
+        (["network", "x.xml", "--dim", "three"], ["Invalid value", "--dim"]),
+        (["netwrk", "x.xml"], ["netwrk", "Did you mean 'network'"]),
+    ],
+)
+def test_usage_errors_are_one_plain_line(arguments: list[str], needles: list[str]) -> None:
+    _assert_one_error_line(runner.invoke(app, arguments, env={"COLUMNS": "60"}), *needles)
 
 
 # --------------------------------------------------------------------------------------------
@@ -184,6 +199,27 @@ def test_network_rich_table_on_a_terminal(trial: Path, monkeypatch) -> None:
 
 
 @pytest.mark.parametrize(
+    ("terminal", "quiet", "drawn"),
+    [(True, False, True), (True, True, False), (False, False, False)],
+)
+def test_network_progress_only_on_a_terminal_unless_quiet(
+    trial: Path, tmp_path: Path, monkeypatch, terminal: bool, quiet: bool, drawn: bool
+) -> None:
+    monkeypatch.setattr(cli, "_is_terminal", lambda stream: terminal)
+    out = tmp_path / "net.json"
+    arguments = ["network", str(trial), "--window", "0.5:0.8", "--signals", "RP,AP", "-o", str(out)]
+    # rich draws on the captured stream as on a terminal (its documented overrides).
+    env = {"TTY_COMPATIBLE": "1", "TTY_INTERACTIVE": "1"}
+    result = runner.invoke(app, [*arguments, *(["--quiet"] if quiet else [])], env=env)
+    assert result.exit_code == 0, result.output
+    assert result.stdout == f"wrote {out}\n" and out.is_file()
+    bar = "━" in result.stderr and "network" in result.stderr
+    assert bar == drawn, result.stderr
+    if not drawn:
+        assert result.stderr == ""
+
+
+@pytest.mark.parametrize(
     ("arguments", "needles"),
     [
         (["--window", "5:1"], ["--window"]),
@@ -235,8 +271,14 @@ def test_errors_in_a_real_subprocess(tmp_path: Path) -> None:
     assert result.returncode == 2
     assert result.stderr.count("\n") == 1 and result.stderr.startswith("funcnet: error: ")
     assert str(malformed) in result.stderr and result.stdout == ""
-    usage = subprocess.run([*command, "study"], capture_output=True, text=True, timeout=120)
-    assert usage.returncode == 2 and "Traceback" not in usage.stderr
+    usage = subprocess.run(
+        [*command, "network", str(malformed), "--bogus"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert usage.returncode == 2 and usage.stdout == ""
+    assert usage.stderr == "funcnet: error: No such option: --bogus\n"
 
 
 # --------------------------------------------------------------------------------------------
@@ -317,7 +359,9 @@ def test_study_on_a_local_cluster_and_bad_schedulers(trial: Path, tmp_path: Path
         _assert_one_error_line(bad, "scheduler", scheduler)
 
 
-def test_demo_simulates_the_plan_then_writes_the_report(tmp_path: Path, monkeypatch) -> None:
+@pytest.fixture
+def tiny_demo(monkeypatch) -> list:
+    """The demo on a one-trial plan and a stand-in report builder; its calls are returned."""
     import funcnet.report
     import funcnet.robot
     from funcnet._io import write_text_atomic
@@ -334,12 +378,26 @@ def test_demo_simulates_the_plan_then_writes_the_report(tmp_path: Path, monkeypa
         return write_text_atomic(Path(out_dir) / "index.html", "<html></html>")
 
     monkeypatch.setattr(funcnet.report, "build_demo_report", build_demo_report)
-    out = tmp_path / "out"
+    return calls
+
+
+def test_demo_simulates_the_plan_then_writes_the_report(tmp_path: Path, tiny_demo) -> None:
+    out = tmp_path / "report"
     result = runner.invoke(app, ["demo", "--out", str(out), "--quiet"])
     assert result.exit_code == 0, result.output
     assert (out / "plan" / "tiny.xml").is_file() and (out / "plan" / "manifest.csv").is_file()
-    assert calls == [(out / "plan", out, None)]
+    assert tiny_demo == [(out / "plan", out, None)]
     assert result.stdout.strip() == f"report: {out / 'index.html'}"
+
+
+def test_demo_writes_into_out_of_the_current_folder(tmp_path: Path, monkeypatch, tiny_demo) -> None:
+    monkeypatch.chdir(tmp_path)
+    result = runner.invoke(app, ["demo", "--quiet"])
+    assert result.exit_code == 0, result.output
+    out = (tmp_path / "out").resolve()
+    assert (out / "plan" / "tiny.xml").is_file() and (out / "index.html").is_file()
+    assert [(p.resolve(), o.resolve(), q) for p, o, q in tiny_demo] == [(out / "plan", out, None)]
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["out"]
 
 
 def test_whole_recording_starts_where_every_signal_has_a_value(real_trace, tmp_path: Path) -> None:

@@ -7,10 +7,10 @@ reference.
 
 Conventions:
 
-* An error in the input (every :class:`~funcnet.errors.FuncnetError`, and an operating-system
-  error on a file) prints exactly one plain-text line, ``funcnet: error: MESSAGE``, on stderr and
-  exits with status 2, as usage errors do. Nothing is left half-written: outputs are written to a
-  temporary file and renamed.
+* An error in the input (every :class:`~funcnet.errors.FuncnetError`, an operating-system error
+  on a file, and a usage error: unknown option or command, missing argument, bad value) prints
+  exactly one plain-text line, ``funcnet: error: MESSAGE``, on stderr and exits with status 2.
+  Nothing is left half-written: outputs are written to a temporary file and renamed.
 * Warnings of the library print as one line each, ``funcnet: warning: MESSAGE``, once per
   distinct message, after the command succeeded (an error prints its one line only).
 * Progress bars go to stderr, only when stderr is a terminal and ``--quiet`` is not given.
@@ -23,18 +23,57 @@ from __future__ import annotations
 import contextlib
 import sys
 import warnings
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
+
+# typer vendors click: these are the classes it raises (not the separate ``click`` package's).
+from typer._click.exceptions import ClickException, NoArgsIsHelpError
+from typer.core import TyperGroup
 
 from funcnet import __version__
 from funcnet.errors import FuncnetError, ParameterError, WindowError
 
 __all__ = ["app", "main"]
 
+
+class _PlainErrorsGroup(TyperGroup):
+    """The ``funcnet`` group, printing a usage error as one plain line (exit status 2).
+
+    Typer's own handling prints the usage, a hint and the message in a rich box.
+    """
+
+    def main(
+        self,
+        args: Sequence[str] | None = None,
+        prog_name: str | None = None,
+        complete_var: str | None = None,
+        standalone_mode: bool = True,
+        windows_expand_args: bool = True,
+        **extra: Any,
+    ) -> Any:
+        forwarded = dict(extra, windows_expand_args=windows_expand_args)
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, standalone_mode, **forwarded)
+        try:
+            # Not standalone, click raises its errors here and returns typer.Exit's status, or
+            # the command's value (None) when it ends normally.
+            status = super().main(args, prog_name, complete_var, False, **forwarded)
+        except NoArgsIsHelpError as exc:
+            sys.exit(exc.exit_code)  # bare `funcnet`: the help is already printed
+        except ClickException as exc:
+            sys.stderr.write(f"funcnet: error: {_one_line(exc.format_message())}\n")
+            sys.exit(exc.exit_code)
+        except typer.Abort:
+            sys.stderr.write("funcnet: error: aborted\n")
+            sys.exit(1)
+        sys.exit(status if isinstance(status, int) else 0)
+
+
 app = typer.Typer(
+    cls=_PlainErrorsGroup,
     name="funcnet",
     help=(
         "Functional networks of robot-axis controller traces, from inter-system recurrence "
@@ -330,6 +369,7 @@ def network(
             ".svg). Without it the pairs table is printed.",
         ),
     ] = None,
+    quiet: Quiet = False,
 ) -> None:
     """Compute the functional network of one trace, or of one window of it.
 
@@ -350,8 +390,6 @@ def network(
         from funcnet.study import read_recording
 
         names = None if signals is None else [s.strip() for s in signals.split(",") if s.strip()]
-        recording = read_recording(trace, signals=names, channels=channels, axis=axis)
-        chosen = _select_window(recording, phase, window, trace)
         given = {
             "dim": dim,
             "delay": delay,
@@ -366,7 +404,11 @@ def network(
         parameters: dict[str, Any] = {k: v for k, v in given.items() if v is not None}
         if normalize is not None:
             parameters["normalize"] = None if normalize.lower() == "none" else normalize
-        (net,) = phase_networks(recording, [chosen], signals=names, **parameters).values()
+        # One network has no steps to count: the bar only shows that work is going on.
+        with _progress(quiet, "network"):
+            recording = read_recording(trace, signals=names, channels=channels, axis=axis)
+            chosen = _select_window(recording, phase, window, trace)
+            (net,) = phase_networks(recording, [chosen], signals=names, **parameters).values()
         if output is None:
             _print_pairs(net)
             return
