@@ -1,8 +1,9 @@
-"""Findings: the yes / partly / no decisions on hand-made networks with known edges."""
+"""Findings: the yes / partly / no / not evaluable decisions on hand-made networks."""
 
 from __future__ import annotations
 
 import itertools
+import random
 
 import pandas as pd
 import pytest
@@ -81,18 +82,101 @@ def test_evaluate_yes_partly_no():
     assert "1/2 relations hold" in partly.evidence
     assert "[early] MP->RP" in partly.edges_seen
     assert evaluate(spec, {"early": make_pairs(["AP->RP", "MP->RP"])}).reproduced == "no"
-    # nothing to evaluate is never a success
-    missing = evaluate(spec, {"early": None})
-    assert missing.reproduced == "no" and "not evaluable: early" in missing.evidence
+
+
+def test_nothing_measurable_is_not_evaluable_never_no():
+    spec = FindingSpec("t", "4.1", "RP drives AP and MP", {"early": ("RP->AP", "RP->MP")})
+    for networks in ({"early": None}, {}):
+        missing = evaluate(spec, networks)
+        assert missing.reproduced == "not evaluable"
+        assert missing.evidence == ("0/1 networks show all claimed relations; 0/0 relations "
+                                    "hold; 2 of 2 claims could not be evaluated: [early] RP->AP: "
+                                    "no network, [early] RP->MP: no network")
+    # AP and V constant in the window, so left out of its network (demo's 4.1-early-ap-v)
+    ap_v = FindingSpec("t", "4.1", "AP <-> V", {"early spin-up": ("AP<->V",)})
+    without = make_pairs(["RC<->AC"], nodes=("RP", "MP", "RC", "AC"))
+    finding = evaluate(ap_v, {"early spin-up": without}, left_out={"early spin-up": ("AP", "V")})
+    assert finding.reproduced == "not evaluable"
+    assert finding.edges_seen == ()
+    assert finding.not_evaluable == ("[early spin-up] AP<->V: AP, V constant in the window, "
+                                     "left out of its network",)
+    assert finding.evidence.endswith("1 of 1 claims could not be evaluated: "
+                                     + finding.not_evaluable[0])
+    # without that knowledge the reason is only what the network shows
+    assert evaluate(ap_v, {"early spin-up": without}).not_evaluable == (
+        "[early spin-up] AP<->V: AP, V not in the network",)
+    # an empty spec has nothing to measure either
+    assert evaluate(FindingSpec("t", "4.1", "nothing"), {}).reproduced == "not evaluable"
 
 
 def test_claims_about_an_absent_node_are_not_evaluable_and_never_a_full_match():
     spec = FindingSpec("t", "4.1", "RP drives AP and MP", {"early": ("RP->AP", "RP->MP")})
     without_ap = make_pairs(["RP->MP"], nodes=("RP", "MP", "V"))
-    finding = evaluate(spec, {"early": without_ap})
+    finding = evaluate(spec, {"early": without_ap}, left_out={"early": ("AP",)})
+    # every evaluable claim holds, one could not be evaluated: partly, never yes
     assert finding.reproduced == "partly"
     assert finding.evidence == ("0/1 networks show all claimed relations; 1/1 relations hold; "
-                                "not evaluable: [early] RP->AP")
+                                "1 of 2 claims could not be evaluated: [early] RP->AP: AP "
+                                "constant in the window, left out of its network")
+    # the evaluable claim failing makes it "no", whatever could not be evaluated
+    against = make_pairs(["MP->RP"], nodes=("RP", "MP", "V"))
+    assert evaluate(spec, {"early": against}).reproduced == "no"
+
+
+def test_a_missing_network_among_trials_forbids_yes():
+    spec = FindingSpec("t", "4.3", "V drives RP", {f"T{k}": ("V->RP",) for k in range(6)},
+                       unit="trials")
+    nets = {f"T{k}": make_pairs(["V->RP"]) for k in range(5)}
+    finding = evaluate(spec, nets)
+    assert finding.reproduced == "partly"
+    assert finding.evidence == ("5/6 trials show all claimed relations; 5/5 relations hold; "
+                                "1 of 6 claims could not be evaluated: [T5] V->RP: no network")
+    assert evaluate(spec, {**nets, "T5": make_pairs(["V->RP"])}).reproduced == "yes"
+
+
+def reference_verdict(claims, networks):
+    """The module's rule written out claim by claim, independently of evaluate."""
+    outcomes = {}  # (key, claim) -> True / False / None (not evaluable)
+    for key, cs in claims.items():
+        net = networks.get(key)
+        nodes = set() if net is None else {*net["x"], *net["y"]}
+        for claim in cs:
+            a, b = claim.split("->")
+            if a not in nodes or b not in nodes:
+                outcomes[(key, claim)] = None
+                continue
+            row = net[((net["x"] == a) & (net["y"] == b)) | ((net["x"] == b) & (net["y"] == a))]
+            kind = row["kind"].iloc[0]
+            outcomes[(key, claim)] = kind == ("x->y" if row["x"].iloc[0] == a else "y->x")
+    evaluated = [v for v in outcomes.values() if v is not None]
+    if not evaluated:
+        return "not evaluable"
+    if all(v is True for v in outcomes.values()):
+        return "yes"
+    full_network = any(all(outcomes[(k, c)] is True for c in cs) for k, cs in claims.items())
+    if full_network or 2 * sum(evaluated) >= len(evaluated):
+        return "partly"
+    return "no"
+
+
+def test_rule_matches_a_claim_by_claim_reference_on_random_networks():
+    rng = random.Random(5)
+    seen = set()
+    for _ in range(300):
+        claims = {k: tuple(rng.sample(["RP->AP", "AP->MP", "V->RC", "RC->AC", "MP->V"],
+                                      rng.randint(1, 3))) for k in ("a", "b")}
+        networks = {}
+        for key in claims:
+            if rng.random() < 0.15:
+                continue  # no network for this key
+            nodes = rng.sample(NODES, rng.choice([2, 4, 5, 6, 6, 6]))  # signals left out
+            edges = [f"{x}->{y}" if rng.random() < 0.5 else f"{y}->{x}"
+                     for x, y in itertools.combinations(nodes, 2)]
+            networks[key] = make_pairs(edges, nodes=nodes)
+        finding = evaluate(FindingSpec("t", "4.1", "random", claims), networks)
+        assert finding.reproduced == reference_verdict(claims, networks), (claims, finding)
+        seen.add(finding.reproduced)
+    assert seen == {"yes", "partly", "no", "not evaluable"}
 
 
 def test_evaluate_counts_trials_fully_matching():
@@ -151,6 +235,11 @@ def test_velocity_findings_on_paper_like_networks():
     assert found["4.2-v1-braking-mp-ap"].reproduced == "no"
     # all weights equal: no thinning
     assert found["4.2-edges-thin"].reproduced == "no"
+    # a single speed per phase: thinning cannot be measured at all
+    only_v35 = {k: v for k, v in nets.items() if k[0] == "V35"}
+    thin = edge_thinning(only_v35)
+    assert thin.reproduced == "not evaluable"
+    assert "3 of 3 phases could not be evaluated: spin-up: 1 speed(s)" in thin.evidence
 
 
 def test_edge_thinning_partly_and_weights():
@@ -164,6 +253,13 @@ def test_edge_thinning_partly_and_weights():
     assert finding.reproduced == "partly"
     assert finding.evidence.startswith("2/3 phases thin")
     assert "350°/min 0.100" in finding.evidence
+    # every evaluated phase thins but one phase has a single speed: partly, not yes
+    thin = {k: v for k, v in nets.items() if k[1] != "braking" or k[0] == "V1"}
+    finding = edge_thinning(thin)
+    assert finding.reproduced == "partly"
+    assert finding.evidence.startswith("2/2 phases thin")
+    assert finding.evidence.endswith("1 of 3 phases could not be evaluated: braking: 1 speed(s) "
+                                     "with a network")
 
 
 def sequence_networks(shown: dict[int, list[str]]):
@@ -186,6 +282,30 @@ def test_reversal_signature_and_sequence_counts():
                                    "window's claims in 5/6")
     assert "-40 ms 6/6, -20 ms 5/6, +0 ms 5/6, +20 ms 5/6, +40 ms 6/6" in seq.evidence
     assert reversal_sequence({k: sequence_networks(as_paper) for k in "ab"}).reproduced == "yes"
+    # no trial, or no network in any window: nothing measured
+    assert reversal_sequence({}).reproduced == "not evaluable"
+    empty = reversal_sequence({"a": dict.fromkeys(REVERSAL_SEQUENCE)})  # 8+2+8+8+5 claims
+    assert empty.reproduced == "not evaluable"
+    assert empty.evidence.endswith("31 of 31 claims could not be evaluated (no network, or a "
+                                   "signal constant in the window and left out)")
+    # a window without a network counts against the sequence, never for it
+    one_missing = sequence_networks(as_paper)
+    one_missing[-40] = None
+    assert reversal_sequence({"a": one_missing}).reproduced == "no"
+
+
+def test_reversal_findings_say_which_signal_was_left_out():
+    as_paper = {o: [c.replace("!<->", "->") for c in cs] for o, cs in REVERSAL_SEQUENCE.items()}
+    nets = sequence_networks(as_paper)
+    nets[0] = nets[0][(nets[0]["x"] != "RP") & (nets[0]["y"] != "RP")]
+    found = {f.id: f for f in reversal_findings({"B0": nets}, left_out={"B0": {0: ("RP",)}})}
+    chain = found["4.3-position-chain"]
+    # MP->AP holds; MP->RP and AP->RP cannot be evaluated
+    assert chain.reproduced == "partly"
+    assert chain.not_evaluable == (
+        "[B0] MP->RP: RP constant in the window, left out of its network",
+        "[B0] AP->RP: RP constant in the window, left out of its network")
+    assert "2 of 3 claims could not be evaluated" in chain.evidence
 
 
 def test_design_effect_counts_identical_relations():

@@ -7,12 +7,22 @@ for, and then *measured*: the networks are asked, pair by pair, which relation t
 here asserts that the simulated axis behaves like the paper's robot; where it does not, the
 :class:`Finding` says so (``reproduced="no"``) with the counts.
 
-How a finding is decided (one rule for all of them, chosen before looking at any result):
+A claimed relation is *not evaluable* in a network that lacks one of its two signals (a signal
+constant in the window cannot be min-max normalized and is left out of that window's network) or
+when the network is missing altogether (not computed, or no such trial in the plan). Such a
+claim is neither a success nor a failure: it is counted and named in the evidence.
 
-- ``"yes"``: every evaluated network shows every claimed relation;
-- ``"partly"``: at least one network shows all its claimed relations, or at least half of all
-  claimed relations hold;
-- ``"no"``: otherwise, or when no network could be evaluated;
+How a finding is decided (one rule for all of them, fixed before looking at any result and the
+same whatever the results are):
+
+- ``"yes"``: every claimed relation was evaluated, and every one holds;
+- ``"partly"``: some claimed relation was evaluated, not ``"yes"``, and at least one network
+  shows all its claimed relations or at least half of the evaluated relations hold. This
+  includes a finding whose evaluated relations all hold while others could not be evaluated:
+  its evidence then says ``"n of m claims could not be evaluated"``;
+- ``"no"``: some claimed relation was evaluated, and neither of the above;
+- ``"not evaluable"``: no claimed relation could be evaluated: nothing was measured, so the
+  finding is neither reproduced nor contradicted;
 - ``"n/a"``: analyses beyond the paper (TCP distance and step size, which the paper does not
   report): measured and described, nothing to reproduce.
 
@@ -66,7 +76,7 @@ __all__ = [
     "design_effect",
 ]
 
-REPRODUCED = ("yes", "partly", "no", "n/a")
+REPRODUCED = ("yes", "partly", "no", "not evaluable", "n/a")
 POSITIONS = ("RP", "AP", "MP")
 CURRENTS = ("RC", "AC")
 MOTION = ("RP", "AP", "MP", "V")
@@ -87,13 +97,17 @@ class Finding:
     statement : str
         What the paper says (or, for ``"n/a"``, what was measured).
     reproduced : str
-        ``"yes"``, ``"partly"``, ``"no"`` or ``"n/a"`` (see the module's rule).
+        ``"yes"``, ``"partly"``, ``"no"``, ``"not evaluable"`` or ``"n/a"`` (see the module's
+        rule).
     evidence : str
-        Counts, e.g. ``"4/6 trials show all 5 relations; 26/30 relations hold"``.
+        Counts, e.g. ``"4/6 trials show all claimed relations; 26/30 relations hold"``.
     edges_seen : tuple of str
         The relations actually seen where the claim was checked, ``"[where] RP->AP"``.
     expected : tuple of str
         The claimed relations, ``"[where] RP->AP"``.
+    not_evaluable : tuple of str
+        The claims that could not be evaluated and why, ``"[where] AP<->V: AP, V constant in
+        the window, left out of its network"``.
     """
 
     id: str
@@ -103,6 +117,7 @@ class Finding:
     evidence: str
     edges_seen: tuple[str, ...] = ()
     expected: tuple[str, ...] = ()
+    not_evaluable: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.reproduced not in REPRODUCED:
@@ -220,17 +235,37 @@ def _where(key: Any) -> str:
     return str(key)
 
 
-def _decide(full: int, evaluated: int, held: int, checked: int) -> str:
-    if evaluated == 0 or checked == 0:
-        return "no"
-    if full == evaluated:
+def _decide(full: int, claims: int, checked: int, held: int) -> str:
+    """The module's rule from counts: networks showing every claimed relation, claims in all,
+    claims evaluated, claims holding."""
+    if checked == 0:
+        return "not evaluable"
+    if held == claims:
         return "yes"
     if full > 0 or 2 * held >= checked:
         return "partly"
     return "no"
 
 
-def evaluate(spec: FindingSpec, networks: Mapping[Any, Any]) -> Finding:
+def _nodes(net: Any) -> set[str]:
+    if isinstance(net, pd.DataFrame):
+        return {*net["x"], *net["y"]}
+    return set(net.nodes)
+
+
+def _why_absent(claim: str, net: Any, left_out: Sequence[str]) -> str:
+    """Why a claim about a signal the network lacks cannot be evaluated."""
+    absent = [s for s in dict.fromkeys(re.findall(r"\w+", claim)) if s not in _nodes(net)]
+    constant = [s for s in absent if s in left_out]
+    other = [s for s in absent if s not in left_out]
+    reasons = ([f"{', '.join(constant)} constant in the window, left out of its network"]
+               if constant else [])
+    reasons += [f"{', '.join(other)} not in the network"] if other else []
+    return " and ".join(reasons)
+
+
+def evaluate(spec: FindingSpec, networks: Mapping[Any, Any], *,
+             left_out: Mapping[Any, Sequence[str]] | None = None) -> Finding:
     """Measure one finding on the networks it is about.
 
     Parameters
@@ -239,13 +274,18 @@ def evaluate(spec: FindingSpec, networks: Mapping[Any, Any]) -> Finding:
         The claimed relations per network key.
     networks : mapping of key -> FunctionalNetwork, pairs table or None
         The networks; a key that is missing, or maps to ``None`` (the network could not be
-        computed, e.g. a constant signal in the window), is counted as not evaluable.
+        computed), makes all its claims not evaluable, and so does a network lacking a signal
+        for the claims about that signal.
+    left_out : mapping of key -> sequence of str, optional
+        Signals left out of a key's network because they are constant in its window; only used
+        to say why a claim is not evaluable.
 
     Returns
     -------
     Finding
         Decided by the module's rule; the evidence counts networks (or trials) that show every
-        claimed relation, and relations that hold.
+        claimed relation, relations that hold among those evaluated, and names the claims that
+        could not be evaluated, with the reason.
 
     References
     ----------
@@ -259,37 +299,41 @@ def evaluate(spec: FindingSpec, networks: Mapping[Any, Any]) -> Finding:
     >>> f = evaluate(spec, {"early": net})
     >>> f.reproduced, f.evidence
     ('partly', '0/1 networks show all claimed relations; 1/2 relations hold')
+    >>> evaluate(spec, {"early": None}).reproduced
+    'not evaluable'
     """
-    full = evaluated = held = checked = 0
+    left_out = left_out or {}
+    full = held = checked = claimed = 0
     seen_all: list[str] = []
     missing: list[str] = []
     expected: list[str] = []
     for key, claims in spec.claims.items():
         where = _where(key)
         expected.extend(f"[{where}] {c}" for c in claims)
+        claimed += len(claims)
         net = networks.get(key)
         if net is None:
-            missing.append(where)
+            missing.extend(f"[{where}] {c}: no network" for c in claims)
             continue
         results = [(claim, *relation_holds(net, claim)) for claim in claims]
         # A claim about a node the network lacks (a signal constant in the window) is not
         # evaluable; the network still counts for its other claims, never as a full match.
-        missing.extend(f"[{where}] {claim}" for claim, ok, _ in results if ok is None)
+        missing.extend(f"[{where}] {claim}: {_why_absent(claim, net, left_out.get(key) or ())}"
+                       for claim, ok, _ in results if ok is None)
         results = [(claim, ok, seen) for claim, ok, seen in results if ok is not None]
-        if not results:
-            continue
-        evaluated += 1
         n_held = sum(bool(ok) for _, ok, _ in results)
         held += n_held
         checked += len(results)
         full += n_held == len(claims)
         seen_all.extend(f"[{where}] {seen}" for _, _, seen in results)
-    evidence = (f"{full}/{evaluated} {spec.unit} show all claimed relations; "
+    evidence = (f"{full}/{len(spec.claims)} {spec.unit} show all claimed relations; "
                 f"{held}/{checked} relations hold")
     if missing:
-        evidence += f"; not evaluable: {', '.join(missing)}"
-    return Finding(spec.id, spec.section, spec.statement, _decide(full, evaluated, held, checked),
-                   evidence, tuple(seen_all), tuple(expected))
+        evidence += (f"; {len(missing)} of {claimed} claims could not be evaluated: "
+                     + ", ".join(missing))
+    verdict = _decide(full, claimed, checked, held)
+    return Finding(spec.id, spec.section, spec.statement, verdict, evidence, tuple(seen_all),
+                   tuple(expected), tuple(missing))
 
 
 def _drive(sources: Sequence[str], targets: Sequence[str]) -> tuple[str, ...]:
@@ -386,13 +430,16 @@ REVERSAL_SEQUENCE: Mapping[int, tuple[str, ...]] = {
 }
 
 
-def baseline_findings(networks: Mapping[Any, Any]) -> list[Finding]:
+def baseline_findings(networks: Mapping[Any, Any], *,
+                      left_out: Mapping[Any, Sequence[str]] | None = None) -> list[Finding]:
     """Section 4.1 on the baseline trial's phase networks.
 
     Parameters
     ----------
     networks : mapping of phase -> FunctionalNetwork (or pairs table, or None)
         Keys ``"early spin-up"``, ``"late spin-up"``, ``"cruise"``, ``"braking"``.
+    left_out : mapping of phase -> sequence of str, optional
+        Signals left out of a phase's network as constant (see :func:`evaluate`).
 
     Returns
     -------
@@ -403,10 +450,11 @@ def baseline_findings(networks: Mapping[Any, Any]) -> list[Finding]:
     ----------
     Paper section 4.1 and Fig. 9.
     """
-    return [evaluate(spec, networks) for spec in BASELINE]
+    return [evaluate(spec, networks, left_out=left_out) for spec in BASELINE]
 
 
-def velocity_findings(networks: Mapping[Any, Any]) -> list[Finding]:
+def velocity_findings(networks: Mapping[Any, Any], *,
+                      left_out: Mapping[Any, Sequence[str]] | None = None) -> list[Finding]:
     """Section 4.2 on the networks of the four velocity trials.
 
     Parameters
@@ -414,6 +462,8 @@ def velocity_findings(networks: Mapping[Any, Any]) -> list[Finding]:
     networks : mapping of (velocity, phase) -> FunctionalNetwork (or pairs table, or None)
         Velocities ``"V1", "V35", "V175", "V350"``; phases ``"spin-up", "cruise", "braking"``
         (fixed windows of 280 / 600 / 600 ms).
+    left_out : mapping of (velocity, phase) -> sequence of str, optional
+        Signals left out of a network as constant (see :func:`evaluate`).
 
     Returns
     -------
@@ -424,7 +474,8 @@ def velocity_findings(networks: Mapping[Any, Any]) -> list[Finding]:
     ----------
     Paper section 4.2 and Fig. 10.
     """
-    return [*(evaluate(spec, networks) for spec in VELOCITY), edge_thinning(networks)]
+    return [*(evaluate(spec, networks, left_out=left_out) for spec in VELOCITY),
+            edge_thinning(networks)]
 
 
 def _mean_weight(net: Any) -> float:
@@ -448,7 +499,9 @@ def edge_thinning(networks: Mapping[Any, Any], *,
 
     Per phase, the mean edge weight (Eq. 13) of each speed's network is ranked against the speed
     (Spearman); a phase counts as thinning when ``ρ ≤ rho`` (with four speeds, -0.8 allows one
-    swap of neighbours). Decided as ``"yes"`` when every phase thins, ``"partly"`` when some do.
+    swap of neighbours); a phase with fewer than two speeds' networks is not evaluable. Decided
+    as ``"yes"`` when every phase was evaluated and thins, ``"partly"`` when some do, ``"no"``
+    when none of the evaluated phases does, ``"not evaluable"`` when no phase could be.
 
     Parameters
     ----------
@@ -480,11 +533,12 @@ def edge_thinning(networks: Mapping[Any, Any], *,
     """
     speeds = dict(speeds or {"V1": 1.0, "V35": 35.0, "V175": 175.0, "V350": 350.0})
     phases = list(dict.fromkeys(p for _, p in networks))
-    thinning, parts = [], []
+    thinning, parts, unevaluated = [], [], []
     for phase in phases:
         rows = [(speeds[v], _mean_weight(n)) for (v, p), n in networks.items()
                 if p == phase and n is not None and v in speeds]
         if len(rows) < 2:
+            unevaluated.append(f"{phase}: {len(rows)} speed(s) with a network")
             continue
         rows.sort()
         r = _spearman([s for s, _ in rows], [w for _, w in rows])
@@ -492,20 +546,33 @@ def edge_thinning(networks: Mapping[Any, Any], *,
         parts.append(f"{phase}: ρ={r:+.2f} (" + ", ".join(f"{s:g}°/min {w:.3f}" for s, w in rows)
                      + ")")
     n = sum(thinning)
-    reproduced = "no" if not thinning or n == 0 else ("yes" if n == len(thinning) else "partly")
-    evidence = f"{n}/{len(thinning)} phases thin with speed (Spearman ρ ≤ {rho}); mean weights: "
+    if not thinning:
+        reproduced = "not evaluable"
+    elif n == len(phases):
+        reproduced = "yes"
+    else:
+        reproduced = "partly" if n else "no"
+    evidence = (f"{n}/{len(thinning)} phases thin with speed (Spearman ρ ≤ {rho}); mean weights: "
+                + "; ".join(parts))
+    if unevaluated:
+        evidence += (f"; {len(unevaluated)} of {len(phases)} phases could not be evaluated: "
+                     + ", ".join(unevaluated))
     return Finding("4.2-edges-thin", "4.2",
                    "Edges become thinner as speed grows, in all motion phases.", reproduced,
-                   evidence + "; ".join(parts), tuple(parts), ())
+                   evidence, tuple(parts), (), tuple(unevaluated))
 
 
-def reversal_findings(networks: Mapping[str, Mapping[Any, Any]]) -> list[Finding]:
+def reversal_findings(networks: Mapping[str, Mapping[Any, Any]], *,
+                      left_out: Mapping[str, Mapping[Any, Sequence[str]]] | None = None
+                      ) -> list[Finding]:
     """Section 4.3 on the backlash trials' reversal windows.
 
     Parameters
     ----------
     networks : mapping of trial -> (mapping of offset in ms -> FunctionalNetwork or None)
         For each backlash trial the networks of its windows at -40, -20, 0, +20, +40 ms.
+    left_out : mapping of trial -> (mapping of offset in ms -> sequence of str), optional
+        Signals left out of a window's network as constant (see :func:`evaluate`).
 
     Returns
     -------
@@ -517,11 +584,13 @@ def reversal_findings(networks: Mapping[str, Mapping[Any, Any]]) -> list[Finding
     ----------
     Paper section 4.3 and Fig. 11.
     """
+    left_out = left_out or {}
     found = []
     for finding_id, (statement, claims) in REVERSAL_AT_ZERO.items():
         spec = FindingSpec(finding_id, "4.3", statement, {t: claims for t in networks},
                            unit="trials")
-        found.append(evaluate(spec, {t: nets.get(0) for t, nets in networks.items()}))
+        found.append(evaluate(spec, {t: nets.get(0) for t, nets in networks.items()},
+                              left_out={t: left_out.get(t, {}).get(0, ()) for t in networks}))
     found.append(reversal_sequence(networks))
     return found
 
@@ -532,8 +601,10 @@ def reversal_sequence(networks: Mapping[str, Mapping[Any, Any]]) -> Finding:
     In each trial every offset's window is checked against :data:`REVERSAL_SEQUENCE`. The
     sequence *appears* in a trial when every window shows all its claimed relations, and
     *largely appears* when every window shows at least half of them (the paper: "resembles",
-    "largely present"). ``"yes"`` when it appears in every trial, ``"partly"`` when it largely
-    appears in at least one, ``"no"`` otherwise.
+    "largely present"); a claim that cannot be evaluated (no network, or a signal left out of
+    it) counts as not shown, and the evidence says how many. ``"yes"`` when it appears in every
+    trial, ``"partly"`` when it largely appears in at least one, ``"no"`` otherwise, and
+    ``"not evaluable"`` when no claim of any trial could be evaluated.
 
     Parameters
     ----------
@@ -550,7 +621,7 @@ def reversal_sequence(networks: Mapping[str, Mapping[Any, Any]]) -> Finding:
     ----------
     Paper section 4.3 and Fig. 11b.
     """
-    strict = largely = 0
+    strict = largely = unevaluated = 0
     per_offset = dict.fromkeys(REVERSAL_SEQUENCE, 0)
     seen: list[str] = []
     for trial, nets in networks.items():
@@ -558,6 +629,7 @@ def reversal_sequence(networks: Mapping[str, Mapping[Any, Any]]) -> Finding:
         for offset, claims in REVERSAL_SEQUENCE.items():
             net = nets.get(offset)
             results = [relation_holds(net, c) for c in claims] if net is not None else []
+            unevaluated += len(claims) - sum(ok is not None for ok, _ in results)
             n_held = sum(bool(ok) for ok, _ in results)
             fractions.append(n_held / len(claims))
             per_offset[offset] += n_held == len(claims)
@@ -565,10 +637,17 @@ def reversal_sequence(networks: Mapping[str, Mapping[Any, Any]]) -> Finding:
         strict += all(f == 1.0 for f in fractions)
         largely += all(f >= 0.5 for f in fractions)
     n = len(networks)
-    reproduced = "yes" if n and strict == n else ("partly" if largely else "no")
+    claimed = n * sum(len(cs) for cs in REVERSAL_SEQUENCE.values())
+    if unevaluated == claimed:
+        reproduced = "not evaluable"
+    else:
+        reproduced = "yes" if strict == n else ("partly" if largely else "no")
     evidence = (f"whole sequence in {strict}/{n} trials, at least half of each window's claims "
                 f"in {largely}/{n}; windows showing all claims: "
                 + ", ".join(f"{o:+d} ms {k}/{n}" for o, k in per_offset.items()))
+    if unevaluated:
+        evidence += (f"; {unevaluated} of {claimed} claims could not be evaluated (no network, "
+                     "or a signal constant in the window and left out)")
     expected = tuple(f"[{o:+d} ms] {c}" for o, cs in REVERSAL_SEQUENCE.items() for c in cs)
     return Finding("4.3-sequence", "4.3",
                    "Around the reversal the network changes in sequence: at -40 ms RC and AC "
@@ -1042,11 +1121,16 @@ def run_paper_analyses(
     velocity = {k: velocity[k] for k in VELOCITIES if k in velocity}
 
     findings = [
-        *baseline_findings(baseline.networks if baseline is not None else {}),
+        *baseline_findings(baseline.networks if baseline is not None else {},
+                           left_out=baseline.dropped if baseline is not None else {}),
         *velocity_findings({(label, phase): analysis.networks.get(phase)
                             for label, analysis in velocity.items()
-                            for phase in VELOCITY_PHASES}),
-        *reversal_findings({name: a.networks for name, a in reversal_analyses.items()}),
+                            for phase in VELOCITY_PHASES},
+                           left_out={(label, phase): analysis.dropped.get(phase, ())
+                                     for label, analysis in velocity.items()
+                                     for phase in VELOCITY_PHASES}),
+        *reversal_findings({name: a.networks for name, a in reversal_analyses.items()},
+                           left_out={name: a.dropped for name, a in reversal_analyses.items()}),
     ]
     design_networks = {(name, phase): net for name, a in main_analyses.items()
                        for phase, net in a.networks.items()}

@@ -8,8 +8,9 @@ holds a half-written figure or page.
 - :func:`build_demo_report` runs :func:`funcnet.findings.run_paper_analyses` on a plan of
   simulated trials and writes the paper's Figures 1, 2, 5, 9, 10 and 11 (from funcnet's own
   computations), an edge timeline and recurrence plots beyond the paper, the table of the
-  paper's findings (reproduced yes / partly / no, with counts), every network's pairs table, the
-  parameters and the provenance (versions, SHA-256 of every input, command line, date).
+  paper's findings (reproduced yes / partly / no / not evaluable, with counts), every network's
+  pairs table, the parameters and the provenance (versions, SHA-256 of every input, command
+  line, date).
 - :func:`write_report` does the same for the Parquet rows of a study (:mod:`funcnet.study`):
   networks per window, an edge timeline per recording, tables and provenance.
 
@@ -55,6 +56,7 @@ th{background:#f3f3f3}td.num{text-align:right;font-variant-numeric:tabular-nums}
 figure{margin:1em 0}figure img{max-width:100%;height:auto;border:1px solid #eee}
 figcaption{font-size:.88em;color:#444}
 .yes{background:#d9f2d9}.partly{background:#fff2c2}.no{background:#f8d4d4}.na{background:#e8e8f4}
+.ne{background:#e6e6e6;font-style:italic}
 details{margin:.3em 0}summary{cursor:pointer}code{font-size:.9em}
 .note{background:#f6f6f6;border-left:4px solid #999;padding:.5em 1em}
 """
@@ -139,7 +141,8 @@ def _step(progress: Progress, done: int, total: int, description: str) -> None:
 
 
 def _verdict_class(value: Any) -> str:
-    return {"yes": "yes", "partly": "partly", "no": "no"}.get(str(value), "na")
+    classes = {"yes": "yes", "partly": "partly", "no": "no", "not evaluable": "ne"}
+    return classes.get(str(value), "na")
 
 
 def _findings_html(findings: Sequence[Any]) -> str:
@@ -151,9 +154,13 @@ def _findings_html(findings: Sequence[Any]) -> str:
     paper = frame[frame["reproduced"] != "n/a"] if len(frame) else frame
     summary = (f"<p>Of the paper's {len(paper)} findings checked here, the simulated plan "
                f"reproduces <b>{counts.get('yes', 0)}</b> fully, <b>{counts.get('partly', 0)}"
-               f"</b> partly and <b>{counts.get('no', 0)}</b> not at all.</p>")
+               f"</b> partly, <b>{counts.get('no', 0)}</b> not at all, <b>"
+               f"{counts.get('not evaluable', 0)}</b> not evaluable (none of their claimed "
+               "relations could be measured).</p>")
     missed = paper[paper["reproduced"] != "yes"] if len(paper) else paper
-    verdicts = {"partly": "reproduces this only in part", "no": "does not reproduce this"}
+    verdicts = {"partly": "reproduces this only in part",
+                "no": "does not reproduce this",
+                "not evaluable": "cannot test this: nothing could be measured"}
     seen = {f.id: f.edges_seen for f in findings}
 
     def shown(edges: Sequence[str], limit: int = 12) -> str:
@@ -170,7 +177,8 @@ def _findings_html(findings: Sequence[Any]) -> str:
         f"{_esc('; '.join(f.edges_seen)) or '—'}</p></details>" for f in findings)
     shown = frame.rename(columns={"statement": "the paper says"})
     return (summary + _table(shown, classes={"reproduced": _verdict_class})
-            + (f"<h3>Where the simulation does not reproduce the paper</h3><ul>{plain}</ul>"
+            + (f"<h3>Where the simulation does not (or cannot) reproduce the paper</h3>"
+               f"<ul>{plain}</ul>"
                if plain else "") + details)
 
 
@@ -342,11 +350,18 @@ def build_demo_report(
         "currents are noisy (paper section 2.4; funcnet README, 'Direction').</p>",
         "<h2>Findings of the paper's section 4</h2>",
         _findings_html(analyses.findings),
-        "<p>Decision rule: <i>yes</i> — every evaluated network (or trial) shows every relation "
-        "the paper claims; <i>partly</i> — at least one does, or at least half of all claimed "
-        "relations hold; <i>no</i> — otherwise, or nothing could be evaluated; <i>n/a</i> — "
-        "not reported by the paper, measured here. Bidirectional edges (|diff| &lt; μ) mean "
-        "mutual coupling <i>or no coupling</i> (paper section 2.4).</p>",
+        "<p>Decision rule (fixed before any result, the same for every finding): a claimed "
+        "relation is <i>not evaluable</i> when its network is missing or lacks one of its "
+        "signals (a signal constant in a window is left out of that window's network). "
+        "<i>yes</i> — every claimed relation was evaluated and holds; <i>partly</i> — not "
+        "<i>yes</i>, but at least one network (or trial) shows all its claimed relations, or at "
+        "least half of the evaluated relations hold (this includes findings whose evaluated "
+        "relations all hold while others could not be evaluated: the evidence then says how "
+        "many of the claims could not be evaluated); <i>no</i> — relations were evaluated and "
+        "neither holds; <i>not evaluable</i> — no claimed relation could be evaluated, so "
+        "nothing was measured; <i>n/a</i> — not reported by the paper, measured here. "
+        "Bidirectional edges (|diff| &lt; μ) mean mutual coupling <i>or no coupling</i> (paper "
+        "section 2.4).</p>",
         "<h2>Figures</h2>", *figures,
         "<h2>Parameters</h2>", _mapping_table(analyses.parameters, "parameter"),
         "<h2>Trials</h2>", _table(analyses.trials),
