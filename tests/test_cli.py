@@ -82,6 +82,9 @@ def test_version_and_bare_command() -> None:
     assert version.exit_code == 0 and version.stdout.strip() == f"funcnet {__version__}"
     bare = runner.invoke(app, [], env={"COLUMNS": "200"})  # the help, not an error line
     assert "Commands" in bare.stdout and "network" in bare.stdout and bare.stderr == ""
+    # Flags show no value type in the help.
+    (line,) = [text for text in bare.stdout.splitlines() if "--version" in text]
+    assert "<bool>" not in line and "Print the version" in line
 
 
 @pytest.mark.parametrize(
@@ -195,7 +198,100 @@ def test_network_rich_table_on_a_terminal(trial: Path, monkeypatch) -> None:
     )
     assert result.exit_code == 0, result.output
     assert "┃" in result.stdout or "│" in result.stdout  # a box-drawn table
-    assert "c_diff" in result.stdout and "x drives y" in result.stdout
+    assert "c_diff" in result.stdout and "reads as x->y" in result.stdout
+    assert "c_xy" in result.stdout and "eps_ordered" in result.stdout  # wide: more columns
+    assert "…" not in result.stdout
+
+
+def test_network_table_on_a_narrow_terminal(trial: Path, monkeypatch) -> None:
+    monkeypatch.setattr(cli, "_is_terminal", lambda stream: True)
+    result = runner.invoke(
+        app, ["network", str(trial), "--window", "0.5:1.1"], env={"COLUMNS": "80"}
+    )
+    assert result.exit_code == 0, result.output
+    assert "…" not in result.stdout  # nothing cut short
+    assert max(len(line) for line in result.stdout.splitlines()) <= 80
+    assert "-o net.json keeps every column" in " ".join(result.stdout.split())
+    rows = [
+        [cell.strip() for cell in line.split("│")[1:-1]]
+        for line in result.stdout.splitlines()
+        if line.startswith("│")
+    ]
+    expected = _library_network(trial, 0.5, 1.1).pairs
+    columns = ["x", "y", "kind", "weight", "c_diff", "t_diff"]
+    assert [row[:3] for row in rows] == expected[columns[:3]].values.tolist()
+    printed = np.array([[float(cell) for cell in row[3:]] for row in rows])
+    assert printed.shape == (len(expected), 3)
+    # 3 significant digits of every number
+    np.testing.assert_allclose(printed, expected[columns[3:]].to_numpy(), rtol=5e-3, atol=1e-12)
+
+
+def test_network_options_are_checked_before_the_trace_is_read(trial: Path, tmp_path) -> None:
+    # The window 0-0.2 s is before the motion: its constant signals would fail first.
+    constant = ["--window", "0:0.2", "--signals", "RP,AP"]
+    for option, needles in ((["--rr", "2"], ["rr", "2"]), (["--metric", "cosine"], ["cosine"])):
+        result = runner.invoke(app, ["network", str(trial), *constant, *option])
+        _assert_one_error_line(result, *needles)
+        assert "constant" not in result.stderr
+        missing = runner.invoke(app, ["network", str(tmp_path / "missing.xml"), *option])
+        _assert_one_error_line(missing, *needles)
+    bad = runner.invoke(app, ["network", str(trial), *constant, "--resample", "cubic"])
+    _assert_one_error_line(bad, "--resample", "cubic")
+
+
+def test_network_normalize_none(trial: Path, tmp_path: Path) -> None:
+    help_text = runner.invoke(app, ["network", "--help"], env={"COLUMNS": "200"}).stdout
+    assert "none" in help_text and "normalize=None" in help_text
+    out = tmp_path / "net.json"
+    arguments = ["network", str(trial), "--window", "0.5:1.1", "--signals", "RP,AP,AC"]
+    result = runner.invoke(app, [*arguments, "--normalize", "none", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    from funcnet import FunctionalNetwork
+
+    expected = _library_network(trial, 0.5, 1.1, signals=["RP", "AP", "AC"], normalize=None)
+    assert FunctionalNetwork.from_json(out.read_text()) == expected
+    minmax = _library_network(trial, 0.5, 1.1, signals=["RP", "AP", "AC"])
+    assert not expected.pairs["eps_x"].equals(minmax.pairs["eps_x"])  # it did change something
+
+
+def test_network_phases_of_a_trace_with_several_moves(real_trace) -> None:
+    from funcnet.robot import detect_phases
+    from funcnet.robot.windows import phase_windows
+    from funcnet.study import read_recording
+
+    windows = phase_windows(detect_phases(read_recording(real_trace)))
+    cruises = [w for w in windows if w.phase == "cruise"]
+    assert len(cruises) == 3
+    result = runner.invoke(app, ["network", str(real_trace), "--phase", "cruise"])
+    _assert_one_error_line(result, "occurs 3 times")
+    for w in cruises:
+        assert f"'{w.label}' ({w.start:g}-{w.stop:g} s)" in result.stderr
+
+    listed = runner.invoke(app, ["network", str(real_trace), "--list-phases"])
+    assert listed.exit_code == 0, listed.output
+    lines = [" ".join(line.split()) for line in listed.stdout.splitlines()]
+    assert lines[0] == "label phase start stop"
+    assert lines[1:] == [f"{w.label} {w.phase} {w.start:.6g} {w.stop:.6g}" for w in windows]
+
+
+@pytest.mark.parametrize("method", ["decimate", "interpolate"])
+def test_network_resample_removes_the_staircases(real_trace, tmp_path: Path, method) -> None:
+    from funcnet import FunctionalNetwork
+    from funcnet.robot import add_derived_signals, phase_networks, read_trace, resample
+    from funcnet.robot.windows import span_window
+
+    out = tmp_path / "net.json"
+    arguments = ["network", str(real_trace), "--window", "7:7.6", "--signals", "RP,AP,MP,V"]
+    result = runner.invoke(app, [*arguments, "--resample", method, "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    assert "staircase" not in result.stderr
+    # Independently: resample the recording, then derive V on the new grid.
+    recording = add_derived_signals(resample(read_trace(real_trace), method=method), ["V"])
+    window = span_window(7.0, 7.6)
+    expected = phase_networks(recording, [window], signals=["RP", "AP", "MP", "V"])
+    written = FunctionalNetwork.from_json(out.read_text())
+    assert written == expected[window.label]
+    assert written.parameters["n_samples"] == (150 if method == "decimate" else 300)
 
 
 @pytest.mark.parametrize(
@@ -296,8 +392,12 @@ def test_simulate_a_plan_file(tmp_path: Path) -> None:
     assert manifest["seed"].tolist() == [3]
     trace = out / "fast-v350-p12-s1.xml"
     first = trace.read_bytes()
+    assert "1 simulated, 0 skipped" in result.stdout
     again = runner.invoke(app, ["simulate", "--plan", str(plan), "--out", str(out), "--seed", "3"])
     assert again.exit_code == 0 and trace.read_bytes() == first
+    assert "0 simulated, 1 skipped" in again.stdout
+    reseeded = runner.invoke(app, ["simulate", "--plan", str(plan), "--out", str(out)])
+    assert "1 simulated, 0 skipped" in reseeded.stdout
     bad = runner.invoke(app, ["simulate", "--plan", str(tmp_path / "none.toml"), "--out", str(out)])
     _assert_one_error_line(bad, "none.toml")
 

@@ -173,14 +173,20 @@ def _version(value: bool) -> None:
 def _main_options(
     version: Annotated[
         bool,
-        typer.Option("--version", callback=_version, is_eager=True, help="Print the version."),
+        typer.Option(
+            "--version", callback=_version, is_eager=True, metavar="", help="Print the version."
+        ),
     ] = False,
 ) -> None:
     """Functional networks of robot-axis controller traces."""
 
 
+# metavar="": a flag takes no value, so the help shows none (typer's default is "<bool>").
 Quiet = Annotated[
-    bool, typer.Option("--quiet", "-q", help="No progress bar (also off when not on a terminal).")
+    bool,
+    typer.Option(
+        "--quiet", "-q", metavar="", help="No progress bar (also off when not on a terminal)."
+    ),
 ]
 
 
@@ -237,9 +243,29 @@ def simulate(
         from funcnet.robot.plan import read_plan
 
         trials = paper_plan() if plan == "paper" else read_plan(plan)
+        traces = [out / f"{trial.name}.xml" for trial in trials]
+        before = [_file_identity(path) for path in traces]
         with _progress(quiet, "simulating") as progress:
             manifest = write_plan(trials, out, seed=seed, progress=progress)
-    typer.echo(f"{len(trials)} traces and {manifest.name} in {manifest.parent}")
+        # write_plan replaces a trace it simulates (atomic rename: a new file); one it skips
+        # keeps its identity.
+        skipped = sum(
+            old is not None and old == _file_identity(path)
+            for old, path in zip(before, traces, strict=True)
+        )
+    typer.echo(
+        f"{len(trials)} traces and {manifest.name} in {manifest.parent}: "
+        f"{len(trials) - skipped} simulated, {skipped} skipped (already there, same parameters)"
+    )
+
+
+def _file_identity(path: Path) -> tuple[int, int, int] | None:
+    """(device, inode, modification time) of a file, ``None`` when there is none."""
+    try:
+        status = path.stat()
+    except FileNotFoundError:
+        return None
+    return status.st_dev, status.st_ino, status.st_mtime_ns
 
 
 # --------------------------------------------------------------------------------------------
@@ -261,15 +287,14 @@ def _parse_window(text: str) -> tuple[float, float]:
     return start, stop
 
 
-def _select_window(recording: Any, phase: str | None, window: str | None, trace: Path) -> Any:
+def _select_window(
+    recording: Any, phase: str | None, bounds: tuple[float, float] | None, trace: Path
+) -> Any:
     """The analysis window the options ask for (default: the whole recording)."""
-    from funcnet.robot import detect_phases
-    from funcnet.robot.windows import Window, phase_windows, span_window
+    from funcnet.robot.windows import Window, span_window
 
-    if phase is not None and window is not None:
-        raise ParameterError("give --phase or --window, not both")
-    if window is not None:
-        return span_window(*_parse_window(window))
+    if bounds is not None:
+        return span_window(*bounds)
     if phase is None:
         # Signals logged on a coarser grid (IPO, 4 ms) have no value at the first tick: the
         # whole recording is the span where every signal has one.
@@ -278,17 +303,63 @@ def _select_window(recording: Any, phase: str | None, window: str | None, trace:
             raise WindowError(f"{trace}: no tick where every signal has a recorded value")
         start, stop = float(recorded[0]), float(recorded[-1]) + recording.sample_period
         return Window(label="whole recording", start=start, stop=stop)
-    windows = phase_windows(detect_phases(recording))
+    windows = _phase_windows(recording)
     by_label = [w for w in windows if w.label == phase]
     by_phase = by_label or [w for w in windows if w.phase == phase]
     if len(by_phase) == 1:
         return by_phase[0]
-    labels = ", ".join(repr(w.label) for w in windows) or "none"
     if not by_phase:
-        raise WindowError(f"{trace}: no phase {phase!r} detected (phases: {labels})")
+        labels = ", ".join(repr(w.label) for w in windows) or "none"
+        raise WindowError(
+            f"{trace}: no phase {phase!r} detected (phases: {labels}; --list-phases shows them)"
+        )
+    choices = ", ".join(f"{w.label!r} ({w.start:g}-{w.stop:g} s)" for w in by_phase)
     raise WindowError(
-        f"{trace}: phase {phase!r} occurs {len(by_phase)} times; give one of {labels}"
+        f"{trace}: phase {phase!r} occurs {len(by_phase)} times; give one of {choices}"
     )
+
+
+def _phase_windows(recording: Any) -> list[Any]:
+    from funcnet.robot import detect_phases
+    from funcnet.robot.windows import phase_windows
+
+    return phase_windows(detect_phases(recording))
+
+
+def _print_phases(recording: Any) -> None:
+    """The detected phases as plain text: label, phase, start, stop (seconds)."""
+    import pandas as pd
+
+    table = pd.DataFrame(
+        [(w.label, w.phase, w.start, w.stop) for w in _phase_windows(recording)],
+        columns=["label", "phase", "start", "stop"],
+    )
+    typer.echo(table.to_string(index=False, float_format=lambda value: f"{value:.6g}"))
+
+
+def _read_network_recording(
+    trace: Path,
+    signals: list[str] | None,
+    channels: Path | None,
+    axis: int | None,
+    resample: str | None,
+) -> Any:
+    """The recording with its derived signals, on the resampled grid when asked."""
+    from funcnet.study import read_recording
+
+    recording = read_recording(trace, signals=signals, channels=channels, axis=axis)
+    if resample is None:
+        return recording
+    from funcnet.robot import add_derived_signals
+    from funcnet.robot import resample as resampled
+    from funcnet.robot.preprocess import DERIVED_SIGNALS
+
+    # Derived signals (V, FE, TORSION) are recomputed from the resampled inputs, so that V is the
+    # velocity of the interpolated or decimated AP.
+    derived = [
+        c for c in recording.data.columns if c in DERIVED_SIGNALS and c not in recording.roles
+    ]
+    return add_derived_signals(resampled(recording, method=resample), derived)
 
 
 @app.command()
@@ -315,6 +386,26 @@ def network(
         str | None,
         typer.Option("--window", help="Analyse START:STOP seconds, e.g. 1.0:5.0."),
     ] = None,
+    list_phases: Annotated[
+        bool,
+        typer.Option(
+            "--list-phases",
+            metavar="",
+            help="Print the detected phases (label, phase, start, stop in seconds), to choose "
+            "--phase or --window, and stop.",
+        ),
+    ] = False,
+    resample: Annotated[
+        str | None,
+        typer.Option(
+            "--resample",
+            metavar="METHOD",
+            help="Bring signals logged on a coarser grid (AP, MP: 4 ms IPO) to one grid first: "
+            "decimate (keep the ticks where every signal is written) or interpolate (straight "
+            "lines between their samples). Derived signals are computed after it. Without it "
+            "such signals are staircases (a warning says so).",
+        ),
+    ] = None,
     dim: Annotated[
         int | None, typer.Option(help="Embedding dimension m (Eq. 1). \\[default: 3]")
     ] = None,
@@ -339,7 +430,10 @@ def network(
     ] = None,
     normalize: Annotated[
         str | None,
-        typer.Option(help="Per-window normalization: minmax, zscore or none. \\[default: minmax]"),
+        typer.Option(
+            help="Per-window normalization: minmax, zscore or none (signals as recorded; the "
+            "library's normalize=None). \\[default: minmax]"
+        ),
     ] = None,
     measure: Annotated[
         str | None,
@@ -375,8 +469,9 @@ def network(
 
     Every pair of signals gets cross-clustering and cross-transitivity in both directions
     (Eq. 6-9), their differences (Eq. 10) and an edge by the mu rule with the weight of Eq. 13.
-    A negative difference means X drives Y (kind x->y). Without -o the pairs table is printed:
-    the main columns as a table on a terminal, every column as plain text when piped.
+    A negative difference reads as X -> Y (kind x->y); it may reflect which signal is rougher
+    rather than coupling (README, "Direction"). Without -o the pairs table is printed: the main
+    columns as a table on a terminal, every column as plain text when piped.
 
     Without --phase or --window the whole recording is one window: slow for long traces (the
     cost grows with the cube of the window's length).
@@ -386,8 +481,8 @@ def network(
             raise ParameterError(
                 f"-o {output}: unknown format, use one of {', '.join(_NETWORK_SUFFIXES)}"
             )
+        from funcnet.network import check_parameters
         from funcnet.robot import phase_networks
-        from funcnet.study import read_recording
 
         names = None if signals is None else [s.strip() for s in signals.split(",") if s.strip()]
         given = {
@@ -404,11 +499,23 @@ def network(
         parameters: dict[str, Any] = {k: v for k, v in given.items() if v is not None}
         if normalize is not None:
             parameters["normalize"] = None if normalize.lower() == "none" else normalize
+        # Options are checked before the trace is read: a bad one is reported as itself, not
+        # as whatever the computation would stumble on first.
+        check_parameters(**parameters)
+        if phase is not None and window is not None:
+            raise ParameterError("give --phase or --window, not both")
+        bounds = None if window is None else _parse_window(window)
+        if resample not in (None, "decimate", "interpolate"):
+            raise ParameterError(f"--resample must be decimate or interpolate, got {resample!r}")
         # One network has no steps to count: the bar only shows that work is going on.
         with _progress(quiet, "network"):
-            recording = read_recording(trace, signals=names, channels=channels, axis=axis)
-            chosen = _select_window(recording, phase, window, trace)
-            (net,) = phase_networks(recording, [chosen], signals=names, **parameters).values()
+            recording = _read_network_recording(trace, names, channels, axis, resample)
+            if not list_phases:
+                chosen = _select_window(recording, phase, bounds, trace)
+                (net,) = phase_networks(recording, [chosen], signals=names, **parameters).values()
+        if list_phases:
+            _print_phases(recording)
+            return
         if output is None:
             _print_pairs(net)
             return
@@ -450,29 +557,49 @@ _TERMINAL_COLUMNS = (
     "eps_ordered",
     "rate_exceeded",
 )
+# The columns kept on a terminal too narrow for the others.
+_NARROW_COLUMNS = _TERMINAL_COLUMNS[:6]
+_PAIRS_CAPTION = (
+    "negative diff reads as x->y: x may be the rougher signal, not a driver; "
+    "-o net.json keeps every column"
+)
 
 
 def _is_terminal(stream: Any) -> bool:
     return bool(getattr(stream, "isatty", lambda: False)())
 
 
-def _print_pairs(net: Any) -> None:
-    """The pairs table: a rich table on a terminal, every column as plain text otherwise."""
-    pairs = net.pairs
-    if not _is_terminal(sys.stdout):
-        typer.echo(pairs.to_string(index=False))
-        return
-    from rich.console import Console
+def _pairs_table(net: Any, columns: Sequence[str], number_format: str) -> Any:
     from rich.table import Table
 
-    shown = [c for c in _TERMINAL_COLUMNS if c in pairs.columns]
-    table = Table(title=net.label, caption="negative diff: x drives y (x->y)")
+    pairs = net.pairs
+    shown = [c for c in columns if c in pairs.columns]
+    table = Table(title=net.label, caption=_PAIRS_CAPTION)
     for column in shown:
         numeric = pairs[column].dtype.kind == "f"
-        table.add_column(column, justify="right" if numeric else "left")
+        table.add_column(column, justify="right" if numeric else "left", no_wrap=True)
     for row in pairs[shown].itertuples(index=False):
-        table.add_row(*(f"{v:.4f}" if isinstance(v, float) else str(v) for v in row))
-    Console().print(table)
+        table.add_row(*(format(v, number_format) if isinstance(v, float) else str(v) for v in row))
+    return table
+
+
+def _print_pairs(net: Any) -> None:
+    """The pairs table: a rich table on a terminal, every column as plain text otherwise.
+
+    A terminal too narrow for the main columns gets fewer of them, at 3 significant digits,
+    rather than every number cut short.
+    """
+    if not _is_terminal(sys.stdout):
+        typer.echo(net.pairs.to_string(index=False))
+        return
+    from rich.console import Console
+
+    console = Console()
+    table = _pairs_table(net, _TERMINAL_COLUMNS, ".4f")
+    # Measured without the terminal's limit: the width the table needs to show every number.
+    if console.measure(table, options=console.options.update_width(10_000)).maximum > console.width:
+        table = _pairs_table(net, _NARROW_COLUMNS, ".3g")
+    console.print(table)
 
 
 # --------------------------------------------------------------------------------------------
