@@ -469,9 +469,10 @@ def network(
 
     Every pair of signals gets cross-clustering and cross-transitivity in both directions
     (Eq. 6-9), their differences (Eq. 10) and an edge by the mu rule with the weight of Eq. 13.
-    A negative difference reads as X -> Y (kind x->y); it may reflect which signal is rougher
-    rather than coupling (README, "Direction"). Without -o the pairs table is printed: the main
-    columns as a table on a terminal, every column as plain text when piped.
+    A negative difference reads as X -> Y (kind x->y); it may reflect how differently the two
+    signals fill their phase space rather than coupling (README, "Direction"). Without -o the
+    pairs table is printed: the main columns as a table on a terminal, every column as plain
+    text when piped.
 
     Without --phase or --window the whole recording is one window: slow for long traces (the
     cost grows with the cube of the window's length).
@@ -560,7 +561,7 @@ _TERMINAL_COLUMNS = (
 # The columns kept on a terminal too narrow for the others.
 _NARROW_COLUMNS = _TERMINAL_COLUMNS[:6]
 _PAIRS_CAPTION = (
-    "negative diff reads as x->y: x may be the rougher signal, not a driver; "
+    "negative diff reads as x->y (an asymmetry, not proof of a driver); "
     "-o net.json keeps every column"
 )
 
