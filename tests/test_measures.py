@@ -303,12 +303,69 @@ def test_threshold_warnings():
     levels = np.tile([0.0, 1.0, 2.0, 1.0, 2.0], 30)
     with pytest.warns(ThresholdWarning) as record:
         result = cross_measures(levels, levels[::-1], dim=1, delay=1, rr=0.1, cr=0.02)
-    assert any("ties" in str(w.message) for w in record)
-    assert result.rate_exceeded
+    # Three values only: eps is 0 everywhere, a degenerate structure, not a slight overshoot.
+    assert result.rate_exceeded and result.degenerate == ("x", "y", "xy")
+    assert any("degenerate recurrence structure of signal x" in str(w.message) for w in record)
+    assert not any("ties" in str(w.message) for w in record)
     with warnings.catch_warnings():
         warnings.simplefilter("error", ThresholdWarning)
         quiet = cross_measures(x, y, eps=(0.15, 0.15, 0.05))
     assert quiet.eps_ordered and not quiet.rate_exceeded
+
+
+def zero_distance_rate(signal, dim, delay):
+    """Brute-force share of ordered state pairs i != j at distance 0."""
+    states = reference_embed(signal, dim, delay)
+    same = (states[:, None, :] == states[None, :, :]).all(axis=2)
+    return (same.sum() - len(states)) / (len(states) * (len(states) - 1))
+
+
+def test_gross_overshoot_gets_its_own_warning_naming_the_signal():
+    # AC barely moves: 180 equal samples, then a short ramp (the user's eps_x = 0, rr_x = 0.83).
+    rng = np.random.default_rng(3)
+    signals = [rng.random(200), rng.random(200), np.r_[np.zeros(180), np.linspace(0, 1, 20)]]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        results = pairwise_cross_measures(signals, names=["RP", "AP", "AC"], delay=1)
+    ac = results[(0, 2)]
+    assert ac.eps_y == 0.0
+    assert ac.rr_y == pytest.approx(zero_distance_rate(signals[2], 3, 1), abs=1e-12)
+    assert ac.rr_y > 0.8
+    assert [r.degenerate for r in results.values()] == [(), ("y",), ("y",)]
+    messages = [str(w.message) for w in caught if issubclass(w.category, ThresholdWarning)]
+    degenerate = [m for m in messages if "degenerate" in m]
+    assert len(degenerate) == 1
+    assert degenerate[0].startswith("degenerate recurrence structure of signal AC (rr 0.8")
+    assert "signal RP" not in degenerate[0] and "signal AP" not in degenerate[0]
+    assert "barely moves" in degenerate[0]
+    assert "2 pair(s) are meaningless: (RP, AC), (AP, AC)" in degenerate[0]
+    # Its pairs are not listed again under the generic (slight overshoot) warning.
+    assert not any("ties at a threshold" in m for m in messages)
+    assert {w.filename for w in caught} == {__file__}
+
+
+def test_slight_overshoot_keeps_the_generic_warning():
+    # Integer values: ties at the threshold, yet rates stay close to the 0.05 target.
+    values = np.random.default_rng(5).integers(0, 10, size=(200, 3)).astype(float)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        results = pairwise_cross_measures(values, names=["RP", "AP", "AC"], delay=1)
+    for r in results.values():
+        assert r.rate_exceeded and not r.degenerate
+        assert 0.05 < max(r.rr_x, r.rr_y, r.cr) <= 0.1 and min(r.eps_x, r.eps_y, r.eps_xy) > 0
+    messages = [str(w.message) for w in caught if issubclass(w.category, ThresholdWarning)]
+    assert [m for m in messages if "ties" in m] == [
+        "ties at a threshold pushed an achieved rate above its target for 3 pair(s): "
+        "(RP, AP), (RP, AC), (AP, AC); see rr_x, rr_y, cr (rate_exceeded is True)"
+    ]
+    assert not any("degenerate" in m for m in messages)
+
+
+def test_explicit_thresholds_are_never_degenerate():
+    # An explicit eps has no target rate to overshoot, however many pairs it admits.
+    x = np.sin(np.arange(100.0))
+    result = cross_measures(x, np.cos(np.arange(100.0)), eps=(10.0, 10.0, 1e-3))
+    assert result.rr_x == 1.0 and result.degenerate == ()
 
 
 def test_pairwise_warns_once_listing_the_pairs():

@@ -15,7 +15,13 @@ import pytest
 import funcnet.network as network_module
 from funcnet.errors import ParameterError, SignalError, ThresholdWarning
 from funcnet.measures import CrossMeasures, cross_measures
-from funcnet.network import FunctionalNetwork, combine_kinds, edge_kind, functional_network
+from funcnet.network import (
+    FunctionalNetwork,
+    check_parameters,
+    combine_kinds,
+    edge_kind,
+    functional_network,
+)
 from funcnet.preprocess import normalize
 
 MEASURE_COLUMNS = [
@@ -355,7 +361,7 @@ def test_network_built_with_one_measure_can_give_the_combined_edges(fake_measure
 def test_calls_pairwise_once_with_the_parameters(fake_measures):
     calls = fake_measures([crafted(0.0, 0.0)] * 3)
     functional_network(
-        noise(3), dim=4, delay=2, rr=0.1, cr=0.03, metric="supremum", rule="pyunicorn", theiler=1
+        noise(3), dim=4, delay=2, rr=0.1, cr=0.03, metric="supremum", rule="funcnet", theiler=1
     )
     assert calls == [
         dict(
@@ -365,7 +371,7 @@ def test_calls_pairwise_once_with_the_parameters(fake_measures):
             rr=0.1,
             cr=0.03,
             metric="supremum",
-            rule="pyunicorn",
+            rule="funcnet",
             theiler=1,
         )
     ]
@@ -406,6 +412,29 @@ def test_real_threshold_problems_warn_once_per_problem_with_names():
     assert not any("(0, 1)" in message for message in threshold)
     # Attributed to the line that called functional_network, not to funcnet's own code.
     assert {w.filename for w in caught if issubclass(w.category, ThresholdWarning)} == {__file__}
+
+
+def test_a_signal_that_barely_moves_gets_an_explicit_warning_naming_it():
+    rng = np.random.default_rng(3)
+    data = pd.DataFrame(
+        {
+            "RP": rng.random(200),
+            "AP": rng.random(200),
+            "AC": np.r_[np.full(180, 2.0), np.linspace(2.0, 2.001, 20)],  # min-max keeps it flat
+        }
+    )
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        net = functional_network(data, delay=1)
+    rows = net.pairs.set_index(["x", "y"])
+    assert rows.loc[("RP", "AC"), "eps_y"] == 0.0 and rows.loc[("RP", "AC"), "rr_y"] > 0.8
+    messages = [str(w.message) for w in caught if issubclass(w.category, ThresholdWarning)]
+    degenerate = [m for m in messages if m.startswith("degenerate recurrence structure")]
+    assert len(degenerate) == 1
+    assert "signal AC (rr 0.8" in degenerate[0]
+    assert "meaningless: (RP, AC), (AP, AC)" in degenerate[0]
+    assert len(messages) == len(set(messages)) <= 3  # at most one per problem
+    assert not any("ties at a threshold" in m for m in messages)
 
 
 # --- inputs -------------------------------------------------------------------------------
@@ -468,6 +497,48 @@ def test_parameters_and_label_are_recorded():
 def test_bad_parameters(kwargs, error, pattern):
     with pytest.raises(error, match=pattern):
         functional_network(signals(n=60), **kwargs)
+
+
+BAD_VALUES = [
+    # parameter, bad value, message
+    ("dim", 0, "dim must be >= 1, got 0"),
+    ("dim", 2.5, "dim must be an integer"),
+    ("delay", 0, "delay must be >= 1, got 0"),
+    ("delay", True, "delay must be an integer"),
+    ("rr", 2, r"rr must be in \(0, 1\), got 2.0"),
+    ("rr", 0.0, r"rr must be in \(0, 1\)"),
+    ("rr", "0.05", "rr must be a number"),
+    ("cr", 1.0, r"cr must be in \(0, 1\)"),
+    ("mu", -0.01, "mu must be finite and >= 0"),
+    ("mu", float("inf"), "mu must be finite"),
+    ("metric", "cosine", "metric must be one of .*'cosine'"),
+    ("normalize", "robust", "normalize must be one of"),
+    ("measure", "degree", "measure must be one of"),
+    ("rule", "scipy", "rule must be one of"),
+    ("theiler", -1, "theiler must be >= 0"),
+]
+
+
+@pytest.mark.parametrize(("name", "value", "pattern"), BAD_VALUES)
+def test_check_parameters_rejects_each_bad_value_without_data(name, value, pattern):
+    with pytest.raises(ParameterError, match=pattern) as without_data:
+        check_parameters(**{name: value})
+    assert name in str(without_data.value)
+    # functional_network raises the very same message, before it looks at the data.
+    with pytest.raises(ParameterError) as with_data:
+        functional_network(signals(n=60), **{name: value})
+    assert str(with_data.value) == str(without_data.value)
+    with pytest.raises(ParameterError) as without_signals:
+        functional_network(None, **{name: value})
+    assert str(without_signals.value) == str(without_data.value)
+
+
+def test_check_parameters_accepts_the_defaults_and_every_option():
+    assert check_parameters() is None
+    check_parameters(dim=1, delay=1, rr=0.3, cr=1e-3, mu=0.0, metric="manhattan")
+    check_parameters(normalize=None, measure="transitivity", rule="pyunicorn", theiler=0)
+    with pytest.raises(ParameterError, match="theiler must be 0 with rule='pyunicorn'"):
+        check_parameters(rule="pyunicorn", theiler=2)
 
 
 def test_bad_signals_are_named():
@@ -555,6 +626,39 @@ def test_write_json_and_graphml(tmp_path, fake_measures):
     with pytest.raises(ParameterError, match=r"\.json or \.graphml"):
         net.write(tmp_path / "net.csv")
     assert not (tmp_path / "net.csv").exists()
+
+
+def test_read_restores_the_written_network_exactly(tmp_path):
+    net = quiet_network(
+        signals(n=80, seed=7), names=["RP", 'A"P', "Strom ÄC"], delay=2, label="braking"
+    )
+    back = FunctionalNetwork.read(net.write(tmp_path / "net.json"))
+    assert back == net
+    for name in MEASURE_COLUMNS + ["weight"]:
+        np.testing.assert_array_equal(
+            back.pairs[name].to_numpy().view(np.int64), net.pairs[name].to_numpy().view(np.int64)
+        )
+    assert back.to_json() == net.to_json()
+    assert FunctionalNetwork.read(str(tmp_path / "net.json")) == net  # a str path too
+
+
+def test_read_refuses_what_it_cannot_restore(tmp_path, fake_measures):
+    net = four_node_network(fake_measures)
+    graphml = net.write(tmp_path / "net.graphml")
+    with pytest.raises(ParameterError, match=r"net\.graphml.*cannot be read back.*\.json"):
+        FunctionalNetwork.read(graphml)
+    with pytest.raises(ParameterError, match=r"must end in \.json, got 'net\.csv'"):
+        FunctionalNetwork.read(tmp_path / "net.csv")
+    other = tmp_path / "other.json"
+    other.write_text('{"format": "something else"}', encoding="utf-8")
+    with pytest.raises(ParameterError, match=r"other\.json: text is not a funcnet"):
+        FunctionalNetwork.read(other)
+    binary = tmp_path / "binary.json"
+    binary.write_bytes(b"\xff\xfe\x00")
+    with pytest.raises(ParameterError, match=r"binary\.json"):
+        FunctionalNetwork.read(binary)
+    with pytest.raises(FileNotFoundError):
+        FunctionalNetwork.read(tmp_path / "missing.json")
 
 
 def test_repr_is_short(fake_measures):

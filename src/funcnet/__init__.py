@@ -35,6 +35,7 @@ _EXPORTS = {
     "edge_kind": "funcnet.network",
     "combine_kinds": "funcnet.network",
     "edges_from_pairs": "funcnet.network",
+    "check_parameters": "funcnet.network",
     "pairwise_cross_measures": "funcnet.measures",
     "Study": "funcnet.study",
     "load_study": "funcnet.study",

@@ -23,6 +23,10 @@ compiled parallel kernel (about ``M_X * k * M_Y / 128`` word operations for mean
 ``k``). Thresholds follow the rule of :mod:`funcnet.recurrence` (exact k-th order statistic of
 the candidate distances, ``k = max(1, ceil(rate * P - 1e-9))``, ``d <= eps``; or
 ``rule="pyunicorn"``). Rates default to the paper's ``RR = CR = 0.05`` (section 3.4).
+
+Signals are used as given: nothing in this module normalizes them, so a common threshold
+``eps_xy`` compares raw amplitudes. :func:`funcnet.network.functional_network` normalizes each
+signal of the data it receives (one analysis window) first, by default min-max (section 3.3).
 """
 
 from __future__ import annotations
@@ -151,6 +155,11 @@ class CrossMeasures:
         Numbers of embedded states.
     parameters : dict
         The parameters that produced the values (dim, delay, rr, cr, eps, metric, rule, theiler).
+    degenerate : tuple of str
+        The blocks whose recurrence structure is degenerate -- ``"x"`` (``A_X``), ``"y"``
+        (``A_Y``), ``"xy"`` (``CR_XY``): threshold 0, or an achieved rate more than twice its
+        target. Too few distinct states (a signal that barely moves) cause it; the measures of
+        such a pair say nothing about direction.
     """
 
     c_xy: float
@@ -170,6 +179,12 @@ class CrossMeasures:
     m_x: int
     m_y: int
     parameters: dict[str, Any] = field(default_factory=dict)
+    degenerate: tuple[str, ...] = ()
+
+
+def _is_degenerate(block: PackedRecurrence) -> bool:
+    """Threshold 0, or an achieved rate more than twice its target: too few distinct states."""
+    return block.eps == 0.0 or (block.target is not None and block.rate > 2 * block.target)
 
 
 def isrn_measures(
@@ -250,6 +265,9 @@ def isrn_measures(
         m_x=a_x.shape[0],
         m_y=a_y.shape[0],
         parameters=dict(parameters or {}),
+        degenerate=tuple(
+            name for name, block in (("x", a_x), ("y", a_y), ("xy", cr_xy)) if _is_degenerate(block)
+        ),
     )
 
 
@@ -268,28 +286,63 @@ def _caller_stacklevel() -> int:
     return level
 
 
-def _warn_thresholds(results: Mapping[str, CrossMeasures]) -> None:
-    """One ThresholdWarning per kind of problem, listing the pairs (labels) that have it."""
+def _degenerate_message(results: Mapping[tuple[str, str], CrossMeasures]) -> str | None:
+    """The warning for pairs with a degenerate block, naming the signals behind it; or None."""
+    causes: dict[str, str] = {}  # signal or pair -> its achieved rate and threshold
+    pairs = []
+    for (x, y), r in results.items():
+        if not r.degenerate:
+            continue
+        pairs.append(f"({x}, {y})")
+        if "x" in r.degenerate:
+            causes.setdefault(f"signal {x}", f"rr {r.rr_x:.3g}, eps {r.eps_x:.3g}")
+        if "y" in r.degenerate:
+            causes.setdefault(f"signal {y}", f"rr {r.rr_y:.3g}, eps {r.eps_y:.3g}")
+        if "xy" in r.degenerate:
+            causes.setdefault(
+                f"cross-recurrence of ({x}, {y})", f"cr {r.cr:.3g}, eps {r.eps_xy:.3g}"
+            )
+    if not pairs:
+        return None
+    return (
+        "degenerate recurrence structure of "
+        + "; ".join(f"{cause} ({numbers})" for cause, numbers in causes.items())
+        + ": threshold 0 or an achieved rate more than twice its target, i.e. too few distinct "
+        "states (e.g. a signal that barely moves); the arrows of "
+        f"{len(pairs)} pair(s) are meaningless: {', '.join(pairs)}"
+    )
+
+
+def _warn_thresholds(results: Mapping[tuple[str, str], CrossMeasures]) -> None:
+    """At most one ThresholdWarning per kind of problem, naming the pairs (and signals) with it.
+
+    A degenerate block (:attr:`CrossMeasures.degenerate`) gets its own warning; the generic one
+    about ties covers only the pairs whose rates overshoot slightly.
+    """
+    labels = {pair: f"({pair[0]}, {pair[1]})" for pair in results}
     problems = (
         (
-            [label for label, r in results.items() if not r.eps_ordered],
+            [labels[pair] for pair, r in results.items() if not r.eps_ordered],
             "eps_xy is not below eps_x and eps_y",
             "section 2.2 of the paper asks eps_xy < eps_x, eps_y for a modular ISRN "
             "(eps_ordered is False)",
         ),
         (
-            [label for label, r in results.items() if r.rate_exceeded],
+            [labels[pair] for pair, r in results.items() if r.rate_exceeded and not r.degenerate],
             "ties at a threshold pushed an achieved rate above its target",
             "see rr_x, rr_y, cr (rate_exceeded is True)",
         ),
     )
-    for labels, problem, advice in problems:
-        if labels:
-            warnings.warn(
-                f"{problem} for {len(labels)} pair(s): {', '.join(labels)}; {advice}",
-                ThresholdWarning,
-                stacklevel=_caller_stacklevel(),
-            )
+    messages = [
+        f"{problem} for {len(pairs)} pair(s): {', '.join(pairs)}; {advice}"
+        for pairs, problem, advice in problems
+        if pairs
+    ]
+    degenerate = _degenerate_message(results)
+    if degenerate is not None:
+        messages.append(degenerate)
+    for message in messages:
+        warnings.warn(message, ThresholdWarning, stacklevel=_caller_stacklevel())
 
 
 def cross_measures(
@@ -306,6 +359,10 @@ def cross_measures(
     theiler: int = 0,
 ) -> CrossMeasures:
     """Global cross-clustering and cross-transitivity of two signals, both directions.
+
+    ``x`` and ``y`` are used as given: no normalization. Scale them yourself if they have
+    different units; :func:`funcnet.network.functional_network` normalizes each signal of the
+    data (window) it is given, min-max by default, before it calls the measures.
 
     Builds the ISRN of Eq. 4 (thresholds by rate: ``eps`` is the k-th smallest candidate distance,
     ``k = max(1, ceil(rate * P - 1e-9))``, with ``P = (M - w)(M - w - 1)`` ordered pairs
@@ -348,7 +405,8 @@ def cross_measures(
     Warns
     -----
     ThresholdWarning
-        ``eps_xy`` is not below ``eps_x`` and ``eps_y``, or ties pushed a rate above target.
+        ``eps_xy`` is not below ``eps_x`` and ``eps_y``, or ties pushed a rate above target; a
+        separate one when a structure is degenerate (:attr:`CrossMeasures.degenerate`).
 
     References
     ----------
@@ -379,7 +437,7 @@ def cross_measures(
     a_x, a_y, cr_xy = _isrn_blocks(x, y, **parameters)
     parameters["eps"] = None if eps is None else tuple(eps)
     result = isrn_measures(a_x, a_y, cr_xy, parameters=parameters)
-    _warn_thresholds({"(x, y)": result})
+    _warn_thresholds({("x", "y"): result})
     return result
 
 
@@ -430,8 +488,8 @@ def pairwise_cross_measures(
     Parameters
     ----------
     signals : sequence of array_like (N,), or 2-D array_like (N, n_signals)
-        At least two signals of the same length; a 2-D array (or DataFrame) holds one signal per
-        column, time on axis 0.
+        At least two signals of the same length, used as given (no normalization); a 2-D array
+        (or DataFrame) holds one signal per column, time on axis 0.
     names : sequence of str, optional
         How error messages (``signal 'AP' ...``) and warnings (``(RP, AP)``) call the signals;
         by default by position (``signal signals[1] ...``, ``(0, 1)``).
@@ -455,7 +513,8 @@ def pairwise_cross_measures(
     -----
     ThresholdWarning
         One warning listing the pairs whose ``eps_xy`` is not below ``eps_x``, ``eps_y``, one
-        for those where ties pushed a rate above target.
+        for those where ties pushed a rate slightly above target, and one naming the signals
+        whose structure is degenerate (:attr:`CrossMeasures.degenerate`) and their pairs.
 
     References
     ----------
@@ -523,7 +582,7 @@ def pairwise_cross_measures(
                 states[i], states[j], cr=cr, eps=cross_eps, metric=metric, rule=rule
             )
             results[(i, j)] = isrn_measures(autos[i], autos[j], cr_ij, parameters=parameters)
-    _warn_thresholds({f"({labels[i]}, {labels[j]})": r for (i, j), r in results.items()})
+    _warn_thresholds({(labels[i], labels[j]): r for (i, j), r in results.items()})
     return results
 
 

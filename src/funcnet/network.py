@@ -1,5 +1,9 @@
 """Functional networks: one node per signal, edges from the asymmetry of the ISRN (section 2.3-2.4).
 
+:func:`functional_network` first normalizes each signal over the data it is given -- one
+analysis window -- (``normalize="minmax"`` by default, section 3.3); the measures of
+:mod:`funcnet.measures` then use the signals as given.
+
 For every unordered pair of signals (X, Y) the inter-system recurrence network gives the global
 cross-clustering ``C^XY``, ``C^YX`` and cross-transitivity ``T^XY``, ``T^YX``
 (:func:`funcnet.measures.pairwise_cross_measures`, Eq. 6-9) and their differences
@@ -46,14 +50,16 @@ import pandas as pd
 from funcnet._io import atomic_path, write_text_atomic
 from funcnet.errors import ParameterError, SignalError
 from funcnet.measures import pairwise_cross_measures
-from funcnet.preprocess import _as_float_columns
+from funcnet.preprocess import _as_float_columns, _check_normalization
 from funcnet.preprocess import normalize as normalize_signals
+from funcnet.recurrence import _check_int, _check_options, _check_rate
 
 __all__ = [
     "MEASURES",
     "PAIR_KINDS",
     "FunctionalNetwork",
     "functional_network",
+    "check_parameters",
     "edge_kind",
     "combine_kinds",
     "edges_from_pairs",
@@ -414,6 +420,7 @@ class FunctionalNetwork:
         path : path-like
             ``*.json`` (:meth:`to_json`, lossless) or ``*.graphml`` (:meth:`to_networkx`; the
             parameters are stored as one JSON string graph attribute, the pairs table is not).
+            :meth:`read` reads ``*.json`` back.
 
         Returns
         -------
@@ -452,6 +459,54 @@ class FunctionalNetwork:
             return path
         raise ParameterError(f"path must end in .json or .graphml, got {path.name!r}")
 
+    @classmethod
+    def read(cls, path: str | os.PathLike[str]) -> FunctionalNetwork:
+        """Read a network written by :meth:`write` as ``*.json``; an exact round trip.
+
+        Parameters
+        ----------
+        path : path-like
+            A ``*.json`` file from :meth:`write` (or :meth:`to_json`).
+
+        Returns
+        -------
+        FunctionalNetwork
+            Equal to the network written, floats bit for bit.
+
+        Raises
+        ------
+        ParameterError
+            A ``*.graphml`` file (it holds no pairs table, so no network can be restored from it),
+            any other suffix, or a file that is not a functional network; the message names it.
+        FileNotFoundError
+            No file at ``path``.
+
+        Examples
+        --------
+        >>> import tempfile, pathlib
+        >>> import numpy as np
+        >>> rng = np.random.default_rng(0)
+        >>> x = rng.random(203)
+        >>> data = np.column_stack([x, x + 0.1 * rng.random(203)])
+        >>> network = functional_network(data, names=["x", "y"], delay=1)
+        >>> out = network.write(pathlib.Path(tempfile.mkdtemp()) / "copy.json")
+        >>> FunctionalNetwork.read(out) == network
+        True
+        """
+        path = Path(path)
+        suffix = path.suffix.lower()
+        if suffix == ".graphml":
+            raise ParameterError(
+                f"{path}: a GraphML file holds the graph but not the pairs table, so it cannot be "
+                "read back as a FunctionalNetwork; write and read .json instead"
+            )
+        if suffix != ".json":
+            raise ParameterError(f"path must end in .json, got {path.name!r}")
+        try:
+            return cls.from_json(path.read_text(encoding="utf-8"))
+        except (ParameterError, UnicodeDecodeError) as error:
+            raise ParameterError(f"{path}: {error}") from None
+
     def _summary(self) -> str:
         kinds = self.pairs["kind"]
         directed = int(kinds.isin(["x->y", "y->x"]).sum())
@@ -488,6 +543,55 @@ def _check_mu(mu: Any) -> float:
     if not math.isfinite(mu) or mu < 0:
         raise ParameterError(f"mu must be finite and >= 0, got {mu}")
     return mu
+
+
+def check_parameters(
+    *,
+    dim: int = 3,
+    delay: int = 10,
+    rr: float = 0.05,
+    cr: float = 0.05,
+    mu: float = 0.05,
+    metric: str = "euclidean",
+    normalize: str | None = "minmax",
+    measure: str = "both",
+    rule: str = "funcnet",
+    theiler: int = 0,
+) -> None:
+    """Validate the parameters of :func:`functional_network` without any data.
+
+    :func:`functional_network` calls it first, so a caller (the command line) can reject bad
+    values before it reads a trace and gets the very same message.
+
+    Parameters
+    ----------
+    dim, delay, rr, cr, mu, metric, normalize, measure, rule, theiler
+        As in :func:`functional_network`.
+
+    Raises
+    ------
+    ParameterError
+        The first bad value; the message names the parameter: ``dim``/``delay`` not an integer
+        ``>= 1``, ``rr``/``cr`` outside (0, 1), ``mu`` negative or not finite, an unknown
+        ``metric``/``normalize``/``measure``/``rule``, ``theiler`` not an integer ``>= 0`` (or
+        not 0 with ``rule="pyunicorn"``).
+
+    Examples
+    --------
+    >>> check_parameters(rr=0.1, metric="supremum")
+    >>> check_parameters(rr=2)
+    Traceback (most recent call last):
+        ...
+    funcnet.errors.ParameterError: rr must be in (0, 1), got 2.0
+    """
+    _check_measure(measure)
+    _check_mu(mu)
+    _check_normalization(normalize)
+    _check_int(dim, "dim", 1)
+    _check_int(delay, "delay", 1)
+    _check_options(metric, rule, theiler)
+    _check_rate(rr, "rr")
+    _check_rate(cr, "cr")
 
 
 def functional_network(
@@ -553,15 +657,18 @@ def functional_network(
         Fewer than two signals; a signal not numeric, with NaN/inf, constant under ``"minmax"``
         or ``"zscore"``, or too short for the embedding; the message names it.
     ParameterError
-        Negative or non-finite ``mu``, unknown ``measure``/``normalize``/``metric``/``rule``,
-        ``names`` of the wrong length or with duplicates, ``rr``/``cr`` outside (0, 1).
+        Any value :func:`check_parameters` rejects (checked before the data is read);
+        ``names`` of the wrong length or with duplicates.
 
     Warns
     -----
     ThresholdWarning
         At most one per kind of problem, naming the pairs by their signals: ``eps_xy`` not below
         ``eps_x`` and ``eps_y``, or achieved rates above their targets (ties); the pairs table
-        flags them too (``eps_ordered``, ``rate_exceeded``).
+        flags them too (``eps_ordered``, ``rate_exceeded``). A degenerate recurrence structure
+        (threshold 0 or a rate above twice its target: too few distinct states, e.g. a signal
+        that barely moves) gets its own warning naming the signal; those pairs' arrows are
+        meaningless.
 
     References
     ----------
@@ -601,8 +708,19 @@ def functional_network(
     >>> bool(network.pairs["eps_ordered"].all())
     False
     """
-    measure = _check_measure(measure)
-    mu = _check_mu(mu)
+    check_parameters(
+        dim=dim,
+        delay=delay,
+        rr=rr,
+        cr=cr,
+        mu=mu,
+        metric=metric,
+        normalize=normalize,
+        measure=measure,
+        rule=rule,
+        theiler=theiler,
+    )
+    mu = float(mu)
     values, nodes = _as_float_columns(data, names)
     if len(nodes) < 2:
         raise SignalError(f"a functional network needs at least two signals, got {len(nodes)}")

@@ -59,6 +59,12 @@ def _as_float_columns(x: Any, names: Any) -> tuple[np.ndarray, list[str]]:
     return table.astype(np.float64), names
 
 
+def _check_normalization(method: Any) -> None:
+    """Raise ParameterError unless ``method`` is one of :data:`NORMALIZATIONS`."""
+    if method not in NORMALIZATIONS:
+        raise ParameterError(f"normalize must be one of 'minmax', 'zscore' or None, got {method!r}")
+
+
 def normalize(x: Any, method: str | None = "minmax", *, names: Any = None) -> Any:
     """Scale each signal (column, time on axis 0) to a common range.
 
@@ -105,8 +111,7 @@ def normalize(x: Any, method: str | None = "minmax", *, names: Any = None) -> An
         ...
     funcnet.errors.SignalError: signal 'AC' is constant (value 1): min-max normalization needs ...
     """
-    if method not in NORMALIZATIONS:
-        raise ParameterError(f"normalize must be one of 'minmax', 'zscore' or None, got {method!r}")
+    _check_normalization(method)
     values, names = _as_float_columns(x, names)
     if values.shape[0] == 0:
         raise SignalError(f"signals {', '.join(map(repr, names))} are empty")
