@@ -188,11 +188,29 @@ def test_read_plan_errors_name_file_and_key(tmp_path, text, match):
     assert str(path) in str(info.value)
 
 
-def test_read_plan_rejects_values_out_of_range(tmp_path):
+@pytest.mark.parametrize(
+    ("speeds", "match"),
+    [("[-5]", "a-v-5-p16-s1: speed"), ("[35, 0.001]", "a-v0.001-p16-s1: the trace would span")],
+)
+def test_read_plan_rejects_values_out_of_range(tmp_path, speeds, match):
     path = tmp_path / "plan.toml"
-    path.write_text('[[group]]\nname = "a"\nspeeds = [-5]\ntcps = [1.6]\nsteps = [1]')
-    with pytest.raises(ParameterError, match="speed"):
+    path.write_text(f'[[group]]\nname = "a"\nspeeds = {speeds}\ntcps = [1.6]\nsteps = [1]')
+    with pytest.raises(ParameterError, match=match) as info:
         read_plan(path)
+    assert str(info.value).startswith(f"{path}: group 1 (a): Trial ")
+
+
+def test_read_plan_names_a_missing_file(tmp_path):
+    with pytest.raises(StudyError, match="cannot read the plan") as info:
+        read_plan(tmp_path / "absent.toml")
+    assert str(tmp_path / "absent.toml") in str(info.value)
+
+
+def test_write_plan_refuses_an_overlong_trial_before_writing(tmp_path):
+    trials = [Trial("quick", "main", 350, 1.2, 1), Trial("slow", "main", 0.001, 1.2, 1)]
+    with pytest.raises(ParameterError, match="Trial slow: the trace would span"):
+        write_plan(trials, tmp_path / "out")
+    assert not (tmp_path / "out").exists()
 
 
 # --- the writer ----------------------------------------------------------------------------

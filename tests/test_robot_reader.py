@@ -19,6 +19,7 @@ from funcnet.robot.channels import (
     DEFAULT_CHANNEL_MAP,
     ChannelMap,
     channel_map,
+    check_entries,
     parse_signal_name,
 )
 from funcnet.robot.recording import Recording, read_trace
@@ -293,6 +294,69 @@ def test_bad_channel_maps(tmp_path):
         channel_map(bad)
     with pytest.raises(ParameterError, match="role"):
         ChannelMap({"measPos2": "not a role"})
+
+
+def test_channel_entry_the_wrong_way_round_is_refused_with_a_hint(real_trace, tmp_path):
+    toml = tmp_path / "roles.toml"
+    toml.write_text('[channels]\nRC = "nckServoDataCmdVelCtrlIn64"\n')
+    with pytest.raises(ChannelError) as err:
+        read_trace(real_trace, channels=toml)
+    message = str(err.value)
+    assert str(real_trace) in message and f"channel map {toml}" in message
+    assert "entry 'RC' = 'nckServoDataCmdVelCtrlIn64' matches no signal of the trace" in message
+    assert 'entries are "signal name" = "ROLE"' in message
+    assert "did you mean 'nckServoDataCmdVelCtrlIn64' = 'RC'?" in message
+    # Written the right way round (and in lower case), the same entry assigns the role.
+    toml.write_text('[channels]\nnckServoDataCmdVelCtrlIn64 = "rc"\n')
+    assert (
+        read_trace(real_trace, channels=toml)
+        .roles["RC"]
+        .startswith("/Nck/!SD/nckServoDataCmdVelCtrlIn64 [")
+    )
+
+
+def test_channel_entry_naming_no_signal_is_refused(real_trace, real):
+    with pytest.raises(
+        ChannelError, match="channels: entry 'noSuchSignal' = 'RC' matches no"
+    ) as err:
+        read_trace(real_trace, channels={"noSuchSignal": "RC"})
+    message = str(err.value)
+    assert str(real_trace) in message and "did you mean" not in message
+    assert "measPos2" in message  # the trace's signals are listed
+    # A path-qualified key matches only on its path.
+    with pytest.raises(ChannelError, match="'/Nck/!SD/measPos1' = 'AP'"):
+        read_trace(real_trace, channels={"/Nck/!SD/measPos1": "AP"})
+    # The defaults are not checked: the real trace has no RC signal and reads without one.
+    assert "nckServoDataCmdCurr32" not in str(real.signals) and "RC" not in real.roles
+
+
+def test_channel_entries_are_checked_on_every_format(real, tmp_path):
+    bad = {"measPos9": "MP"}
+    stored = real.to_parquet(tmp_path / "r.parquet")
+    with pytest.raises(ChannelError, match="measPos9"):
+        read_trace(stored, channels=bad)
+    csv = tmp_path / "t.csv"
+    csv.write_text("time,measPos2,aaStat\n0,1,2\n0.002,3,4\n")
+    with pytest.raises(ChannelError, match="measPos9") as err:
+        read_trace(csv, channels=bad)
+    assert str(csv) in str(err.value)
+    assert read_trace(csv, channels={"measPos2": "ap"}).roles == {"AP": "measPos2"}
+
+
+def test_paper_roles_are_case_insensitive_others_kept():
+    cmap = channel_map({"sigA": "rp", "sigB": "Ac", "sigC": "torque"})
+    assert [cmap.role_of(name) for name in ("sigA", "sigB", "sigC")] == ["RP", "AC", "torque"]
+    # "rp" replaces the default RP entry like "RP" would.
+    assert cmap.role_of("nckServoDataCmdPos2ndEnc64") is None
+    check_entries(cmap, ["/a/sigA [u1, 1]", "sigB", "sigC"], "t.xml")  # all match
+
+
+def test_recording_repr_is_short(real, real_trace):
+    text = repr(real)
+    assert text.startswith(f"Recording(source={str(real_trace)!r}, duration=45.418 s, ")
+    assert "sample_period=0.002 s, axis=7" in text
+    assert "AP (measPos2)" in text and "aaStat" in text
+    assert len(text) < 400 and "\n" not in text  # neither the table nor the signal metadata
 
 
 def test_two_signals_for_one_role_are_refused(real_trace, tmp_path):

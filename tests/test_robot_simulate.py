@@ -9,7 +9,13 @@ import pytest
 
 from funcnet.errors import ParameterError
 from funcnet.robot.plan import Trial, paper_plan
-from funcnet.robot.simulate import AxisParameters, setpoint_profile, simulate_trial
+from funcnet.robot.simulate import (
+    MAX_TRIAL_DURATION,
+    AxisParameters,
+    setpoint_profile,
+    simulate_trial,
+    trial_duration,
+)
 from funcnet.robot.writer import write_trace
 
 P = AxisParameters()
@@ -301,3 +307,36 @@ def test_axis_parameters_reject_values_out_of_range(changes):
         AxisParameters(**changes)
     with pytest.raises(ParameterError, match="no field"):
         P.replace(gear_rate=3)
+
+
+@pytest.mark.parametrize(
+    ("speed", "step", "reverse"), [(35, 3, False), (1, 1, True), (350, 1, False)]
+)
+def test_trial_duration_is_lead_motion_and_settling(speed, step, reverse):
+    # Closed form: a move lasts |step| / peak + (T_acc + T_dec) / 2, the peak limited by the step.
+    ramps = (P.acceleration_time + P.deceleration_time) / 2
+    move = step / min(speed / 60, step / ramps) + ramps
+    moves = 2 * move + P.dwell_time if reverse else move
+    expected = P.lead_time + moves + P.settle_time
+    assert trial_duration(_trial(speed, 1.6, step, reverse)) == pytest.approx(expected, rel=1e-12)
+
+
+def test_an_overlong_trial_is_refused_before_any_allocation():
+    import tracemalloc
+
+    # 1 deg at 0.001 deg/min: 60 000 s of motion, about 40 GB of loop arrays.
+    slow = Trial("too-slow", "test", speed=0.001, tcp=1.6, step=1)
+    tracemalloc.start()
+    try:
+        with pytest.raises(ParameterError, match=r"too-slow.*6e\+04 s.*3600 s"):
+            simulate_trial(slow)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 2**20
+    # The limit applies to the whole trace: at 60 deg/min (1 deg/s) the longest step fits
+    # the lead, the 0.85 s the ramps add, and the settling in MAX_TRIAL_DURATION.
+    longest = MAX_TRIAL_DURATION - P.lead_time - P.settle_time - 0.85
+    assert trial_duration(_trial(60, 1.6, longest - 1e-6)) <= MAX_TRIAL_DURATION
+    with pytest.raises(ParameterError, match="MAX_TRIAL_DURATION"):
+        trial_duration(_trial(60, 1.6, longest + 1e-3))

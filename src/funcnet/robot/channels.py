@@ -7,6 +7,13 @@ A SINUMERIK trace names a signal by a path, a name and an address, e.g.
 names, so one map serves every axis. A signal without a role keeps its base name as column name
 (``nckServoDataFlwErr64``, ``aaStat``): short, a valid identifier, and what the controller's own
 documentation calls it.
+
+An entry is written ``"signal name" = "ROLE"``. The paper's five roles are case-insensitive
+(``"rc"`` is ``RC``: columns are always named in capitals); any other role is an identifier kept
+as written. An entry a user supplies (a dict or a TOML file, not one of the defaults) must match
+a signal of the trace it is applied to: :func:`check_entries` refuses one that matches none, so
+an entry written the wrong way round (``RC = "nckServoDataCmdCurr32"``) or naming a signal the
+trace lacks is an error, not silently ignored.
 """
 
 from __future__ import annotations
@@ -29,6 +36,7 @@ __all__ = [
     "DEFAULT_CHANNEL_MAP",
     "parse_signal_name",
     "channel_map",
+    "check_entries",
     "select_axis",
 ]
 
@@ -122,7 +130,9 @@ class ChannelMap:
     ----------
     roles : Mapping[str, str]
         Signal name (without suffix) -> role. Roles are identifiers; the paper's are
-        :data:`ROLES`.
+        :data:`ROLES`, in any case (``"ap"`` is stored as ``"AP"``).
+    origin : str, optional
+        The TOML file the map was read from, named in errors.
 
     Examples
     --------
@@ -136,6 +146,7 @@ class ChannelMap:
     """
 
     roles: Mapping[str, str] = field(default_factory=dict)
+    origin: str | None = None
 
     def __post_init__(self) -> None:
         clean: dict[str, str] = {}
@@ -145,7 +156,7 @@ class ChannelMap:
                     f"channels: {key!r} -> {role!r}; a role must be an identifier such as 'RP'"
                 )
             parts = parse_signal_name(key)
-            clean[parts.path + parts.base] = role
+            clean[parts.path + parts.base] = role.upper() if role.upper() in ROLES else role
         object.__setattr__(self, "roles", MappingProxyType(clean))
 
     def role_of(self, name: str) -> str | None:
@@ -160,11 +171,12 @@ class ChannelMap:
         """Return the column name for the signal ``name``: its role, else its base name."""
         return self.role_of(name) or parse_signal_name(name).base
 
-    def updated(self, roles: Mapping[str, str]) -> ChannelMap:
+    def updated(self, roles: Mapping[str, str], *, origin: str | None = None) -> ChannelMap:
         """Return this map with ``roles`` added; a role given in ``roles`` replaces its old keys."""
-        new_roles = set(roles.values())
+        new = ChannelMap(roles)
+        new_roles = set(new.roles.values())
         kept = {key: role for key, role in self.roles.items() if role not in new_roles}
-        return ChannelMap({**kept, **roles})
+        return ChannelMap({**kept, **new.roles}, origin=origin or self.origin)
 
 
 #: SINUMERIK defaults (paper section 3.2; ``../shared/data/sinumerik/README.md``).
@@ -191,7 +203,9 @@ def channel_map(
         None gives :data:`DEFAULT_CHANNEL_MAP`. A dict ``{signal name: role}`` is applied over the
         defaults (a role it names replaces the default signal for that role). A TOML file holds
         the same pairs in a ``[channels]`` table, and ``defaults = false`` at top level to start
-        from an empty map instead of the defaults::
+        from an empty map instead of the defaults. The paper's roles are case-insensitive. Each
+        entry that is not one of the defaults must match a signal of the trace it is used on
+        (see :func:`check_entries`)::
 
             defaults = true
             [channels]
@@ -249,9 +263,57 @@ def channel_map(
             + (f"; unknown keys {sorted(unknown)}" if unknown else ""),
         )
     try:
-        return (DEFAULT_CHANNEL_MAP if use_defaults else ChannelMap()).updated(table)
+        start = DEFAULT_CHANNEL_MAP if use_defaults else ChannelMap()
+        return start.updated(table, origin=str(path))
     except ParameterError as exc:
         raise ChannelError(path, str(exc)) from exc
+
+
+def check_entries(cmap: ChannelMap, names: Iterable[str], path: object) -> None:
+    """Refuse a user-supplied entry of a channel map that matches no signal of a trace.
+
+    Parameters
+    ----------
+    cmap : ChannelMap
+        The map in use. Entries equal to one of :data:`DEFAULT_CHANNEL_MAP` are not checked:
+        the defaults name signals a trace may lack (``nckServoDataCmdCurr32``).
+    names : iterable of str
+        Full controller names of the trace's signals (of the axis read).
+    path : path-like
+        The trace, named in errors.
+
+    Raises
+    ------
+    ChannelError
+        An entry matches no signal. The message names the trace, the map's file (when read from
+        TOML) and the entry, and -- when the key is one of :data:`ROLES` and the value is not --
+        says that entries are ``"signal name" = "ROLE"``.
+
+    Examples
+    --------
+    >>> names = ["/Nck/!SEMA/measPos2 [u1, 1]", "/Nck/!SD/nckServoDataCmdCurr32 [u1, 1]"]
+    >>> check_entries(channel_map({"measPos2": "ap"}), names, "t.xml")  # matches: no error
+    >>> check_entries(channel_map({"RC": "nckServoDataCmdCurr32"}), names, "t.xml")
+    Traceback (most recent call last):
+    ...
+    funcnet.errors.ChannelError: t.xml: channels: entry 'RC' = 'nckServoDataCmdCurr32' matches no signal of the trace; entries are "signal name" = "ROLE": did you mean 'nckServoDataCmdCurr32' = 'RC'?
+    """  # noqa: E501
+    parts = [parse_signal_name(name) for name in names]
+    present = {p.base for p in parts} | {p.path + p.base for p in parts}
+    for key, role in cmap.roles.items():
+        if key in present or DEFAULT_CHANNEL_MAP.roles.get(key) == role:
+            continue
+        message = (
+            f"{'channel map ' + cmap.origin if cmap.origin else 'channels'}: entry {key!r} = "
+            f"{role!r} matches no signal of the trace"
+        )
+        if key.upper() in ROLES and role.upper() not in ROLES:
+            message += (
+                f'; entries are "signal name" = "ROLE": did you mean {role!r} = {key.upper()!r}?'
+            )
+        else:
+            message += f"; its signals are {sorted({p.base for p in parts})}"
+        raise ChannelError(path, message)
 
 
 def select_axis(

@@ -58,6 +58,7 @@ from funcnet.robot.simulate import (
     AxisParameters,
     effective_parameters,
     simulate_trial,
+    trial_duration,
 )
 from funcnet.robot.writer import write_trace
 
@@ -254,10 +255,13 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
     Raises
     ------
     StudyError
-        The file is not TOML, a key is unknown or missing, a value has the wrong type, or two
-        trials get the same name. The message names the file, the group and the key.
+        The file cannot be read or is not TOML, a key is unknown or missing, a value has the
+        wrong type, or two trials get the same name. The message names the file, the group and
+        the key.
     ParameterError
-        A trial's value is out of range (from :class:`Trial`).
+        A trial's value is out of range (from :class:`Trial`), or a trial would span more than
+        :data:`~funcnet.robot.simulate.MAX_TRIAL_DURATION` with the default axis parameters.
+        The message names the file, the group and the trial.
 
     Examples
     --------
@@ -273,6 +277,8 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
         document = tomllib.loads(path.read_text(encoding="utf-8"))
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise StudyError(f"{path}: not a valid TOML plan: {exc}") from None
+    except OSError as exc:
+        raise StudyError(f"{path}: cannot read the plan: {exc.strerror or exc}") from None
     extra = set(document) - {"group"}
     groups = document.get("group")
     if extra or not isinstance(groups, list) or not groups:
@@ -313,9 +319,15 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
                 f"{sorted(_DIRECTIONS)}, got {direction!r}"
             )
         knobs: dict[str, list[float]] = {k: lists[k] for k in FAULT_KNOBS if k in lists}
-        trials += _expand(
-            name, lists["speeds"], lists["tcps"], lists["steps"], _DIRECTIONS[direction], knobs
-        )
+        try:
+            expanded = _expand(
+                name, lists["speeds"], lists["tcps"], lists["steps"], _DIRECTIONS[direction], knobs
+            )
+            for trial in expanded:
+                trial_duration(trial)
+        except ParameterError as exc:
+            raise ParameterError(f"{where} ({name}): {exc}") from None
+        trials += expanded
     names = [t.name for t in trials]
     duplicates = sorted({n for n in names if names.count(n) > 1})
     if duplicates:
@@ -413,7 +425,9 @@ def write_plan(
     Raises
     ------
     ParameterError
-        Two trials share a name, or ``workers`` < 1.
+        Two trials share a name, ``workers`` < 1, or a trial would span more than
+        :data:`~funcnet.robot.simulate.MAX_TRIAL_DURATION` (checked for every trial before
+        anything is simulated or written).
 
     Notes
     -----
@@ -437,6 +451,8 @@ def write_plan(
         raise ParameterError("write_plan: trial names must be unique")
     if not isinstance(workers, int) or workers < 1:
         raise ParameterError(f"write_plan: workers must be a positive integer, got {workers!r}")
+    for trial in trials:
+        trial_duration(trial, params)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     manifest = out / "manifest.csv"

@@ -19,7 +19,14 @@ import pandas as pd
 
 from funcnet._io import atomic_path
 from funcnet.errors import ChannelError, ParameterError, TraceFormatError, WindowError
-from funcnet.robot.channels import ChannelMap, SignalInfo, channel_map, select_axis
+from funcnet.robot.channels import (
+    ChannelMap,
+    SignalInfo,
+    channel_map,
+    check_entries,
+    parse_signal_name,
+    select_axis,
+)
 from funcnet.robot.sinumerik import read_sinumerik
 
 __all__ = ["Recording", "read_trace", "SignalInfo"]
@@ -35,7 +42,7 @@ def _time_index(n_ticks: int, sample_period: float, t0: float = 0.0) -> pd.Index
     return pd.Index(np.round(t0 + np.arange(n_ticks) * sample_period, 9), name="time")
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Recording:
     """Signals of one axis on a uniform grid, with where they came from.
 
@@ -72,6 +79,8 @@ class Recording:
     [1.0, 2.0]
     >>> rec.duration
     0.01
+    >>> rec
+    Recording(source=None, duration=0.01 s, sample_period=0.002 s, axis=None, columns=[RP])
     """
 
     data: pd.DataFrame
@@ -94,6 +103,19 @@ class Recording:
             )
         if not (self.sample_period > 0 and math.isfinite(self.sample_period)):
             raise ParameterError(f"sample_period: must be > 0, got {self.sample_period}")
+
+    def __repr__(self) -> str:
+        # Short: the data and the signal metadata are a table and a dict away.
+        columns = ", ".join(
+            f"{column} ({parse_signal_name(self.roles[column]).base})"
+            if column in self.roles
+            else column
+            for column in self.data.columns
+        )
+        return (
+            f"Recording(source={self.source!r}, duration={self.duration:g} s, "
+            f"sample_period={self.sample_period:g} s, axis={self.axis}, columns=[{columns}])"
+        )
 
     @property
     def duration(self) -> float:
@@ -210,6 +232,7 @@ def _assemble(
     t0: float = 0.0,
 ) -> Recording:
     """Name the columns by role (else by base name) and wrap everything in a Recording."""
+    check_entries(cmap, (info.name for info in infos), path)
     columns: list[str] = []
     roles: dict[str, str] = {}
     origin: dict[str, str] = {}
@@ -274,7 +297,7 @@ def _from_table(
     steps = np.diff(time)
     if (steps <= 0).any():
         row = int(np.argmax(steps <= 0)) + 1
-        raise TraceFormatError(path, f"{where(row)}: time {time[row]!r} does not increase")
+        raise TraceFormatError(path, f"{where(row)}: time {float(time[row])!r} does not increase")
     if len(time) < 2:
         raise TraceFormatError(path, "needs at least two rows to know its sample period")
     period = float(np.round(steps.min(), 9))
@@ -284,7 +307,7 @@ def _from_table(
     if off.any():
         row = int(np.argmax(off))
         raise TraceFormatError(
-            path, f"{where(row)}: time {time[row]!r} is not on the {period:g} s grid"
+            path, f"{where(row)}: time {float(time[row])!r} is not on the {period:g} s grid"
         )
     signal_names = list(numeric)
     keep, axis = select_axis(signal_names, axis, path)
@@ -313,6 +336,8 @@ def _read_csv(path: Path, cmap: ChannelMap, axis: int | None) -> Recording:
     try:
         table = pd.read_csv(path, skip_blank_lines=False, dtype=str, keep_default_na=False)
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
+        if path.stat().st_size == 0:
+            raise TraceFormatError(path, "empty file: not a trace") from None
         raise TraceFormatError(path, f"not a readable CSV file: {exc}") from exc
     # Text is converted here, not by pandas, so that 'NaN', '' and 'abc' are all reported
     # with their line.
@@ -322,7 +347,9 @@ def _read_csv(path: Path, cmap: ChannelMap, axis: int | None) -> Recording:
 def _read_parquet(path: Path, cmap: ChannelMap, axis: int | None) -> Recording:
     table = _read_parquet_table(path)
     if _PARQUET_KEY in (table.schema.metadata or {}):
-        return Recording.from_parquet(path)
+        recording = Recording.from_parquet(path)
+        check_entries(cmap, (info.name for info in recording.signals.values()), path)
+        return recording
     frame = table.to_pandas()
     if frame.index.name is not None:
         frame = frame.reset_index()
@@ -362,7 +389,8 @@ def read_trace(
         the signal where it helps.
     ChannelError
         A channel is missing, duplicated, or two signals claim one role; several axes and no
-        ``axis``.
+        ``axis``; an entry of ``channels`` that is not a default matches no signal of the trace
+        (see :func:`funcnet.robot.channels.check_entries`).
 
     References
     ----------
@@ -387,6 +415,8 @@ def read_trace(
     """
     path = Path(path)
     cmap = channel_map(channels)
+    if path.is_dir():
+        raise TraceFormatError(path, "is a directory, not a trace file")
     suffix = path.suffix.lower()
     if suffix == ".xml":
         trace = read_sinumerik(path, axis=axis)

@@ -94,11 +94,19 @@ __all__ = [
     "effective_parameters",
     "setpoint_profile",
     "simulate_trial",
+    "trial_duration",
     "FAULT_KNOBS",
+    "MAX_TRIAL_DURATION",
 ]
 
 #: Fields of :class:`AxisParameters` a :class:`~funcnet.robot.plan.Trial` may override.
 FAULT_KNOBS = ("backlash", "friction_scale", "stiffness_scale")
+
+#: The longest trace a trial may span, in s (lead time, motion and settling; one hour). The
+#: simulator holds about 0.65 MB per simulated second at the default loop rates (measured with
+#: tracemalloc on a 62 s trial), so one hour peaks near 2.3 GB; a longer trial -- e.g. a tiny
+#: speed -- is refused by :func:`trial_duration` before anything is allocated.
+MAX_TRIAL_DURATION = 3600.0
 
 
 @dataclass(frozen=True)
@@ -577,6 +585,51 @@ def effective_parameters(trial: Trial, params: AxisParameters | None = None) -> 
     return params.replace(**overrides) if overrides else params
 
 
+def trial_duration(trial: Trial, params: AxisParameters | None = None) -> float:
+    """Time a trial's trace spans, in s: lead time, the motion(s) and ``settle_time``.
+
+    Computed from the set-point profile's timing alone, without simulating anything.
+
+    Parameters
+    ----------
+    trial : Trial
+        The trial (its fault knobs override ``params``).
+    params : AxisParameters, optional
+        The axis; :class:`AxisParameters` defaults when omitted.
+
+    Returns
+    -------
+    float
+        The duration in s, at most :data:`MAX_TRIAL_DURATION`.
+
+    Raises
+    ------
+    ParameterError
+        The trial would span more than :data:`MAX_TRIAL_DURATION` (the message names the trial).
+
+    Examples
+    --------
+    >>> from funcnet.robot.plan import Trial
+    >>> round(trial_duration(Trial("base", "main", speed=35, tcp=1.6, step=3)), 4)
+    7.5929
+    >>> trial_duration(Trial("slow", "main", speed=0.001, tcp=1.6, step=1))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    funcnet.errors.ParameterError: Trial slow: the trace would span 6e+04 s (about 17 h) ...
+    """
+    p = effective_parameters(trial, params)
+    _, _, timing = setpoint_profile(np.zeros(1), trial.step, trial.speed, trial.reverse, p)
+    duration = timing["motion_end"] + p.settle_time
+    if not duration <= MAX_TRIAL_DURATION:
+        raise ParameterError(
+            f"Trial {trial.name}: the trace would span {duration:.3g} s (about "
+            f"{duration / 3600:.2g} h) at speed {trial.speed:g} deg/min and step {trial.step:g} "
+            f"deg; at most {MAX_TRIAL_DURATION:g} s (MAX_TRIAL_DURATION) is simulated: raise "
+            "the speed or shorten the step"
+        )
+    return duration
+
+
 def simulate_trial(
     trial: Trial, params: AxisParameters | None = None, *, seed: int = 0
 ) -> SimulatedTrial:
@@ -603,7 +656,8 @@ def simulate_trial(
     Raises
     ------
     ParameterError
-        If a parameter is out of its domain.
+        If a parameter is out of its domain, or the trace would span more than
+        :data:`MAX_TRIAL_DURATION` (checked before any allocation; see :func:`trial_duration`).
 
     Notes
     -----
@@ -628,8 +682,9 @@ def simulate_trial(
     per_speed = round(p.current_loop_rate / p.speed_loop_rate)
     per_log = round(p.log_period * p.current_loop_rate)
     t_speed = 1.0 / p.speed_loop_rate
+    duration = trial_duration(trial, p)  # refuses an overlong trial before allocating
     _, _, timing = setpoint_profile(np.zeros(1), trial.step, trial.speed, trial.reverse, p)
-    n_log = math.ceil((timing["motion_end"] + p.settle_time) / p.log_period) + 1
+    n_log = math.ceil(duration / p.log_period) + 1
     n_speed = n_log * (per_log // per_speed)
     t = np.arange(n_speed) * t_speed
     sp_pos, sp_vel, _ = setpoint_profile(t, trial.step, trial.speed, trial.reverse, p)

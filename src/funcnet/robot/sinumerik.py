@@ -119,6 +119,13 @@ class _Reader:
         where = "" if line is None else f"line {line}: "
         return TraceFormatError(self.path, where + message)
 
+    def doctype_refused(self, found: str, line: int | None, detail: str = "") -> TraceFormatError:
+        at = "" if line is None else f" at line {line}"
+        return TraceFormatError(
+            self.path,
+            f"{found}{at} refused: a trace has none (entity expansion is never done{detail})",
+        )
+
     def number(self, element: etree._Element, key: str, *, positive: bool = False) -> float:
         text = element.get(key)
         try:
@@ -134,8 +141,16 @@ class _Reader:
 
     def check_root(self, element: etree._Element) -> None:
         tree = element.getroottree()
-        if tree.docinfo.doctype or tree.docinfo.internalDTD is not None:
-            raise self.error("a trace has no DOCTYPE or entity declarations; refused")
+        dtd = tree.docinfo.internalDTD
+        if tree.docinfo.doctype or dtd is not None:
+            entities = [] if dtd is None else [entity.name for entity in dtd.iterentities()]
+            found = "DOCTYPE declaration" + (
+                f" with entity declarations ({', '.join(entities[:3])}"
+                f"{', ...' if len(entities) > 3 else ''})"
+                if entities
+                else ""
+            )
+            raise self.doctype_refused(found, _doctype_line(self.path))
         root = tree.getroot()
         if root.tag != "traceSession":
             raise self.error(
@@ -340,6 +355,8 @@ class _Reader:
             self._parse(source)
 
     def _parse(self, source: BinaryIO) -> None:
+        if os.fstat(source.fileno()).st_size == 0:
+            raise self.error("empty file: not a trace")
         context = etree.iterparse(
             source,
             events=("end",),
@@ -373,7 +390,15 @@ class _Reader:
         except etree.XMLSyntaxError as exc:
             line = exc.position[0] if exc.position else exc.lineno
             message = (exc.msg or str(exc)).split(", line ")[0]
-            raise self.error(f"not well-formed XML: {message}", line) from None
+            # An entity libxml2 refused to expand (external, amplified) stops the parse before
+            # the first element could reach check_root: report the DOCTYPE that declared it.
+            doctype = _doctype_line(self.path) if "entit" in message.lower() else None
+            if doctype is not None:
+                raise self.doctype_refused(
+                    "DOCTYPE declaration", doctype, f"; at line {line}: {message.rstrip('.')}"
+                ) from None
+            # libxml2 says line 0 when there is no line to point at (an empty document).
+            raise self.error(f"not well-formed XML: {message}", line or None) from None
         if self.frame is not None:
             raise self.error(f"data frame {self.frame.number} is not closed by </dataFrame>")
         if not self.frames:
@@ -417,6 +442,22 @@ class _Reader:
             start_time=self.frames[0].start_time,
             axis=self.axis,
         )
+
+
+def _doctype_line(path: Path) -> int | None:
+    """The line of the file's ``<!DOCTYPE``, read in chunks; None if not found as bytes."""
+    marker = b"<!DOCTYPE"
+    line, tail = 1, b""
+    with open(path, "rb") as source:
+        while chunk := source.read(1 << 16):
+            data = tail + chunk
+            found = data.find(marker)
+            if found >= 0:
+                return line + data.count(b"\n", 0, found)
+            keep = len(marker) - 1  # a marker split across two chunks
+            line += data.count(b"\n", 0, len(data) - keep)
+            tail = data[len(data) - keep :]
+    return None  # e.g. a UTF-16 file
 
 
 def _carry_forward(block: np.ndarray) -> None:
