@@ -7,9 +7,11 @@ import itertools
 import numpy as np
 import pandas as pd
 import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrowPatch
+from matplotlib.text import Text
 
 import funcnet
 from funcnet import plot
@@ -214,3 +216,93 @@ def test_plot_edge_timeline_one_point_per_pair_and_window(network):
         name = {"forward": "x->y", "backward": "y->x"}.get(kind, kind)
         assert len(collection.get_offsets()) == 3 * kinds[name]
     assert len(ax.get_yticks()) == len(network.pairs)
+
+
+def test_signal_colours_are_distinct_and_used_by_every_series_figure(network):
+    roles = ("RP", "AP", "MP", "V", "RC", "AC", "FE", "TORSION")
+    assert set(plot.SIGNAL_COLORS) == set(roles)
+    assert len({to_rgba(c) for c in plot.SIGNAL_COLORS.values()}) == len(roles)
+    # no signal is drawn in the red of bidirectional edges
+    assert to_rgba(plot.BIDIRECTIONAL_COLOR) not in {to_rgba(c) for c in
+                                                     plot.SIGNAL_COLORS.values()}
+    assert plot.signal_color("XYZ") == plot.signal_color("XYZ")  # stable for unknown names
+    data = trial_frame(300)
+    phases = pd.DataFrame({"phase": ["a", "b"], "start": [0.0, 0.3], "stop": [0.3, 0.6]})
+    fig9 = plot.figure_phases(data, phases, {"a": network, "b": network})
+    fig10 = plot.figure_velocity_grid({("V1", "a"): (data, network), ("V35", "a"): (data[
+        ["RP", "AC"]], network)})
+    for fig in (fig9, fig10):
+        for ax in fig.axes:
+            for line in ax.lines:
+                assert to_rgba(line.get_color()) == to_rgba(plot.SIGNAL_COLORS[line.get_label()])
+
+
+def test_velocity_grid_has_one_shared_legend_of_signals_and_one_of_edges(network):
+    data = trial_frame(150)
+    cells = {(v, p): (data, network) for p in ("spin-up", "cruise") for v in ("V1", "V35")}
+    fig = plot.figure_velocity_grid(cells)
+    assert all(ax.get_legend() is None for ax in fig.axes)
+    legends = {legend.get_gid(): legend for legend in fig.legends}
+    assert set(legends) == {"legend:signals", "legend:network"}
+    signals = legends["legend:signals"]
+    assert [t.get_text() for t in signals.get_texts()] == list(data.columns)
+    assert [to_rgba(h.get_color()) for h in signals.legend_handles] == [
+        to_rgba(plot.SIGNAL_COLORS[c]) for c in data.columns]
+    series = [ax for ax in fig.axes if ax.lines]
+    assert all(ax.get_xlabel() == "time [s]" for ax in series)
+    assert series[0].get_ylabel() == "normalized"
+
+
+def test_network_legend_explains_colours_and_width():
+    pairs = pd.DataFrame({"x": ["RP"], "y": ["TORSION"], "kind": ["x->y"], "weight": [0.3]})
+    ax = plot.plot_network(pairs, width_scale=10)
+    legend = ax.get_legend()
+    handles = dict(zip([t.get_text() for t in legend.get_texts()], legend.legend_handles,
+                       strict=True))
+    assert to_rgba(handles["directed X → Y"].get_color()) == to_rgba("black")
+    assert to_rgba(handles["bidirectional"].get_color()) == to_rgba("red")
+    (reference,) = [h for label, h in handles.items() if label.startswith("weight 0.2")]
+    assert reference.get_linewidth() == pytest.approx(2.0)  # same scale as the edges
+    assert plot.plot_network(pairs, legend=False).get_legend() is None
+    # the long name gets a larger node; the arrow head grows with the line and ends at its rim
+    circles = {p.get_gid(): p for p in ax.patches if (p.get_gid() or "").startswith("node:")}
+    assert circles["node:TORSION"].radius > circles["node:RP"].radius
+    (arrow,) = edge_patches(ax)
+    assert arrow.get_mutation_scale() > 9 + arrow.get_linewidth()
+    end = np.asarray(arrow._posA_posB[1])  # no public getter for the arrow's end point
+    assert np.hypot(*(end - circles["node:TORSION"].center)) == pytest.approx(
+        circles["node:TORSION"].radius)
+
+
+def test_phase_names_sit_between_panel_and_title():
+    data = trial_frame(300)
+    phases = pd.DataFrame({"phase": ["early spin-up", "cruise"], "start": [0.0, 0.3],
+                           "stop": [0.3, 0.6]})
+    fig = plot.figure_phases(data, phases, {"early spin-up": None, "cruise": None})
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw_without_rendering()
+    top = fig.axes[0]
+    (title,) = [t for t in top.get_children()
+                if isinstance(t, Text) and t.get_text() == "(a) min–max normalized"]
+    title = title.get_window_extent(renderer)
+    names = [t for t in top.texts if t.get_text() in ("early spin-up", "cruise")]
+    assert len(names) == 2
+    for name in names:
+        box = name.get_window_extent(renderer)
+        assert box.y1 <= title.y0 and box.y0 >= top.get_window_extent(renderer).y1
+
+
+def test_edge_timeline_legends_name_the_direction_and_the_weight_scale(network):
+    ax = plot.plot_edge_timeline({0.5: network, 1.0: network})
+    legends = {a.get_gid(): a for a in ax.get_children() if a.get_gid() in
+               ("legend:kind", "legend:weight")}
+    assert set(legends) == {"legend:kind", "legend:weight"}
+    x, y = network.pairs[["x", "y"]].iloc[0]
+    texts = [t.get_text() for t in legends["legend:kind"].get_texts()]
+    assert any(f"{x} → {y} on track {x}–{y}" in t or f"{y} → {x} on track {x}–{y}" in t
+               for t in texts)
+    weights = [float(t.get_text()) for t in legends["legend:weight"].get_texts()]
+    assert weights and max(weights) <= network.pairs["weight"].max()
+    # marker area is size_scale × weight in the key as on the axes
+    sizes = [h.get_markersize() ** 2 for h in legends["legend:weight"].legend_handles]
+    assert sizes == pytest.approx([max(4.0, 600.0 * w) for w in weights])

@@ -15,6 +15,7 @@ import pytest
 from funcnet.report import build_demo_report, write_report
 
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+WINDOW_WIDTH = 1300  # pixels; the report must read without sideways scrolling at this width
 
 # Marks each image in the DOM once the page has loaded; the test copies the page and injects
 # it, so the report itself stays free of scripts.
@@ -23,6 +24,9 @@ window.addEventListener("load", () => {
   for (const img of document.images) {
     img.setAttribute("data-loaded", img.complete && img.naturalWidth > 0 ? "yes" : "no");
   }
+  // Every table shown, then the page's width: it must fit the window (no sideways scrolling).
+  for (const details of document.querySelectorAll("details")) { details.open = true; }
+  document.body.setAttribute("data-scroll-width", document.documentElement.scrollWidth);
   document.body.setAttribute("data-probed", "yes");
 });
 </script>"""
@@ -33,6 +37,7 @@ class _Images(html.parser.HTMLParser):
         super().__init__()
         self.images: list[dict[str, str | None]] = []
         self.probed = False
+        self.scroll_width = -1
 
     def handle_starttag(self, tag, attrs):
         attributes = dict(attrs)
@@ -40,6 +45,7 @@ class _Images(html.parser.HTMLParser):
             self.images.append(attributes)
         if tag == "body" and attributes.get("data-probed") == "yes":
             self.probed = True
+            self.scroll_width = int(attributes["data-scroll-width"])
 
 
 def images_of(page: Path) -> list[dict[str, str | None]]:
@@ -57,6 +63,7 @@ def load_in_chromium(page: Path, tmp_path: Path) -> _Images:
         [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
          "--no-first-run", "--disable-background-networking", "--disable-component-update",
          "--disable-sync", f"--user-data-dir={profile}", "--virtual-time-budget=10000",
+         f"--window-size={WINDOW_WIDTH},900",
          "--dump-dom", probe.as_uri()],
         capture_output=True, text=True, timeout=120, check=True,
     )
@@ -78,6 +85,7 @@ def check_page(page: Path, tmp_path: Path) -> list[dict[str, str | None]]:
     assert dom.probed, "the page did not finish loading in Chromium"
     assert len(dom.images) == len(images)
     assert [i["src"] for i in dom.images if i.get("data-loaded") != "yes"] == []
+    assert 0 < dom.scroll_width <= WINDOW_WIDTH, "the page scrolls sideways"
     return images
 
 

@@ -29,6 +29,7 @@ import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrowPatch
 
 from funcnet.network import edges_from_pairs
@@ -36,7 +37,11 @@ from funcnet.network import edges_from_pairs
 __all__ = [
     "DIRECTED_COLOR",
     "BIDIRECTIONAL_COLOR",
+    "SIGNAL_COLORS",
+    "signal_color",
     "network_edges",
+    "network_legend_handles",
+    "add_network_legend",
     "plot_network",
     "plot_recurrence",
     "plot_signals",
@@ -51,6 +56,19 @@ __all__ = [
 
 DIRECTED_COLOR = "black"
 BIDIRECTIONAL_COLOR = "red"
+#: One colour per signal role, the same in every figure (Okabe-Ito-like, distinguishable in
+#: print); the currents differ clearly from V, and no signal uses the red of bidirectional edges.
+SIGNAL_COLORS = {
+    "RP": "#0072b2",  # blue
+    "AP": "#e69f00",  # orange
+    "MP": "#009e73",  # green
+    "V": "#cc79a7",  # magenta
+    "RC": "#56b4e9",  # sky blue
+    "AC": "#7f3c8d",  # purple
+    "FE": "#8c6d31",  # brown
+    "TORSION": "#555555",  # grey
+}
+_OTHER_COLORS = ("#bcbd22", "#17becf", "#9c755f", "#f0e442", "#4e79a7", "#b07aa1")
 _PHASE_SHADES = ("#dbe9f6", "#fde9d9", "#e2f0d9", "#ede0f3", "#fff2cc", "#e7e6e6")
 _KIND_COLORS = {"forward": "#1f4e9c", "backward": "#e07b00", "bidirectional": "red",
                 "conflict": "0.6"}
@@ -60,6 +78,57 @@ def _new_axes(ax: Axes | None, figsize: tuple[float, float] = (4.0, 4.0)) -> Axe
     if ax is not None:
         return ax
     return Figure(figsize=figsize, layout="constrained").add_subplot()
+
+
+def signal_color(name: Any) -> str:
+    """The colour of a signal in every figure: :data:`SIGNAL_COLORS`, else a stable extra colour.
+
+    Parameters
+    ----------
+    name : str
+        The signal's name (column of a recording).
+
+    Returns
+    -------
+    str
+        A matplotlib colour; the same name always gets the same colour.
+
+    Examples
+    --------
+    >>> signal_color("RP"), signal_color("AC")
+    ('#0072b2', '#7f3c8d')
+    """
+    name = str(name)
+    if name in SIGNAL_COLORS:
+        return SIGNAL_COLORS[name]
+    # A stable (not hash-randomized) choice, so that a figure looks the same on every run.
+    return _OTHER_COLORS[sum(map(ord, name)) % len(_OTHER_COLORS)]
+
+
+def network_legend_handles(width_scale: float = 10.0, weight: float = 0.2) -> list[Line2D]:
+    """Legend entries explaining a network drawing: edge colours and the width scale.
+
+    Parameters
+    ----------
+    width_scale : float
+        The line width per unit of weight used by :func:`plot_network`.
+    weight : float
+        The reference weight (Eq. 13) whose width the legend shows.
+
+    Returns
+    -------
+    list of matplotlib.lines.Line2D
+        Directed (black), bidirectional (red), and a grey line of the reference weight's width.
+
+    Examples
+    --------
+    >>> [h.get_label() for h in network_legend_handles()]
+    ['directed X → Y', 'bidirectional', 'weight 0.2 (width ∝ weight)']
+    """
+    return [Line2D([], [], color=DIRECTED_COLOR, linewidth=1.5, marker=">", label="directed X → Y"),
+            Line2D([], [], color=BIDIRECTIONAL_COLOR, linewidth=1.5, label="bidirectional"),
+            Line2D([], [], color="0.4", linewidth=width_scale * weight,
+                   label=f"weight {weight:g} (width ∝ weight)")]
 
 
 def network_edges(net: Any) -> pd.DataFrame:
@@ -98,6 +167,7 @@ def plot_network(
     node_color: str = "#f2f2f2",
     title: str | None = None,
     fontsize: float = 8.0,
+    legend: bool = True,
 ) -> Axes:
     """Draw a functional network in a circular layout (paper section 3.4, Fig. 9-11).
 
@@ -117,13 +187,17 @@ def plot_network(
     min_width : float
         Smallest line width, so that a bidirectional edge of weight near 0 stays visible.
     node_size : float
-        Node radius in data units (the circle of nodes has radius 1).
+        Node radius in data units (the circle of nodes has radius 1); names longer than three
+        characters get a larger node and a smaller font so that they fit.
     node_color : str
         Face colour of the nodes.
     title : str, optional
         Axes title (e.g. the window's label).
     fontsize : float
         Font size of the node labels.
+    legend : bool
+        Add a legend below the network explaining the edge colours and the width scale
+        (:func:`network_legend_handles`); multi-panel figures draw one for the whole figure.
 
     Returns
     -------
@@ -152,28 +226,32 @@ def plot_network(
     # Clockwise from the top, as networkx.circular_layout places them in the paper's figures.
     angles = np.pi / 2 - 2 * np.pi * np.arange(len(nodes)) / max(len(nodes), 1)
     position = {name: (np.cos(a), np.sin(a)) for name, a in zip(nodes, angles, strict=True)}
+    radius = {name: _node_radius(name, node_size) for name in nodes}
     for name in nodes:
-        circle = Circle(position[name], node_size, facecolor=node_color, edgecolor="0.2",
+        circle = Circle(position[name], radius[name], facecolor=node_color, edgecolor="0.2",
                         linewidth=0.8, zorder=3,
                         linestyle="-" if name in present else "--")
         circle.set_gid(f"node:{name}")
         ax.add_patch(circle)
-        ax.text(*position[name], str(name), ha="center", va="center", fontsize=fontsize,
-                zorder=4)
+        ax.text(*position[name], str(name), ha="center", va="center", zorder=4,
+                fontsize=fontsize * min(1.0, 4.0 / max(len(str(name)), 1)) ** 0.5)
     for edge in network_edges(net).itertuples(index=False):
         bidirectional = edge.kind == "bidirectional"
+        width = max(min_width, width_scale * edge.weight)
         arrow = FancyArrowPatch(
             position[edge.source], position[edge.target],
             arrowstyle="<|-|>" if bidirectional else "-|>",
-            mutation_scale=9, shrinkA=0, shrinkB=0,
-            patchA=None, patchB=None,
-            linewidth=max(min_width, width_scale * edge.weight),
+            # The head grows with the line so that a thick edge does not hide it.
+            mutation_scale=fontsize + 1 + 2.0 * width, shrinkA=0, shrinkB=0,
+            patchA=None, patchB=None, joinstyle="miter", capstyle="butt",
+            linewidth=width,
             color=BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR,
             # Curved slightly so that the arrows of a cycle do not overlap the node labels.
             connectionstyle="arc3,rad=0.08", zorder=2,
         )
         # Stop the arrow at the node's rim rather than its centre.
-        arrow.set_positions(*_trim(position[edge.source], position[edge.target], node_size))
+        arrow.set_positions(*_trim(position[edge.source], position[edge.target],
+                                   radius[edge.source], radius[edge.target]))
         arrow.set_gid(f"edge:{edge.source}->{edge.target}:{edge.kind}")
         ax.add_patch(arrow)
     ax.set_xlim(-1.3, 1.3)
@@ -182,13 +260,23 @@ def plot_network(
     ax.set_axis_off()
     if title is not None:
         ax.set_title(title, fontsize=fontsize + 1)
+    if legend:
+        ax.legend(handles=network_legend_handles(width_scale), loc="upper center",
+                  bbox_to_anchor=(0.5, 0.0), ncol=2, fontsize=fontsize - 1, frameon=False,
+                  handlelength=2.5)
     return ax
 
 
-def _trim(a: tuple[float, float], b: tuple[float, float], r: float) -> tuple[Any, Any]:
+def _node_radius(name: Any, node_size: float) -> float:
+    """A node large enough for its name: names of up to three characters fit ``node_size``."""
+    return node_size * max(1.0, 0.25 * len(str(name)))
+
+
+def _trim(a: tuple[float, float], b: tuple[float, float], ra: float,
+          rb: float) -> tuple[Any, Any]:
     pa, pb = np.asarray(a), np.asarray(b)
     unit = (pb - pa) / max(np.linalg.norm(pb - pa), 1e-12)
-    return tuple(pa + r * unit), tuple(pb - r * unit)
+    return tuple(pa + ra * unit), tuple(pb - rb * unit)
 
 
 def plot_recurrence(
@@ -263,8 +351,13 @@ def _mark_spans(ax: Axes, spans: Sequence[tuple[str, float, float]], prefix: str
                            zorder=0, linewidth=0)
         patch.set_gid(f"{prefix}:{name}")
         if label:  # alternate heights so that the names of short phases do not overlap
-            ax.text((start + stop) / 2, 1.01 + 0.09 * (k % 2), str(name), fontsize=7,
-                    transform=ax.get_xaxis_transform(), ha="center", va="bottom")
+            ax.annotate(str(name), ((start + stop) / 2, 1.0), xycoords=ax.get_xaxis_transform(),
+                        xytext=(0, 2 + 9 * (k % 2)), textcoords="offset points", fontsize=7,
+                        ha="center", va="bottom")
+
+
+# Title padding (points) that clears the two rows of phase names drawn by _mark_spans.
+_SPAN_TITLE_PAD = 22.0
 
 
 def _spans(phases: Any) -> list[tuple[str, float, float]]:
@@ -304,7 +397,7 @@ def plot_signals(
     Returns
     -------
     matplotlib.axes.Axes
-        One line per column (label = column name).
+        One line per column (label = column name, colour :func:`signal_color`).
 
     Examples
     --------
@@ -321,7 +414,8 @@ def plot_signals(
         if normalize:
             lo, hi = np.nanmin(values), np.nanmax(values)
             values = (values - lo) / (hi - lo) if hi > lo else np.full_like(values, 0.5)
-        ax.plot(data.index.to_numpy(dtype=float), values, label=str(name), linewidth=0.9)
+        ax.plot(data.index.to_numpy(dtype=float), values, label=str(name), linewidth=0.9,
+                color=signal_color(name))
     ax.set_xlabel("time [s]")
     ax.set_ylabel("normalized" if normalize else "value")
     if legend:
@@ -350,9 +444,11 @@ def plot_edge_timeline(
 ) -> Axes:
     """Every pair's edge kind and weight over a recording, from sliding windows.
 
-    One horizontal track per pair of signals ``X-Y``; at each window's time a marker whose colour
-    tells the kind (blue ``X->Y``, orange ``Y->X``, red bidirectional, grey conflict = no edge)
-    and whose area is proportional to the weight of Eq. 13.
+    One horizontal track per pair of signals ``X–Y`` (X the first signal of the pair); at each
+    window's time a marker whose colour and shape tell the kind (blue ▶ ``X → Y``, orange ◀
+    ``Y → X``, red dot bidirectional, grey dot conflict = no edge) and whose area is proportional
+    to the weight of Eq. 13. Two legends beside the axes explain the kinds (gid ``legend:kind``)
+    and give the marker size of reference weights (gid ``legend:weight``).
 
     Parameters
     ----------
@@ -391,21 +487,46 @@ def plot_edge_timeline(
     names = [f"{a}–{b}" for a, b in zip(table["x"], table["y"], strict=True)]
     y = np.array([track[n] for n in names], dtype=float)
     kinds = table["kind"].map({"x->y": "forward", "y->x": "backward"}).fillna(table["kind"])
-    for kind, label in (("forward", "X→Y"), ("backward", "Y→X"),
-                        ("bidirectional", "bidirectional"), ("conflict", "conflict (no edge)")):
+    first, second = (str(table["x"].iloc[0]), str(table["y"].iloc[0])) if len(table) else "XY"
+    weights = table["weight"].to_numpy(dtype=float)
+    for kind, marker, label in (
+            ("forward", ">", f"X → Y, e.g. {first} → {second} on track {first}–{second}"),
+            ("backward", "<", f"Y → X, e.g. {second} → {first} on track {first}–{second}"),
+            ("bidirectional", "o", "bidirectional"),
+            ("conflict", "o", "conflict (no edge)")):
         mask = (kinds == kind).to_numpy()
         if not mask.any():
             continue
         points = ax.scatter(table[time].to_numpy(dtype=float)[mask], y[mask],
-                            s=np.maximum(4.0, size_scale * table["weight"].to_numpy()[mask]),
+                            s=np.maximum(4.0, size_scale * weights[mask]), marker=marker,
                             color=_KIND_COLORS[kind], label=label, linewidths=0)
         points.set_gid(f"kind:{kind}")
     ax.set_yticks(range(len(pair_names)), pair_names, fontsize=7)
+    ax.set_ylabel("pair X–Y", fontsize=8)
     ax.set_ylim(-0.7, len(pair_names) - 0.3)
     ax.invert_yaxis()
     ax.set_xlabel("window time [s]")
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False)
+    kind_legend = ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0),
+                            frameon=False, title="edge kind (marker)", title_fontsize=7)
+    kind_legend.set_gid("legend:kind")
+    for handle in kind_legend.legend_handles:  # same size for every kind in the key
+        handle.set_sizes([30.0])
+    ax.add_artist(kind_legend)
+    scale = [Line2D([], [], linestyle="", marker="o", color="0.5",
+                    markersize=float(np.sqrt(max(4.0, size_scale * w))), label=f"{w:g}")
+             for w in _reference_weights(weights)]
+    weight_legend = ax.legend(handles=scale, fontsize=7, loc="lower left",
+                              bbox_to_anchor=(1.0, 0.0), frameon=False, ncol=len(scale),
+                              title="weight (Eq. 13, marker area ∝ weight)", title_fontsize=7)
+    weight_legend.set_gid("legend:weight")
     return ax
+
+
+def _reference_weights(weights: np.ndarray) -> list[float]:
+    """The three largest round weights (1, 2, 5 × 10^k) not above the data's largest weight."""
+    top = float(np.nanmax(weights)) if weights.size and np.nanmax(weights) > 0 else 0.1
+    round_weights = [m * 10.0 ** e for e in range(-4, 2) for m in (1, 2, 5)]
+    return [float(f"{w:.1g}") for w in round_weights if w <= top][-3:]
 
 
 def _sine(n: int, periods: float) -> tuple[np.ndarray, np.ndarray]:
@@ -611,7 +732,45 @@ def _network_row(fig: Figure, grid: Any, row: int, networks: Mapping[str, Any],
         if net is None:
             _no_network(ax, label)
         else:
-            plot_network(net, ax, nodes=nodes, title=str(label))
+            plot_network(net, ax, nodes=nodes, title=str(label), legend=False)
+
+
+def add_network_legend(fig: Figure, width_scale: float = 10.0) -> Any:
+    """One legend of the edge colours and widths below a figure of several networks.
+
+    Draw the panels with ``plot_network(..., legend=False)`` and call this once.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure (constrained layout makes room for the legend below the panels).
+    width_scale : float
+        The panels' line width per unit of weight.
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+        The legend (gid ``legend:network``), entries of :func:`network_legend_handles`.
+
+    Examples
+    --------
+    >>> fig = Figure(layout="constrained")
+    >>> add_network_legend(fig).get_gid()
+    'legend:network'
+    """
+    legend = fig.legend(handles=network_legend_handles(width_scale), loc="outside lower center",
+                        ncol=3, fontsize=7, frameon=False, handlelength=2.5)
+    legend.set_gid("legend:network")
+    return legend
+
+
+def _signal_figure_legend(fig: Figure, names: Sequence[str]) -> None:
+    """One legend of the signals' colours above a figure of several series panels."""
+    handles = [Line2D([], [], color=signal_color(name), linewidth=1.5, label=str(name))
+               for name in names]
+    legend = fig.legend(handles=handles, loc="outside upper center", ncol=len(handles),
+                        fontsize=7, frameon=False)
+    legend.set_gid("legend:signals")
 
 
 def _raw_groups(data: pd.DataFrame) -> list[tuple[str, list[str]]]:
@@ -676,15 +835,16 @@ def figure_phases(
                             height_ratios=[1.2, *[0.8] * len(groups), 1.6])
     top = fig.add_subplot(grid[0, :])
     plot_signals(data, normalize=True, spans=phases, ax=top)
-    top.set_title("(a) min–max normalized", fontsize=9, loc="left")
+    top.set_title("(a) min–max normalized", fontsize=9, loc="left", pad=_SPAN_TITLE_PAD)
     for k, (ylabel, columns) in enumerate(groups):
         ax = fig.add_subplot(grid[1 + k, :], sharex=top)
         plot_signals(data[columns], normalize=False, spans=phases, ax=ax)
         ax.set_ylabel(ylabel, fontsize=7)
         ax.set_xlabel("")
         if k == 0:
-            ax.set_title("(b) raw", fontsize=9, loc="left")
+            ax.set_title("(b) raw", fontsize=9, loc="left", pad=_SPAN_TITLE_PAD)
     _network_row(fig, grid, -1, networks, list(data.columns))
+    add_network_legend(fig)
     if title:
         fig.suptitle(title, fontsize=10)
     return fig
@@ -709,7 +869,9 @@ def figure_velocity_grid(
     Returns
     -------
     matplotlib.figure.Figure
-        For each cell a short axes of normalized series and an axes with the network.
+        For each cell a short axes of normalized series and an axes with the network; one
+        legend of the signals above the grid (gid ``legend:signals``) and one of the edges
+        below it (gid ``legend:network``).
 
     References
     ----------
@@ -732,16 +894,19 @@ def figure_velocity_grid(
     for (velocity, phase), (window, net) in cells.items():
         row, col = 2 * phases.index(phase), velocities.index(velocity)
         series = fig.add_subplot(grid[row, col])
-        plot_signals(window, normalize=True, ax=series, legend=(row == 0 and col == 0))
+        plot_signals(window, normalize=True, ax=series, legend=False)
         series.set_title(f"{velocity} · {phase}", fontsize=8)
         series.tick_params(labelsize=6)
-        series.set_xlabel("")
-        series.set_ylabel("")
+        series.set_xlabel("time [s]", fontsize=6, labelpad=1)
+        series.set_ylabel("normalized" if col == 0 else "", fontsize=6)
         graph = fig.add_subplot(grid[row + 1, col])
         if net is None:
             _no_network(graph, None)
         else:
-            plot_network(net, graph, nodes=list(window.columns))
+            plot_network(net, graph, nodes=list(window.columns), legend=False)
+    _signal_figure_legend(fig, list(dict.fromkeys(c for window, _ in cells.values()
+                                                  for c in window.columns)))
+    add_network_legend(fig)
     if title:
         fig.suptitle(title, fontsize=10)
     return fig
@@ -802,7 +967,8 @@ def figure_reversal(
     grid = fig.add_gridspec(3, max(len(networks), 1), height_ratios=[1.0, 1.0, 1.5])
     full = fig.add_subplot(grid[0, :])
     plot_signals(data, normalize=True, spans=phases, ax=full)
-    full.set_title("(a) full motion", fontsize=9, loc="left")
+    full.set_title("(a) full motion", fontsize=9, loc="left",
+                   pad=_SPAN_TITLE_PAD if phases is not None else None)
     if zoom is None:
         lo = min(float(w.start) for w in windows)
         hi = max(float(w.stop) for w in windows)
@@ -816,6 +982,7 @@ def figure_reversal(
         patch.set_gid(f"window:{window.label}")
     ax_zoom.set_title("(b) reversal, shifted windows", fontsize=9, loc="left")
     _network_row(fig, grid, 2, networks, list(data.columns))
+    add_network_legend(fig)
     if title:
         fig.suptitle(title, fontsize=10)
     return fig

@@ -50,8 +50,11 @@ _STYLE = """
 body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;max-width:1200px;margin:2em auto;
 padding:0 1em;color:#222;line-height:1.45}
 h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}
-table{border-collapse:collapse;font-size:.82em;margin:.5em 0}
-th,td{border:1px solid #ccc;padding:2px 6px;text-align:left;vertical-align:top}
+table{border-collapse:collapse;font-size:.82em;margin:.5em 0;max-width:100%}
+th,td{border:1px solid #ccc;padding:2px 6px;text-align:left;vertical-align:top;
+overflow-wrap:anywhere}
+td.hash{font-family:ui-monospace,monospace;word-break:break-all;min-width:12ch}
+pre{white-space:pre-wrap;overflow-wrap:anywhere}
 th{background:#f3f3f3}td.num{text-align:right;font-variant-numeric:tabular-nums}
 figure{margin:1em 0}figure img{max-width:100%;height:auto;border:1px solid #eee}
 figcaption{font-size:.88em;color:#444}
@@ -96,15 +99,20 @@ def _format(value: Any) -> str:
 
 def _table(frame: pd.DataFrame, *, classes: Mapping[str, Callable[[Any], str]] | None = None
            ) -> str:
-    """A small HTML table (escaped), numbers right-aligned."""
+    """A small HTML table (escaped), numbers right-aligned, hashes (``*sha256*``) wrapped."""
     classes = classes or {}
     head = "".join(f"<th>{_esc(c)}</th>" for c in frame.columns)
     rows = []
     for record in frame.itertuples(index=False):
         cells = []
         for column, value in zip(frame.columns, record, strict=True):
-            css = classes[column](value) if column in classes else (
-                "num" if isinstance(value, int | float) and not isinstance(value, bool) else "")
+            if column in classes:
+                css = classes[column](value)
+            elif "sha256" in str(column):  # a long hash wraps instead of widening the page
+                css = "hash"
+            else:
+                css = ("num" if isinstance(value, int | float) and not isinstance(value, bool)
+                       else "")
             cells.append(f'<td class="{css}">{_esc(_format(value))}</td>' if css
                          else f"<td>{_esc(_format(value))}</td>")
         rows.append("<tr>" + "".join(cells) + "</tr>")
@@ -467,7 +475,8 @@ def write_report(
                 ax = fig.add_subplot(-(-len(chunk) // cols), cols, j + 1)
                 # sliding windows are labelled by their span already
                 title = label if str(label).endswith(" s") else f"{label}\n{t0:.2f}–{t1:.2f} s"
-                plot.plot_network(pairs, ax, title=title, fontsize=7)
+                plot.plot_network(pairs, ax, title=title, fontsize=7, legend=False)
+            plot.add_network_legend(fig)
             parts.append(_figure_html(out, f"{slug}-networks-{start // _GRID}", fig,
                                       f"{recording}: networks of windows {start + 1}–"
                                       f"{start + len(chunk)} of {len(windows)}"))
