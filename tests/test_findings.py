@@ -321,3 +321,38 @@ def test_design_effect_counts_identical_relations():
     assert "across speeds, for comparison: 28/30" in finding.evidence
     with pytest.raises(ParameterError, match="factor"):
         design_effect(nets, trials, "colour")
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.ThresholdWarning")
+def test_analyse_leaves_constant_signals_out_through_phase_networks():
+    import numpy as np
+
+    from funcnet.findings import _analyse
+    from funcnet.network import functional_network
+    from funcnet.robot.recording import Recording, SignalInfo
+    from funcnet.robot.windows import Window
+
+    t = np.arange(0, 3, 0.002)
+    data = pd.DataFrame({"RP": np.sin(5 * t), "AP": np.sin(5 * t - 0.3),
+                         "AC": np.where(t < 1, 0.25, np.cos(7 * t))},
+                        index=pd.Index(t, name="time"))
+    info = {name: SignalInfo(name, None, None, 0.002) for name in data}
+    recording = Recording(data, {}, info, source="synthetic.csv", sample_period=0.002)
+    windows = {"still": Window("still", 0.2, 0.8), "moving": Window("moving", 1.2, 1.8),
+               "late": Window("late", 1.8, 2.4)}
+    warned: dict[str, int] = {}
+    analysis = _analyse("synthetic", "synthetic.csv", recording, lambda rec, phases: windows,
+                        ["RP", "AP", "AC"], {"delay": 5, "normalize": "minmax"}, warned)
+    assert analysis.dropped == {"still": ("AC",)} and not analysis.errors
+    assert analysis.networks["still"].nodes == ("RP", "AP")
+    assert analysis.networks["moving"].nodes == ("RP", "AP", "AC")
+    reference = functional_network(data.loc[(t >= 0.2 - 1e-9) & (t < 0.8 - 1e-9), ["RP", "AP"]],
+                                   delay=5)
+    pd.testing.assert_frame_equal(analysis.networks["still"].pairs, reference.pairs)
+    # Warnings are counted by kind, one per window that raised it, whatever window it names.
+    assert warned and all("pair(s)" not in m and "synthetic.csv" not in m for m in warned)
+    assert all(1 <= n <= len(windows) for n in warned.values())
+    # A window left with one signal is an error that names the constant ones.
+    lone = _analyse("synthetic", "synthetic.csv", recording, lambda rec, phases: windows,
+                    ["RP", "AC"], {"delay": 5, "normalize": "minmax"}, {})
+    assert "['AC']" in lone.errors["still"] and lone.networks["still"] is None

@@ -136,6 +136,7 @@ def test_documented_example_study_loads() -> None:
     assert study.simulated == "paper" and study.recordings == ()
     assert [w.kind for w in study.windows] == ["fixed", "reversal"]
     assert study.signals == ("RP", "AP", "MP", "V", "RC", "AC")
+    assert study.constant == "drop"  # so that the documented run has no failure
     assert len(parameter_grid(study)) == 2
 
 
@@ -163,6 +164,7 @@ def test_documented_example_study_loads() -> None:
         ('signals = ["RP"]\n[recordings]\npaths = ["*.xml"]', "signals"),
         ('[recordings]\nsimulated = "missing-plan.toml"', "recordings.simulated"),
         ('[recordings]\npaths = ["*.xml"]\nchannels = "none.toml"', "recordings.channels"),
+        ('constant = "ignore"\n[recordings]\npaths = ["*.xml"]', "constant"),
     ],
 )
 def test_load_study_errors_name_file_and_key(tmp_path: Path, text: str, key: str) -> None:
@@ -219,6 +221,7 @@ def test_rows_hold_every_pair_window_and_parameter(baseline, study_file: Path) -
     for name in NETWORK_PARAMETERS:
         assert {"rr": "rr_target", "cr": "cr_target"}.get(name, name) in rows.columns
     assert set(rows["dim"]) == {3} and set(rows["delay"]) == {5, 10}
+    assert set(rows["constant"]) == {"error"} and set(rows["dropped"]) == {""}
 
 
 def test_rows_are_plain_parquet_and_study_json_has_provenance(baseline) -> None:
@@ -288,12 +291,51 @@ def test_failed_windows_are_recorded_and_not_retried(plan_dir: Path, tmp_path: P
     )
     result = run_study(study, tmp_path, workers=0)
     assert (result.tasks, result.computed, len(result.failures)) == (1, 1, 1)
-    assert "constant" in result.failures[0].message
+    message = result.failures[0].message
+    assert "signal 'AP' is constant" in message
+    assert f"{trace.name}: window '0.000-0.200 s' [0, 0.2) s: " in message
     assert not list((tmp_path / "rows").glob("*.parquet"))
     again = run_study(study, tmp_path, workers=0)
     assert (again.computed, again.cached, len(again.failures)) == (0, 1, 1)
     with pytest.raises(StudyError, match="no study results"):
         load_results(tmp_path)
+
+
+def test_constant_drop_leaves_constant_signals_out(plan_dir: Path, tmp_path: Path) -> None:
+    from funcnet import functional_network
+    from funcnet.study import read_recording
+
+    trace = plan_dir / f"{TRIALS[0][0]}.xml"
+    text = (
+        '{}[recordings]\npaths = ["plan/{}"]\n'
+        '[[windows]]\nkind = "range"\nstart = 0.0\nstop = 0.2\n'
+    )
+    drop = load_study(_write(plan_dir.parent, text.format('constant = "drop"\n', trace.name),
+                             "drop.toml"))
+    error = load_study(_write(plan_dir.parent, text.format("", trace.name), "error.toml"))
+    assert (drop.constant, error.constant) == ("drop", "error")
+    assert drop.to_dict()["constant"] == "drop"
+
+    result = run_study(drop, tmp_path, workers=0)
+    assert (result.tasks, result.computed, result.failures) == (1, 1, ())
+    rows = load_results(tmp_path)
+    # Before the motion AP (and V, derived from it) are constant: left out, and recorded so.
+    part = read_recording(trace).window(0.0, 0.2).data
+    constant = [c for c in ("RP", "AP", "MP", "V", "RC", "AC") if np.ptp(part[c]) == 0]
+    assert constant == ["AP", "V"]
+    kept = [c for c in ("RP", "AP", "MP", "V", "RC", "AC") if c not in constant]
+    assert set(rows["constant"]) == {"drop"} and set(rows["dropped"]) == {"AP,V"}
+    assert set(rows["signals"]) == {",".join(kept)} and len(rows) == 6
+    reference = functional_network(part[kept]).pairs.reset_index(drop=True)
+    pd.testing.assert_frame_equal(
+        rows[reference.columns].reset_index(drop=True), reference, check_dtype=False
+    )
+    # "error" is another task (its own key): it fails, and the "drop" rows are kept aside.
+    failed = run_study(error, tmp_path, workers=0)
+    assert (failed.computed, len(failed.failures)) == (1, 1)
+    assert "constant" in failed.failures[0].message
+    back = run_study(drop, tmp_path, workers=0)
+    assert (back.computed, back.cached, back.failures) == (0, 1, ())
 
 
 def test_simulated_plan_is_written_then_analysed(tmp_path: Path) -> None:

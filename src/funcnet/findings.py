@@ -917,25 +917,19 @@ def _analyse(name: str, path: Path, recording: Any,
                                                                           "stop"]),
                              {}, {}, {"windows": str(exc)})
     for key, window in windows.items():
-        used = list(signals)
-        if parameters.get("normalize") is not None:
-            part = _inside(data, window)
-            constant = tuple(s for s in signals if len(part) and np.ptp(part[s].to_numpy()) == 0)
-            if constant:
-                dropped[key] = constant
-                used = [s for s in signals if s not in constant]
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             try:
-                (net,) = phase_networks(recording, [window], signals=used,
+                (net,) = phase_networks(recording, [window], signals=signals, constant="drop",
                                         **parameters).values()
             except FuncnetError as exc:
                 net = None
                 errors[key] = str(exc)
+        if net is not None and net.parameters["dropped"]:
+            dropped[key] = tuple(net.parameters["dropped"])
         for w in caught:
-            # Count by kind of warning: the list of pairs differs from window to window.
-            text = re.sub(r" for \d+ pair\(s\):[^;]*", "", str(w.message))
-            message = f"{w.category.__name__}: {text}"
+            # Count by kind of warning: its first line (the windows it names are on the next).
+            message = f"{w.category.__name__}: {str(w.message).splitlines()[0]}"
             warned[message] = warned.get(message, 0) + 1
         networks[key] = net
     return TrialAnalysis(name, str(path), data, phases, windows, networks, errors, dropped)
@@ -1012,7 +1006,8 @@ def run_paper_analyses(
     -----
     Only the phases of each trial's main motion are used (:func:`main_move`). A signal constant
     inside a window (AP before the breakaway, at low speed) cannot be min-max normalized: it is
-    left out of that window's network and listed in ``dropped``; the findings count claims
+    left out of that window's network (:func:`funcnet.robot.phase_networks` with
+    ``constant="drop"``) and listed in ``dropped``; the findings count claims
     about it as not evaluable. Windows whose network cannot be computed at all (e.g. a window
     reaching past the recording) are kept as ``None`` with the reason. Nothing is tuned to the
     paper's results: the parameters are the paper's where it gives them and fixed beforehand

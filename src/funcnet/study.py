@@ -34,6 +34,9 @@ Decisions (where the specification leaves room):
   column ``cr`` (the achieved cross-recurrence rate).
 * A task whose window cannot be analysed (a constant signal, a window too short for the
   embedding, an unreadable trace) is recorded in ``failed/`` and reported; the other tasks go on.
+  With ``constant = "drop"`` a signal constant in a window is left out of that window's network
+  instead (:func:`funcnet.robot.phase_networks`); its rows name the nodes used (``signals``) and
+  the signals left out (``dropped``).
   A bad parameter value (:class:`~funcnet.errors.ParameterError`) stops the run with a
   :class:`~funcnet.errors.StudyError`, since it would fail every task.
 * Warnings raised while computing a task (thresholds, staircase signals) are counted per message
@@ -176,6 +179,9 @@ class Study:
         Channel map (TOML) for reading the traces.
     axis : int, optional
         Axis to read from traces of several axes.
+    constant : str
+        ``"error"`` (a signal constant in a window fails the task) or ``"drop"`` (it is left out
+        of that window's network); see :func:`funcnet.robot.phase_networks`.
     base_dir : Path
         Folder that recording names in the results are relative to (the study file's folder).
     source : Path, optional
@@ -191,6 +197,7 @@ class Study:
     seed: int = 0
     channels: Path | None = None
     axis: int | None = None
+    constant: str = "error"
     base_dir: Path = dataclasses.field(default_factory=Path.cwd)
     source: Path | None = None
 
@@ -206,6 +213,7 @@ class Study:
             "channels": _str_or_none(self.channels),
             "axis": self.axis,
             "signals": None if self.signals is None else list(self.signals),
+            "constant": self.constant,
             "windows": [w.as_dict() for w in self.windows],
             "parameters": {name: list(values) for name, values in self.parameters},
         }
@@ -222,6 +230,7 @@ def load_study(path: str | os.PathLike[str]) -> Study:
     ``examples/study.toml`` for a documented example. Layout::
 
         signals = ["RP", "AP", "MP", "V", "RC", "AC"]   # optional
+        constant = "drop"            # optional: "error" (default) or "drop"
         [recordings]
         paths = ["traces/*.xml"]     # files or glob patterns
         simulated = "paper"          # optional: "paper" or a plan TOML file
@@ -291,7 +300,7 @@ def _study_from_document(doc: Mapping[str, Any], source: Path) -> Study:
     def fail(key: str, message: str) -> StudyError:
         return StudyError(f"{source}: {key}: {message}")
 
-    _reject_unknown(doc, {"signals", "recordings", "windows", "network"}, "", fail)
+    _reject_unknown(doc, {"signals", "constant", "recordings", "windows", "network"}, "", fail)
     recordings_table = doc.get("recordings", {})
     if not isinstance(recordings_table, dict):
         raise fail("recordings", "must be a table ([recordings])")
@@ -351,6 +360,12 @@ def _study_from_document(doc: Mapping[str, Any], source: Path) -> Study:
             raise fail("signals", "must name at least two distinct signals")
         signals = tuple(signals)
 
+    from funcnet.robot.windows import CONSTANT_POLICIES
+
+    constant = doc.get("constant", "error")
+    if constant not in CONSTANT_POLICIES:
+        raise fail("constant", f"must be {' or '.join(map(repr, CONSTANT_POLICIES))}")
+
     windows_list = doc.get("windows", [{"kind": "phases"}])
     if not isinstance(windows_list, list) or not windows_list:
         raise fail("windows", "must be one or more [[windows]] tables")
@@ -386,6 +401,7 @@ def _study_from_document(doc: Mapping[str, Any], source: Path) -> Study:
         seed=seed,
         channels=channels,
         axis=axis,
+        constant=constant,
         base_dir=base,
         source=source,
     )
@@ -573,6 +589,7 @@ class _NetworkTask:
     signals: tuple[str, ...] | None
     channels: str | None
     axis: int | None
+    constant: str
 
 
 @dataclass(frozen=True)
@@ -641,13 +658,15 @@ def _network_rows(task: _NetworkTask) -> _Outcome:
         window = Window(**task.window)
         with warnings.catch_warnings(record=True) as caught, _one_thread_per_task():
             warnings.simplefilter("always")
-            networks = phase_networks(recording, [window], signals=signals, **task.parameters)
+            networks = phase_networks(
+                recording, [window], signals=signals, constant=task.constant, **task.parameters
+            )
         (network,) = networks.values()
     except ParameterError as exc:
         return _Outcome(task.key, fatal=str(exc))
     except FuncnetError as exc:
         return _Outcome(task.key, error=str(exc))
-    rows = _rows_table(task, network.nodes, network.pairs)
+    rows = _rows_table(task, network)
     first: dict[str, str] = {}
     for w in caught:
         first.setdefault(w.category.__name__, str(w.message))
@@ -665,6 +684,8 @@ _IDENTITY_SCHEMA = pa.schema(
         ("start", pa.float64()),
         ("stop", pa.float64()),
         ("signals", pa.string()),
+        ("constant", pa.string()),
+        ("dropped", pa.string()),
         ("dim", pa.int64()),
         ("delay", pa.int64()),
         ("rr_target", pa.float64()),
@@ -679,7 +700,8 @@ _IDENTITY_SCHEMA = pa.schema(
 )
 
 
-def _rows_table(task: _NetworkTask, nodes: Sequence[str], pairs: pd.DataFrame) -> pa.Table:
+def _rows_table(task: _NetworkTask, network: Any) -> pa.Table:
+    pairs = network.pairs
     n = len(pairs)
     identity = {
         "recording": task.source.name,
@@ -690,7 +712,9 @@ def _rows_table(task: _NetworkTask, nodes: Sequence[str], pairs: pd.DataFrame) -
         "offset": task.window["offset"],
         "start": task.window["start"],
         "stop": task.window["stop"],
-        "signals": ",".join(nodes),
+        "signals": ",".join(network.nodes),
+        "constant": task.constant,
+        "dropped": ",".join(network.parameters["dropped"]),
         **{PARAMETER_COLUMNS[k]: v for k, v in task.parameters.items()},
     }
     columns = {
@@ -1096,12 +1120,14 @@ def _network_tasks(
                 window=window,
                 parameters=parameters,
                 signals=signals,
+                constant=study.constant,
                 channels_sha256=channels_sha,
                 axis=study.axis,
                 funcnet=__version__,
             )
             tasks[key] = _NetworkTask(
-                key, wt.source, window, parameters, study.signals, channels, study.axis
+                key, wt.source, window, parameters, study.signals, channels, study.axis,
+                study.constant,
             )
     return list(tasks.values()), failures
 

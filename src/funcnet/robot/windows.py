@@ -9,7 +9,9 @@ labelled time span ``start <= time < stop`` in seconds; the builders make lists 
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import re
 import warnings
 from collections import Counter
 from collections.abc import Iterable, Mapping, Sequence
@@ -18,7 +20,14 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from funcnet.errors import ChannelError, ParameterError, StaircaseWarning, WindowError
+from funcnet.errors import (
+    ChannelError,
+    FuncnetError,
+    ParameterError,
+    StaircaseWarning,
+    ThresholdWarning,
+    WindowError,
+)
 from funcnet.network import FunctionalNetwork, functional_network
 from funcnet.robot.phases import PHASES, phase_table
 from funcnet.robot.preprocess import staircase_signals
@@ -35,6 +44,7 @@ __all__ = [
     "reversal_windows",
     "sliding_windows",
     "phase_networks",
+    "CONSTANT_POLICIES",
 ]
 
 #: Window lengths in seconds of the velocity study (paper section 4.2), by the phase whose start
@@ -44,6 +54,10 @@ FIXED_LENGTHS = {"spin-up": 0.28, "cruise": 0.6, "braking": 0.6}
 REVERSAL_SHIFTS = (-0.04, -0.02, 0.0, 0.02, 0.04)
 #: The paper's nodes (section 4.1, Fig. 9), the default signals of :func:`phase_networks`.
 PAPER_NODES = ("RP", "AP", "MP", "V", "RC", "AC")
+#: What :func:`phase_networks` does with a signal constant inside a window: raise, or leave it out.
+CONSTANT_POLICIES = ("error", "drop")
+# The pairs a ThresholdWarning lists (funcnet.measures) differ from window to window.
+_PAIR_LIST = re.compile(r" for \d+ pair\(s\):[^;]*")
 
 
 @dataclass(frozen=True)
@@ -341,6 +355,7 @@ def phase_networks(
     windows: Sequence[Window] | pd.DataFrame,
     *,
     signals: Sequence[str] | None = None,
+    constant: str = "error",
     **network_parameters,
 ) -> dict[str, FunctionalNetwork]:
     """One functional network per window.
@@ -354,6 +369,11 @@ def phase_networks(
         A phase table is turned into :func:`phase_windows`.
     signals : sequence of str, optional
         The nodes; default the paper's (:data:`PAPER_NODES`) that the recording has.
+    constant : {"error", "drop"}
+        A signal constant inside a window cannot be normalized (min-max or z-score): ``"error"``
+        raises :class:`~funcnet.errors.SignalError`; ``"drop"`` leaves it out of that window's
+        network (listed in its ``parameters["dropped"]``). Without normalization
+        (``normalize=None``) nothing is dropped.
     **network_parameters
         Passed to :func:`funcnet.functional_network` (``dim``, ``delay``, ``rr``, ``cr``, ``mu``,
         ``normalize`` ...). Normalization (min-max by default) happens there, per window.
@@ -361,15 +381,24 @@ def phase_networks(
     Returns
     -------
     dict
-        Window label -> FunctionalNetwork (labelled so), in window order.
+        Window label -> FunctionalNetwork (labelled so), in window order. Each network's
+        ``parameters`` also hold its window: ``window_start``, ``window_stop`` (seconds),
+        ``phase``, ``source`` (the recording's file) and ``dropped`` (the signals left out).
 
     Raises
     ------
     WindowError
-        A window outside the recording, with a signal not recorded (NaN) in it, or a duplicate
-        label; the message names the file.
+        A window outside the recording, with a signal not recorded (NaN) in it, with fewer than
+        two signals left after dropping constant ones, or a duplicate label; the message names
+        the file.
     ChannelError
         A signal that is not a column.
+    ParameterError
+        ``constant`` is not ``"error"`` or ``"drop"``.
+    FuncnetError
+        Any error of :func:`funcnet.functional_network` on a window (a constant signal, a window
+        too short for the embedding, a bad parameter), of the same class, its message prefixed
+        with the file, the window's label and its span.
 
     Warns
     -----
@@ -377,11 +406,38 @@ def phase_networks(
         A node's native interval is coarser than the grid (the 4 ms IPO signals AP and MP on the
         2 ms grid): it is a staircase, and recurrences are counted on repeated values. Use
         :func:`~funcnet.robot.resample` to avoid it.
+    ThresholdWarning
+        At most one per kind of problem for the whole call (not one per window), naming the
+        windows that have it; the pairs concerned are flagged in each network's pairs table
+        (``eps_ordered``, ``rate_exceeded``).
 
     References
     ----------
     Paper section 3.4 (construction), section 4 (networks per phase and window).
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot.recording import Recording, SignalInfo
+    >>> t = np.arange(0, 2, 0.002)
+    >>> data = pd.DataFrame({"RP": np.sin(5 * t), "AP": np.sin(5 * t - 0.3),
+    ...                      "AC": np.where(t < 1, 0.0, np.cos(7 * t))},
+    ...                     index=pd.Index(t, name="time"))
+    >>> info = {name: SignalInfo(name, None, None, 0.002) for name in data}
+    >>> rec = Recording(data, {}, info, source="trace.csv", sample_period=0.002)
+    >>> nets = phase_networks(rec, [Window("still", 0.2, 0.8), Window("moving", 1.2, 1.8)],
+    ...                       constant="drop")
+    >>> nets["still"].nodes, nets["still"].parameters["dropped"]
+    (('RP', 'AP'), ['AC'])
+    >>> {k: nets["moving"].parameters[k] for k in ("window_start", "window_stop", "source")}
+    {'window_start': 1.2, 'window_stop': 1.8, 'source': 'trace.csv'}
+    >>> phase_networks(rec, [Window("still", 0.2, 0.8)])
+    Traceback (most recent call last):
+        ...
+    funcnet.errors.SignalError: trace.csv: window 'still' [0.2, 0.8) s: signal 'AC' is constant ...
     """
+    if constant not in CONSTANT_POLICIES:
+        raise ParameterError(f"constant must be 'error' or 'drop', got {constant!r}")
     if isinstance(windows, pd.DataFrame):
         windows = phase_windows(windows)
     where = recording.source or "<recording>"
@@ -409,15 +465,90 @@ def phase_networks(
             ),
             stacklevel=2,
         )
+    drop = constant == "drop" and network_parameters.get("normalize", "minmax") is not None
     networks = {}
-    for window in windows:
-        part = recording.window(window.start, window.stop).data[list(signals)]
-        values = part.to_numpy(dtype=np.float64)
-        if np.isnan(values).any():
-            column = part.columns[np.isnan(values).any(axis=0)][0]
-            raise WindowError(
-                f"{where}: window {window.label!r} [{window.start:g}, {window.stop:g}) s: "
-                f"signal {column!r} has no recorded value at some of its ticks"
+    # The windows' warnings are gathered and issued once per kind below: a notebook looping
+    # over a dozen windows should not print a dozen copies of the same advice.
+    raised: list[tuple[str, warnings.WarningMessage]] = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        for window in windows:
+            part = recording.window(window.start, window.stop).data[list(signals)]
+            values = part.to_numpy(dtype=np.float64)
+            if np.isnan(values).any():
+                column = part.columns[np.isnan(values).any(axis=0)][0]
+                raise WindowError(
+                    f"{where}: window {window.label!r} {_span(window)}: "
+                    f"signal {column!r} has no recorded value at some of its ticks"
+                )
+            dropped: list[str] = []
+            if drop:
+                dropped = [str(name) for name in part.columns[np.ptp(values, axis=0) == 0]]
+            if dropped and len(signals) - len(dropped) < 2:
+                raise WindowError(
+                    f"{where}: window {window.label!r} {_span(window)}: signals {dropped} are "
+                    "constant in it, which leaves fewer than two signals"
+                )
+            seen = len(caught)
+            try:
+                network = functional_network(
+                    part.drop(columns=dropped), label=window.label, **network_parameters
+                )
+            except FuncnetError as error:
+                _locate(error, where, window)
+                raise
+            raised.extend((window.label, w) for w in caught[seen:])
+            networks[window.label] = dataclasses.replace(
+                network,
+                parameters={
+                    **network.parameters,
+                    "window_start": window.start,
+                    "window_stop": window.stop,
+                    "phase": window.phase,
+                    "source": recording.source,
+                    "dropped": dropped,
+                },
             )
-        networks[window.label] = functional_network(part, label=window.label, **network_parameters)
+    # Kind -> (window label, first line without its list of pairs) of each window that has it.
+    threshold_windows: dict[tuple[type[Warning], str], list[tuple[str, str]]] = {}
+    for label, w in raised:
+        if issubclass(w.category, ThresholdWarning):
+            first_line = _PAIR_LIST.sub("", (str(w.message).splitlines() or [""])[0])
+            kind = (w.category, _warning_kind(first_line, signals))
+            threshold_windows.setdefault(kind, []).append((label, first_line))
+        else:
+            warnings.warn(w.message, stacklevel=2)
+    for (category, _), concerned in threshold_windows.items():
+        (label, text), *others = concerned
+        details = f" (details as in {label!r})" if any(t != text for _, t in others) else ""
+        warnings.warn(
+            f"{text}\n{where}: in {len(concerned)} of {len(windows)} window(s): "
+            f"{', '.join(repr(label) for label, _ in concerned)}{details}",
+            category,
+            stacklevel=2,
+        )
     return networks
+
+
+def _warning_kind(text: str, signals: Sequence[str]) -> str:
+    """The words of ``text`` before its first detail (a number, a parenthesis, a signal name).
+
+    The details differ from window to window; the words before them name the kind of problem.
+    """
+    words = []
+    for word in text.split():
+        if word[0] in "(0123456789" or word.strip(",;:") in signals:
+            break
+        words.append(word)
+    return " ".join(words)
+
+
+def _locate(error: FuncnetError, where: str, window: Window) -> None:
+    """Put the recording's file and the window in front of ``error``'s message."""
+    # Changed in place: the class, the traceback and attributes such as TraceError.path stay,
+    # whatever the class's constructor takes.
+    error.args = (f"{where}: window {window.label!r} {_span(window)}: {error}",)
+
+
+def _span(window: Window) -> str:
+    return f"[{window.start:g}, {window.stop:g}) s"
