@@ -57,6 +57,7 @@ import hashlib
 import inspect
 import itertools
 import json
+import logging
 import os
 import platform
 import sys
@@ -818,6 +819,9 @@ class _Backend:
                 processes=True,
                 host="127.0.0.1",
                 dashboard_address=None,
+                # On a busy machine the workers log "event loop unresponsive" warnings to
+                # stderr; the command line's output is one line per error, nothing else.
+                silence_logs=logging.ERROR,
             )
             self._stack.enter_context(cluster)
             self._client = self._stack.enter_context(Client(cluster))
