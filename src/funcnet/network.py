@@ -88,6 +88,7 @@ _PAIR_DTYPES = {
     **dict.fromkeys(_MEASURE_COLUMNS, "float64"),
     "eps_ordered": "bool",
     "rate_exceeded": "bool",
+    "degenerate": "bool",
     "c_kind": "str",
     "t_kind": "str",
     "kind": "str",
@@ -239,10 +240,12 @@ class FunctionalNetwork:
         One row per unordered pair (columns ``x``, ``y`` in input order): ``c_xy``, ``c_yx``,
         ``t_xy``, ``t_yx`` (Eq. 6-9), ``c_diff``, ``t_diff`` (Eq. 10), thresholds ``eps_x``,
         ``eps_y``, ``eps_xy`` and achieved rates ``rr_x``, ``rr_y``, ``cr``, the flags
-        ``eps_ordered`` (``eps_xy < min(eps_x, eps_y)``) and ``rate_exceeded`` (ties pushed a rate
-        above its target), the per-measure kinds ``c_kind``, ``t_kind``, the ``kind`` under the
-        network's measure (``x->y``, ``y->x``, ``bidirectional`` or ``conflict``) and the
-        ``weight`` of Eq. 13.
+        ``eps_ordered`` (``eps_xy < min(eps_x, eps_y)``), ``rate_exceeded`` (ties pushed a rate
+        above its target) and ``degenerate`` (a block of the pair has a degenerate recurrence
+        structure -- threshold 0 or a rate above twice its target, e.g. a signal that barely
+        moves -- so its arrow is meaningless; the edge is kept), the per-measure kinds
+        ``c_kind``, ``t_kind``, the ``kind`` under the network's measure (``x->y``, ``y->x``,
+        ``bidirectional`` or ``conflict``) and the ``weight`` of Eq. 13.
     edges : pandas.DataFrame
         ``source``, ``target``, ``weight``, ``kind`` (``directed`` or ``bidirectional``); a
         directed edge points from the inferred driver to the driven signal.
@@ -668,7 +671,7 @@ def functional_network(
         flags them too (``eps_ordered``, ``rate_exceeded``). A degenerate recurrence structure
         (threshold 0 or a rate above twice its target: too few distinct states, e.g. a signal
         that barely moves) gets its own warning naming the signal; those pairs' arrows are
-        meaningless.
+        meaningless, and the pairs table flags them (``degenerate``).
 
     References
     ----------
@@ -749,6 +752,7 @@ def functional_network(
         **{name: [float(getattr(r, name)) for r in measures] for name in _MEASURE_COLUMNS},
         "eps_ordered": [bool(r.eps_ordered) for r in measures],
         "rate_exceeded": [bool(r.rate_exceeded) for r in measures],
+        "degenerate": [bool(r.degenerate) for r in measures],
     }
     columns["c_kind"] = [edge_kind(diff, mu) for diff in columns["c_diff"]]
     columns["t_kind"] = [edge_kind(diff, mu) for diff in columns["t_diff"]]
