@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import itertools
 import random
+import re
 
 import pandas as pd
 import pytest
@@ -121,6 +122,45 @@ def test_claims_about_an_absent_node_are_not_evaluable_and_never_a_full_match():
     # the evaluable claim failing makes it "no", whatever could not be evaluated
     against = make_pairs(["MP->RP"], nodes=("RP", "MP", "V"))
     assert evaluate(spec, {"early": against}).reproduced == "no"
+
+
+DEGENERATE = "degenerate recurrence structure (a signal barely moves in the window)"
+
+
+def flag_degenerate(pairs, *relations):
+    """The pairs table with a ``degenerate`` column, True for the pairs of ``relations``."""
+    pairs = pairs.copy()
+    flagged = {frozenset(re.findall(r"\w+", r)) for r in relations}
+    pairs["degenerate"] = [frozenset(xy) in flagged
+                           for xy in zip(pairs["x"], pairs["y"], strict=True)]
+    return pairs
+
+
+def test_claims_about_a_degenerate_pair_are_not_evaluable_like_an_absent_signal():
+    spec = FindingSpec("t", "4.1", "RP drives AP and MP", {"early": ("RP->AP", "RP->MP")})
+    shown = make_pairs(["RP->AP", "RP->MP"])
+    assert relation_holds(flag_degenerate(shown, "AP->RP"), "RP->AP") == (None, None)
+    assert relation_holds(flag_degenerate(shown, "AP->RP"), "RP->MP") == (True, "RP->MP")
+    # the degenerate arrow holds, but is not counted: partly, never yes
+    finding = evaluate(spec, {"early": flag_degenerate(shown, "RP->AP")})
+    assert finding.reproduced == "partly"
+    assert finding.edges_seen == ("[early] RP->MP",)
+    assert finding.not_evaluable == (f"[early] RP->AP: {DEGENERATE}",)
+    assert finding.evidence == ("0/1 networks show all claimed relations; 1/1 relations hold; "
+                                f"1 of 2 claims could not be evaluated: [early] RP->AP: "
+                                f"{DEGENERATE}")
+    # a failing degenerate arrow is not evidence against either
+    against = flag_degenerate(make_pairs(["AP->RP", "RP->MP"]), "RP->AP")
+    assert evaluate(spec, {"early": against}).reproduced == "partly"
+    both = evaluate(spec, {"early": flag_degenerate(shown, "RP->AP", "RP->MP")})
+    assert both.reproduced == "not evaluable"
+    assert both.evidence.endswith(f"2 of 2 claims could not be evaluated: [early] RP->AP: "
+                                  f"{DEGENERATE}, [early] RP->MP: {DEGENERATE}")
+    # tables without the column (older results), or with gaps from mixing them, are evaluated
+    assert evaluate(spec, {"early": shown}).reproduced == "yes"
+    mixed = shown.assign(degenerate=[None] * len(shown))
+    assert evaluate(spec, {"early": mixed}).reproduced == "yes"
+    assert evaluate(spec, {"early": flag_degenerate(shown)}).reproduced == "yes"
 
 
 def test_a_missing_network_among_trials_forbids_yes():
@@ -286,8 +326,9 @@ def test_reversal_signature_and_sequence_counts():
     assert reversal_sequence({}).reproduced == "not evaluable"
     empty = reversal_sequence({"a": dict.fromkeys(REVERSAL_SEQUENCE)})  # 8+2+8+8+5 claims
     assert empty.reproduced == "not evaluable"
-    assert empty.evidence.endswith("31 of 31 claims could not be evaluated (no network, or a "
-                                   "signal constant in the window and left out)")
+    assert empty.evidence.endswith("31 of 31 claims could not be evaluated (no network, a "
+                                   "signal constant in the window and left out, or a degenerate "
+                                   "recurrence structure)")
     # a window without a network counts against the sequence, never for it
     one_missing = sequence_networks(as_paper)
     one_missing[-40] = None
@@ -306,6 +347,26 @@ def test_reversal_findings_say_which_signal_was_left_out():
         "[B0] MP->RP: RP constant in the window, left out of its network",
         "[B0] AP->RP: RP constant in the window, left out of its network")
     assert "2 of 3 claims could not be evaluated" in chain.evidence
+
+
+def test_reversal_findings_do_not_count_degenerate_arrows():
+    # the arm stands still while the motor crosses the backlash: AP and V barely move
+    as_paper = {o: [c.replace("!<->", "->") for c in cs] for o, cs in REVERSAL_SEQUENCE.items()}
+    nets = sequence_networks(as_paper)
+    nets[0] = flag_degenerate(nets[0], "V->AP", "MP->AP", "AP->RP")
+    found = {f.id: f for f in reversal_findings({"B0": nets})}
+    assert found["4.3-v-drives"].reproduced == "partly"
+    assert found["4.3-v-drives"].not_evaluable == (f"[B0] V->AP: {DEGENERATE}",)
+    chain = found["4.3-position-chain"]
+    assert chain.reproduced == "partly"
+    assert chain.not_evaluable == (f"[B0] MP->AP: {DEGENERATE}", f"[B0] AP->RP: {DEGENERATE}")
+    assert "[B0] MP->AP" not in chain.edges_seen
+    seq = found["4.3-sequence"]
+    # 0 ms shows 5 of its 8 claims: the sequence largely appears, not wholly
+    assert seq.reproduced == "partly"
+    assert "+0 ms 0/1" in seq.evidence
+    assert "3 of 31 claims could not be evaluated" in seq.evidence
+    assert not any(s.startswith("[B0 · +0 ms] MP->AP") for s in seq.edges_seen)
 
 
 def test_design_effect_counts_identical_relations():

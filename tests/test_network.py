@@ -183,12 +183,13 @@ def test_pairs_equal_cross_measures_of_each_normalized_pair():
             single = cross_measures(scaled[:, i], scaled[:, j], delay=3)
             for name in MEASURE_COLUMNS + ["eps_ordered", "rate_exceeded"]:
                 assert getattr(row, name) == getattr(single, name), name
+            assert row.degenerate == bool(single.degenerate)
 
 
 # --- the mu rule, on crafted asymmetries --------------------------------------------------
 
 
-def crafted(c_diff, t_diff, *, eps_ordered=True, rate_exceeded=False):
+def crafted(c_diff, t_diff, *, eps_ordered=True, rate_exceeded=False, degenerate=()):
     """A CrossMeasures with the given differences (other fields plausible placeholders)."""
     values = dict(
         c_xy=0.5 + c_diff / 2,
@@ -205,6 +206,7 @@ def crafted(c_diff, t_diff, *, eps_ordered=True, rate_exceeded=False):
         cr=0.05,
         eps_ordered=eps_ordered,
         rate_exceeded=rate_exceeded,
+        degenerate=degenerate,
         m_x=40,
         m_y=40,
         parameters={},
@@ -392,6 +394,29 @@ def test_threshold_flags_reach_the_pairs_table(fake_measures):
     net = functional_network(noise(3), names=["RP", "AP", "AC"])
     assert list(net.pairs["eps_ordered"]) == [False, True, True]
     assert list(net.pairs["rate_exceeded"]) == [False, False, True]
+    assert list(net.pairs["degenerate"]) == [False, False, False]
+
+
+def test_degenerate_pairs_are_flagged_keep_their_edge_and_survive_json(fake_measures):
+    fake_measures(
+        [
+            crafted(-0.3, -0.3, degenerate=("y",)),
+            crafted(-0.3, -0.3),
+            crafted(0.3, 0.3, degenerate=("x", "xy")),
+        ]
+    )
+    net = functional_network(noise(3), names=["RP", "AP", "V"])
+    assert list(net.pairs.columns) == [
+        "x", "y", *MEASURE_COLUMNS, "eps_ordered", "rate_exceeded", "degenerate",
+        "c_kind", "t_kind", "kind", "weight",
+    ]  # fmt: skip
+    assert str(net.pairs["degenerate"].dtype) == "bool"
+    assert list(net.pairs["degenerate"]) == [True, False, True]
+    # the edge rule ignores the flag: every pair keeps its arrow
+    assert list(net.pairs["kind"]) == ["x->y", "x->y", "y->x"]
+    assert len(net.edges) == 3
+    back = FunctionalNetwork.from_json(net.to_json())
+    pd.testing.assert_frame_equal(back.pairs, net.pairs)
 
 
 def test_real_threshold_problems_warn_once_per_problem_with_names():

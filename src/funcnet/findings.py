@@ -8,9 +8,12 @@ here asserts that the simulated axis behaves like the paper's robot; where it do
 :class:`Finding` says so (``reproduced="no"``) with the counts.
 
 A claimed relation is *not evaluable* in a network that lacks one of its two signals (a signal
-constant in the window cannot be min-max normalized and is left out of that window's network) or
-when the network is missing altogether (not computed, or no such trial in the plan). Such a
-claim is neither a success nor a failure: it is counted and named in the evidence.
+constant in the window cannot be min-max normalized and is left out of that window's network),
+in a network whose pair of the two signals is flagged ``degenerate`` (a degenerate recurrence
+structure: a signal barely moves in the window, so the pair's arrow is meaningless; pairs tables
+without that column, from older results, count as not degenerate), or when the network is
+missing altogether (not computed, or no such trial in the plan). Such a claim is neither a
+success nor a failure: it is counted and named in the evidence.
 
 How a finding is decided (one rule for all of them, fixed before looking at any result and the
 same whatever the results are):
@@ -201,7 +204,8 @@ def relation_holds(net: Any, claim: str) -> tuple[bool | None, str | None]:
     Returns
     -------
     (bool or None, str or None)
-        Whether it holds (``None`` when the pair is absent), and the relation seen.
+        Whether it holds and the relation seen; ``(None, None)`` when the pair is absent or
+        flagged ``degenerate`` (not evaluable, see the module's rule).
 
     Raises
     ------
@@ -214,19 +218,34 @@ def relation_holds(net: Any, claim: str) -> tuple[bool | None, str | None]:
     >>> pairs = pd.DataFrame({"x": ["RC"], "y": ["AC"], "kind": ["bidirectional"]})
     >>> relation_holds(pairs, "AC<->RC"), relation_holds(pairs, "RC->AC")[0]
     ((True, 'AC<->RC'), False)
+    >>> relation_holds(pairs.assign(degenerate=True), "AC<->RC")
+    (None, None)
     """
     match = _RELATION.match(claim)
     if match is None:
         raise ParameterError(f"claim {claim!r} is not of the form A->B, A<->B or A!<->B")
     a, op, b = match.groups()
     seen = relation(net, a, b)
-    if seen is None:
+    if seen is None or _degenerate(net, a, b):
         return None, None
     if op == "->":
         return seen == f"{a}->{b}", seen
     if op == "<->":
         return seen == f"{a}<->{b}", seen
     return seen != f"{a}<->{b}", seen
+
+
+DEGENERATE = "degenerate recurrence structure (a signal barely moves in the window)"
+
+
+def _degenerate(net: Any, a: str, b: str) -> bool:
+    """Whether the pair of ``a`` and ``b`` is flagged ``degenerate`` (False without the column)."""
+    table = _pairs(net)
+    if "degenerate" not in table.columns:
+        return False
+    pair = table[table["x"].isin((a, b)) & table["y"].isin((a, b))]
+    # Rows of older results mixed with newer ones hold NaN there: not degenerate.
+    return bool(pair["degenerate"].eq(True).any())
 
 
 def _where(key: Any) -> str:
@@ -253,9 +272,11 @@ def _nodes(net: Any) -> set[str]:
     return set(net.nodes)
 
 
-def _why_absent(claim: str, net: Any, left_out: Sequence[str]) -> str:
-    """Why a claim about a signal the network lacks cannot be evaluated."""
+def _why_not_evaluable(claim: str, net: Any, left_out: Sequence[str]) -> str:
+    """Why a claim cannot be evaluated in a network: a signal it lacks, or a degenerate pair."""
     absent = [s for s in dict.fromkeys(re.findall(r"\w+", claim)) if s not in _nodes(net)]
+    if not absent:
+        return DEGENERATE
     constant = [s for s in absent if s in left_out]
     other = [s for s in absent if s not in left_out]
     reasons = ([f"{', '.join(constant)} constant in the window, left out of its network"]
@@ -275,7 +296,8 @@ def evaluate(spec: FindingSpec, networks: Mapping[Any, Any], *,
     networks : mapping of key -> FunctionalNetwork, pairs table or None
         The networks; a key that is missing, or maps to ``None`` (the network could not be
         computed), makes all its claims not evaluable, and so does a network lacking a signal
-        for the claims about that signal.
+        for the claims about that signal, or flagging a pair ``degenerate`` for the claims
+        about that pair.
     left_out : mapping of key -> sequence of str, optional
         Signals left out of a key's network because they are constant in its window; only used
         to say why a claim is not evaluable.
@@ -316,10 +338,12 @@ def evaluate(spec: FindingSpec, networks: Mapping[Any, Any], *,
             missing.extend(f"[{where}] {c}: no network" for c in claims)
             continue
         results = [(claim, *relation_holds(net, claim)) for claim in claims]
-        # A claim about a node the network lacks (a signal constant in the window) is not
-        # evaluable; the network still counts for its other claims, never as a full match.
-        missing.extend(f"[{where}] {claim}: {_why_absent(claim, net, left_out.get(key) or ())}"
-                       for claim, ok, _ in results if ok is None)
+        # A claim about a node the network lacks (a signal constant in the window) or about a
+        # degenerate pair is not evaluable; the network still counts for its other claims,
+        # never as a full match.
+        missing.extend(
+            f"[{where}] {claim}: {_why_not_evaluable(claim, net, left_out.get(key) or ())}"
+            for claim, ok, _ in results if ok is None)
         results = [(claim, ok, seen) for claim, ok, seen in results if ok is not None]
         n_held = sum(bool(ok) for _, ok, _ in results)
         held += n_held
@@ -601,10 +625,10 @@ def reversal_sequence(networks: Mapping[str, Mapping[Any, Any]]) -> Finding:
     In each trial every offset's window is checked against :data:`REVERSAL_SEQUENCE`. The
     sequence *appears* in a trial when every window shows all its claimed relations, and
     *largely appears* when every window shows at least half of them (the paper: "resembles",
-    "largely present"); a claim that cannot be evaluated (no network, or a signal left out of
-    it) counts as not shown, and the evidence says how many. ``"yes"`` when it appears in every
-    trial, ``"partly"`` when it largely appears in at least one, ``"no"`` otherwise, and
-    ``"not evaluable"`` when no claim of any trial could be evaluated.
+    "largely present"); a claim that cannot be evaluated (no network, a signal left out of it,
+    or a degenerate pair) counts as not shown, and the evidence says how many. ``"yes"`` when
+    it appears in every trial, ``"partly"`` when it largely appears in at least one, ``"no"``
+    otherwise, and ``"not evaluable"`` when no claim of any trial could be evaluated.
 
     Parameters
     ----------
@@ -647,7 +671,8 @@ def reversal_sequence(networks: Mapping[str, Mapping[Any, Any]]) -> Finding:
                 + ", ".join(f"{o:+d} ms {k}/{n}" for o, k in per_offset.items()))
     if unevaluated:
         evidence += (f"; {unevaluated} of {claimed} claims could not be evaluated (no network, "
-                     "or a signal constant in the window and left out)")
+                     "a signal constant in the window and left out, or a degenerate recurrence "
+                     "structure)")
     expected = tuple(f"[{o:+d} ms] {c}" for o, cs in REVERSAL_SEQUENCE.items() for c in cs)
     return Finding("4.3-sequence", "4.3",
                    "Around the reversal the network changes in sequence: at -40 ms RC and AC "

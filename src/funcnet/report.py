@@ -360,7 +360,9 @@ def build_demo_report(
         _findings_html(analyses.findings),
         "<p>Decision rule (fixed before any result, the same for every finding): a claimed "
         "relation is <i>not evaluable</i> when its network is missing or lacks one of its "
-        "signals (a signal constant in a window is left out of that window's network). "
+        "signals (a signal constant in a window is left out of that window's network), or when "
+        "the pair of its signals has a degenerate recurrence structure (a signal barely moves "
+        "in the window, so the arrow is meaningless). "
         "<i>yes</i> — every claimed relation was evaluated and holds; <i>partly</i> — not "
         "<i>yes</i>, but at least one network (or trial) shows all its claimed relations, or at "
         "least half of the evaluated relations hold (this includes findings whose evaluated "
