@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
-from matplotlib.collections import LineCollection
+from matplotlib.collections import LineCollection, PathCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrowPatch
@@ -510,7 +510,8 @@ def plot_edge_timeline(
                             frameon=False, title="edge kind (marker)", title_fontsize=7)
     kind_legend.set_gid("legend:kind")
     for handle in kind_legend.legend_handles:  # same size for every kind in the key
-        handle.set_sizes([30.0])
+        if isinstance(handle, PathCollection):
+            handle.set_sizes([30.0])
     ax.add_artist(kind_legend)
     scale = [Line2D([], [], linestyle="", marker="o", color="0.5",
                     markersize=float(np.sqrt(max(4.0, size_scale * w))), label=f"{w:g}")
