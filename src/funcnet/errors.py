@@ -28,7 +28,30 @@ class FuncnetError(Exception):
 
 
 class ParameterError(FuncnetError, ValueError):
-    """A parameter is outside its domain; the message names the parameter."""
+    """A parameter is outside its domain; the message names the parameter.
+
+    Raised as ``ParameterError("rr must be in (0, 1), got 2.0")`` or, where an entry point may
+    re-spell the parameter's name (``--rr`` on the command line, a TOML key and its file),
+    as ``ParameterError.of("rr", "must be in (0, 1), got 2.0")``: then :attr:`parameter` and
+    :attr:`detail` hold the two parts and :meth:`spelled` renames the parameter.
+    """
+
+    def __init__(self, message: str, *, parameter: str | None = None,
+                 detail: str | None = None) -> None:
+        self.parameter = parameter
+        self.detail = detail
+        super().__init__(message)
+
+    @classmethod
+    def of(cls, parameter: str, detail: str) -> ParameterError:
+        """The error for ``parameter`` with ``detail`` (``"must be ..., got ..."``)."""
+        return cls(f"{parameter} {detail}", parameter=parameter, detail=detail)
+
+    def spelled(self, name: str, prefix: str = "") -> str:
+        """The message with the parameter named ``name`` (``prefix`` before it, e.g. a file)."""
+        if self.parameter is None or self.detail is None:
+            return f"{prefix}{self}"
+        return f"{prefix}{name} {self.detail}"
 
 
 class SignalError(FuncnetError, ValueError):
