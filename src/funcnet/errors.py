@@ -8,6 +8,8 @@ value, ``OSError`` is left to the operating system).
 
 from __future__ import annotations
 
+from typing import Any
+
 __all__ = [
     "FuncnetError",
     "ParameterError",
@@ -19,6 +21,7 @@ __all__ = [
     "StudyError",
     "FuncnetWarning",
     "ThresholdWarning",
+    "DegenerateWarning",
     "StaircaseWarning",
 ]
 
@@ -86,11 +89,50 @@ class StudyError(FuncnetError, ValueError):
 
 
 class FuncnetWarning(UserWarning):
-    """Base class of funcnet's warnings: the result is computed, but read it with care."""
+    """Base class of funcnet's warnings: the result is computed, but read it with care.
+
+    A warning carries its data, so that code collecting warnings never parses their text:
+    ``problem`` (a short key), ``signals`` and ``pairs`` (names) and ``window`` (a window's
+    label, or None). :meth:`located` returns the same warning for a named window.
+    """
+
+    def __init__(self, message: str, *, problem: str | None = None,
+                 signals: tuple[str, ...] = (), pairs: tuple[tuple[str, str], ...] = (),
+                 window: str | None = None) -> None:
+        super().__init__(message)
+        self.message = message
+        self.problem = problem
+        self.signals = tuple(signals)
+        self.pairs = tuple(pairs)
+        self.window = window
+
+    def __str__(self) -> str:
+        return self.message if self.window is None else f"{self.window}: {self.message}"
+
+    def located(self, window: str) -> FuncnetWarning:
+        """The same warning (class, data) for the window labelled ``window``."""
+        return type(self)(self.message, problem=self.problem, signals=self.signals,
+                          pairs=self.pairs, window=window)
+
+    def __reduce__(self) -> tuple[Any, ...]:  # picklable across processes with its data
+        return (_rebuild_warning, (type(self), self.message, self.problem, self.signals,
+                                   self.pairs, self.window))
+
+
+def _rebuild_warning(cls: type[FuncnetWarning], message: str, problem: str | None,
+                     signals: tuple[str, ...], pairs: tuple[tuple[str, str], ...],
+                     window: str | None) -> FuncnetWarning:
+    return cls(message, problem=problem, signals=signals, pairs=pairs, window=window)
 
 
 class ThresholdWarning(FuncnetWarning):
-    """``eps_XY`` is not below ``eps_X`` and ``eps_Y``, or ties pushed a rate above its target."""
+    """``eps_XY`` is not below ``eps_X`` and ``eps_Y`` (``problem="eps_order"``), or ties
+    pushed a rate above its target (``problem="rate_exceeded"``)."""
+
+
+class DegenerateWarning(ThresholdWarning):
+    """A recurrence structure is degenerate (``problem="degenerate"``): threshold 0 or a rate
+    above twice its target -- too few distinct states, e.g. a signal that barely moves."""
 
 
 class StaircaseWarning(FuncnetWarning):
