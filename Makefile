@@ -1,22 +1,27 @@
 # `make demo` and `make test` work on a fresh machine: they create .venv here and install
-# everything they need (the test target adds the test tools and headless Chromium).
+# everything they need (the test target adds the test tools, Dask and headless Chromium).
+# pyproject.toml states compatible ranges; constraints.txt pins the exact versions installed.
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 OUT    ?= out
 
-.PHONY: demo test lint bench clean
+.PHONY: demo test lint bench clean chromium
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
 
-$(VENV)/.installed: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install -q -e .
+CONSTRAINTS := constraints.txt
+PIP := $(BIN)/python -m pip install -q -c $(CONSTRAINTS)
+
+# The demo needs no Dask: studies run on local processes unless a scheduler is named.
+$(VENV)/.installed: pyproject.toml $(CONSTRAINTS) | $(BIN)/python
+	$(PIP) -e .
 	touch $@
 
-$(VENV)/.installed-test: pyproject.toml $(VENV)/.installed
-	$(BIN)/python -m pip install -q -e ".[test]"
+$(VENV)/.installed-test: pyproject.toml $(CONSTRAINTS) $(VENV)/.installed
+	$(PIP) -e ".[test,dask]"
 	touch $@
 
 demo: $(VENV)/.installed
@@ -30,6 +35,7 @@ chromium:
 
 test: $(VENV)/.installed-test chromium
 	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/mypy
 	$(BIN)/python -m pytest -n 2 -q
 
 lint: $(VENV)/.installed-test

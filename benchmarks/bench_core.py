@@ -82,7 +82,7 @@ def timed(function, repeats: int) -> tuple[float, float, float, object]:
 def pyunicorn_pair(x: np.ndarray, y: np.ndarray) -> tuple[float, tuple[float, ...]]:
     from pyunicorn.timeseries import InterSystemRecurrenceNetwork
 
-    from funcnet.recurrence import embed
+    from funcnet.embedding import embed
 
     start = time.perf_counter()
     network = InterSystemRecurrenceNetwork(

@@ -33,13 +33,12 @@ def trial(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 def _library_network(trace: Path, start: float, stop: float, signals=None, **parameters):
-    from funcnet.robot import phase_networks
-    from funcnet.robot.windows import Window
-    from funcnet.study import read_recording
+    from funcnet import window_networks
+    from funcnet.robot import Window, read_recording
 
     recording = read_recording(trace, signals=signals)
     window = Window(f"{start:.3f}-{stop:.3f} s", start, stop)
-    return phase_networks(recording, [window], signals=signals, **parameters)[window.label]
+    return window_networks(recording, [window], signals=signals, **parameters)[window.label]
 
 
 def _assert_one_error_line(result, *needles: str) -> None:
@@ -156,7 +155,7 @@ def test_network_default_signals_are_the_roles_plus_v(trial: Path, tmp_path: Pat
 
 def test_network_of_the_whole_recording(trial: Path, tmp_path: Path) -> None:
     from funcnet import FunctionalNetwork, functional_network
-    from funcnet.study import read_recording
+    from funcnet.robot import read_recording
 
     out = tmp_path / "whole.json"
     result = runner.invoke(app, ["network", str(trial), "--signals", "RP,MP", "-o", str(out)])
@@ -164,14 +163,12 @@ def test_network_of_the_whole_recording(trial: Path, tmp_path: Path) -> None:
     written = FunctionalNetwork.from_json(out.read_text())
     data = read_recording(trial).data[["RP", "MP"]]  # every sample, none left out
     expected = functional_network(data, label="whole recording")
-    assert written.parameters["n_samples"] == len(data)
+    assert written.n_samples == len(data)
     pd.testing.assert_frame_equal(written.pairs, expected.pairs)
 
 
 def test_network_phase_and_drawings(trial: Path, tmp_path: Path) -> None:
-    from funcnet.robot import detect_phases
-    from funcnet.robot.windows import phase_windows
-    from funcnet.study import read_recording
+    from funcnet.robot import detect_phases, phase_windows, read_recording
 
     braking = [
         w for w in phase_windows(detect_phases(read_recording(trial))) if w.phase == "braking"
@@ -200,7 +197,18 @@ def test_network_rich_table_on_a_terminal(trial: Path, monkeypatch) -> None:
     assert "┃" in result.stdout or "│" in result.stdout  # a box-drawn table
     assert "c_diff" in result.stdout and "reads as x->y" in result.stdout
     assert "c_xy" in result.stdout and "eps_ordered" in result.stdout  # wide: more columns
+    assert "degenerate" in result.stdout
     assert "…" not in result.stdout
+
+
+def test_network_table_says_what_became_of_degenerate_pairs(trial: Path, monkeypatch) -> None:
+    monkeypatch.setattr(cli, "_is_terminal", lambda stream: True)
+    arguments = ["network", str(trial), "--window", "0.5:0.8", "--signals", "RP,AP"]
+    for options, words in (([], "degenerate pairs are no edges"),
+                           (["--keep-degenerate"], "degenerate pairs are flagged edges")):
+        result = runner.invoke(app, [*arguments, *options], env={"COLUMNS": "200"})
+        assert result.exit_code == 0, result.output
+        assert words in " ".join(result.stdout.split())
 
 
 def test_network_table_on_a_narrow_terminal(trial: Path, monkeypatch) -> None:
@@ -220,8 +228,10 @@ def test_network_table_on_a_narrow_terminal(trial: Path, monkeypatch) -> None:
     expected = _library_network(trial, 0.5, 1.1).pairs
     columns = ["x", "y", "kind", "weight", "c_diff", "t_diff"]
     assert [row[:3] for row in rows] == expected[columns[:3]].values.tolist()
-    printed = np.array([[float(cell) for cell in row[3:]] for row in rows])
+    printed = np.array([[float(cell) for cell in row[3:6]] for row in rows])
     assert printed.shape == (len(expected), 3)
+    # The degenerate flag is shown however narrow the terminal.
+    assert [row[6] for row in rows] == [str(flag) for flag in expected["degenerate"]]
     # 3 significant digits of every number
     np.testing.assert_allclose(printed, expected[columns[3:]].to_numpy(), rtol=5e-3, atol=1e-12)
 
@@ -237,6 +247,117 @@ def test_network_options_are_checked_before_the_trace_is_read(trial: Path, tmp_p
         _assert_one_error_line(missing, *needles)
     bad = runner.invoke(app, ["network", str(trial), *constant, "--resample", "cubic"])
     _assert_one_error_line(bad, "--resample", "cubic")
+
+
+def test_network_help_shows_the_defaults_of_network_parameters() -> None:
+    import typer.main
+
+    from funcnet import NetworkParameters
+
+    command = typer.main.get_command(app).commands["network"]  # type: ignore[attr-defined]
+    helps = {param.name: param.help or "" for param in command.params}
+    defaults = NetworkParameters.defaults()
+    shown = ["dim", "delay", "rr", "cr", "mu", "metric", "normalize", "measure", "rule", "theiler"]
+    for name in shown:
+        value = "none" if defaults[name] is None else defaults[name]
+        assert helps[name].endswith(f"\\[default: {value}]"), (name, helps[name])
+    assert helps["mu_c"].endswith("\\[default: --mu]")
+    assert helps["mu_t"].endswith("\\[default: --mu]")
+    assert "chebyshev" in helps["metric"] and "cityblock" in helps["metric"]
+
+
+def test_study_help_shows_the_default_workers() -> None:
+    import typer.main
+
+    from funcnet.study.backends import DEFAULT_WORKERS
+
+    command = typer.main.get_command(app).commands["study"]  # type: ignore[attr-defined]
+    (workers,) = [param for param in command.params if param.name == "workers"]
+    assert (workers.help or "").endswith(f"\\[default: {DEFAULT_WORKERS}]")
+
+
+def test_terminal_columns_are_pairs_columns() -> None:
+    from funcnet.network.schema import PAIR_COLUMNS
+
+    for narrow in (False, True):
+        columns = cli._shown_columns(narrow)
+        assert set(columns) <= set(PAIR_COLUMNS) and "degenerate" in columns
+
+
+def test_network_new_parameters(trial: Path, tmp_path: Path) -> None:
+    from funcnet import FunctionalNetwork
+
+    out = tmp_path / "net.json"
+    arguments = ["network", str(trial), "--window", "0.5:0.8", "--signals", "RP,AP,AC"]
+    options = ["--metric", "chebyshev", "--mu-c", "0.02", "--mu-t", "0.2", "--keep-degenerate"]
+    result = runner.invoke(app, [*arguments, *options, "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    written = FunctionalNetwork.from_json(out.read_text())
+    parameters = written.parameters
+    assert (parameters.metric, parameters.mu_c, parameters.mu_t) == ("supremum", 0.02, 0.2)
+    assert parameters.degenerate == "keep"
+    expected = _library_network(
+        trial, 0.5, 0.8, signals=["RP", "AP", "AC"], metric="supremum", mu_c=0.02, mu_t=0.2,
+        degenerate="keep",
+    )
+    assert written == expected
+
+
+@pytest.mark.parametrize(
+    ("option", "message"),
+    [
+        (["--mu-c", "-1"], "--mu-c must be finite and >= 0, got -1.0"),
+        (["--dim", "0"], "--dim must be >= 1, got 0"),
+        (["--metric", "cosine"], "--metric must be one of "),
+        (["--rule", "pyunicorn", "--theiler", "2"], "--theiler must be 0 with rule="),
+        (["--resample", "cubic"], "--resample must be one of decimate, interpolate"),
+    ],
+)
+def test_network_bad_values_are_spelled_as_options(tmp_path: Path, option, message) -> None:
+    # Checked before the (missing) trace is read.
+    result = runner.invoke(app, ["network", str(tmp_path / "missing.xml"), *option])
+    _assert_one_error_line(result, f"funcnet: error: {message}")
+
+
+def test_a_degenerate_pair_through_the_command_line(tmp_path: Path) -> None:
+    # Q takes three values: its recurrence threshold is 0, every pair with it is degenerate.
+    t = np.arange(400) / 500.0
+    noise = np.random.default_rng(0).normal(size=t.size)
+    trace = tmp_path / "trace.csv"
+    pd.DataFrame(
+        {
+            "time": t,
+            "RP": np.sin(2 * np.pi * 1.3 * t),
+            "AC": np.cos(2 * np.pi * 2.1 * t) + 0.1 * noise,
+            "Q": np.round(np.sin(2 * np.pi * 1.3 * t)),
+        }
+    ).to_csv(trace, index=False)
+    from funcnet import FunctionalNetwork
+
+    arguments = ["network", str(trace), "--signals", "RP,AC,Q"]
+    dropped = runner.invoke(app, [*arguments, "-o", str(tmp_path / "net.json")])
+    assert dropped.exit_code == 0, dropped.output
+    assert "funcnet: warning: " in dropped.stderr and "degenerate" in dropped.stderr
+    net = FunctionalNetwork.from_json((tmp_path / "net.json").read_text())
+    flagged = net.pairs[net.pairs["degenerate"]]
+    assert {tuple(sorted(p)) for p in flagged[["x", "y"]].values.tolist()} == {
+        ("Q", "RP"), ("AC", "Q")
+    }
+    assert (flagged["degenerate_reason"] != "").all()
+    assert "Q" not in set(net.edges["source"]) | set(net.edges["target"])
+
+    kept = runner.invoke(
+        app, [*arguments, "--keep-degenerate", "-o", str(tmp_path / "net.graphml")]
+    )
+    assert kept.exit_code == 0, kept.output
+    graph = nx.read_graphml(tmp_path / "net.graphml")
+    edges = {(u, v): bool(data["degenerate"]) for u, v, data in graph.edges(data=True)}
+    assert any(flag and "Q" in pair for pair, flag in edges.items()), edges
+    assert all(not flag for pair, flag in edges.items() if "Q" not in pair), edges
+
+    plain = runner.invoke(app, arguments)  # piped: every column, the flag and its reason
+    header = plain.stdout.splitlines()[0].split()
+    assert "degenerate" in header and "degenerate_reason" in header
 
 
 def test_network_normalize_none(trial: Path, tmp_path: Path) -> None:
@@ -255,9 +376,7 @@ def test_network_normalize_none(trial: Path, tmp_path: Path) -> None:
 
 
 def test_network_phases_of_a_trace_with_several_moves(real_trace) -> None:
-    from funcnet.robot import detect_phases
-    from funcnet.robot.windows import phase_windows
-    from funcnet.study import read_recording
+    from funcnet.robot import detect_phases, phase_windows, read_recording
 
     windows = phase_windows(detect_phases(read_recording(real_trace)))
     cruises = [w for w in windows if w.phase == "cruise"]
@@ -276,9 +395,8 @@ def test_network_phases_of_a_trace_with_several_moves(real_trace) -> None:
 
 @pytest.mark.parametrize("method", ["decimate", "interpolate"])
 def test_network_resample_removes_the_staircases(real_trace, tmp_path: Path, method) -> None:
-    from funcnet import FunctionalNetwork
-    from funcnet.robot import add_derived_signals, phase_networks, read_trace, resample
-    from funcnet.robot.windows import span_window
+    from funcnet import FunctionalNetwork, window_networks
+    from funcnet.robot import add_derived_signals, read_trace, resample, span_window
 
     out = tmp_path / "net.json"
     arguments = ["network", str(real_trace), "--window", "7:7.6", "--signals", "RP,AP,MP,V"]
@@ -288,10 +406,10 @@ def test_network_resample_removes_the_staircases(real_trace, tmp_path: Path, met
     # Independently: resample the recording, then derive V on the new grid.
     recording = add_derived_signals(resample(read_trace(real_trace), method=method), ["V"])
     window = span_window(7.0, 7.6)
-    expected = phase_networks(recording, [window], signals=["RP", "AP", "MP", "V"])
+    expected = window_networks(recording, [window], signals=["RP", "AP", "MP", "V"])
     written = FunctionalNetwork.from_json(out.read_text())
     assert written == expected[window.label]
-    assert written.parameters["n_samples"] == (150 if method == "decimate" else 300)
+    assert written.n_samples == (150 if method == "decimate" else 300)
 
 
 @pytest.mark.parametrize(
@@ -433,7 +551,7 @@ def test_study_and_report_commands(trial: Path, tmp_path: Path) -> None:
     _assert_one_error_line(runner.invoke(app, ["report", str(tmp_path / "nothing")]), "nothing")
 
     study.write_text(study.read_text() + "mux = 1\n")
-    _assert_one_error_line(runner.invoke(app, arguments), str(study), "network.mux")
+    _assert_one_error_line(runner.invoke(app, arguments), str(study), "mux")
 
 
 def test_study_on_a_local_cluster_and_bad_schedulers(trial: Path, tmp_path: Path) -> None:

@@ -1,4 +1,4 @@
-"""Findings: the yes / partly / no / not evaluable decisions on hand-made networks."""
+"""Findings: the claim language and the yes / partly / no / not evaluable decisions."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import pandas as pd
 import pytest
 
 from funcnet.errors import ParameterError
-from funcnet.findings import (
+from funcnet.paper import (
     BASELINE,
     REVERSAL_SEQUENCE,
     Finding,
@@ -73,6 +73,9 @@ def test_relation_holds_operators():
     assert relation_holds(pairs, "RP->ZZ") == (None, None)
     with pytest.raises(ParameterError, match="claim"):
         relation_holds(pairs, "RP => AP")
+    # a conflict can be claimed too, in the network's vocabulary
+    assert relation_holds(pairs, "V-/-AP") == (True, "V-/-AP")
+    assert relation_holds(pairs, "RP-/-AP") == (False, "RP->AP")
 
 
 def test_evaluate_yes_partly_no():
@@ -384,12 +387,13 @@ def test_design_effect_counts_identical_relations():
         design_effect(nets, trials, "colour")
 
 
-@pytest.mark.filterwarnings("ignore::funcnet.errors.ThresholdWarning")
-def test_analyse_leaves_constant_signals_out_through_phase_networks():
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_analyse_leaves_constant_signals_out_through_window_networks():
     import numpy as np
 
-    from funcnet.findings import _analyse
     from funcnet.network import functional_network
+    from funcnet.paper.analyses import _analyse
+    from funcnet.parameters import NetworkParameters
     from funcnet.robot.recording import Recording, SignalInfo
     from funcnet.robot.windows import Window
 
@@ -401,19 +405,90 @@ def test_analyse_leaves_constant_signals_out_through_phase_networks():
     recording = Recording(data, {}, info, source="synthetic.csv", sample_period=0.002)
     windows = {"still": Window("still", 0.2, 0.8), "moving": Window("moving", 1.2, 1.8),
                "late": Window("late", 1.8, 2.4)}
+    parameters = NetworkParameters(delay=5, normalize="minmax")
     warned: dict[str, int] = {}
     analysis = _analyse("synthetic", "synthetic.csv", recording, lambda rec, phases: windows,
-                        ["RP", "AP", "AC"], {"delay": 5, "normalize": "minmax"}, warned)
+                        ["RP", "AP", "AC"], parameters, warned)
     assert analysis.dropped == {"still": ("AC",)} and not analysis.errors
     assert analysis.networks["still"].nodes == ("RP", "AP")
     assert analysis.networks["moving"].nodes == ("RP", "AP", "AC")
     reference = functional_network(data.loc[(t >= 0.2 - 1e-9) & (t < 0.8 - 1e-9), ["RP", "AP"]],
-                                   delay=5)
+                                   delay=5, warn=False)
     pd.testing.assert_frame_equal(analysis.networks["still"].pairs, reference.pairs)
-    # Warnings are counted by kind, one per window that raised it, whatever window it names.
+    # Problems are counted by kind, one per window that has it, from the pairs tables' flags.
     assert warned and all("pair(s)" not in m and "synthetic.csv" not in m for m in warned)
     assert all(1 <= n <= len(windows) for n in warned.values())
-    # A window left with one signal is an error that names the constant ones.
+    # A window left with one signal is an error that names the constant ones; the others
+    # still get their network.
     lone = _analyse("synthetic", "synthetic.csv", recording, lambda rec, phases: windows,
-                    ["RP", "AC"], {"delay": 5, "normalize": "minmax"}, {})
+                    ["RP", "AC"], parameters, {})
     assert "['AC']" in lone.errors["still"] and lone.networks["still"] is None
+    assert lone.networks["moving"].nodes == ("RP", "AC")
+
+
+def test_claims_are_written_in_the_network_kind_vocabulary():
+    from funcnet.network.schema import PAIR_KINDS
+    from funcnet.paper import parse_claim
+    from funcnet.paper.claims import OPERATORS, REVERSAL_AT_ZERO, VELOCITY
+
+    assert set(OPERATORS.values()) <= set(PAIR_KINDS)
+    assert [parse_claim(c).kind for c in ("A->B", "A<->B", "A-/-B")] == [
+        "x->y", "bidirectional", "conflict"]
+    assert parse_claim("A!<->B").negated
+    specs = [*BASELINE, *VELOCITY]
+    claims = [c for spec in specs for cs in spec.claims.values() for c in cs]
+    claims += [c for _, cs in REVERSAL_AT_ZERO.values() for c in cs]
+    claims += [c for cs in REVERSAL_SEQUENCE.values() for c in cs]
+    assert all(parse_claim(c).kind in PAIR_KINDS for c in claims)
+    # relation() reads a pair's kind from either end
+    from funcnet.paper import pair_kind
+
+    pairs = make_pairs(["RP->AP"])
+    assert pair_kind(pairs, "RP", "AP") == "x->y" and pair_kind(pairs, "AP", "RP") == "y->x"
+
+
+def hand_written_spearman(a, b):
+    """The Spearman this package computed before it used SciPy's."""
+    import numpy as np
+
+    ra = pd.Series(a).rank().to_numpy()
+    rb = pd.Series(b).rank().to_numpy()
+    if np.std(ra) == 0 or np.std(rb) == 0:
+        return 0.0
+    return float(np.corrcoef(ra, rb)[0, 1])
+
+
+def test_spearman_is_scipys_and_decides_as_the_hand_written_one():
+    import numpy as np
+    from scipy.stats import spearmanr
+
+    from funcnet.paper import spearman
+
+    rng = np.random.default_rng(1)
+    for n in (2, 3, 4, 5, 8):
+        for _ in range(50):
+            a = np.sort(rng.choice([1.0, 35.0, 175.0, 350.0, 700.0, 1400.0, 2800.0, 5600.0],
+                                   n, replace=False))
+            b = rng.integers(0, 4, n) * 0.1  # ties included
+            expected = (0.0 if np.ptp(b) == 0 else float(spearmanr(a, b).statistic))
+            assert spearman(a, b) == expected
+            old = hand_written_spearman(a, b)
+            assert spearman(a, b) == pytest.approx(old, abs=1e-12)
+            assert (spearman(a, b) <= -0.8) == (old <= -0.8)
+            assert f"{spearman(a, b):+.2f}" == f"{old:+.2f}"
+    # every ranking of four speeds: the same verdicts as before (-0.8 is one swap)
+    for order in itertools.permutations(range(4)):
+        weights = [0.1 * (k + 1) for k in order]
+        old = hand_written_spearman([1, 35, 175, 350], weights)
+        assert (spearman([1, 35, 175, 350], weights) <= -0.8) == (old <= -0.8)
+    assert spearman([1, 2, 3], [0.5, 0.5, 0.5]) == 0.0
+
+
+def test_degenerate_pairs_do_not_count_in_the_mean_edge_weight():
+    from funcnet.paper import mean_edge_weight
+
+    pairs = make_pairs({"RP->AP": 0.4, "RP->MP": 0.9}, nodes=("RP", "AP", "MP"),
+                       default="conflict")
+    assert mean_edge_weight(pairs) == pytest.approx(0.65)
+    assert mean_edge_weight(flag_degenerate(pairs, "RP->MP")) == pytest.approx(0.4)
+    assert mean_edge_weight(pairs.assign(degenerate=[None] * len(pairs))) == pytest.approx(0.65)

@@ -14,7 +14,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from funcnet.errors import ParameterError, SignalError, ThresholdWarning
+from funcnet.embedding import signal_states
+from funcnet.errors import DegenerateWarning, ParameterError, SignalError, ThresholdWarning
 from funcnet.measures import (
     CrossMeasures,
     cross_degree,
@@ -23,7 +24,7 @@ from funcnet.measures import (
     local_cross_clustering,
     pairwise_cross_measures,
 )
-from funcnet.recurrence import auto_recurrence, cross_recurrence, signal_states
+from funcnet.recurrence import auto_recurrence, cross_recurrence
 from test_recurrence import (
     KINDS,
     METRICS,
@@ -100,9 +101,9 @@ def test_cross_measures_by_rate_equal_brute_force(
     m_x, m_y = a_x.shape[0], a_y.shape[0]
     candidates_x = (m_x - theiler) * (m_x - theiler - 1)
     candidates_y = (m_y - theiler) * (m_y - theiler - 1)
-    assert result.rr_x == a_x.sum() / candidates_x
-    assert result.rr_y == a_y.sum() / candidates_y
-    assert result.cr == cr_xy.sum() / cr_xy.size
+    assert result.achieved_rr_x == a_x.sum() / candidates_x
+    assert result.achieved_rr_y == a_y.sum() / candidates_y
+    assert result.achieved_cr == cr_xy.sum() / cr_xy.size
     assert (result.m_x, result.m_y) == (m_x, m_y)
 
 
@@ -124,7 +125,9 @@ def test_cross_measures_with_explicit_eps_equal_brute_force(kinds, seed, n, metr
     )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ThresholdWarning)
-        result = cross_measures(x, y, dim=2, delay=2, eps=eps, metric=metric, rule=rule)
+        result = cross_measures(
+            x, y, dim=2, delay=2, eps=(eps[:2], eps[2]), metric=metric, rule=rule
+        )
     assert_matches_reference(result, xy, yx, used)
     assert used == eps
     assert not result.rate_exceeded
@@ -157,13 +160,13 @@ def test_fig2_pair_global_values_are_means_of_local_values():
     t = np.linspace(0, 8 * np.pi, 251)
     x = np.sin(t)
     y = np.sin(1.5 * t) + 0.3 * x
-    eps = (0.15, 0.15, 0.05)
+    eps = (0.15, 0.05)
     result = cross_measures(x, y, eps=eps)
     c_xy, c_yx = local_cross_clustering(x, y, eps=eps)
     assert result.c_xy == pytest.approx(c_xy.mean(), abs=1e-15)
     assert result.c_yx == pytest.approx(c_yx.mean(), abs=1e-15)
     assert result.eps_ordered
-    assert result.parameters["eps"] == eps
+    assert result.parameters.eps == eps
     assert (result.m_x, result.m_y) == (231, 231)
 
 
@@ -201,10 +204,10 @@ def test_isrn_measures_reuses_precomputed_structures():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ThresholdWarning)
         expected = cross_measures(x, y, rr=0.05, cr=0.02)
-    for name in ("c_xy", "c_yx", "t_xy", "t_yx", "eps_x", "eps_y", "eps_xy", "cr"):
+    for name in ("c_xy", "c_yx", "t_xy", "t_yx", "eps_x", "eps_y", "eps_xy", "achieved_cr"):
         assert getattr(direct, name) == getattr(expected, name)
-    # The transposed block can be passed in; swapping X and Y swaps the directions.
-    swapped = isrn_measures(a_y, a_x, cr_xy.transposed(), cr_yx=cr_xy)
+    # Swapping X and Y swaps the directions.
+    swapped = isrn_measures(a_y, a_x, cr_xy.transposed())
     assert (swapped.c_xy, swapped.t_xy) == (direct.c_yx, direct.t_yx)
     with pytest.raises(ParameterError, match="cr_xy"):
         isrn_measures(a_x, a_y, cross_recurrence(xs[:100], ys, cr=0.02))
@@ -236,15 +239,15 @@ def test_pairwise_equals_cross_measures_per_pair():
 
 def test_pairwise_explicit_eps():
     signals = [make_signal("sine", 150, s) for s in range(3)]
-    eps = {"auto": [0.2, 0.3, 0.25], "cross": 0.05}
+    eps = ((0.2, 0.3, 0.25), 0.05)
     results = pairwise_cross_measures(signals, eps=eps)
-    expected = cross_measures(signals[1], signals[2], eps=(0.3, 0.25, 0.05))
+    expected = cross_measures(signals[1], signals[2], eps=((0.3, 0.25), 0.05))
     assert results[(1, 2)].c_xy == expected.c_xy
     assert results[(1, 2)].t_yx == expected.t_yx
     assert (results[(0, 2)].eps_x, results[(0, 2)].eps_y) == (0.2, 0.25)
     # Only the cross threshold given: the auto-recurrences keep the rate.
-    partial = pairwise_cross_measures(signals, rr=0.1, eps={"cross": 0.05})
-    assert partial[(0, 1)].rr_x == pytest.approx(0.1, abs=1e-3)
+    partial = pairwise_cross_measures(signals, rr=0.1, eps=(None, 0.05))
+    assert partial[(0, 1)].achieved_rr_x == pytest.approx(0.1, abs=1e-3)
     assert partial[(0, 1)].eps_xy == 0.05
 
 
@@ -260,10 +263,12 @@ def test_pairwise_explicit_eps():
             r"signals\[1\]",
         ),
         ([np.sin(np.arange(50.0))] * 2, {"eps": {"auto": 0.1, "bad": 1}}, ParameterError, "eps"),
-        ([np.sin(np.arange(50.0))] * 2, {"eps": {"auto": [0.1]}}, ParameterError, "one per"),
-        ([np.sin(np.arange(50.0))] * 2, {"eps": {"cross": -1.0}}, ParameterError, "cross"),
+        ([np.sin(np.arange(50.0))] * 2, {"eps": ([0.1], None)}, ParameterError, "one per"),
+        ([np.sin(np.arange(50.0))] * 2, {"eps": (None, -1.0)}, ParameterError, "eps"),
         ([np.sin(np.arange(50.0))] * 2, {"cr": 0}, ParameterError, "cr"),
-        ([np.sin(np.arange(50.0))] * 2, {"metric": "chebyshev"}, ParameterError, "metric"),
+        ([np.sin(np.arange(50.0))] * 2, {"metric": "cosine"}, ParameterError, "metric"),
+        ([np.sin(np.arange(50.0))] * 2, {"rr": (0.1, 0.1, 0.1)}, ParameterError, "one per"),
+        ([np.sin(np.arange(50.0))] * 2, {"mu": 0.1}, ParameterError, "mu is not a parameter"),
     ],
 )
 def test_pairwise_rejects_bad_input(signals, kwargs, error, word):
@@ -276,7 +281,8 @@ def test_pairwise_rejects_bad_input(signals, kwargs, error, word):
     [
         ({"rr": 1.2}, ParameterError, "rr"),
         ({"cr": 0.0}, ParameterError, "cr"),
-        ({"eps": (0.1, 0.1, 0.0)}, ParameterError, "eps_xy"),
+        ({"eps": ((0.1, 0.1), 0.0)}, ParameterError, "eps must be positive"),
+        ({"eps": (0.1, 0.1, 0.1)}, ParameterError, r"eps must be \(auto, cross\)"),
         ({"rule": "exact"}, ParameterError, "rule"),
         ({"theiler": -2}, ParameterError, "theiler"),
         ({"dim": 30}, SignalError, "signal x is too short"),
@@ -298,18 +304,22 @@ def test_threshold_warnings():
     t = np.linspace(0, 8 * np.pi, 251)
     x, y = np.sin(t), np.sin(1.5 * t) + 0.3 * np.sin(t)
     with pytest.warns(ThresholdWarning, match="not below eps_x and eps_y"):
-        result = cross_measures(x, y, eps=(0.1, 0.1, 0.2))
+        result = cross_measures(x, y, eps=(0.1, 0.2))
     assert not result.eps_ordered
     levels = np.tile([0.0, 1.0, 2.0, 1.0, 2.0], 30)
     with pytest.warns(ThresholdWarning) as record:
         result = cross_measures(levels, levels[::-1], dim=1, delay=1, rr=0.1, cr=0.02)
     # Three values only: eps is 0 everywhere, a degenerate structure, not a slight overshoot.
-    assert result.rate_exceeded and result.degenerate == ("x", "y", "xy")
+    assert result.rate_exceeded and result.degenerate
+    assert result.degenerate_reason == (
+        "signal x: threshold 0 (too few distinct states); signal y: threshold 0 (too few "
+        "distinct states); cross-recurrence (x, y): threshold 0 (too few distinct states)"
+    )
     assert any("degenerate recurrence structure of signal x" in str(w.message) for w in record)
     assert not any("ties" in str(w.message) for w in record)
     with warnings.catch_warnings():
         warnings.simplefilter("error", ThresholdWarning)
-        quiet = cross_measures(x, y, eps=(0.15, 0.15, 0.05))
+        quiet = cross_measures(x, y, eps=(0.15, 0.05))
     assert quiet.eps_ordered and not quiet.rate_exceeded
 
 
@@ -327,11 +337,18 @@ def test_gross_overshoot_gets_its_own_warning_naming_the_signal():
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         results = pairwise_cross_measures(signals, names=["RP", "AP", "AC"], delay=1)
-    ac = results[(0, 2)]
+    ac = results[("RP", "AC")]
     assert ac.eps_y == 0.0
-    assert ac.rr_y == pytest.approx(zero_distance_rate(signals[2], 3, 1), abs=1e-12)
-    assert ac.rr_y > 0.8
-    assert [r.degenerate for r in results.values()] == [(), ("y",), ("y",)]
+    assert ac.achieved_rr_y == pytest.approx(zero_distance_rate(signals[2], 3, 1), abs=1e-12)
+    assert ac.achieved_rr_y > 0.8
+    assert [r.degenerate for r in results.values()] == [False, True, True]
+    assert [r.degenerate_reason for r in results.values()] == [
+        "", *["signal AC: threshold 0 (too few distinct states)"] * 2
+    ]
+    (typed,) = [w.message for w in caught if w.category is DegenerateWarning]
+    assert typed.problem == "degenerate"
+    assert typed.signals == ("AC",)
+    assert typed.pairs == (("RP", "AC"), ("AP", "AC"))
     messages = [str(w.message) for w in caught if issubclass(w.category, ThresholdWarning)]
     degenerate = [m for m in messages if "degenerate" in m]
     assert len(degenerate) == 1
@@ -352,11 +369,13 @@ def test_slight_overshoot_keeps_the_generic_warning():
         results = pairwise_cross_measures(values, names=["RP", "AP", "AC"], delay=1)
     for r in results.values():
         assert r.rate_exceeded and not r.degenerate
-        assert 0.05 < max(r.rr_x, r.rr_y, r.cr) <= 0.1 and min(r.eps_x, r.eps_y, r.eps_xy) > 0
+        assert 0.05 < max(r.achieved_rr_x, r.achieved_rr_y, r.achieved_cr) <= 0.1
+        assert min(r.eps_x, r.eps_y, r.eps_xy) > 0
     messages = [str(w.message) for w in caught if issubclass(w.category, ThresholdWarning)]
     assert [m for m in messages if "ties" in m] == [
         "ties at a threshold pushed an achieved rate above its target for 3 pair(s): "
-        "(RP, AP), (RP, AC), (AP, AC); see rr_x, rr_y, cr (rate_exceeded is True)"
+        "(RP, AP), (RP, AC), (AP, AC); see achieved_rr_x, achieved_rr_y, achieved_cr "
+        "(rate_exceeded is True)"
     ]
     assert not any("degenerate" in m for m in messages)
 
@@ -364,14 +383,15 @@ def test_slight_overshoot_keeps_the_generic_warning():
 def test_explicit_thresholds_are_never_degenerate():
     # An explicit eps has no target rate to overshoot, however many pairs it admits.
     x = np.sin(np.arange(100.0))
-    result = cross_measures(x, np.cos(np.arange(100.0)), eps=(10.0, 10.0, 1e-3))
-    assert result.rr_x == 1.0 and result.degenerate == ()
+    result = cross_measures(x, np.cos(np.arange(100.0)), eps=(10.0, 1e-3))
+    assert result.achieved_rr_x == 1.0 and not result.degenerate
+    assert result.degenerate_reason == ""
 
 
 def test_pairwise_warns_once_listing_the_pairs():
     signals = [np.sin(np.linspace(0, 20, 200) * (1 + k / 10)) for k in range(3)]
     with pytest.warns(ThresholdWarning) as record:
-        pairwise_cross_measures(signals, eps={"auto": 0.05, "cross": 0.5})
+        pairwise_cross_measures(signals, eps=(0.05, 0.5))
     messages = [str(w.message) for w in record if issubclass(w.category, ThresholdWarning)]
     assert len(messages) == 1
     assert "(0, 1), (0, 2), (1, 2)" in messages[0]
@@ -380,7 +400,7 @@ def test_pairwise_warns_once_listing_the_pairs():
 def test_pairwise_names_the_signals_in_warnings_and_errors():
     signals = [np.sin(np.linspace(0, 20, 200) * (1 + k / 10)) for k in range(3)]
     # eps_xy = 0.5 is below eps_x = eps_y = 1.0 for (RP, AP) only.
-    eps = {"auto": [1.0, 1.0, 0.1], "cross": 0.5}
+    eps = ((1.0, 1.0, 0.1), 0.5)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         results = pairwise_cross_measures(signals, names=["RP", "AP", "AC"], eps=eps)

@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-import funcnet.network as network_module
+import funcnet.network.functional as network_module
 from funcnet.errors import ParameterError, SignalError, ThresholdWarning
 from funcnet.measures import CrossMeasures, cross_measures
 from funcnet.network import (
@@ -22,6 +22,7 @@ from funcnet.network import (
     edge_kind,
     functional_network,
 )
+from funcnet.parameters import NetworkParameters
 from funcnet.preprocess import normalize
 
 MEASURE_COLUMNS = [
@@ -34,9 +35,9 @@ MEASURE_COLUMNS = [
     "eps_x",
     "eps_y",
     "eps_xy",
-    "rr_x",
-    "rr_y",
-    "cr",
+    "achieved_rr_x",
+    "achieved_rr_y",
+    "achieved_cr",
 ]
 
 
@@ -97,9 +98,9 @@ def brute_pair(x, y, *, dim, delay, rr, cr, metric):
         eps_x=eps_x,
         eps_y=eps_y,
         eps_xy=eps_xy,
-        rr_x=a_x.sum() / off.sum(),
-        rr_y=a_y.sum() / off.sum(),
-        cr=c_xy_matrix.sum() / c_xy_matrix.size,
+        achieved_rr_x=a_x.sum() / off.sum(),
+        achieved_rr_y=a_y.sum() / off.sum(),
+        achieved_cr=c_xy_matrix.sum() / c_xy_matrix.size,
     )
 
 
@@ -189,7 +190,7 @@ def test_pairs_equal_cross_measures_of_each_normalized_pair():
 # --- the mu rule, on crafted asymmetries --------------------------------------------------
 
 
-def crafted(c_diff, t_diff, *, eps_ordered=True, rate_exceeded=False, degenerate=()):
+def crafted(c_diff, t_diff, *, eps_ordered=True, rate_exceeded=False, degenerate=""):
     """A CrossMeasures with the given differences (other fields plausible placeholders)."""
     values = dict(
         c_xy=0.5 + c_diff / 2,
@@ -201,15 +202,16 @@ def crafted(c_diff, t_diff, *, eps_ordered=True, rate_exceeded=False, degenerate
         eps_x=0.2,
         eps_y=0.25,
         eps_xy=0.1 if eps_ordered else 0.3,
-        rr_x=0.05,
-        rr_y=0.05,
-        cr=0.05,
+        achieved_rr_x=0.05,
+        achieved_rr_y=0.05,
+        achieved_cr=0.05,
         eps_ordered=eps_ordered,
         rate_exceeded=rate_exceeded,
-        degenerate=degenerate,
+        degenerate=bool(degenerate),
+        degenerate_reason=degenerate,
         m_x=40,
         m_y=40,
-        parameters={},
+        parameters=NetworkParameters(),
     )
     return CrossMeasures(
         **{f.name: values[f.name] for f in fields(CrossMeasures) if f.name in values}
@@ -224,8 +226,9 @@ def fake_measures(monkeypatch):
     def install(per_pair):
         def fake(signals, **kwargs):
             calls.append(kwargs)
-            n = signals.shape[1]
-            keys = [(i, j) for i in range(n) for j in range(i + 1, n)]
+            names = kwargs["names"]
+            n = len(signals)
+            keys = [(names[i], names[j]) for i in range(n) for j in range(i + 1, n)]
             assert len(keys) == len(per_pair)
             return dict(zip(keys, per_pair, strict=True))
 
@@ -299,9 +302,9 @@ def four_node_network(fake_measures, **kwargs):
 def test_edges_table(fake_measures):
     net = four_node_network(fake_measures)
     assert list(net.edges.itertuples(index=False, name=None)) == [
-        ("A", "B", 0.15000000000000002, "directed"),
-        ("C", "A", 0.2, "directed"),
-        ("B", "C", 0.015, "bidirectional"),
+        ("A", "B", 0.15000000000000002, "directed", False),
+        ("C", "A", 0.2, "directed", False),
+        ("B", "C", 0.015, "bidirectional", False),
     ]
     assert list(net.pairs["kind"]) == [
         "x->y",
@@ -311,7 +314,7 @@ def test_edges_table(fake_measures):
         "conflict",
         "conflict",
     ]
-    assert list(net.edges.dtypes.astype(str)) == ["str", "str", "float64", "str"]
+    assert list(net.edges.dtypes.astype(str)) == ["str", "str", "float64", "str", "bool"]
 
 
 def test_to_networkx_keeps_every_node_and_doubles_bidirectional_edges(fake_measures):
@@ -319,9 +322,11 @@ def test_to_networkx_keeps_every_node_and_doubles_bidirectional_edges(fake_measu
     assert isinstance(graph, nx.DiGraph)
     assert list(graph.nodes) == ["A", "B", "C", "D"]  # D has no edge, only conflicts
     assert sorted(graph.edges) == [("A", "B"), ("B", "C"), ("C", "A"), ("C", "B")]
-    assert graph.edges["C", "A"] == {"weight": 0.2, "kind": "directed"}
+    assert graph.edges["C", "A"] == {"weight": 0.2, "kind": "directed", "degenerate": False}
     assert (
-        graph.edges["B", "C"] == graph.edges["C", "B"] == {"weight": 0.015, "kind": "bidirectional"}
+        graph.edges["B", "C"]
+        == graph.edges["C", "B"]
+        == {"weight": 0.015, "kind": "bidirectional", "degenerate": False}
     )
     assert graph.graph["label"] == "crafted"
     assert graph.graph["parameters"]["mu"] == 0.05
@@ -355,7 +360,7 @@ def test_edges_for_each_measure(fake_measures):
 
 def test_network_built_with_one_measure_can_give_the_combined_edges(fake_measures):
     net = four_node_network(fake_measures, measure="clustering")
-    assert net.parameters["measure"] == "clustering"
+    assert net.parameters.measure == "clustering"
     assert list(net.pairs["kind"]) == list(net.pairs["c_kind"])
     assert len(net.edges_for("both")) == 3
 
@@ -368,13 +373,10 @@ def test_calls_pairwise_once_with_the_parameters(fake_measures):
     assert calls == [
         dict(
             names=["0", "1", "2"],
-            dim=4,
-            delay=2,
-            rr=0.1,
-            cr=0.03,
-            metric="supremum",
-            rule="funcnet",
-            theiler=1,
+            parameters=NetworkParameters(
+                dim=4, delay=2, rr=0.1, cr=0.03, metric="supremum", rule="funcnet", theiler=1
+            ),
+            warn=True,
         )
     ]
 
@@ -397,24 +399,29 @@ def test_threshold_flags_reach_the_pairs_table(fake_measures):
     assert list(net.pairs["degenerate"]) == [False, False, False]
 
 
-def test_degenerate_pairs_are_flagged_keep_their_edge_and_survive_json(fake_measures):
-    fake_measures(
-        [
-            crafted(-0.3, -0.3, degenerate=("y",)),
-            crafted(-0.3, -0.3),
-            crafted(0.3, 0.3, degenerate=("x", "xy")),
-        ]
-    )
+def test_degenerate_pairs_are_flagged_keep_their_kind_and_survive_json(fake_measures):
+    per_pair = [
+        crafted(-0.3, -0.3, degenerate="y"),
+        crafted(-0.3, -0.3),
+        crafted(0.3, 0.3, degenerate="x, xy"),
+    ]
+    fake_measures(per_pair)
     net = functional_network(noise(3), names=["RP", "AP", "V"])
     assert list(net.pairs.columns) == [
         "x", "y", *MEASURE_COLUMNS, "eps_ordered", "rate_exceeded", "degenerate",
-        "c_kind", "t_kind", "kind", "weight",
+        "degenerate_reason", "c_kind", "t_kind", "kind", "weight",
     ]  # fmt: skip
     assert str(net.pairs["degenerate"].dtype) == "bool"
     assert list(net.pairs["degenerate"]) == [True, False, True]
-    # the edge rule ignores the flag: every pair keeps its arrow
+    assert list(net.pairs["degenerate_reason"]) == ["y", "", "x, xy"]
+    # the rule still gives every pair its kind; only the edges leave degenerate pairs out
     assert list(net.pairs["kind"]) == ["x->y", "x->y", "y->x"]
-    assert len(net.edges) == 3
+    assert list(net.edges[["source", "target"]].itertuples(index=False, name=None)) == [
+        ("RP", "V")
+    ]
+    fake_measures(per_pair)
+    kept = functional_network(noise(3), names=["RP", "AP", "V"], degenerate="keep")
+    assert list(kept.edges["degenerate"]) == [True, False, True]
     back = FunctionalNetwork.from_json(net.to_json())
     pd.testing.assert_frame_equal(back.pairs, net.pairs)
 
@@ -452,7 +459,7 @@ def test_a_signal_that_barely_moves_gets_an_explicit_warning_naming_it():
         warnings.simplefilter("always")
         net = functional_network(data, delay=1)
     rows = net.pairs.set_index(["x", "y"])
-    assert rows.loc[("RP", "AC"), "eps_y"] == 0.0 and rows.loc[("RP", "AC"), "rr_y"] > 0.8
+    assert rows.loc[("RP", "AC"), "eps_y"] == 0.0 and rows.loc[("RP", "AC"), "achieved_rr_y"] > 0.8
     messages = [str(w.message) for w in caught if issubclass(w.category, ThresholdWarning)]
     degenerate = [m for m in messages if m.startswith("degenerate recurrence structure")]
     assert len(degenerate) == 1
@@ -489,7 +496,7 @@ def test_parameters_and_label_are_recorded():
         theiler=1,
         label="cruise",
     )
-    assert net.parameters == dict(
+    assert net.parameters == NetworkParameters(
         dim=3,
         delay=2,
         rr=0.1,
@@ -500,8 +507,8 @@ def test_parameters_and_label_are_recorded():
         measure="transitivity",
         rule="funcnet",
         theiler=1,
-        n_samples=60,
     )
+    assert net.n_samples == 60
     assert net.label == "cruise"
 
 
@@ -559,7 +566,7 @@ def test_check_parameters_rejects_each_bad_value_without_data(name, value, patte
 
 
 def test_check_parameters_accepts_the_defaults_and_every_option():
-    assert check_parameters() is None
+    assert check_parameters() == NetworkParameters()
     check_parameters(dim=1, delay=1, rr=0.3, cr=1e-3, mu=0.0, metric="manhattan")
     check_parameters(normalize=None, measure="transitivity", rule="pyunicorn", theiler=0)
     with pytest.raises(ParameterError, match="theiler must be 0 with rule='pyunicorn'"):
@@ -614,7 +621,7 @@ def test_json_round_trip_without_edges_or_label(fake_measures):
     assert net.edges.empty and net.label is None
     back = FunctionalNetwork.from_json(net.to_json())
     assert back == net
-    assert list(back.edges.dtypes.astype(str)) == ["str", "str", "float64", "str"]
+    assert list(back.edges.dtypes.astype(str)) == ["str", "str", "float64", "str", "bool"]
 
 
 def test_from_json_rejects_other_documents():
@@ -628,7 +635,7 @@ def test_equality_sees_a_changed_number(fake_measures):
     fake_measures([crafted(-0.2, -0.1)])
     net = functional_network(noise(2), names=["X", "Y"])
     changed = FunctionalNetwork(
-        net.nodes, net.pairs.assign(weight=0.5), net.edges, net.parameters, net.label
+        net.nodes, net.pairs.assign(weight=0.5), net.edges, net.parameters, net.n_samples, net.label
     )
     assert changed != net
     assert FunctionalNetwork.from_json(net.to_json()) == net
@@ -645,7 +652,7 @@ def test_write_json_and_graphml(tmp_path, fake_measures):
     assert graph.edges["A", "B"]["weight"] == 0.15000000000000002
     assert graph.edges["C", "B"]["kind"] == "bidirectional"
     assert graph.graph["label"] == "crafted"
-    assert json.loads(graph.graph["parameters"]) == net.parameters
+    assert NetworkParameters.from_mapping(json.loads(graph.graph["parameters"])) == net.parameters
     # Atomic writes leave no temporary files behind.
     assert sorted(p.name for p in tmp_path.rglob("*") if p.is_file()) == ["net.GraphML", "net.json"]
     with pytest.raises(ParameterError, match=r"\.json or \.graphml"):
@@ -669,10 +676,12 @@ def test_read_restores_the_written_network_exactly(tmp_path):
 
 def test_read_refuses_what_it_cannot_restore(tmp_path, fake_measures):
     net = four_node_network(fake_measures)
-    graphml = net.write(tmp_path / "net.graphml")
-    with pytest.raises(ParameterError, match=r"net\.graphml.*cannot be read back.*\.json"):
-        FunctionalNetwork.read(graphml)
-    with pytest.raises(ParameterError, match=r"must end in \.json, got 'net\.csv'"):
+    assert FunctionalNetwork.read(net.write(tmp_path / "net.graphml")) == net
+    foreign = tmp_path / "foreign.graphml"
+    nx.write_graphml(nx.DiGraph([("A", "B")]), foreign)  # no pairs table in it
+    with pytest.raises(ParameterError, match=r"foreign\.graphml.*cannot be read back"):
+        FunctionalNetwork.read(foreign)
+    with pytest.raises(ParameterError, match=r"must end in \.json or \.graphml, got 'net\.csv'"):
         FunctionalNetwork.read(tmp_path / "net.csv")
     other = tmp_path / "other.json"
     other.write_text('{"format": "something else"}', encoding="utf-8")

@@ -15,12 +15,15 @@ from matplotlib.text import Text
 
 import funcnet
 from funcnet import plot
+from funcnet.network.schema import PAIR_KINDS
+from funcnet.paper import figures
+from funcnet.recurrence import isrn_adjacency, recurrence_matrix
 
 NODES = ("RP", "AP", "MP", "V", "RC", "AC")
 
 # The synthetic signals trip the eps ordering / ties warnings; they are about the data, and this
 # module tests drawing.
-pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.ThresholdWarning")
+pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 
 
 def gids(ax, prefix):
@@ -106,17 +109,20 @@ def test_plot_network_places_given_nodes_and_dashes_absent_ones():
 
 def test_plot_recurrence_shows_the_recurrence_matrix():
     x = np.sin(np.linspace(0, 8 * np.pi, 251))
-    ax = plot.plot_recurrence(x, eps=0.15)
+    expected = recurrence_matrix(x, dim=3, delay=10, eps=0.15)
+    ax = plot.plot_recurrence(expected)
     image = np.asarray(ax.images[0].get_array())
-    expected = funcnet.recurrence_matrix(x, dim=3, delay=10, eps=0.15)
     assert np.array_equal(image.astype(bool), np.asarray(expected, dtype=bool))
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("j", "i")
+    cross = plot.plot_recurrence(np.zeros((4, 5), dtype=bool), cross=True)
+    assert cross.get_ylabel() == "i (X)" and cross.images[0].get_array().shape == (4, 5)
 
 
 def test_figure_embedding_network_graph_has_the_matrix_edges():
-    fig = plot.figure_embedding_network(n=121, periods=2)
+    fig = figures.figure_embedding_network(n=121, periods=2)
     assert isinstance(fig, Figure) and len(fig.axes) == 4
-    matrix = np.asarray(funcnet.recurrence_matrix(np.sin(np.linspace(0, 4 * np.pi, 121)),
-                                                  dim=3, delay=10, eps=0.15))
+    matrix = np.asarray(recurrence_matrix(np.sin(np.linspace(0, 4 * np.pi, 121)),
+                                          dim=3, delay=10, eps=0.15))
     (lines,) = [c for c in fig.axes[3].collections if c.get_gid() == "isrn-edges"]
     off_diagonal = np.triu(matrix, 1).sum()
     assert len(lines.get_segments()) == off_diagonal
@@ -125,11 +131,10 @@ def test_figure_embedding_network_graph_has_the_matrix_edges():
 
 
 def test_figure_isrn_blocks_and_colours():
-    fig = plot.figure_isrn(n=121, periods=2)
+    fig = figures.figure_isrn(n=121, periods=2)
     t = np.linspace(0, 4 * np.pi, 121)
     x, y = np.sin(t), np.sin(1.5 * t) + 0.3 * np.sin(t)
-    adjacency = np.asarray(funcnet.isrn_adjacency(x, y, dim=3, delay=10,
-                                                  eps=(0.15, 0.15, 0.05)))
+    adjacency = np.asarray(isrn_adjacency(x, y, dim=3, delay=10, eps=((0.15, 0.15), 0.05)))
     assert np.array_equal(np.asarray(fig.axes[2].images[0].get_array()).astype(bool),
                           adjacency.astype(bool))
     (nodes,) = [c for c in fig.axes[3].collections if c.get_gid() == "isrn-nodes"]
@@ -139,7 +144,7 @@ def test_figure_isrn_blocks_and_colours():
 
 
 def test_figure_pair_network_uses_the_clustering_difference():
-    ax = plot.figure_pair_network()
+    ax = figures.figure_pair_network()
     t = np.linspace(0, 8 * np.pi, 251)
     net = funcnet.functional_network(np.column_stack([np.sin(t), np.sin(1.5 * t)
                                                       + 0.3 * np.sin(t)]), names=["x", "y"],
@@ -160,7 +165,7 @@ def test_figure_phases_marks_every_phase_and_draws_a_network_per_phase(network):
     data = trial_frame().assign(FE=lambda d: d["RP"] - d["AP"])
     phases = pd.DataFrame({"phase": ["early spin-up", "cruise", "braking"],
                            "start": [0.0, 0.4, 0.9], "stop": [0.4, 0.9, 1.19]})
-    fig = plot.figure_phases(data, phases, {"early spin-up": network, "cruise": network,
+    fig = figures.figure_phases(data, phases, {"early spin-up": network, "cruise": network,
                                             "braking": network.pairs})
     signal_axes = [ax for ax in fig.axes if ax.lines]
     # normalized + raw panels by units: positions, velocity, currents, other (FE)
@@ -178,7 +183,7 @@ def test_figure_velocity_grid_cells(network):
     data = trial_frame(150)
     cells = {(v, p): (data, None if (v, p) == ("V1", "cruise") else network)
              for p in ("spin-up", "cruise", "braking") for v in ("V1", "V35", "V175", "V350")}
-    fig = plot.figure_velocity_grid(cells)
+    fig = figures.figure_velocity_grid(cells)
     network_axes = [ax for ax in fig.axes if gids(ax, "node:")]
     series_axes = [ax for ax in fig.axes if ax.lines]
     assert len(network_axes) == 11 and len(series_axes) == 12
@@ -195,7 +200,7 @@ def test_figure_reversal_windows_and_networks(network):
                                stop=1.0 + o / 1000 + 0.05) for o in (-40, -20, 0, 20, 40)]
     nets = {w.label: network for w in windows}
     nets["+40 ms"] = None
-    fig = plot.figure_reversal(data, windows, nets)
+    fig = figures.figure_reversal(data, windows, nets)
     zoom = fig.axes[1]
     assert gids(zoom, "window:") == sorted(f"window:{w.label}" for w in windows)
     network_axes = [ax for ax in fig.axes if gids(ax, "node:")]
@@ -212,9 +217,9 @@ def test_plot_edge_timeline_one_point_per_pair_and_window(network):
     assert points == 3 * len(network.pairs)
     kinds = network.pairs["kind"].value_counts()
     for collection in ax.collections:
-        kind = collection.get_gid().split(":")[1]
-        name = {"forward": "x->y", "backward": "y->x"}.get(kind, kind)
-        assert len(collection.get_offsets()) == 3 * kinds[name]
+        kind = collection.get_gid().split(":", 1)[1]
+        assert kind in PAIR_KINDS  # the network's own vocabulary
+        assert len(collection.get_offsets()) == 3 * kinds[kind]
     assert len(ax.get_yticks()) == len(network.pairs)
 
 
@@ -228,8 +233,8 @@ def test_signal_colours_are_distinct_and_used_by_every_series_figure(network):
     assert plot.signal_color("XYZ") == plot.signal_color("XYZ")  # stable for unknown names
     data = trial_frame(300)
     phases = pd.DataFrame({"phase": ["a", "b"], "start": [0.0, 0.3], "stop": [0.3, 0.6]})
-    fig9 = plot.figure_phases(data, phases, {"a": network, "b": network})
-    fig10 = plot.figure_velocity_grid({("V1", "a"): (data, network), ("V35", "a"): (data[
+    fig9 = figures.figure_phases(data, phases, {"a": network, "b": network})
+    fig10 = figures.figure_velocity_grid({("V1", "a"): (data, network), ("V35", "a"): (data[
         ["RP", "AC"]], network)})
     for fig in (fig9, fig10):
         for ax in fig.axes:
@@ -240,7 +245,7 @@ def test_signal_colours_are_distinct_and_used_by_every_series_figure(network):
 def test_velocity_grid_has_one_shared_legend_of_signals_and_one_of_edges(network):
     data = trial_frame(150)
     cells = {(v, p): (data, network) for p in ("spin-up", "cruise") for v in ("V1", "V35")}
-    fig = plot.figure_velocity_grid(cells)
+    fig = figures.figure_velocity_grid(cells)
     assert all(ax.get_legend() is None for ax in fig.axes)
     legends = {legend.get_gid(): legend for legend in fig.legends}
     assert set(legends) == {"legend:signals", "legend:network"}
@@ -278,7 +283,7 @@ def test_phase_names_sit_between_panel_and_title():
     data = trial_frame(300)
     phases = pd.DataFrame({"phase": ["early spin-up", "cruise"], "start": [0.0, 0.3],
                            "stop": [0.3, 0.6]})
-    fig = plot.figure_phases(data, phases, {"early spin-up": None, "cruise": None})
+    fig = figures.figure_phases(data, phases, {"early spin-up": None, "cruise": None})
     renderer = FigureCanvasAgg(fig).get_renderer()
     fig.draw_without_rendering()
     top = fig.axes[0]
@@ -306,3 +311,117 @@ def test_edge_timeline_legends_name_the_direction_and_the_weight_scale(network):
     # marker area is size_scale × weight in the key as on the axes
     sizes = [h.get_markersize() ** 2 for h in legends["legend:weight"].legend_handles]
     assert sizes == pytest.approx([max(4.0, 600.0 * w) for w in weights])
+
+
+def test_plot_draws_and_computes_nothing():
+    """plot.py imports nothing that computes (recurrence, measures, networks, pipeline)."""
+    import ast
+    from pathlib import Path
+
+    tree = ast.parse(Path(plot.__file__).read_text(encoding="utf-8"))
+    imported = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            imported |= {alias.name for alias in node.names}
+        elif isinstance(node, ast.ImportFrom):
+            imported.add(node.module or "")
+            imported |= {f"{node.module}.{alias.name}" for alias in node.names}
+    funcnet_imports = {name for name in imported if name.split(".")[0] == "funcnet"}
+    allowed = ("funcnet.network.schema", "funcnet.network.rule", "funcnet.errors",
+               "funcnet.parameters")
+    assert all(name.startswith(allowed) for name in funcnet_imports), funcnet_imports
+    assert "funcnet" not in imported  # no `import funcnet` reaching the core at call time
+    called = {node.func.attr if isinstance(node.func, ast.Attribute) else
+              getattr(node.func, "id", "") for node in ast.walk(tree)
+              if isinstance(node, ast.Call)}
+    assert not called & {"functional_network", "recurrence_matrix", "cross_recurrence_matrix",
+                         "isrn_adjacency", "window_networks", "cross_measures"}
+
+
+def degenerate_pairs():
+    pairs = pd.DataFrame({"x": ["RP", "RP", "AP"], "y": ["AP", "MP", "MP"],
+                          "kind": ["x->y", "y->x", "bidirectional"],
+                          "weight": [0.2, 0.4, 0.05], "degenerate": [False, True, False]})
+    return pairs
+
+
+def test_degenerate_edges_are_drawn_only_when_kept_and_then_dashed_grey():
+    pairs = degenerate_pairs()
+    # by default a degenerate pair is no edge: not drawn, no legend entry
+    ax = plot.plot_network(pairs)
+    assert sorted(p.get_gid() for p in edge_patches(ax)) == [
+        "edge:AP->MP:bidirectional", "edge:RP->AP:directed"]
+    assert "degenerate" not in " ".join(t.get_text() for t in ax.get_legend().get_texts())
+    # kept: drawn, grey and dashed, unlike every real edge, and the legend says so
+    ax = plot.plot_network(pairs, degenerate="keep")
+    arrows = {p.get_gid(): p for p in edge_patches(ax)}
+    assert set(arrows) == {"edge:RP->AP:directed", "edge:AP->MP:bidirectional",
+                           "edge:MP->RP:directed:degenerate"}
+    flagged = arrows["edge:MP->RP:directed:degenerate"]
+    assert flagged.get_edgecolor() == to_rgba(plot.DEGENERATE_COLOR)
+    assert flagged.get_linestyle() == "--"
+    for gid, arrow in arrows.items():
+        if not gid.endswith(":degenerate"):
+            assert arrow.get_linestyle() == "-"
+            assert arrow.get_edgecolor() != to_rgba(plot.DEGENERATE_COLOR)
+    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    handles = dict(zip(texts, ax.get_legend().legend_handles, strict=True))
+    (entry,) = [t for t in texts if t.startswith("degenerate")]
+    assert handles[entry].get_linestyle() == "--"
+    # a table without the flag, or with gaps (older study rows), has no degenerate pair
+    assert len(edge_patches(plot.plot_network(pairs.drop(columns="degenerate")))) == 3
+    gaps = pairs.assign(degenerate=[None, True, None])
+    assert len(edge_patches(plot.plot_network(gaps, degenerate="keep"))) == 3
+
+
+def test_a_network_that_keeps_degenerate_pairs_draws_them_differently():
+    rng = np.random.default_rng(4)
+    t = np.linspace(0, 6, 300)
+    data = pd.DataFrame({"RP": np.sin(t) + 0.01 * rng.standard_normal(t.size),
+                         "AP": np.cos(t) + 0.01 * rng.standard_normal(t.size),
+                         "Q": np.round(np.sin(t))})  # three distinct values: degenerate
+    kept = funcnet.functional_network(data, degenerate="keep", warn=False)
+    dropped = funcnet.functional_network(data, warn=False)
+    assert kept.pairs["degenerate"].any()
+    flagged = {f"edge:{s}->{t}:{k}:degenerate" for s, t, k in
+               kept.edges.loc[kept.edges["degenerate"], ["source", "target", "kind"]].values}
+    assert flagged
+    drawn = {p.get_gid() for p in edge_patches(plot.plot_network(kept))}
+    assert flagged <= drawn
+    assert not any(g.endswith(":degenerate")
+                   for g in (p.get_gid() for p in edge_patches(plot.plot_network(dropped))))
+    # the figure-wide legend explains them when asked
+    fig = Figure(layout="constrained")
+    legend = plot.add_network_legend(fig, degenerate=True)
+    assert any(t.get_text().startswith("degenerate") for t in legend.get_texts())
+
+
+def test_edge_timeline_marks_degenerate_pairs():
+    pairs = degenerate_pairs()
+    ax = plot.plot_edge_timeline({0.5: pairs, 1.0: pairs})
+    by_kind = {c.get_gid(): len(c.get_offsets()) for c in ax.collections}
+    assert by_kind == {"kind:x->y": 2, "kind:bidirectional": 2, "kind:degenerate": 2}
+
+
+def test_recurrence_plots_figure_computes_as_the_network_does():
+    from funcnet.parameters import NetworkParameters
+    from funcnet.preprocess import normalize
+
+    data = trial_frame(300)
+    parameters = NetworkParameters(delay=4, rr=0.1)
+    fig = figures.figure_recurrence_plots(data, parameters, columns=("RP", "RC", "AC"),
+                                          left_out=("AC",))
+    rp, rc, ac = fig.axes
+    expected = recurrence_matrix(normalize(data["RC"].to_numpy(), "minmax"), dim=3, delay=4,
+                                 rr=0.1)
+    assert np.array_equal(np.asarray(rc.images[0].get_array()).astype(bool), expected)
+    assert rp.get_title() == "RP" and not ac.images  # left out of the network: left out here
+
+
+def test_pair_network_notes_come_from_the_flags():
+    net = figures.pair_network(n=151, periods=3, warn=False)
+    notes = figures.figure_notes({"Fig. 5": net, "none": None})
+    flagged = (~net.pairs["eps_ordered"]) | net.pairs["rate_exceeded"] | net.pairs["degenerate"]
+    assert bool(notes) == bool(flagged.any())
+    ax = figures.figure_pair_network(network=net)
+    assert f"{float(net.pairs['c_diff'].iloc[0]):+.3f}" in ax.get_title()

@@ -2,34 +2,38 @@
 
 The reference below holds the full distance matrix (fine for the small sizes used here) and
 applies the threshold rules of README method step 4 literally: sort the candidate distances,
-take the k-th with k = max(1, ceil(rate * P - 1e-9)); or pyunicorn's sorted full matrix at index
-int(rate * (P - 1)) with strict comparison.
+take the k-th with k = max(1, ceil(rate * P)) for the rate as written in decimal (exact rational
+arithmetic); or pyunicorn's sorted full matrix at index int(rate * (P - 1)) with strict
+comparison.
 """
 
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import funcnet.recurrence as recurrence
+import funcnet._order_statistic as order_statistic
+from funcnet.embedding import embed, estimate_delay, estimate_dimension, signal_states
 from funcnet.errors import ParameterError, SignalError
 from funcnet.recurrence import (
     auto_recurrence,
     cross_recurrence,
     cross_recurrence_matrix,
-    embed,
-    estimate_delay,
-    estimate_dimension,
     isrn_adjacency,
     recurrence_matrix,
-    signal_states,
 )
 
 METRICS = ("euclidean", "supremum", "manhattan")
+
+
+def decimal_rank(rate, n_candidates):
+    """k = max(1, ceil(rate * P)) for the rate as written in decimal (README method step 4)."""
+    return max(1, math.ceil(Fraction(repr(rate)) * n_candidates))
 
 
 # ----------------------------------------------------------------------------------------------
@@ -61,7 +65,7 @@ def reference_auto(states, *, rr=None, eps=None, metric="euclidean", theiler=0, 
         candidates = np.abs(i - j) > theiler
         if eps is None:
             values = np.sort(d[candidates])
-            eps = values[max(1, math.ceil(rr * values.size - 1e-9)) - 1]
+            eps = values[decimal_rank(rr, values.size) - 1]
         return candidates & (d <= eps), float(eps)
     if eps is None:
         flat = np.sort(d.ravel())
@@ -76,7 +80,7 @@ def reference_cross(x_states, y_states, *, cr=None, eps=None, metric="euclidean"
     values = np.sort(d.ravel())
     if rule == "funcnet":
         if eps is None:
-            eps = values[max(1, math.ceil(cr * values.size - 1e-9)) - 1]
+            eps = values[decimal_rank(cr, values.size) - 1]
         return d <= eps, float(eps)
     if eps is None:
         eps = values[int(cr * (values.size - 1))]
@@ -120,7 +124,7 @@ def test_embed_dim_one_is_the_signal():
 
 
 def test_pyunicorn_rule_casts_input_to_float32():
-    x = np.array([0.1, 0.2, 0.3, 1 / 3])
+    x = np.tile([0.1, 0.2, 0.3, 1 / 3], 2)
     states = signal_states(x, dim=1, delay=1, rule="pyunicorn")
     np.testing.assert_array_equal(states[:, 0], x.astype(np.float32).astype(np.float64))
     np.testing.assert_array_equal(signal_states(x, dim=1, delay=1)[:, 0], x)
@@ -173,7 +177,7 @@ def test_recurrence_matrix_by_rate_equals_brute_force(
     assert result.n_candidates == (m - theiler) * (m - theiler - 1)
     assert result.n_recurrent == expected.sum()
     assert result.rate == expected.sum() / result.n_candidates
-    k = max(1, math.ceil(rr * result.n_candidates - 1e-9))
+    k = decimal_rank(rr, result.n_candidates)
     assert result.rank == k
     # Symmetric pairs: an odd k is always exceeded by one; only ties exceed it further.
     assert result.rate_exceeded == (expected.sum() > 2 * ((k + 1) // 2))
@@ -258,7 +262,7 @@ def test_sampled_bracket_path_is_exact(metric, kind):
     n = 820
     x, y = make_signal(kind, n, 3), make_signal("walk", n, 4)
     xs, ys = reference_embed(x, 3, 5), reference_embed(y, 3, 5)
-    assert xs.shape[0] ** 2 // 2 > recurrence._DIRECT_PAIRS
+    assert xs.shape[0] ** 2 // 2 > order_statistic._DIRECT_PAIRS
     expected, eps = reference_auto(xs, rr=0.05, metric=metric, theiler=2)
     result = auto_recurrence(xs, rr=0.05, metric=metric, theiler=2)
     np.testing.assert_array_equal(result.to_dense(), expected)
@@ -272,7 +276,7 @@ def test_sampled_bracket_path_is_exact(metric, kind):
 @pytest.mark.parametrize("kind", ["noise", "levels"])
 def test_band_overflow_fallback_is_exact(monkeypatch, kind):
     # No room for the pairs inside the bracket: a second pass collects them.
-    monkeypatch.setattr(recurrence, "_BAND_SLACK", 0.0)
+    monkeypatch.setattr(order_statistic, "_BAND_SLACK", 0.0)
     x, y = make_signal(kind, 800, 6), make_signal("sine", 800, 7)
     xs, ys = reference_embed(x, 2, 1), reference_embed(y, 2, 1)
     expected, eps = reference_cross(xs, ys, cr=0.05)
@@ -289,12 +293,12 @@ def test_band_overflow_fallback_is_exact(monkeypatch, kind):
 def test_bracket_fallback_when_the_sample_misses(monkeypatch, limit):
     # A zero-width bracket almost surely misses the order statistic; the next, unbounded one
     # (bisection of the key range down to `limit` pairs) must still give the exact value.
-    monkeypatch.setattr(recurrence, "_BRACKET_WIDTHS", (0.0, math.inf))
-    monkeypatch.setattr(recurrence, "_BAND_LIMIT", limit)
+    monkeypatch.setattr(order_statistic, "_BRACKET_WIDTHS", (0.0, math.inf))
+    monkeypatch.setattr(order_statistic, "_BAND_LIMIT", limit)
     calls = []
-    bisect = recurrence._bisect_bracket
+    bisect = order_statistic._bisect_bracket
     monkeypatch.setattr(
-        recurrence, "_bisect_bracket", lambda *args: calls.append(args) or bisect(*args)
+        order_statistic, "_bisect_bracket", lambda *args: calls.append(args) or bisect(*args)
     )
     x = make_signal("noise", 800, 5)
     xs = reference_embed(x, 2, 1)
@@ -312,15 +316,15 @@ def test_bracket_fallback_when_the_sample_misses(monkeypatch, limit):
     strict=st.booleans(),
 )
 def test_squared_bound_decides_exactly_like_the_distance(eps, relative, strict):
-    bound = recurrence._key_bound(eps, strict, 0)
+    bound = order_statistic._key_bound(eps, strict, 0)
     for key in (bound, math.nextafter(bound, math.inf), eps * eps * (1 + relative)):
         distance = math.sqrt(key)
         assert (key <= bound) == (distance < eps if strict else distance <= eps)
 
 
 def test_rate_times_pairs_a_hair_above_an_integer_takes_no_extra_pair():
-    # README method step 4: k = max(1, ceil(rate * P - 1e-9)). 0.07 * 100 is 7.000000000000001 in
-    # float64, so a plain ceil would take 8 of the 100 cross pairs.
+    # README method step 4: k = max(1, ceil(rate * P)) in exact decimal. 0.07 * 100 is
+    # 7.000000000000001 in float64, so a float ceil would take 8 of the 100 cross pairs.
     assert 0.07 * 100 > 7
     rng = np.random.default_rng(0)
     xs, ys = rng.normal(size=(10, 2)), rng.normal(size=(10, 2))
@@ -345,7 +349,7 @@ def test_isrn_adjacency_blocks(rule):
     x, y = np.sin(t), np.sin(1.5 * t) + 0.3 * np.sin(t)
     eps_x, eps_y, eps_xy = 0.3, 0.35, 0.1
     adjacency = isrn_adjacency(
-        x, y, dim=3, delay=4, eps=(eps_x, eps_y, eps_xy), metric="supremum", rule=rule
+        x, y, dim=3, delay=4, eps=((eps_x, eps_y), eps_xy), metric="supremum", rule=rule
     )
     xs = signal_states(x, dim=3, delay=4, rule=rule)
     ys = signal_states(y, dim=3, delay=4, rule=rule)
@@ -358,7 +362,7 @@ def test_isrn_adjacency_blocks(rule):
 def test_isrn_adjacency_mixes_explicit_eps_and_rates():
     x, y = make_signal("sine", 90, 1), make_signal("walk", 90, 2)
     adjacency = isrn_adjacency(
-        x, y, dim=2, delay=3, rr=0.1, cr=0.05, eps=(None, 0.5, None), theiler=1
+        x, y, dim=2, delay=3, rr=0.1, cr=0.05, eps=((None, 0.5), None), theiler=1
     )
     xs, ys = reference_embed(x, 2, 3), reference_embed(y, 2, 3)
     a_x, _ = reference_auto(xs, rr=0.1, theiler=1)
@@ -367,16 +371,16 @@ def test_isrn_adjacency_mixes_explicit_eps_and_rates():
     np.testing.assert_array_equal(adjacency, np.block([[a_x, cr_xy], [cr_xy.T, a_y]]))
 
 
-def test_cross_recurrence_matrix_takes_theiler_and_keeps_its_diagonal():
+def test_cross_recurrence_matrix_has_no_theiler_and_keeps_its_diagonal():
     # A Theiler window concerns states of one system; the cross block compares two and keeps
-    # every pair, so the same signal against itself is recurrent on the whole diagonal.
+    # every pair, so the same signal against itself is recurrent on the whole diagonal. The
+    # parameter, once accepted and ignored, is refused.
     x = make_signal("sine", 90, 1)
     plain = cross_recurrence_matrix(x, x, dim=2, delay=3, cr=0.05)
-    windowed = cross_recurrence_matrix(x, x, dim=2, delay=3, cr=0.05, theiler=3)
-    np.testing.assert_array_equal(windowed, plain)
-    assert windowed.diagonal().all()
-    with pytest.raises(ParameterError, match="theiler"):
-        cross_recurrence_matrix(x, x, theiler=-1)
+    assert plain.diagonal().all()
+    for theiler in (3, 0, -1):
+        with pytest.raises(ParameterError, match="theiler is not a parameter here"):
+            cross_recurrence_matrix(x, x, dim=2, delay=3, cr=0.05, theiler=theiler)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -410,7 +414,7 @@ def test_recurrence_matrix_rejects_bad_parameters(kwargs, word):
 
 @pytest.mark.parametrize(
     ("kwargs", "word"),
-    [({"cr": 1.5}, "cr"), ({"eps": -0.1}, "eps_xy"), ({"metric": "l2"}, "metric")],
+    [({"cr": 1.5}, "cr"), ({"eps": -0.1}, "eps"), ({"metric": "l2"}, "metric")],
 )
 def test_cross_recurrence_matrix_rejects_bad_parameters(kwargs, word):
     x = np.sin(np.arange(60.0))
@@ -424,10 +428,10 @@ def test_errors_name_the_signal():
         cross_recurrence_matrix(good, np.r_[good[:-1], np.nan], dim=2, delay=1)
     with pytest.raises(SignalError, match="signal x .*too short"):
         cross_recurrence_matrix(good[:5], good, dim=3, delay=2)
-    with pytest.raises(ParameterError, match="eps_y"):
-        isrn_adjacency(good, good, dim=2, delay=1, eps=(0.1, 0.0, 0.1))
-    with pytest.raises(ParameterError, match="triple"):
-        isrn_adjacency(good, good, dim=2, delay=1, eps=(0.1, 0.1))
+    with pytest.raises(ParameterError, match="eps must be positive"):
+        isrn_adjacency(good, good, dim=2, delay=1, eps=((0.1, 0.0), 0.1))
+    with pytest.raises(ParameterError, match=r"eps must be \(auto, cross\)"):
+        isrn_adjacency(good, good, dim=2, delay=1, eps=(0.1, 0.1, 0.1))
     with pytest.raises(SignalError, match="same dim"):
         cross_recurrence(embed(good, 2, 1), embed(good, 3, 1))
 

@@ -92,8 +92,7 @@ def check_page(page: Path, tmp_path: Path) -> list[dict[str, str | None]]:
 @pytest.fixture(scope="module")
 def tiny_plan(tmp_path_factory):
     """The baseline trial and one backlash trial, simulated."""
-    from funcnet.robot import write_plan
-    from funcnet.robot.plan import Trial
+    from funcnet.robot import Trial, write_plan
 
     out = tmp_path_factory.mktemp("plan")
     write_plan([Trial("main-v35-p16-s3", "main", speed=35, tcp=1.6, step=3),
@@ -197,11 +196,13 @@ def test_study_report_networks_timeline_and_chromium(tiny_study, tmp_path):
     assert sum(len(t) for t in pair_tables) == len(rows)
 
 
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 def test_run_paper_analyses_windows_networks_and_findings(tiny_plan):
     import numpy as np
 
-    from funcnet.findings import run_paper_analyses
-    from funcnet.robot import add_derived_signals, phase_networks, read_trace
+    from funcnet.paper import PAPER_PARAMETERS, run_paper_analyses
+    from funcnet.pipeline import window_networks
+    from funcnet.robot import add_derived_signals, read_trace
 
     analyses = run_paper_analyses(tiny_plan, max_phase_length=0.5, timeline_step=2.0)
     base = analyses.baseline
@@ -219,9 +220,11 @@ def test_run_paper_analyses_windows_networks_and_findings(tiny_plan):
     widths = {round(w.stop - w.start, 9) for w in reversal.windows.values()}
     assert widths == {0.2}
     assert reversal.windows[40].start - reversal.windows[0].start == pytest.approx(0.04)
-    # the networks are funcnet.robot.phase_networks' own, on the same windows
+    # the networks are funcnet.window_networks' own, on the same windows and parameters
+    assert analyses.parameters == PAPER_PARAMETERS
     recording = add_derived_signals(read_trace(reversal.path), ["V"])
-    (expected,) = phase_networks(recording, [reversal.windows[0]]).values()
+    (expected,) = window_networks(recording, [reversal.windows[0]],
+                                  parameters=PAPER_PARAMETERS).values()
     assert reversal.networks[0] == expected
     # a signal constant in a window is left out of that network, and only then
     for trial in (base, *analyses.main.values(), reversal):
@@ -245,3 +248,33 @@ def test_write_report_without_results_names_the_folder(tmp_path):
     with pytest.raises(StudyError, match=re.escape(str(tmp_path))):
         write_report(tmp_path)
     assert not (tmp_path / "report").exists()
+
+
+def test_run_paper_analyses_takes_network_parameters(tiny_plan):
+    from funcnet.errors import ParameterError
+    from funcnet.paper import run_paper_analyses
+    from funcnet.parameters import NetworkParameters
+
+    # a bad value or an unknown name is refused before anything is read
+    with pytest.raises(ParameterError, match="^rr must be in"):
+        run_paper_analyses(tiny_plan / "nowhere", rr=2.0)
+    with pytest.raises(ParameterError, match="radius"):
+        run_paper_analyses(tiny_plan / "nowhere", parameters=NetworkParameters(), radius=1)
+
+
+def test_report_shows_the_schemas_pairs_columns(demo_report):
+    from funcnet.network.schema import PAIR_COLUMNS
+
+    page, _ = demo_report
+    tables = pd.read_html(page, keep_default_na=False)
+    pair_tables = [t for t in tables if {"x", "y", "kind", "c_diff"} <= set(t.columns)]
+    assert pair_tables
+    for t in pair_tables:
+        assert list(t.columns) == list(PAIR_COLUMNS)  # the degenerate flag and reason too
+
+
+def test_report_package_keeps_its_names():
+    import funcnet.report
+    from funcnet.report import save_figure  # noqa: F401
+
+    assert {"build_demo_report", "write_report", "save_figure"} <= set(funcnet.report.__all__)

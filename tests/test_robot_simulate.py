@@ -8,15 +8,16 @@ import numpy as np
 import pytest
 
 from funcnet.errors import ParameterError
-from funcnet.robot.plan import Trial, paper_plan
-from funcnet.robot.simulate import (
+from funcnet.robot.sim.axis import (
     MAX_TRIAL_DURATION,
     AxisParameters,
     setpoint_profile,
     simulate_trial,
     trial_duration,
 )
-from funcnet.robot.writer import write_trace
+from funcnet.robot.sim.plan import paper_plan
+from funcnet.robot.sim.trial import Trial
+from funcnet.robot.sim.writer import write_trace
 
 P = AxisParameters()
 RAD = math.pi / 180.0

@@ -1,30 +1,20 @@
-"""Analysis windows and one functional network per window."""
+"""Analysis windows; one functional network per window is tested in test_pipeline.py."""
 
 from __future__ import annotations
 
-import re
-import warnings
+import subprocess
+import sys
 
-import numpy as np
 import pandas as pd
 import pytest
 
-from funcnet.errors import (
-    ChannelError,
-    ParameterError,
-    SignalError,
-    StaircaseWarning,
-    ThresholdWarning,
-    WindowError,
-)
-from funcnet.network import FunctionalNetwork, functional_network
+from funcnet.errors import ParameterError, WindowError
 from funcnet.robot.phases import detect_phases
-from funcnet.robot.preprocess import add_derived_signals, resample
-from funcnet.robot.recording import Recording, SignalInfo, read_trace
+from funcnet.robot.preprocess import add_derived_signals
+from funcnet.robot.recording import Recording, read_trace
 from funcnet.robot.windows import (
     Window,
     fixed_windows,
-    phase_networks,
     phase_windows,
     reversal_windows,
     sliding_windows,
@@ -127,199 +117,51 @@ def test_sliding_windows(real):
         Window("w", 2.0, 1.0)
 
 
-# Real signals do not always give eps_XY < eps_X, eps_Y; the network says so, and that is not
-# what this test is about.
-@pytest.mark.filterwarnings("ignore::funcnet.errors.ThresholdWarning")
-def test_networks_per_phase_of_the_real_braking_motion(real, phases):
-    first_move = phase_windows(phases)[:4]
-    with pytest.warns(StaircaseWarning, match=r"\['AP', 'MP'\].*4 ms"):
-        networks = phase_networks(real, first_move)
-    assert list(networks) == ["early spin-up 1", "late spin-up 1", "cruise 1", "braking 1"]
-    for window in first_move:
-        network = networks[window.label]
-        assert network.label == window.label
-        assert network.nodes == ("RP", "AP", "MP", "V", "AC")  # the paper's, RC not recorded
-        assert len(network.pairs) == 10
-    # The braking network is the network of the braking window cut by hand.
-    braking = first_move[-1]
-    index = real.data.index
-    cut = real.data[(index >= braking.start - 1e-9) & (index < braking.stop - 1e-9)]
-    assert len(cut) == round(braking.duration / 0.002)
-    expected = functional_network(cut[["RP", "AP", "MP", "V", "AC"]], label=braking.label)
-    network = networks[braking.label]
-    assert network.nodes == expected.nodes
-    pd.testing.assert_frame_equal(network.pairs, expected.pairs)
-    # ... whose parameters also say where it comes from.
-    assert network.parameters == {
-        **expected.parameters,
-        "window_start": braking.start,
-        "window_stop": braking.stop,
-        "phase": "braking",
-        "source": real.source,
-        "dropped": [],
-    }
-    assert "axis7-braking-trace.xml" in real.source
+def _rows(recording: Recording, window: Window) -> pd.Index:
+    """The ticks ``start <= t < stop``, selected by comparison (no tolerance)."""
+    index = recording.data.index
+    return index[(index >= window.start) & (index < window.stop)]
 
 
-@pytest.mark.filterwarnings("ignore::funcnet.errors.ThresholdWarning")
-def test_networks_after_decimation_warn_no_staircase(real, phases):
-    coarse = resample(real)
-    braking = phase_windows(phases, include=["braking"])[:1]
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", StaircaseWarning)
-        networks = phase_networks(coarse, braking, signals=["RP", "AP", "AC"], dim=2, delay=5)
-    network = networks["braking 1"]
-    assert network.nodes == ("RP", "AP", "AC")
-    assert network.parameters["dim"] == 2 and network.parameters["delay"] == 5
-
-
-@pytest.mark.filterwarnings("ignore::funcnet.errors.StaircaseWarning")
-def test_phase_networks_refuses_bad_windows(real):
-    with pytest.raises(WindowError, match=r"axis7-braking-trace.xml: window \[40, 50\) s"):
-        phase_networks(real, [Window("late", 40.0, 50.0)])
-    with pytest.raises(WindowError, match="'AP' has no recorded value"):
-        phase_networks(real, [Window("start", 0.0, 0.2)], signals=["RP", "AP"])
-    with pytest.raises(WindowError, match="occur more than once"):
-        phase_networks(real, [Window("w", 1.0, 2.0), Window("w", 2.0, 3.0)])
-    with pytest.raises(ChannelError, match="'RC'"):
-        phase_networks(real, [Window("w", 7.0, 8.0)], signals=["RP", "RC"])
-    assert np.isnan(real.data.at[0.0, "AP"])
-
-
-# --------------------------------------------------------------------------------------------
-# a small synthetic recording: RP and AP move throughout, AC is constant before 1 s
-
-
-@pytest.fixture(scope="module")
-def synthetic() -> Recording:
-    t = np.arange(0, 3, 0.002)
-    data = pd.DataFrame(
-        {
-            "RP": np.sin(5 * t),
-            "AP": np.sin(5 * t - 0.3),
-            "AC": np.where(t < 1, 0.25, np.cos(7 * t)),
-        },
-        index=pd.Index(t, name="time"),
-    )
-    info = {name: SignalInfo(name, None, None, 0.002) for name in data}
-    return Recording(data, {}, info, source="/data/synthetic.csv", sample_period=0.002)
-
-
-STILL = Window("still", 0.2, 0.8, phase="standstill")
-MOVING = [Window(f"w{k}", 1.0 + 0.3 * k, 1.6 + 0.3 * k, phase="cruise") for k in range(4)]
-
-
-@pytest.mark.filterwarnings("ignore::funcnet.errors.ThresholdWarning")
-def test_networks_record_their_window_and_survive_json(synthetic):
-    networks = phase_networks(synthetic, [STILL, *MOVING], signals=["RP", "AP"], delay=5)
-    for window in (STILL, *MOVING):
-        parameters = networks[window.label].parameters
-        assert parameters["window_start"] == window.start
-        assert parameters["window_stop"] == window.stop
-        assert parameters["phase"] == window.phase
-        assert parameters["source"] == "/data/synthetic.csv"
-        assert parameters["dropped"] == []
-        assert parameters["n_samples"] == round(window.duration / 0.002)
-        again = FunctionalNetwork.from_json(networks[window.label].to_json())
-        assert again == networks[window.label]
-        assert again.parameters["window_start"] == window.start
-
-
-def test_errors_inside_a_window_name_file_window_and_span(synthetic):
-    with pytest.raises(SignalError) as caught:
-        phase_networks(synthetic, [MOVING[0], STILL])
-    # The same class and the original message, after the file, the label and the span.
-    with pytest.raises(SignalError) as direct:
-        functional_network(synthetic.window(STILL.start, STILL.stop).data)
-    assert str(caught.value) == f"/data/synthetic.csv: window 'still' [0.2, 0.8) s: {direct.value}"
-    assert "signal 'AC' is constant" in str(caught.value)
-    # A window too short for the embedding: the error of functional_network, located.
-    short = Window("short", 1.0, 1.01)
-    with pytest.raises(SignalError, match=r"^/data/synthetic.csv: window 'short' \[1, 1.01\) s: "):
-        phase_networks(synthetic, [short], delay=10)
-    with pytest.raises(SignalError, match=r"window 'w0' .*at least two signals, got 1"):
-        phase_networks(synthetic, [MOVING[0]], signals=["RP"], constant="drop")
-
-
-def _kind(message) -> str:
-    return re.sub(r" for \d+ pair\(s\):[^;]*", "", str(message).splitlines()[0])
-
-
-def test_threshold_warnings_once_per_kind_naming_their_windows(synthetic):
-    # Reference: the warnings of each window computed on its own.
-    expected: dict[tuple[type, str], list[str]] = {}
-    for window in MOVING:
-        part = synthetic.window(window.start, window.stop).data
-        with warnings.catch_warnings(record=True) as direct:
-            warnings.simplefilter("always")
-            functional_network(part, label=window.label, delay=5)
-        for w in direct:
-            if issubclass(w.category, ThresholdWarning):
-                expected.setdefault((w.category, _kind(w.message)), []).append(window.label)
-    assert expected and sum(len(v) for v in expected.values()) > len(expected)  # repeats exist
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        phase_networks(synthetic, MOVING, delay=5)
-    threshold = [w for w in caught if issubclass(w.category, ThresholdWarning)]
-    assert len(threshold) == len(expected)  # one per kind, not one per window
-    for w in threshold:
-        first, second = str(w.message).splitlines()
-        concerned = expected[(w.category, first)]
-        assert second == (
-            f"/data/synthetic.csv: in {len(concerned)} of {len(MOVING)} window(s): "
-            + ", ".join(repr(label) for label in concerned)
-        )
-        assert w.filename == __file__  # points at the caller's line
-
-
-@pytest.mark.filterwarnings("ignore::funcnet.errors.ThresholdWarning")
-def test_constant_signals_dropped_per_window(synthetic):
-    windows = [STILL, MOVING[0]]
-    networks = phase_networks(synthetic, windows, constant="drop")
-    still, moving = networks["still"], networks["w0"]
-    assert still.nodes == ("RP", "AP") and still.parameters["dropped"] == ["AC"]
-    assert moving.nodes == ("RP", "AP", "AC") and moving.parameters["dropped"] == []
-    # The network without AC is the network of RP and AP alone.
-    alone = functional_network(synthetic.window(STILL.start, STILL.stop).data[["RP", "AP"]])
-    pd.testing.assert_frame_equal(still.pairs, alone.pairs)
-    # Without normalization a constant signal is no error: nothing is dropped.
-    unscaled = phase_networks(synthetic, [STILL], constant="drop", normalize=None)
-    assert unscaled["still"].nodes == ("RP", "AP", "AC")
-    assert unscaled["still"].parameters["dropped"] == []
-    with pytest.raises(WindowError, match=r"synthetic.csv: window 'still' .*\['AC'\].*two"):
-        phase_networks(synthetic, [STILL], signals=["RP", "AC"], constant="drop")
-    with pytest.raises(ParameterError, match="constant"):
-        phase_networks(synthetic, [STILL], constant="ignore")
-
-
-def test_threshold_warnings_of_one_kind_with_other_details_are_one_warning():
-    # AC is quantized (too few distinct states) before 1.5 s, AP after: each window's warning
-    # about a degenerate recurrence structure names its own signal.
-    t = np.arange(0, 3, 0.002)
-    ap, ac = np.sin(5 * t - 0.3), np.cos(7 * t)
-    data = pd.DataFrame(
-        {
-            "RP": np.sin(5 * t),
-            "AP": np.where(t >= 1.5, np.round(ap), ap),
-            "AC": np.where(t < 1.5, np.round(ac), ac),
-        },
-        index=pd.Index(t, name="time"),
-    )
-    info = {name: SignalInfo(name, None, None, 0.002) for name in data}
-    recording = Recording(data, {}, info, source="q.csv", sample_period=0.002)
-    windows = [Window("a", 0.2, 0.8), Window("b", 1.6, 2.2), Window("c", 0.9, 1.4)]
-    direct = set()
+def test_a_window_holds_the_rows_from_start_to_before_stop(real, phases):
+    windows = [
+        *sliding_windows(real, 10.0, 5.0),
+        *sliding_windows(real, 0.011, 0.003, start=7.0, stop=7.05),  # off the 2 ms grid
+        *phase_windows(phases),
+        *fixed_windows(phases),
+    ]
     for window in windows:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            functional_network(recording.window(window.start, window.stop).data, delay=5)
-        direct |= {str(w.message) for w in caught if str(w.message).startswith("degenerate")}
-    assert len(direct) > 1  # the messages differ from window to window
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        phase_networks(recording, windows, delay=5)
-    degenerate = [w for w in caught if str(w.message).startswith("degenerate")]
-    assert len(degenerate) == 1 and degenerate[0].category is ThresholdWarning
-    first, second = str(degenerate[0].message).splitlines()
-    assert "signal AC" in first  # window 'a''s details
-    assert second == "q.csv: in 3 of 3 window(s): 'a', 'b', 'c' (details as in 'a')"
+        rows = real.window(window.start, window.stop).data.index
+        assert rows.equals(_rows(real, window)), window
+        assert rows[0] >= window.start and rows[-1] < window.stop
+    # 7.000-7.011 s on a 2 ms grid: 7.000 ... 7.010; the next window starts between ticks.
+    first, second = sliding_windows(real, 0.011, 0.003, start=7.0, stop=7.05)[:2]
+    assert real.window(first.start, first.stop).data.index.tolist() == [
+        7.0, 7.002, 7.004, 7.006, 7.008, 7.01
+    ]
+    assert real.window(second.start, second.stop).data.index[0] == 7.004
+    # A window ending on a tick leaves that tick to the next window: consecutive sliding
+    # windows with step == width tile the recording without overlap.
+    tiles = sliding_windows(real, 1.0, 1.0, start=7.0, stop=10.0)
+    counts = [len(real.window(w.start, w.stop).data) for w in tiles]
+    assert counts == [500, 500, 500]
+    assert len(real.window(7.0, 10.0).data) == sum(counts)
+
+
+def test_phase_networks_left_for_the_pipeline():
+    """funcnet.robot no longer has phase_networks, and says where it went without importing
+    the pipeline."""
+    code = (
+        "import sys, funcnet.robot as r\n"
+        "try:\n    r.phase_networks\nexcept AttributeError as e:\n    print(e)\n"
+        "print(sorted(m for m in sys.modules if m in ('funcnet.pipeline', 'funcnet.network')))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.splitlines()
+    assert "funcnet.window_networks" in out[0]
+    assert out[1] == "[]"
+    import funcnet.robot
+
+    assert "phase_networks" not in funcnet.robot.__all__
+    with pytest.raises(AttributeError, match="funcnet.window_networks"):
+        funcnet.robot.phase_networks  # noqa: B018

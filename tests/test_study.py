@@ -18,8 +18,9 @@ import pyarrow.parquet as pq
 import pytest
 
 from funcnet.errors import StudyError
+from funcnet.parameters import NetworkParameters
 from funcnet.study import (
-    NETWORK_PARAMETERS,
+    PARAMETER_COLUMNS,
     Study,
     WindowSpec,
     load_results,
@@ -124,7 +125,7 @@ normalize = "none"
     )
     grid = parameter_grid(study)
     expected = [
-        {"dim": d, "delay": t, "mu": 0.1, "normalize": None}
+        NetworkParameters(dim=d, delay=t, mu=0.1, normalize=None)
         for d, t in itertools.product([2, 3], [5, 10, 20])
     ]
     assert grid == expected
@@ -147,10 +148,12 @@ def test_documented_example_study_loads() -> None:
         ('[recordings]\npaths = ["*.xml"]\ncolour = 1', "recordings.colour"),
         ('[recordings]\npaths = ["nothing-*.xml"]', "recordings.paths"),
         ("[recordings]\npaths = []", "recordings"),
-        ('[recordings]\npaths = ["*.xml"]\n[network]\nmux = 0.1', "network.mux"),
-        ('[recordings]\npaths = ["*.xml"]\n[network]\ndim = "3"', "network.dim"),
-        ('[recordings]\npaths = ["*.xml"]\n[network]\ndelay = []', "network.delay"),
-        ('[recordings]\npaths = ["*.xml"]\n[network]\ndelay = [5, 5]', "network.delay"),
+        ('[recordings]\npaths = ["*.xml"]\n[network]\nmux = 0.1', "[network] mux"),
+        ('[recordings]\npaths = ["*.xml"]\n[network]\ndim = "3"', "[network] dim"),
+        ('[recordings]\npaths = ["*.xml"]\n[network]\ndelay = []', "[network] delay"),
+        ('[recordings]\npaths = ["*.xml"]\n[network]\ndelay = [5, 5]', "[network] delay"),
+        ('[recordings]\npaths = ["*.xml"]\n[network]\neps = 0.1', "[network] eps"),
+        ('[recordings]\npaths = ["*.xml"]\n[network]\nrr = [[0.1, 0.2]]', "[network] rr"),
         ('[recordings]\npaths = ["*.xml"]\n[[windows]]\nkind = "hourly"', "windows[0].kind"),
         ('[recordings]\npaths = ["*.xml"]\n[[windows]]\nkind = "sliding"\nwidth = 1', "step"),
         (
@@ -165,6 +168,7 @@ def test_documented_example_study_loads() -> None:
         ('[recordings]\nsimulated = "missing-plan.toml"', "recordings.simulated"),
         ('[recordings]\npaths = ["*.xml"]\nchannels = "none.toml"', "recordings.channels"),
         ('constant = "ignore"\n[recordings]\npaths = ["*.xml"]', "constant"),
+        ('[recordings]\npaths = ["*.xml"]\nresample = "spline"', "recordings.resample"),
     ],
 )
 def test_load_study_errors_name_file_and_key(tmp_path: Path, text: str, key: str) -> None:
@@ -183,9 +187,7 @@ def test_load_study_errors_name_file_and_key(tmp_path: Path, text: str, key: str
 
 def test_rows_hold_every_pair_window_and_parameter(baseline, study_file: Path) -> None:
     from funcnet import functional_network
-    from funcnet.robot import detect_phases
-    from funcnet.robot.windows import phase_windows
-    from funcnet.study import read_recording
+    from funcnet.robot import detect_phases, phase_windows, read_recording
 
     out, result = baseline
     rows = load_results(out)
@@ -218,8 +220,14 @@ def test_rows_hold_every_pair_window_and_parameter(baseline, study_file: Path) -
     assert result.tasks == expected_tasks
     assert len(rows) == expected_tasks * n_pairs
     assert rows.groupby(["recording", "window", "delay"]).size().eq(n_pairs).all()
-    for name in NETWORK_PARAMETERS:
-        assert {"rr": "rr_target", "cr": "cr_target"}.get(name, name) in rows.columns
+    # Every parameter has its column; the targets keep their names (rr, cr), the achieved
+    # rates are the pairs table's achieved_rr_x, achieved_rr_y, achieved_cr.
+    assert list(PARAMETER_COLUMNS) == list(NetworkParameters.names())
+    for column in PARAMETER_COLUMNS.values():
+        assert column in rows.columns
+    assert PARAMETER_COLUMNS["degenerate"] == "degenerate_policy"
+    assert set(rows["rr"]) == {0.05} and set(rows["degenerate_policy"]) == {"drop"}
+    assert rows["degenerate"].dtype == bool
     assert set(rows["dim"]) == {3} and set(rows["delay"]) == {5, 10}
     assert set(rows["constant"]) == {"error"} and set(rows["dropped"]) == {""}
 
@@ -303,7 +311,7 @@ def test_failed_windows_are_recorded_and_not_retried(plan_dir: Path, tmp_path: P
 
 def test_constant_drop_leaves_constant_signals_out(plan_dir: Path, tmp_path: Path) -> None:
     from funcnet import functional_network
-    from funcnet.study import read_recording
+    from funcnet.robot import read_recording
 
     trace = plan_dir / f"{TRIALS[0][0]}.xml"
     text = (
@@ -359,8 +367,7 @@ def test_simulated_plan_is_written_then_analysed(tmp_path: Path) -> None:
 
 
 def test_sliding_windows_and_a_missing_reversal(plan_dir: Path, tmp_path: Path) -> None:
-    from funcnet.robot import sliding_windows
-    from funcnet.study import read_recording
+    from funcnet.robot import read_recording, sliding_windows
 
     trace = plan_dir / f"{TRIALS[1][0]}.xml"
     study = Study(
@@ -386,8 +393,9 @@ def test_invalid_parameter_value_stops_the_run(plan_dir: Path, tmp_path: Path) -
         parameters=(("mu", (-1.0,)),),
         base_dir=plan_dir,
     )
-    with pytest.raises(StudyError, match="mu"):
-        run_study(study, tmp_path, workers=0)
+    with pytest.raises(StudyError, match=r"\[network\] mu must be finite and >= 0, got -1.0"):
+        run_study(study, tmp_path / "out", workers=0)
+    assert not (tmp_path / "out").exists()  # refused before anything was written
 
 
 def test_concurrent_run_on_same_folder_is_refused(tmp_path: Path) -> None:
@@ -422,6 +430,22 @@ def test_dask_cluster_gives_the_same_rows(baseline, study_file: Path) -> None:
     assert sorted(p.name for p in (dask_out / "rows").iterdir()) == sorted(
         p.name for p in (out / "rows").iterdir()
     )
+
+
+def test_dask_worker_threads_give_the_same_rows_and_warnings(baseline, study_file: Path) -> None:
+    # Several tasks at once in the threads of one process: nothing is caught from the warnings
+    # module, so the counts come out as on local processes.
+    from distributed import LocalCluster
+
+    out, result = baseline
+    with LocalCluster(n_workers=1, threads_per_worker=2, processes=False, protocol="tcp://",
+                      host="127.0.0.1", dashboard_address=None) as cluster:
+        threads_out = study_file.parent / "threads"
+        on_threads = run_study(load_study(study_file), threads_out,
+                               scheduler=cluster.scheduler_address)
+    assert on_threads.computed == result.tasks
+    assert on_threads.warnings == result.warnings  # counts and (task-order) examples
+    pd.testing.assert_frame_equal(load_results(threads_out), load_results(out))
 
 
 def _children(pid: int) -> set[int]:
@@ -474,3 +498,167 @@ def test_run_killed_with_sigkill_resumes_to_the_same_rows(baseline, study_file: 
     assert resumed.computed + resumed.cached == result.tasks
     pd.testing.assert_frame_equal(load_results(killed_out), load_results(out))
     assert not [p for p in killed_out.rglob(".*.tmp")]
+
+
+# --------------------------------------------------------------------------------------------
+# the parameter contract at load time, the optional Dask extra, warnings from flags
+
+
+@pytest.mark.parametrize(
+    ("line", "message"),
+    [
+        ("rr = 2.0", "[network] rr must be in (0, 1), got 2.0"),
+        ('metric = "cosine"', "[network] metric must be one of euclidean, supremum, manhattan"),
+        ("dim = 0", "[network] dim must be >= 1, got 0"),
+        ("delay = [5, 0]", "[network] delay must be >= 1, got 0"),
+        ('normalize = "l2"', "[network] normalize must be one of minmax, zscore, none"),
+    ],
+)
+def test_bad_network_values_are_rejected_when_the_file_is_read(
+    tmp_path: Path, line: str, message: str
+) -> None:
+    (tmp_path / "plan.toml").write_text(
+        '[[group]]\nname = "fast"\nspeeds = [350]\ntcps = [1.2]\nsteps = [1]\n'
+    )
+    path = _write(tmp_path, f'[recordings]\nsimulated = "plan.toml"\n[network]\n{line}\n')
+    with pytest.raises(StudyError) as info:
+        load_study(path)
+    text = str(info.value)
+    assert text.startswith(f"{path.resolve()}: {message}")
+    assert "\n" not in text
+    # Nothing was simulated or written: the file's folder holds only what the test wrote.
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["plan.toml", "s.toml"]
+
+
+def test_bad_value_of_a_study_made_in_python_stops_before_simulating(tmp_path: Path) -> None:
+    study = Study(simulated="paper", parameters=(("rr", (0.05, 2.0)),), base_dir=tmp_path)
+    with pytest.raises(StudyError, match=r"^study: \[network\] rr must be in \(0, 1\), got 2.0$"):
+        run_study(study, tmp_path / "out", workers=0)
+    assert not (tmp_path / "out").exists()
+
+
+def test_eps_pairs_and_none_in_the_network_table(tmp_path: Path) -> None:
+    (tmp_path / "a.xml").write_text("x")
+    one = load_study(_write(tmp_path, '[recordings]\npaths = ["*.xml"]\n'
+                                      '[network]\neps = [0.2, "none"]\n', "one.toml"))
+    assert [p.eps for p in parameter_grid(one)] == [(0.2, None)]
+    grid = load_study(_write(tmp_path, '[recordings]\npaths = ["*.xml"]\n'
+                                       '[network]\neps = [[0.2, 0.1], ["none", 0.3]]\n',
+                             "grid.toml"))
+    assert [p.eps for p in parameter_grid(grid)] == [(0.2, 0.1), (None, 0.3)]
+
+
+def _small_trace(folder: Path, quantized: bool = False) -> Path:
+    t = np.arange(0, 2, 0.002)
+    ap = np.sin(5 * t - 0.3)
+    frame = pd.DataFrame({
+        "time": t,
+        "RP": np.sin(5 * t),
+        "AP": np.round(ap) if quantized else ap,
+        "AC": np.cos(7 * t) + 0.1 * np.sin(31 * t),
+    })
+    path = folder / "trace.csv"
+    frame.to_csv(path, index=False)
+    return path
+
+
+def test_missing_dask_names_the_extra(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(sys.modules, "distributed", None)  # as if funcnet[dask] were not there
+    study = Study(recordings=(_small_trace(tmp_path),), signals=("RP", "AP"), base_dir=tmp_path,
+                  windows=(WindowSpec("range", (("start", 0.2), ("stop", 1.8))),))
+    for scheduler in ("local-cluster", "tcp://127.0.0.1:8786"):
+        with pytest.raises(StudyError) as info:
+            run_study(study, tmp_path / "out", scheduler=scheduler)
+        assert "install funcnet[dask]" in str(info.value)
+        assert "\n" not in str(info.value)
+    assert not (tmp_path / "out").exists()
+    # Local processes and in-process runs do not need Dask.
+    assert run_study(study, tmp_path / "out", workers=0).computed == 1
+
+
+def test_warnings_are_counted_from_the_pairs_flags(tmp_path: Path) -> None:
+    from funcnet.study.tasks import task_warnings
+
+    trace = _small_trace(tmp_path, quantized=True)  # AP takes three values: degenerate
+    study = Study(recordings=(trace,), signals=("RP", "AP", "AC"), base_dir=tmp_path,
+                  windows=(WindowSpec("range", (("start", 0.2), ("stop", 1.8))),))
+    result = run_study(study, tmp_path / "out", workers=0)
+    rows = load_results(tmp_path / "out")
+    flagged = rows[rows["degenerate"]]
+    assert len(flagged) > 0 and set(flagged["x"]) | set(flagged["y"]) >= {"AP"}
+    count, example = result.warnings["degenerate"]
+    assert count == 1  # one task has it
+    assert example.startswith("trace.csv: ") and "AP" in example
+    document = json.loads((tmp_path / "out" / "study.json").read_text())
+    assert document["run"]["warnings"]["degenerate"]["tasks"] == 1
+    # The same numbers from the pure function, whatever thread runs it.
+    from concurrent.futures import ThreadPoolExecutor
+
+    from funcnet import window_networks
+    from funcnet.robot import Window, read_recording
+
+    recording = read_recording(trace)
+    window = Window("w", 0.2, 1.8)
+
+    def problems(_: int) -> tuple[tuple[str, int, str], ...]:
+        networks = window_networks(recording, [window], signals=["RP", "AP", "AC"])
+        return task_warnings(networks, recording, ["RP", "AP", "AC"], "trace.csv")
+
+    with ThreadPoolExecutor(4) as pool:
+        seen = set(pool.map(problems, range(4)))
+    assert len(seen) == 1
+    (found,) = seen
+    assert dict((p, n) for p, n, _ in found)["degenerate"] == int(rows["degenerate"].sum())
+
+
+def test_staircases_are_reported_from_the_recording() -> None:
+    from funcnet import window_networks
+    from funcnet.robot import Recording, SignalInfo, Window
+    from funcnet.study.tasks import task_warnings
+
+    t = np.arange(0, 2, 0.002)
+    ap = np.repeat(np.sin(5 * t[::2] - 0.3), 2)  # held for two ticks: a 4 ms signal
+    data = pd.DataFrame({"RP": np.sin(5 * t), "AP": ap}, index=pd.Index(t, name="time"))
+    info = {"RP": SignalInfo("RP", None, None, 0.002), "AP": SignalInfo("AP", None, None, 0.004)}
+    recording = Recording(data, {}, info, source="trace.csv", sample_period=0.002)
+    networks = window_networks(recording, [Window("w", 0.2, 1.8)], signals=["RP", "AP"])
+    found = {p: (n, m) for p, n, m in task_warnings(networks, recording, ["RP", "AP"], "t.csv")}
+    count, message = found["staircase"]
+    assert count == 1 and message.startswith("t.csv: AP ")
+
+
+def test_resample_option_reads_the_recordings_resampled(plan_dir: Path, tmp_path: Path) -> None:
+    trace = plan_dir / f"{TRIALS[0][0]}.xml"
+    text = (
+        'signals = ["RP", "AP"]\n[recordings]\npaths = ["plan/{}"]\n{}'
+        '[[windows]]\nkind = "range"\nstart = 0.5\nstop = 1.1\n'
+    )
+    native = load_study(_write(plan_dir.parent, text.format(trace.name, ""), "native.toml"))
+    decimated = load_study(
+        _write(plan_dir.parent, text.format(trace.name, 'resample = "decimate"\n'), "dec.toml")
+    )
+    assert (native.resample, decimated.resample) == (None, "decimate")
+    run_study(native, tmp_path, workers=0)
+    first = load_results(tmp_path)
+    # Another task (its own key); the simulator logs every signal at 2 ms: the same numbers.
+    second = run_study(decimated, tmp_path, workers=0)
+    assert (second.computed, second.cached) == (1, 0)
+    assert json.loads((tmp_path / "study.json").read_text())["study"]["resample"] == "decimate"
+    pd.testing.assert_frame_equal(load_results(tmp_path), first)
+
+
+def test_row_columns_are_identity_parameters_then_the_pairs_schema(baseline) -> None:
+    from funcnet.network.schema import PAIR_COLUMNS
+    from funcnet.study.store import IDENTITY_SCHEMA
+
+    identity, parameters = list(IDENTITY_SCHEMA.names), list(PARAMETER_COLUMNS.values())
+    # Disjoint: no column of one part may hide a column of another.
+    assert len({*identity, *parameters, *PAIR_COLUMNS}) == (
+        len(identity) + len(parameters) + len(PAIR_COLUMNS)
+    )
+    out, _ = baseline
+    first = sorted((out / "rows").glob("*.parquet"))[0]
+    assert pq.read_schema(first).names == [*identity, *parameters, *PAIR_COLUMNS]
+    rows = load_results(out)
+    assert rows["eps"].isna().all() and rows["mu_c"].isna().all()
+    assert rows["achieved_cr"].between(0, 1).all()

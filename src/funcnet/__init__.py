@@ -14,19 +14,22 @@ __version__ = "0.1.0"
 # Public names, resolved lazily so that `import funcnet` stays cheap (no Numba compilation, no
 # matplotlib) for the trace reader and the command line.
 _EXPORTS = {
-    "embed": "funcnet.recurrence",
+    "NetworkParameters": "funcnet.parameters",
+    "embed": "funcnet.embedding",
+    "signal_states": "funcnet.embedding",
+    "estimate_delay": "funcnet.embedding",
+    "estimate_dimension": "funcnet.embedding",
     "recurrence_matrix": "funcnet.recurrence",
     "cross_recurrence_matrix": "funcnet.recurrence",
     "isrn_adjacency": "funcnet.recurrence",
-    "estimate_delay": "funcnet.recurrence",
-    "estimate_dimension": "funcnet.recurrence",
-    "signal_states": "funcnet.recurrence",
     "PackedRecurrence": "funcnet.recurrence",
     "auto_recurrence": "funcnet.recurrence",
     "cross_recurrence": "funcnet.recurrence",
     "CrossMeasures": "funcnet.measures",
     "isrn_measures": "funcnet.measures",
     "cross_measures": "funcnet.measures",
+    "pairwise_cross_measures": "funcnet.measures",
+    "threshold_warnings": "funcnet.measures",
     "local_cross_clustering": "funcnet.measures",
     "cross_degree": "funcnet.measures",
     "normalize": "funcnet.preprocess",
@@ -36,7 +39,7 @@ _EXPORTS = {
     "combine_kinds": "funcnet.network",
     "edges_from_pairs": "funcnet.network",
     "check_parameters": "funcnet.network",
-    "pairwise_cross_measures": "funcnet.measures",
+    "window_networks": "funcnet.pipeline",
     "Study": "funcnet.study",
     "load_study": "funcnet.study",
     "run_study": "funcnet.study",
@@ -45,6 +48,10 @@ _EXPORTS = {
     "ParameterError": "funcnet.errors",
     "SignalError": "funcnet.errors",
     "TraceError": "funcnet.errors",
+    "FuncnetWarning": "funcnet.errors",
+    "ThresholdWarning": "funcnet.errors",
+    "DegenerateWarning": "funcnet.errors",
+    "StaircaseWarning": "funcnet.errors",
 }
 
 __all__ = ["__version__", *_EXPORTS]

@@ -8,11 +8,26 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import os
-import tempfile
+import secrets
 from collections.abc import Iterator
 from pathlib import Path
 
 __all__ = ["atomic_path", "write_text_atomic", "write_bytes_atomic", "file_sha256"]
+
+
+def _new_temporary(target: Path) -> Path:
+    """A new empty file beside ``target``, created with mode 0o666 so that the kernel applies
+    the process umask itself (``mkstemp`` would create it 0600, and reading the umask means
+    changing it, which races with other threads)."""
+    for _ in range(100):
+        tmp = target.parent / f".{target.name}.{secrets.token_hex(6)}.tmp"
+        try:
+            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+        except FileExistsError:
+            continue
+        os.close(fd)
+        return tmp
+    raise FileExistsError(f"{target}: could not create a temporary file beside it")
 
 
 @contextlib.contextmanager
@@ -33,13 +48,7 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
     """
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
-    os.close(fd)
-    tmp = Path(tmp_name)
-    # mkstemp creates the file 0600; a result should get the mode any new file would get.
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(tmp, 0o666 & ~umask)
+    tmp = _new_temporary(target)
     try:
         yield tmp
         os.replace(tmp, target)

@@ -16,6 +16,9 @@ Conventions:
 * Progress bars go to stderr, only when stderr is a terminal and ``--quiet`` is not given.
 * ``funcnet study`` exits with status 1 when it finished but some tasks could not be analysed
   (listed in ``study.json``), so that scripts notice.
+
+Length: over 600 lines because each command's options and their help texts are the command
+line's reference; every rule they apply lives in the library.
 """
 
 from __future__ import annotations
@@ -35,6 +38,7 @@ from typer.core import TyperGroup
 
 from funcnet import __version__
 from funcnet.errors import FuncnetError, ParameterError, WindowError
+from funcnet.parameters import NetworkParameters
 
 __all__ = ["app", "main"]
 
@@ -239,8 +243,7 @@ def simulate(
     simulated again. The same seed gives the same bytes.
     """
     with _reported_errors():
-        from funcnet.robot import paper_plan, write_plan
-        from funcnet.robot.plan import read_plan
+        from funcnet.robot import paper_plan, read_plan, write_plan
 
         trials = paper_plan() if plan == "paper" else read_plan(plan)
         traces = [out / f"{trial.name}.xml" for trial in trials]
@@ -271,6 +274,45 @@ def _file_identity(path: Path) -> tuple[int, int, int] | None:
 # --------------------------------------------------------------------------------------------
 # network
 
+# Every network parameter's default, for the help texts: NetworkParameters owns them.
+_DEFAULTS = NetworkParameters.defaults()
+
+
+def _default(name: str) -> str:
+    value = _DEFAULTS[name]
+    return f"\\[default: {'none' if value is None else value}]"
+
+
+# How the command spells the parameters it takes, for the messages of a bad value.
+_FLAGS = {
+    "dim": "--dim",
+    "delay": "--delay",
+    "rr": "--rr",
+    "cr": "--cr",
+    "mu": "--mu",
+    "mu_c": "--mu-c",
+    "mu_t": "--mu-t",
+    "metric": "--metric",
+    "normalize": "--normalize",
+    "measure": "--measure",
+    "rule": "--rule",
+    "theiler": "--theiler",
+    "degenerate": "--keep-degenerate",
+    "resample": "--resample",
+}
+
+
+@contextlib.contextmanager
+def _spelled_as_options() -> Iterator[None]:
+    """Re-spell a :class:`ParameterError` with the option's name (``--rr must be ...``)."""
+    try:
+        yield
+    except ParameterError as exc:
+        flag = _FLAGS.get(exc.parameter or "")
+        if flag is None:
+            raise
+        raise ParameterError(exc.spelled(flag), parameter=flag, detail=exc.detail) from None
+
 
 def _parse_window(text: str) -> tuple[float, float]:
     start_text, sep, stop_text = text.partition(":")
@@ -291,18 +333,12 @@ def _select_window(
     recording: Any, phase: str | None, bounds: tuple[float, float] | None, trace: Path
 ) -> Any:
     """The analysis window the options ask for (default: the whole recording)."""
-    from funcnet.robot.windows import Window, span_window
+    from funcnet.robot import span_window
 
     if bounds is not None:
         return span_window(*bounds)
     if phase is None:
-        # Signals logged on a coarser grid (IPO, 4 ms) have no value at the first tick: the
-        # whole recording is the span where every signal has one.
-        recorded = recording.data.index[recording.data.notna().all(axis=1).to_numpy()]
-        if recorded.empty:
-            raise WindowError(f"{trace}: no tick where every signal has a recorded value")
-        start, stop = float(recorded[0]), float(recorded[-1]) + recording.sample_period
-        return Window(label="whole recording", start=start, stop=stop)
+        return _whole_recording(recording, trace)
     windows = _phase_windows(recording)
     by_label = [w for w in windows if w.label == phase]
     by_phase = by_label or [w for w in windows if w.phase == phase]
@@ -319,11 +355,25 @@ def _select_window(
     )
 
 
-def _phase_windows(recording: Any) -> list[Any]:
-    from funcnet.robot import detect_phases
-    from funcnet.robot.windows import phase_windows
+def _whole_recording(recording: Any, trace: Path) -> Any:
+    """The span where every signal has a recorded value, as one window.
 
-    return phase_windows(detect_phases(recording))
+    Signals logged on a coarser grid (IPO, 4 ms) have no value at the first tick.
+    """
+    # TODO(robot): a domain rule; to move into funcnet.robot.windows.
+    from funcnet.robot import Window
+
+    recorded = recording.data.index[recording.data.notna().all(axis=1).to_numpy()]
+    if recorded.empty:
+        raise WindowError(f"{trace}: no tick where every signal has a recorded value")
+    start, stop = float(recorded[0]), float(recorded[-1]) + recording.sample_period
+    return Window(label="whole recording", start=start, stop=stop)
+
+
+def _phase_windows(recording: Any) -> list[Any]:
+    from funcnet.robot import detect_phases, phase_windows
+
+    return list(phase_windows(detect_phases(recording)))
 
 
 def _print_phases(recording: Any) -> None:
@@ -335,31 +385,6 @@ def _print_phases(recording: Any) -> None:
         columns=["label", "phase", "start", "stop"],
     )
     typer.echo(table.to_string(index=False, float_format=lambda value: f"{value:.6g}"))
-
-
-def _read_network_recording(
-    trace: Path,
-    signals: list[str] | None,
-    channels: Path | None,
-    axis: int | None,
-    resample: str | None,
-) -> Any:
-    """The recording with its derived signals, on the resampled grid when asked."""
-    from funcnet.study import read_recording
-
-    recording = read_recording(trace, signals=signals, channels=channels, axis=axis)
-    if resample is None:
-        return recording
-    from funcnet.robot import add_derived_signals
-    from funcnet.robot import resample as resampled
-    from funcnet.robot.preprocess import DERIVED_SIGNALS
-
-    # Derived signals (V, FE, TORSION) are recomputed from the resampled inputs, so that V is the
-    # velocity of the interpolated or decimated AP.
-    derived = [
-        c for c in recording.data.columns if c in DERIVED_SIGNALS and c not in recording.roles
-    ]
-    return add_derived_signals(resampled(recording, method=resample), derived)
 
 
 @app.command()
@@ -407,46 +432,70 @@ def network(
         ),
     ] = None,
     dim: Annotated[
-        int | None, typer.Option(help="Embedding dimension m (Eq. 1). \\[default: 3]")
+        int | None, typer.Option(help=f"Embedding dimension m (Eq. 1). {_default('dim')}")
     ] = None,
     delay: Annotated[
-        int | None, typer.Option(help="Embedding delay tau in samples (Eq. 1). \\[default: 10]")
+        int | None,
+        typer.Option(help=f"Embedding delay tau in samples (Eq. 1). {_default('delay')}"),
     ] = None,
     rr: Annotated[
         float | None,
-        typer.Option(help="Recurrence rate in each signal, fixes eps_X (Eq. 5). \\[default: 0.05]"),
+        typer.Option(help=f"Recurrence rate in each signal, fixes eps_X (Eq. 5). {_default('rr')}"),
     ] = None,
     cr: Annotated[
         float | None,
-        typer.Option(help="Cross-recurrence rate, fixes eps_XY (Eq. 3). \\[default: 0.05]"),
+        typer.Option(help=f"Cross-recurrence rate, fixes eps_XY (Eq. 3). {_default('cr')}"),
     ] = None,
     mu: Annotated[
         float | None,
-        typer.Option(help="Edge threshold on C_diff and T_diff (section 2.4). \\[default: 0.05]"),
+        typer.Option(help=f"Edge threshold on C_diff and T_diff (section 2.4). {_default('mu')}"),
+    ] = None,
+    mu_c: Annotated[
+        float | None,
+        typer.Option("--mu-c", help="Edge threshold on C_diff alone. \\[default: --mu]"),
+    ] = None,
+    mu_t: Annotated[
+        float | None,
+        typer.Option("--mu-t", help="Edge threshold on T_diff alone. \\[default: --mu]"),
     ] = None,
     metric: Annotated[
         str | None,
-        typer.Option(help="Distance: euclidean, supremum or manhattan. \\[default: euclidean]"),
+        typer.Option(
+            help="Distance: euclidean, supremum (alias chebyshev) or manhattan (alias "
+            f"cityblock). {_default('metric')}"
+        ),
     ] = None,
     normalize: Annotated[
         str | None,
         typer.Option(
             help="Per-window normalization: minmax, zscore or none (signals as recorded; the "
-            "library's normalize=None). \\[default: minmax]"
+            f"library's normalize=None). {_default('normalize')}"
         ),
     ] = None,
     measure: Annotated[
         str | None,
-        typer.Option(help="Edges from both, clustering or transitivity. \\[default: both]"),
+        typer.Option(help=f"Edges from both, clustering or transitivity. {_default('measure')}"),
     ] = None,
     rule: Annotated[
         str | None,
-        typer.Option(help="Threshold rule: funcnet or pyunicorn. \\[default: funcnet]"),
+        typer.Option(help=f"Threshold rule: funcnet or pyunicorn. {_default('rule')}"),
     ] = None,
     theiler: Annotated[
         int | None,
-        typer.Option(help="Theiler window: exclude pairs with |i-j| <= THEILER. \\[default: 0]"),
+        typer.Option(
+            help="Theiler window: exclude pairs with |i-j| <= THEILER (0 excludes only the "
+            f"diagonal, as pyrqa's theiler=1). {_default('theiler')}"
+        ),
     ] = None,
+    keep_degenerate: Annotated[
+        bool,
+        typer.Option(
+            "--keep-degenerate",
+            metavar="",
+            help="Keep pairs with a degenerate recurrence structure (too few distinct states) "
+            "as edges, flagged degenerate; by default they are in the pairs table only.",
+        ),
+    ] = False,
     channels: Annotated[
         Path | None,
         typer.Option("--channels", help="Channel map TOML (controller signal names -> roles)."),
@@ -472,7 +521,8 @@ def network(
     A negative difference reads as X -> Y (kind x->y); it may reflect how differently the two
     signals fill their phase space rather than coupling (README, "Direction"). Without -o the
     pairs table is printed: the main columns as a table on a terminal, every column as plain
-    text when piped.
+    text when piped. Degenerate pairs (too few distinct states) are flagged and are no edges
+    unless --keep-degenerate.
 
     Without --phase or --window the whole recording is one window: slow for long traces (the
     cost grows with the cube of the window's length).
@@ -482,38 +532,46 @@ def network(
             raise ParameterError(
                 f"-o {output}: unknown format, use one of {', '.join(_NETWORK_SUFFIXES)}"
             )
-        from funcnet.network import check_parameters
-        from funcnet.robot import phase_networks
-
-        names = None if signals is None else [s.strip() for s in signals.split(",") if s.strip()]
         given = {
             "dim": dim,
             "delay": delay,
             "rr": rr,
             "cr": cr,
             "mu": mu,
+            "mu_c": mu_c,
+            "mu_t": mu_t,
             "metric": metric,
             "measure": measure,
             "rule": rule,
             "theiler": theiler,
         }
-        parameters: dict[str, Any] = {k: v for k, v in given.items() if v is not None}
+        overrides: dict[str, Any] = {k: v for k, v in given.items() if v is not None}
         if normalize is not None:
-            parameters["normalize"] = None if normalize.lower() == "none" else normalize
+            overrides["normalize"] = None if normalize.lower() == "none" else normalize
+        if keep_degenerate:
+            overrides["degenerate"] = "keep"
         # Options are checked before the trace is read: a bad one is reported as itself, not
         # as whatever the computation would stumble on first.
-        check_parameters(**parameters)
+        with _spelled_as_options():
+            parameters = NetworkParameters(**overrides)
         if phase is not None and window is not None:
             raise ParameterError("give --phase or --window, not both")
         bounds = None if window is None else _parse_window(window)
-        if resample not in (None, "decimate", "interpolate"):
-            raise ParameterError(f"--resample must be decimate or interpolate, got {resample!r}")
+        names = None if signals is None else [s.strip() for s in signals.split(",") if s.strip()]
+        from funcnet.pipeline import window_networks
+        from funcnet.robot import read_recording
+
         # One network has no steps to count: the bar only shows that work is going on.
         with _progress(quiet, "network"):
-            recording = _read_network_recording(trace, names, channels, axis, resample)
+            with _spelled_as_options():
+                recording = read_recording(
+                    trace, signals=names, channels=channels, axis=axis, resample=resample
+                )
             if not list_phases:
                 chosen = _select_window(recording, phase, bounds, trace)
-                (net,) = phase_networks(recording, [chosen], signals=names, **parameters).values()
+                (net,) = window_networks(
+                    recording, [chosen], signals=names, parameters=parameters
+                ).values()
         if list_phases:
             _print_phases(recording)
             return
@@ -543,43 +601,37 @@ def _write_network(net: Any, output: Path) -> None:
         figure.savefig(tmp, format=suffix[1:], bbox_inches="tight")
 
 
-# Columns of the pairs table shown on a terminal; piped output and -o .json hold them all.
-_TERMINAL_COLUMNS = (
-    "x",
-    "y",
-    "kind",
-    "weight",
-    "c_diff",
-    "t_diff",
-    "c_xy",
-    "c_yx",
-    "t_xy",
-    "t_yx",
-    "eps_ordered",
-    "rate_exceeded",
-)
-# The columns kept on a terminal too narrow for the others.
-_NARROW_COLUMNS = _TERMINAL_COLUMNS[:6]
+# The pairs-table columns shown on a terminal; piped output and -o .json hold them all.
+_MAIN_COLUMNS = ("x", "y", "kind", "weight", "c_diff", "t_diff")
+_WIDE_COLUMNS = ("c_xy", "c_yx", "t_xy", "t_yx", "eps_ordered", "rate_exceeded")
+_FLAG_COLUMN = "degenerate"
 _PAIRS_CAPTION = (
-    "negative diff reads as x->y (an asymmetry, not proof of a driver); "
-    "-o net.json keeps every column"
+    "negative diff reads as x->y (an asymmetry, not proof of a driver); degenerate pairs are "
+    "{degenerate}; -o net.json keeps every column"
 )
+_DEGENERATE_CAPTION = {"drop": "no edges", "keep": "flagged edges"}
 
 
 def _is_terminal(stream: Any) -> bool:
     return bool(getattr(stream, "isatty", lambda: False)())
 
 
+def _shown_columns(narrow: bool) -> list[str]:
+    """The columns of a terminal's table (all names of funcnet.network.schema's pairs)."""
+    groups = (_MAIN_COLUMNS, () if narrow else _WIDE_COLUMNS, (_FLAG_COLUMN,))
+    return [name for group in groups for name in group]
+
+
 def _pairs_table(net: Any, columns: Sequence[str], number_format: str) -> Any:
     from rich.table import Table
 
     pairs = net.pairs
-    shown = [c for c in columns if c in pairs.columns]
-    table = Table(title=net.label, caption=_PAIRS_CAPTION)
-    for column in shown:
+    caption = _PAIRS_CAPTION.format(degenerate=_DEGENERATE_CAPTION[net.parameters.degenerate])
+    table = Table(title=net.label, caption=caption)
+    for column in columns:
         numeric = pairs[column].dtype.kind == "f"
         table.add_column(column, justify="right" if numeric else "left", no_wrap=True)
-    for row in pairs[shown].itertuples(index=False):
+    for row in pairs[list(columns)].itertuples(index=False):
         table.add_row(*(format(v, number_format) if isinstance(v, float) else str(v) for v in row))
     return table
 
@@ -588,18 +640,20 @@ def _print_pairs(net: Any) -> None:
     """The pairs table: a rich table on a terminal, every column as plain text otherwise.
 
     A terminal too narrow for the main columns gets fewer of them, at 3 significant digits,
-    rather than every number cut short.
+    rather than every number cut short. The ``degenerate`` flag is always shown.
     """
+    from funcnet.network.schema import PAIR_COLUMNS
+
     if not _is_terminal(sys.stdout):
-        typer.echo(net.pairs.to_string(index=False))
+        typer.echo(net.pairs.loc[:, list(PAIR_COLUMNS)].to_string(index=False))
         return
     from rich.console import Console
 
     console = Console()
-    table = _pairs_table(net, _TERMINAL_COLUMNS, ".4f")
+    table = _pairs_table(net, _shown_columns(narrow=False), ".4f")
     # Measured without the terminal's limit: the width the table needs to show every number.
     if console.measure(table, options=console.options.update_width(10_000)).maximum > console.width:
-        table = _pairs_table(net, _NARROW_COLUMNS, ".3g")
+        table = _pairs_table(net, _shown_columns(narrow=True), ".3g")
     console.print(table)
 
 

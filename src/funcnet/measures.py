@@ -21,39 +21,51 @@ The triangle counts use bit-packed rows: ``tri_v = sum_{p in N(v)} popcount(A_Y[
 over the words between v's first and last cross-neighbour, each unordered pair once, in a
 compiled parallel kernel (about ``M_X * k * M_Y / 128`` word operations for mean cross-degree
 ``k``). Thresholds follow the rule of :mod:`funcnet.recurrence` (exact k-th order statistic of
-the candidate distances, ``k = max(1, ceil(rate * P - 1e-9))``, ``d <= eps``; or
-``rule="pyunicorn"``). Rates default to the paper's ``RR = CR = 0.05`` (section 3.4).
+the candidate distances, ``k = max(1, ceil(rate * P))`` for the rate as written in decimal,
+``d <= eps``; or ``rule="pyunicorn"``). Parameters come as a
+:class:`funcnet.parameters.NetworkParameters` (``parameters=``) and keyword overrides; the
+defaults are the paper's ``RR = CR = 0.05`` (section 3.4).
+
+A pair is **degenerate** when one of its blocks says nothing: a threshold of 0 or an achieved
+rate more than twice its target (too few distinct states, e.g. a signal that barely moves), or
+a constant signal. Its numbers are computed as for any pair, but ``degenerate`` is True and
+``degenerate_reason`` names the block; such a pair says nothing about direction.
 
 Signals are used as given: nothing in this module normalizes them, so a common threshold
 ``eps_xy`` compares raw amplitudes. :func:`funcnet.network.functional_network` normalizes each
 signal of the data it receives (one analysis window) first, by default min-max (section 3.3).
+
+Length: over 600 lines because of the numpydoc of seven public names; the code is about 330.
 """
 
 from __future__ import annotations
 
-import numbers
 import os
 import sys
 import warnings
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numba import njit, prange
 
-from funcnet.errors import ParameterError, SignalError, ThresholdWarning
+from funcnet._kernels import _cross_triangles
+from funcnet.embedding import signal_states
+from funcnet.errors import (
+    DegenerateWarning,
+    FuncnetWarning,
+    ParameterError,
+    SignalError,
+    ThresholdWarning,
+)
+from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
 from funcnet.recurrence import (
     PackedRecurrence,
-    _check_eps,
-    _check_options,
-    _check_rate,
+    _check_channels,
     _isrn_blocks,
-    _lowest_bit,
-    _popcount,
+    _signal_thresholds,
     auto_recurrence,
     cross_recurrence,
-    signal_states,
 )
 
 __all__ = [
@@ -61,61 +73,17 @@ __all__ = [
     "isrn_measures",
     "cross_measures",
     "pairwise_cross_measures",
+    "threshold_warnings",
     "local_cross_clustering",
     "cross_degree",
 ]
 
 
-@njit(cache=True)
-def _row_triangles(row, auto_rows):
-    """``(k_v, tri_v)`` of one packed cross-recurrence row against the packed ``auto_rows``."""
-    first = -1
-    last = -1
-    degree = 0
-    for w in range(row.size):
-        if row[w]:
-            if first < 0:
-                first = w
-            last = w
-            degree += np.int64(_popcount(row[w]))
-    # Each unordered neighbour pair p < q is counted once: for neighbour p, the AND runs over
-    # the neighbours above p only (the rest of p's word, then the words up to v's last one).
-    # Contiguous word ranges let the compiler vectorize the popcounts.
-    pairs = 0
-    for w in range(max(first, 0), last + 1):
-        word = row[w]
-        row_tail = row[w + 1 : last + 1]
-        while word:
-            p = w * 64 + np.int64(_lowest_bit(word))
-            word &= word - np.uint64(1)
-            neighbours = auto_rows[p]
-            pairs += np.int64(_popcount(neighbours[w] & word))
-            neighbours_tail = neighbours[w + 1 : last + 1]
-            for s in range(row_tail.size):
-                pairs += np.int64(_popcount(neighbours_tail[s] & row_tail[s]))
-    return degree, 2 * pairs
-
-
-@njit(cache=True, parallel=True)
-def _cross_triangles(cross_rows, auto_rows):
-    """Per row v of ``cross_rows``: cross-degree k_v and ordered cross-triangles tri_v (Eq. 6-7)."""
-    n_rows = cross_rows.shape[0]
-    degree = np.zeros(n_rows, dtype=np.int64)
-    triangles = np.zeros(n_rows, dtype=np.int64)
-    for v in prange(n_rows):
-        degree[v], triangles[v] = _row_triangles(cross_rows[v], auto_rows)
-    return degree, triangles
-
-
 def _cross_counts(
-    a_x: PackedRecurrence,
-    a_y: PackedRecurrence,
-    cr_xy: PackedRecurrence,
-    cr_yx: PackedRecurrence | None = None,
+    a_x: PackedRecurrence, a_y: PackedRecurrence, cr_xy: PackedRecurrence
 ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
     """``(k_v, tri_v)`` of every node of X towards Y, then of every node of Y towards X."""
-    if cr_yx is None:
-        cr_yx = cr_xy.transposed()
+    cr_yx = cr_xy.transposed()
     return _cross_triangles(cr_xy.rows, a_y.rows), _cross_triangles(cr_yx.rows, a_x.rows)
 
 
@@ -145,21 +113,26 @@ class CrossMeasures:
         ``C^XY - C^YX`` and ``T^XY - T^YX`` (Eq. 10); negative reads as X -> Y.
     eps_x, eps_y, eps_xy : float
         Thresholds of ``A_X``, ``A_Y``, ``CR_XY`` (float64).
-    rr_x, rr_y, cr : float
-        Achieved rates (recurrent / candidate pairs).
+    achieved_rr_x, achieved_rr_y, achieved_cr : float
+        Achieved rates (recurrent / candidate pairs); the targets are ``parameters.rr`` and
+        ``parameters.cr``.
     eps_ordered : bool
         ``eps_xy < min(eps_x, eps_y)``, as section 2.2 of the paper asks for a modular ISRN.
     rate_exceeded : bool
         Ties at a threshold made an achieved rate exceed its target.
+    degenerate : bool
+        A block's recurrence structure is degenerate: threshold 0, an achieved rate more than
+        twice its target (too few distinct states), or a constant signal. The measures of such
+        a pair say nothing about direction.
+    degenerate_reason : str
+        ``""`` unless degenerate; else each degenerate block and why, e.g. ``"signal x:
+        threshold 0 (too few distinct states)"``, joined by ``"; "``.
     m_x, m_y : int
         Numbers of embedded states.
-    parameters : dict
-        The parameters that produced the values (dim, delay, rr, cr, eps, metric, rule, theiler).
-    degenerate : tuple of str
-        The blocks whose recurrence structure is degenerate -- ``"x"`` (``A_X``), ``"y"``
-        (``A_Y``), ``"xy"`` (``CR_XY``): threshold 0, or an achieved rate more than twice its
-        target. Too few distinct states (a signal that barely moves) cause it; the measures of
-        such a pair say nothing about direction.
+    parameters : NetworkParameters or None
+        The parameters that produced the values (for a pair of a larger set, restricted to the
+        pair: per-signal ``rr`` and ``eps`` become ``(x's, y's)``); None only from
+        :func:`isrn_measures` called without them.
     """
 
     c_xy: float
@@ -171,20 +144,30 @@ class CrossMeasures:
     eps_x: float
     eps_y: float
     eps_xy: float
-    rr_x: float
-    rr_y: float
-    cr: float
+    achieved_rr_x: float
+    achieved_rr_y: float
+    achieved_cr: float
     eps_ordered: bool
     rate_exceeded: bool
+    degenerate: bool
+    degenerate_reason: str
     m_x: int
     m_y: int
-    parameters: dict[str, Any] = field(default_factory=dict)
-    degenerate: tuple[str, ...] = ()
+    parameters: NetworkParameters | None
 
 
-def _is_degenerate(block: PackedRecurrence) -> bool:
-    """Threshold 0, or an achieved rate more than twice its target: too few distinct states."""
-    return block.eps == 0.0 or (block.target is not None and block.rate > 2 * block.target)
+def _block_reason(label: str, block: PackedRecurrence) -> str:
+    """Why a block is degenerate (``""`` when it is not)."""
+    if block.constant:
+        return f"{label}: constant (a single distinct state)"
+    if block.eps == 0.0:
+        return f"{label}: threshold 0 (too few distinct states)"
+    if block.target is not None and block.rate > 2 * block.target:
+        return (
+            f"{label}: achieved rate {block.rate:.3g} over twice its target {block.target:.3g} "
+            "(too few distinct states)"
+        )
+    return ""
 
 
 def isrn_measures(
@@ -192,14 +175,15 @@ def isrn_measures(
     a_y: PackedRecurrence,
     cr_xy: PackedRecurrence,
     *,
-    cr_yx: PackedRecurrence | None = None,
-    parameters: Mapping[str, Any] | None = None,
+    parameters: NetworkParameters | None = None,
+    names: tuple[str, str] = ("x", "y"),
 ) -> CrossMeasures:
     """Cross measures of an ISRN given as precomputed packed blocks (Eq. 6-10).
 
     This is the kernel behind :func:`cross_measures`; call it directly to reuse ``A_X`` and
     ``A_Y`` across many cross-recurrences (functional networks, surrogate tests). It neither
-    validates signals nor warns.
+    validates signals nor warns. ``CR_YX`` is computed as the transpose of ``cr_xy`` (cheap
+    next to the triangle counts), so that it cannot disagree with it.
 
     Parameters
     ----------
@@ -209,10 +193,10 @@ def isrn_measures(
     cr_xy : PackedRecurrence
         Cross-recurrence of X (rows) and Y (columns), from
         :func:`funcnet.recurrence.cross_recurrence`.
-    cr_yx : PackedRecurrence, optional
-        ``cr_xy.transposed()``, if already at hand.
-    parameters : mapping, optional
+    parameters : NetworkParameters, optional
         Stored in the result's ``parameters``.
+    names : (str, str)
+        How ``degenerate_reason`` calls X and Y.
 
     Returns
     -------
@@ -221,7 +205,7 @@ def isrn_measures(
     Raises
     ------
     ParameterError
-        ``cr_xy`` is not ``M_X x M_Y``.
+        ``a_x`` or ``a_y`` is not square, or ``cr_xy`` is not ``M_X x M_Y``.
 
     References
     ----------
@@ -230,23 +214,38 @@ def isrn_measures(
     Examples
     --------
     >>> import numpy as np
-    >>> from funcnet.recurrence import auto_recurrence, cross_recurrence, embed
+    >>> from funcnet.embedding import embed
+    >>> from funcnet.recurrence import auto_recurrence, cross_recurrence
     >>> t = np.linspace(0, 8 * np.pi, 251)
     >>> xs, ys = embed(np.sin(t), 3, 10), embed(np.sin(1.5 * t) + 0.3 * np.sin(t), 3, 10)
     >>> a_x, a_y = auto_recurrence(xs, rr=0.05), auto_recurrence(ys, rr=0.05)
     >>> result = isrn_measures(a_x, a_y, cross_recurrence(xs, ys, cr=0.01))
-    >>> round(result.c_xy, 4), round(result.c_yx, 4)
-    (0.2573, 0.1166)
+    >>> round(result.c_xy, 4), round(result.c_yx, 4), result.degenerate
+    (0.2573, 0.1166, False)
     """
+    for label, block in (("a_x", a_x), ("a_y", a_y)):
+        if block.shape[0] != block.shape[1]:
+            raise ParameterError.of(label, f"must be square, got shape {block.shape}")
     if cr_xy.shape != (a_x.shape[0], a_y.shape[0]):
-        raise ParameterError(
-            f"cr_xy has shape {cr_xy.shape}, expected (M_x, M_y) = ({a_x.shape[0]}, {a_y.shape[0]})"
+        raise ParameterError.of(
+            "cr_xy",
+            f"has shape {cr_xy.shape}, expected (M_x, M_y) = ({a_x.shape[0]}, {a_y.shape[0]})",
         )
-    xy, yx = _cross_counts(a_x, a_y, cr_xy, cr_yx)
+    xy, yx = _cross_counts(a_x, a_y, cr_xy)
     c_xy = float(_local_clustering(*xy).mean())
     c_yx = float(_local_clustering(*yx).mean())
     t_xy = _transitivity(*xy)
     t_yx = _transitivity(*yx)
+    x, y = names
+    reasons = [
+        reason
+        for reason in (
+            _block_reason(f"signal {x}", a_x),
+            _block_reason(f"signal {y}", a_y),
+            _block_reason(f"cross-recurrence ({x}, {y})", cr_xy),
+        )
+        if reason
+    ]
     return CrossMeasures(
         c_xy=c_xy,
         c_yx=c_yx,
@@ -257,18 +256,152 @@ def isrn_measures(
         eps_x=a_x.eps,
         eps_y=a_y.eps,
         eps_xy=cr_xy.eps,
-        rr_x=a_x.rate,
-        rr_y=a_y.rate,
-        cr=cr_xy.rate,
+        achieved_rr_x=a_x.rate,
+        achieved_rr_y=a_y.rate,
+        achieved_cr=cr_xy.rate,
         eps_ordered=cr_xy.eps < min(a_x.eps, a_y.eps),
         rate_exceeded=a_x.rate_exceeded or a_y.rate_exceeded or cr_xy.rate_exceeded,
+        degenerate=bool(reasons),
+        degenerate_reason="; ".join(reasons),
         m_x=a_x.shape[0],
         m_y=a_y.shape[0],
-        parameters=dict(parameters or {}),
-        degenerate=tuple(
-            name for name, block in (("x", a_x), ("y", a_y), ("xy", cr_xy)) if _is_degenerate(block)
-        ),
+        parameters=parameters,
     )
+
+
+# --------------------------------------------------------------------------------------------
+# warnings, built from the results' flags
+
+
+def _targets(result: CrossMeasures) -> tuple[float | None, float | None, float | None]:
+    """Target rates of (A_X, A_Y, CR_XY); None where an explicit threshold was used or the
+    parameters do not say (none stored, or per-signal values of more than the pair)."""
+    p = result.parameters
+    if p is None:
+        return None, None, None
+    auto, cross = p.eps if p.eps is not None else (None, None)
+    targets: list[float | None] = []
+    for side in (0, 1):
+        rate: Any = p.rr[side] if isinstance(p.rr, tuple) and len(p.rr) == 2 else p.rr
+        eps = auto[side] if isinstance(auto, tuple) and len(auto) == 2 else auto
+        known = not isinstance(rate, tuple) and not isinstance(eps, tuple)
+        targets.append(float(rate) if known and eps is None else None)
+    return targets[0], targets[1], None if cross is not None else p.cr
+
+
+def _degenerate_blocks(result: CrossMeasures) -> tuple[bool, bool, bool]:
+    """Which blocks of a degenerate pair are degenerate, from its numbers and parameters."""
+    targets = _targets(result)
+    blocks = []
+    for eps, rate, target, auto in (
+        (result.eps_x, result.achieved_rr_x, targets[0], True),
+        (result.eps_y, result.achieved_rr_y, targets[1], True),
+        (result.eps_xy, result.achieved_cr, targets[2], False),
+    ):
+        # A constant signal at an explicit threshold shows as a complete A_X (rate 1).
+        blocks.append(
+            eps == 0.0
+            or (target is not None and rate > 2 * target)
+            or (auto and target is None and rate == 1.0)
+        )
+    return blocks[0], blocks[1], blocks[2]
+
+
+def threshold_warnings(
+    results: Mapping[tuple[Any, Any], CrossMeasures],
+) -> list[FuncnetWarning]:
+    """The warnings the flags of ``results`` call for: at most one per problem.
+
+    Pure: nothing is emitted (``warnings.warn(w)`` each to emit them, as
+    :func:`pairwise_cross_measures` does with ``warn=True``). Signal names come from the keys.
+
+    Parameters
+    ----------
+    results : mapping
+        ``{(x, y): CrossMeasures}``, e.g. from :func:`pairwise_cross_measures`.
+
+    Returns
+    -------
+    list of FuncnetWarning
+        In this order, each only if some pair has the problem:
+        :class:`~funcnet.errors.ThresholdWarning` ``problem="eps_order"`` (``eps_xy`` not below
+        ``eps_x`` and ``eps_y``), ``problem="rate_exceeded"`` (ties pushed a rate slightly above
+        its target; degenerate pairs are not listed again), and
+        :class:`~funcnet.errors.DegenerateWarning` ``problem="degenerate"`` naming the signals
+        whose structure is degenerate in ``signals``. ``pairs`` lists the pairs concerned.
+
+    References
+    ----------
+    Section 2.2 (``eps_xy < eps_x, eps_y`` for a modular ISRN).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0, 8 * np.pi, 251)
+    >>> result = cross_measures(np.sin(t), np.cos(t), eps=(0.1, 0.2), warn=False)
+    >>> [(w.problem, w.pairs) for w in threshold_warnings({("RP", "AP"): result})]
+    [('eps_order', (('RP', 'AP'),))]
+    """
+    named = {(str(x), str(y)): r for (x, y), r in results.items()}
+    label = {pair: f"({pair[0]}, {pair[1]})" for pair in named}
+    found: list[FuncnetWarning] = []
+    unordered = [pair for pair, r in named.items() if not r.eps_ordered]
+    if unordered:
+        found.append(
+            ThresholdWarning(
+                f"eps_xy is not below eps_x and eps_y for {len(unordered)} pair(s): "
+                f"{', '.join(label[p] for p in unordered)}; section 2.2 of the paper asks "
+                "eps_xy < eps_x, eps_y for a modular ISRN (eps_ordered is False)",
+                problem="eps_order",
+                pairs=tuple(unordered),
+            )
+        )
+    exceeded = [pair for pair, r in named.items() if r.rate_exceeded and not r.degenerate]
+    if exceeded:
+        found.append(
+            ThresholdWarning(
+                "ties at a threshold pushed an achieved rate above its target for "
+                f"{len(exceeded)} pair(s): {', '.join(label[p] for p in exceeded)}; see "
+                "achieved_rr_x, achieved_rr_y, achieved_cr (rate_exceeded is True)",
+                problem="rate_exceeded",
+                pairs=tuple(exceeded),
+            )
+        )
+    degenerate = [pair for pair, r in named.items() if r.degenerate]
+    if degenerate:
+        causes: dict[str, str] = {}  # signal or pair -> its achieved rate and threshold
+        signals: list[str] = []
+        for pair in degenerate:
+            r = named[pair]
+            x, y = pair
+            in_x, in_y, in_xy = _degenerate_blocks(r)
+            for flagged, name, rate, eps in (
+                (in_x, x, r.achieved_rr_x, r.eps_x),
+                (in_y, y, r.achieved_rr_y, r.eps_y),
+            ):
+                if flagged and name not in signals:
+                    signals.append(name)
+                    causes[f"signal {name}"] = f"rr {rate:.3g}, eps {eps:.3g}"
+            if in_xy:
+                causes.setdefault(
+                    f"cross-recurrence of ({x}, {y})",
+                    f"cr {r.achieved_cr:.3g}, eps {r.eps_xy:.3g}",
+                )
+        found.append(
+            DegenerateWarning(
+                "degenerate recurrence structure"
+                + (" of " if causes else "")
+                + "; ".join(f"{cause} ({numbers})" for cause, numbers in causes.items())
+                + ": threshold 0, an achieved rate more than twice its target or a constant "
+                "signal, i.e. too few distinct states (e.g. a signal that barely moves); the "
+                f"arrows of {len(degenerate)} pair(s) are meaningless: "
+                f"{', '.join(label[p] for p in degenerate)}",
+                problem="degenerate",
+                signals=tuple(signals),
+                pairs=tuple(degenerate),
+            )
+        )
+    return found
 
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
@@ -286,77 +419,22 @@ def _caller_stacklevel() -> int:
     return level
 
 
-def _degenerate_message(results: Mapping[tuple[str, str], CrossMeasures]) -> str | None:
-    """The warning for pairs with a degenerate block, naming the signals behind it; or None."""
-    causes: dict[str, str] = {}  # signal or pair -> its achieved rate and threshold
-    pairs = []
-    for (x, y), r in results.items():
-        if not r.degenerate:
-            continue
-        pairs.append(f"({x}, {y})")
-        if "x" in r.degenerate:
-            causes.setdefault(f"signal {x}", f"rr {r.rr_x:.3g}, eps {r.eps_x:.3g}")
-        if "y" in r.degenerate:
-            causes.setdefault(f"signal {y}", f"rr {r.rr_y:.3g}, eps {r.eps_y:.3g}")
-        if "xy" in r.degenerate:
-            causes.setdefault(
-                f"cross-recurrence of ({x}, {y})", f"cr {r.cr:.3g}, eps {r.eps_xy:.3g}"
-            )
-    if not pairs:
-        return None
-    return (
-        "degenerate recurrence structure of "
-        + "; ".join(f"{cause} ({numbers})" for cause, numbers in causes.items())
-        + ": threshold 0 or an achieved rate more than twice its target, i.e. too few distinct "
-        "states (e.g. a signal that barely moves); the arrows of "
-        f"{len(pairs)} pair(s) are meaningless: {', '.join(pairs)}"
-    )
+def _warn(results: Mapping[tuple[Any, Any], CrossMeasures]) -> None:
+    for warning in threshold_warnings(results):
+        warnings.warn(warning, stacklevel=_caller_stacklevel())
 
 
-def _warn_thresholds(results: Mapping[tuple[str, str], CrossMeasures]) -> None:
-    """At most one ThresholdWarning per kind of problem, naming the pairs (and signals) with it.
-
-    A degenerate block (:attr:`CrossMeasures.degenerate`) gets its own warning; the generic one
-    about ties covers only the pairs whose rates overshoot slightly.
-    """
-    labels = {pair: f"({pair[0]}, {pair[1]})" for pair in results}
-    problems = (
-        (
-            [labels[pair] for pair, r in results.items() if not r.eps_ordered],
-            "eps_xy is not below eps_x and eps_y",
-            "section 2.2 of the paper asks eps_xy < eps_x, eps_y for a modular ISRN "
-            "(eps_ordered is False)",
-        ),
-        (
-            [labels[pair] for pair, r in results.items() if r.rate_exceeded and not r.degenerate],
-            "ties at a threshold pushed an achieved rate above its target",
-            "see rr_x, rr_y, cr (rate_exceeded is True)",
-        ),
-    )
-    messages = [
-        f"{problem} for {len(pairs)} pair(s): {', '.join(pairs)}; {advice}"
-        for pairs, problem, advice in problems
-        if pairs
-    ]
-    degenerate = _degenerate_message(results)
-    if degenerate is not None:
-        messages.append(degenerate)
-    for message in messages:
-        warnings.warn(message, ThresholdWarning, stacklevel=_caller_stacklevel())
+# --------------------------------------------------------------------------------------------
+# signals -> measures
 
 
 def cross_measures(
     x: Any,
     y: Any,
     *,
-    dim: int = 3,
-    delay: int = 10,
-    rr: float = 0.05,
-    cr: float = 0.05,
-    eps: Any = None,
-    metric: str = "euclidean",
-    rule: str = "funcnet",
-    theiler: int = 0,
+    parameters: NetworkParameters | None = None,
+    warn: bool = True,
+    **overrides: Any,
 ) -> CrossMeasures:
     """Global cross-clustering and cross-transitivity of two signals, both directions.
 
@@ -365,48 +443,49 @@ def cross_measures(
     data (window) it is given, min-max by default, before it calls the measures.
 
     Builds the ISRN of Eq. 4 (thresholds by rate: ``eps`` is the k-th smallest candidate distance,
-    ``k = max(1, ceil(rate * P - 1e-9))``, with ``P = (M - w)(M - w - 1)`` ordered pairs
-    ``|i - j| > w`` (``w = theiler``) for ``A_X``, ``A_Y`` and ``P = M_X M_Y`` for ``CR_XY``) and
-    returns ``C^XY``, ``C^YX``, ``T^XY``, ``T^YX`` and their differences (Eq. 6-10).
+    ``k = max(1, ceil(rate * P))`` exactly for the decimal rate, with ``P = (M - w)(M - w - 1)``
+    ordered pairs ``|i - j| > w`` (``w = theiler``) for ``A_X``, ``A_Y`` and ``P = M_X M_Y`` for
+    ``CR_XY``) and returns ``C^XY``, ``C^YX``, ``T^XY``, ``T^YX`` and their differences
+    (Eq. 6-10).
 
     Parameters
     ----------
-    x, y : array_like, shapes (N_X,) and (N_Y,)
-        The signals, used as given (no normalization); their lengths may differ.
-    dim, delay : int
-        Embedding dimension and delay in samples (Eq. 1); the paper's illustration uses 3, 10.
-    rr : float in (0, 1)
-        Recurrence rate of ``A_X`` and ``A_Y`` (default 0.05, section 3.4).
-    cr : float in (0, 1)
-        Cross-recurrence rate of ``CR_XY`` (default 0.05).
-    eps : (eps_x, eps_y, eps_xy), optional
-        Explicit thresholds; each overrides its rate (a None entry keeps the rate).
-    metric : {"euclidean", "supremum", "manhattan"}
-        Distance in phase space (Eq. 2-3 use Euclidean).
-    rule : {"funcnet", "pyunicorn"}
-        ``"funcnet"``: the exact rule above with ``d <= eps``; ``"pyunicorn"``: pyunicorn 1.0.0's
-        (float32 input, index ``int(rate (P - 1))`` of the sorted full matrix, ``d < eps``).
-    theiler : int
-        Pairs with ``|i - j| <= theiler`` are left out of ``A_X``, ``A_Y`` and their rates.
+    x, y : array_like, shapes (N_X,) and (N_Y,), or (N, c) multichannel nodes
+        The signals, used as given (no normalization); their lengths may differ. A 2-D signal
+        is one node: each channel is embedded and the states concatenated.
+    parameters : NetworkParameters, optional
+        Uses ``dim``, ``delay`` (Eq. 1), ``rr`` (one rate, or ``(rr_x, rr_y)``), ``cr``,
+        ``eps`` (``(auto, cross)``: ``auto`` one threshold or ``(eps_x, eps_y)``; a None entry
+        keeps its rate), ``metric``, ``rule`` (``"funcnet"``: the exact rule above with
+        ``d <= eps``; ``"pyunicorn"``: pyunicorn 1.0.0's), ``theiler`` (pairs with
+        ``|i - j| <= theiler`` are left out of ``A_X``, ``A_Y`` and their rates). Defaults: the
+        paper's (:class:`~funcnet.parameters.NetworkParameters`).
+    warn : bool
+        Emit :func:`threshold_warnings` of the result (default True).
+    **overrides
+        Any of those fields (``rr=0.1``, ``eps=(0.2, 0.15)``...).
 
     Returns
     -------
     CrossMeasures
-        Negative ``c_diff``/``t_diff`` read as X -> Y (module notes).
+        Negative ``c_diff``/``t_diff`` read as X -> Y (module notes). A constant signal, or one
+        with too few distinct states, gives a ``degenerate`` result, not an error.
 
     Raises
     ------
     ParameterError
-        ``rr``/``cr`` outside (0, 1), non-positive ``eps``, unknown ``metric``/``rule``, bad
-        ``dim``/``delay``/``theiler``.
+        A bad parameter (named), a parameter that is not a pair's (``mu``...), ``eps`` not
+        ``(auto, cross)``.
     SignalError
-        ``x`` or ``y`` holds NaN/inf or is too short for the embedding; the message names it.
+        ``x`` or ``y`` holds NaN/inf, is too short (fewer than 7 states), or has amplitudes
+        whose distances overflow float64; the message names it.
 
     Warns
     -----
     ThresholdWarning
-        ``eps_xy`` is not below ``eps_x`` and ``eps_y``, or ties pushed a rate above target; a
-        separate one when a structure is degenerate (:attr:`CrossMeasures.degenerate`).
+        ``eps_xy`` is not below ``eps_x`` and ``eps_y``, or ties pushed a rate above target.
+    DegenerateWarning
+        The pair is degenerate (:attr:`CrossMeasures.degenerate`).
 
     References
     ----------
@@ -420,101 +499,78 @@ def cross_measures(
     >>> t = np.linspace(0, 8 * np.pi, 251)
     >>> x = np.sin(t)
     >>> y = np.sin(1.5 * t) + 0.3 * x
-    >>> result = cross_measures(x, y, dim=3, delay=10, eps=(0.2, 0.4, 0.15))
+    >>> result = cross_measures(x, y, dim=3, delay=10, eps=((0.2, 0.4), 0.15))
     >>> round(result.c_xy, 4), round(result.c_yx, 4), result.eps_ordered
     (0.0866, 0.0519, True)
     """
-    parameters: dict[str, Any] = {
-        "dim": dim,
-        "delay": delay,
-        "rr": rr,
-        "cr": cr,
-        "eps": eps,
-        "metric": metric,
-        "rule": rule,
-        "theiler": theiler,
-    }
-    a_x, a_y, cr_xy = _isrn_blocks(x, y, **parameters)
-    parameters["eps"] = None if eps is None else tuple(eps)
-    result = isrn_measures(a_x, a_y, cr_xy, parameters=parameters)
-    _warn_thresholds({("x", "y"): result})
+    p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
+    a_x, a_y, cr_xy = _isrn_blocks(x, y, p)
+    result = isrn_measures(a_x, a_y, cr_xy, parameters=p)
+    if warn:
+        _warn({("x", "y"): result})
     return result
 
 
-def _pairwise_eps(eps: Any, n_signals: int) -> tuple[list[float | None], float | None]:
-    """Split pairwise ``eps`` (None or {"auto": float | sequence, "cross": float})."""
-    if eps is None:
-        return [None] * n_signals, None
-    if not isinstance(eps, Mapping) or not set(eps) <= {"auto", "cross"}:
-        raise ParameterError(
-            f"eps must be None or a dict with keys 'auto' and/or 'cross', got {eps!r}"
-        )
-    auto = eps.get("auto")
-    if auto is None or isinstance(auto, numbers.Real):
-        per_signal = [auto] * n_signals
-    else:
-        per_signal = list(auto)
-        if len(per_signal) != n_signals:
-            raise ParameterError(
-                f"eps['auto'] must be one number or one per signal ({n_signals}), got "
-                f"{len(per_signal)}"
-            )
-    checked = [
-        None if e is None else _check_eps(e, f"eps['auto'][{i}]") for i, e in enumerate(per_signal)
-    ]
-    cross = eps.get("cross")
-    return checked, None if cross is None else _check_eps(cross, "eps['cross']")
+def _pair_parameters(p: NetworkParameters, i: int, j: int) -> NetworkParameters:
+    """``p`` restricted to the pair (i, j): per-signal rates and thresholds become pairs."""
+    changes: dict[str, Any] = {}
+    if isinstance(p.rr, tuple):
+        changes["rr"] = (p.rr[i], p.rr[j])
+    if p.eps is not None and isinstance(p.eps[0], tuple):
+        changes["eps"] = ((p.eps[0][i], p.eps[0][j]), p.eps[1])
+    return p.replace(**changes) if changes else p
 
 
 def pairwise_cross_measures(
     signals: Sequence[Any] | np.ndarray,
     *,
     names: Sequence[str] | None = None,
-    dim: int = 3,
-    delay: int = 10,
-    rr: float = 0.05,
-    cr: float = 0.05,
-    eps: Mapping[str, Any] | None = None,
-    metric: str = "euclidean",
-    rule: str = "funcnet",
-    theiler: int = 0,
-) -> dict[tuple[int, int], CrossMeasures]:
+    parameters: NetworkParameters | None = None,
+    warn: bool = True,
+    **overrides: Any,
+) -> dict[tuple[Any, Any], CrossMeasures]:
     """Cross measures of every pair ``i < j`` of equally long signals (a functional network).
 
     Each signal is embedded and its recurrence adjacency computed once, then reused in all its
     pairs; only ``CR`` is computed per pair. Thresholds follow the same rule as
-    :func:`cross_measures` (k-th order statistic, ``k = max(1, ceil(rate * P - 1e-9))``).
+    :func:`cross_measures`.
 
     Parameters
     ----------
-    signals : sequence of array_like (N,), or 2-D array_like (N, n_signals)
-        At least two signals of the same length, used as given (no normalization); a 2-D array
-        (or DataFrame) holds one signal per column, time on axis 0.
+    signals : sequence of array_like (N,) or (N, c), or 2-D array_like (N, n_signals)
+        At least two signals of the same length ``N``, used as given (no normalization). A 2-D
+        array (or DataFrame) holds one signal per column, time on axis 0; in a sequence, a 2-D
+        entry ``(N, c)`` is one multichannel node (its channels embedded jointly).
     names : sequence of str, optional
-        How error messages (``signal 'AP' ...``) and warnings (``(RP, AP)``) call the signals;
-        by default by position (``signal signals[1] ...``, ``(0, 1)``).
-    dim, delay, rr, cr, metric, rule, theiler
-        As in :func:`cross_measures`.
-    eps : dict, optional
-        ``{"auto": float or one per signal, "cross": float}``; a missing key keeps its rate.
+        The signals' names: the keys of the result, and how error messages (``signal 'AP'
+        ...``), ``degenerate_reason`` and warnings (``(RP, AP)``) call them. By default the
+        keys are positions and messages say ``signals[1]``.
+    parameters : NetworkParameters, optional
+        As in :func:`cross_measures`; ``rr`` and the auto part of ``eps`` may hold one entry
+        per signal.
+    warn : bool
+        Emit :func:`threshold_warnings` of the results (default True); with False nothing is
+        emitted (collect them from the results, e.g. in threads).
+    **overrides
+        Fields of ``parameters``, as in :func:`cross_measures`.
 
     Returns
     -------
     dict
-        ``{(i, j): CrossMeasures}`` for ``i < j``, in lexicographic order; X is signal ``i``.
+        ``{(name_i, name_j): CrossMeasures}`` (``(i, j)`` without ``names``) for ``i < j``, in
+        lexicographic order of positions; X is signal ``i``.
 
     Raises
     ------
     ParameterError, SignalError
-        As :func:`cross_measures`; also fewer than two signals, unequal lengths, or ``names`` of
-        the wrong length.
+        As :func:`cross_measures`; also fewer than two signals, unequal lengths, ``names`` of
+        the wrong length, per-signal ``rr``/``eps`` of the wrong length.
 
     Warns
     -----
-    ThresholdWarning
-        One warning listing the pairs whose ``eps_xy`` is not below ``eps_x``, ``eps_y``, one
-        for those where ties pushed a rate slightly above target, and one naming the signals
-        whose structure is degenerate (:attr:`CrossMeasures.degenerate`) and their pairs.
+    ThresholdWarning, DegenerateWarning
+        With ``warn=True``: at most one per problem, listing its pairs
+        (:func:`threshold_warnings`).
 
     References
     ----------
@@ -525,79 +581,66 @@ def pairwise_cross_measures(
     >>> import numpy as np
     >>> t = np.linspace(0, 8 * np.pi, 251)
     >>> signals = [np.sin(t), np.sin(1.5 * t) + 0.3 * np.sin(t), np.cos(2 * t)]
-    >>> results = pairwise_cross_measures(signals, eps={"cross": 0.1})
+    >>> results = pairwise_cross_measures(signals, names=["a", "b", "c"], eps=(None, 0.1))
     >>> sorted(results)
-    [(0, 1), (0, 2), (1, 2)]
-    >>> round(results[(0, 1)].c_diff, 4)
+    [('a', 'b'), ('a', 'c'), ('b', 'c')]
+    >>> round(results[("a", "b")].c_diff, 4)
     0.0173
     """
     if getattr(signals, "ndim", 1) == 2:  # an array or DataFrame, one signal per column
         table = np.asarray(signals)
         signals = [table[:, column] for column in range(table.shape[1])]
     signals = list(signals)
-    if len(signals) < 2:
-        raise SignalError(f"pairwise_cross_measures needs at least two signals, got {len(signals)}")
+    n = len(signals)
+    if n < 2:
+        raise SignalError(f"pairwise_cross_measures needs at least two signals, got {n}")
+    keys: list[Any]
     if names is None:
-        called = [f"signals[{i}]" for i in range(len(signals))]  # in messages
-        labels = [str(i) for i in range(len(signals))]  # in pair labels
+        called = [f"signals[{i}]" for i in range(n)]  # in messages
+        labels = [str(i) for i in range(n)]  # in reasons
+        keys = list(range(n))
     else:
         labels = [str(name) for name in names]
-        if len(labels) != len(signals):
-            raise ParameterError(f"names has {len(labels)} entries for {len(signals)} signals")
+        if len(labels) != n:
+            raise ParameterError.of("names", f"has {len(labels)} entries for {n} signals")
         called = [repr(name) for name in labels]
-    metric, rule, theiler = _check_options(metric, rule, theiler)
-    auto_eps, cross_eps = _pairwise_eps(eps, len(signals))
-    if any(e is None for e in auto_eps):
-        rr = _check_rate(rr, "rr")
-    if cross_eps is None:
-        cr = _check_rate(cr, "cr")
+        keys = labels
+    p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
+    thresholds, (cr, cross_eps) = _signal_thresholds(p, n)
     states = [
-        signal_states(s, dim=dim, delay=delay, rule=rule, name=name)
-        for s, name in zip(signals, called, strict=True)
+        signal_states(s, parameters=p, name=name) for s, name in zip(signals, called, strict=True)
     ]
-    for i, s in enumerate(states[1:], start=1):
-        if s.shape[0] != states[0].shape[0]:
+    _check_channels(states, called, p.dim)
+    for i in range(1, n):
+        if np.shape(signals[i])[0] != np.shape(signals[0])[0]:
             raise SignalError(
                 f"signals must have equal lengths: {called[i]} differs from {called[0]} "
-                f"({len(signals[i])} vs {len(signals[0])} samples)"
+                f"({np.shape(signals[i])[0]} vs {np.shape(signals[0])[0]} samples)"
             )
     autos = [
-        auto_recurrence(s, rr=rr, eps=e, metric=metric, theiler=theiler, rule=rule, name=name)
-        for s, e, name in zip(states, auto_eps, called, strict=True)
+        auto_recurrence(s, rr=rate, eps=eps, parameters=p, name=name)
+        for s, (rate, eps), name in zip(states, thresholds, called, strict=True)
     ]
-    parameters: dict[str, Any] = {
-        "dim": dim,
-        "delay": delay,
-        "rr": rr,
-        "cr": cr,
-        "eps": None if eps is None else dict(eps),
-        "metric": metric,
-        "rule": rule,
-        "theiler": theiler,
-    }
     results = {}
-    for i in range(len(signals)):
-        for j in range(i + 1, len(signals)):
+    labelled = {}  # the same results keyed by names, for the warnings
+    for i in range(n):
+        for j in range(i + 1, n):
             cr_ij = cross_recurrence(
-                states[i], states[j], cr=cr, eps=cross_eps, metric=metric, rule=rule
+                states[i], states[j], cr=cr, eps=cross_eps, parameters=p,
+                names=(called[i], called[j]),
             )
-            results[(i, j)] = isrn_measures(autos[i], autos[j], cr_ij, parameters=parameters)
-    _warn_thresholds({(labels[i], labels[j]): r for (i, j), r in results.items()})
+            result = isrn_measures(
+                autos[i], autos[j], cr_ij, parameters=_pair_parameters(p, i, j),
+                names=(labels[i], labels[j]),
+            )
+            results[(keys[i], keys[j])] = labelled[(labels[i], labels[j])] = result
+    if warn:
+        _warn(labelled)
     return results
 
 
 def local_cross_clustering(
-    x: Any,
-    y: Any,
-    *,
-    dim: int = 3,
-    delay: int = 10,
-    rr: float = 0.05,
-    cr: float = 0.05,
-    eps: Any = None,
-    metric: str = "euclidean",
-    rule: str = "funcnet",
-    theiler: int = 0,
+    x: Any, y: Any, *, parameters: NetworkParameters | None = None, **overrides: Any
 ) -> tuple[np.ndarray, np.ndarray]:
     """Local cross-clustering of every node, both directions (Eq. 6).
 
@@ -606,7 +649,7 @@ def local_cross_clustering(
 
     Parameters
     ----------
-    x, y, dim, delay, rr, cr, eps, metric, rule, theiler
+    x, y, parameters, **overrides
         As in :func:`cross_measures`.
 
     Returns
@@ -627,29 +670,18 @@ def local_cross_clustering(
     --------
     >>> import numpy as np
     >>> t = np.linspace(0, 8 * np.pi, 251)
-    >>> c_xy, c_yx = local_cross_clustering(np.sin(t), np.sin(1.5 * t), eps=(0.15, 0.15, 0.05))
+    >>> c_xy, c_yx = local_cross_clustering(np.sin(t), np.sin(1.5 * t), eps=(0.15, 0.05))
     >>> c_xy.shape, float(c_xy.max()) <= 1.0
     ((231,), True)
     """
-    a_x, a_y, cr_xy = _isrn_blocks(
-        x, y, dim=dim, delay=delay, rr=rr, cr=cr, eps=eps, metric=metric, theiler=theiler, rule=rule
-    )
+    p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
+    a_x, a_y, cr_xy = _isrn_blocks(x, y, p)
     xy, yx = _cross_counts(a_x, a_y, cr_xy)
     return _local_clustering(*xy), _local_clustering(*yx)
 
 
 def cross_degree(
-    x: Any,
-    y: Any,
-    *,
-    dim: int = 3,
-    delay: int = 10,
-    rr: float = 0.05,
-    cr: float = 0.05,
-    eps: Any = None,
-    metric: str = "euclidean",
-    rule: str = "funcnet",
-    theiler: int = 0,
+    x: Any, y: Any, *, parameters: NetworkParameters | None = None, **overrides: Any
 ) -> tuple[np.ndarray, np.ndarray]:
     """Cross-degree of every node, both directions (Eq. 7).
 
@@ -657,7 +689,7 @@ def cross_degree(
 
     Parameters
     ----------
-    x, y, dim, delay, rr, cr, eps, metric, rule, theiler
+    x, y, parameters, **overrides
         As in :func:`cross_measures`.
 
     Returns
@@ -682,7 +714,6 @@ def cross_degree(
     >>> int(k_xy.sum()) == int(k_yx.sum())
     True
     """
-    _, _, cr_xy = _isrn_blocks(
-        x, y, dim=dim, delay=delay, rr=rr, cr=cr, eps=eps, metric=metric, theiler=theiler, rule=rule
-    )
+    p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
+    _, _, cr_xy = _isrn_blocks(x, y, p)
     return cr_xy.row_sums(), cr_xy.transposed().row_sums()

@@ -1,17 +1,23 @@
-"""Figures: functional networks, recurrence plots and the paper's Figures 1, 2, 5, 9, 10 and 11.
+"""Drawing: functional networks, recurrence matrices, signals and edge timelines.
 
-Every figure is drawn from funcnet's own computations (:func:`funcnet.recurrence_matrix`,
-:func:`funcnet.isrn_adjacency`, :func:`funcnet.functional_network`); nothing is re-derived here.
-Single-panel functions take ``ax=`` and return it; multi-panel ones return a
-:class:`matplotlib.figure.Figure`. Everything works on the Agg backend (no display needed).
+Everything here draws what it is given -- a network or its pairs table, a recurrence matrix, a
+window of signals -- and computes nothing: no recurrence, no measure, no network. The paper's
+figures, which compute their data and then draw it with these functions, are in
+:mod:`funcnet.paper.figures`. Single-panel functions take ``ax=`` and return it; figure-level
+helpers take a :class:`matplotlib.figure.Figure`. Everything works on the Agg backend.
 
 Drawing conventions (README method step 8, paper section 3.4): nodes on a circle, one per signal,
 every node drawn even without edges; directed edges black with an arrow head at the target,
 bidirectional edges red; line width proportional to the weight of Eq. 13 on an absolute scale, so
 that widths compare across panels (the paper reads "edges thinning as speed grows" from them).
+Edges of degenerate pairs (too few distinct states: their arrow means nothing) are present only
+when a network keeps them (``degenerate="keep"``); they are drawn dashed and grey.
 
 Every drawn artist carries a ``gid`` (``"node:RP"``, ``"edge:RP->AP:directed"``,
 ``"phase:cruise"``, ``"window:-20 ms"``) so that tests and users can find what was drawn.
+
+Length: over 600 lines because every drawing shares these conventions (colours, widths, gids,
+legends) in one place; what computes (the paper's figures) is elsewhere.
 
 References
 ----------
@@ -32,30 +38,33 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrowPatch
 
-from funcnet.network import edges_from_pairs
+from funcnet.network.rule import edges_from_pairs
+from funcnet.network.schema import PAIR_KINDS
 
 __all__ = [
     "DIRECTED_COLOR",
     "BIDIRECTIONAL_COLOR",
+    "DEGENERATE_COLOR",
     "SIGNAL_COLORS",
+    "KIND_COLORS",
+    "SPAN_TITLE_PAD",
     "signal_color",
     "network_edges",
     "network_legend_handles",
     "add_network_legend",
+    "add_signal_legend",
     "plot_network",
+    "plot_no_network",
     "plot_recurrence",
+    "plot_graph",
     "plot_signals",
     "plot_edge_timeline",
-    "figure_embedding_network",
-    "figure_isrn",
-    "figure_pair_network",
-    "figure_phases",
-    "figure_velocity_grid",
-    "figure_reversal",
 ]
 
 DIRECTED_COLOR = "black"
 BIDIRECTIONAL_COLOR = "red"
+#: Edges of degenerate pairs (kept only on request): grey and dashed, never like a real edge.
+DEGENERATE_COLOR = "0.6"
 #: One colour per signal role, the same in every figure (Okabe-Ito-like, distinguishable in
 #: print); the currents differ clearly from V, and no signal uses the red of bidirectional edges.
 SIGNAL_COLORS = {
@@ -70,8 +79,12 @@ SIGNAL_COLORS = {
 }
 _OTHER_COLORS = ("#bcbd22", "#17becf", "#9c755f", "#f0e442", "#4e79a7", "#b07aa1")
 _PHASE_SHADES = ("#dbe9f6", "#fde9d9", "#e2f0d9", "#ede0f3", "#fff2cc", "#e7e6e6")
-_KIND_COLORS = {"forward": "#1f4e9c", "backward": "#e07b00", "bidirectional": "red",
-                "conflict": "0.6"}
+_X_Y, _Y_X, _BIDIRECTIONAL, _CONFLICT = PAIR_KINDS
+#: Colour of each pair kind in :func:`plot_edge_timeline`.
+KIND_COLORS = {_X_Y: "#1f4e9c", _Y_X: "#e07b00", _BIDIRECTIONAL: "red", _CONFLICT: "0.6",
+               "degenerate": "0.35"}
+#: Title padding (points) that clears the two rows of span names drawn by :func:`plot_signals`.
+SPAN_TITLE_PAD = 22.0
 
 
 def _new_axes(ax: Axes | None, figsize: tuple[float, float] = (4.0, 4.0)) -> Axes:
@@ -105,7 +118,8 @@ def signal_color(name: Any) -> str:
     return _OTHER_COLORS[sum(map(ord, name)) % len(_OTHER_COLORS)]
 
 
-def network_legend_handles(width_scale: float = 10.0, weight: float = 0.2) -> list[Line2D]:
+def network_legend_handles(width_scale: float = 10.0, weight: float = 0.2, *,
+                           degenerate: bool = False) -> list[Line2D]:
     """Legend entries explaining a network drawing: edge colours and the width scale.
 
     Parameters
@@ -114,40 +128,75 @@ def network_legend_handles(width_scale: float = 10.0, weight: float = 0.2) -> li
         The line width per unit of weight used by :func:`plot_network`.
     weight : float
         The reference weight (Eq. 13) whose width the legend shows.
+    degenerate : bool
+        Add the entry of degenerate edges (grey, dashed).
 
     Returns
     -------
     list of matplotlib.lines.Line2D
-        Directed (black), bidirectional (red), and a grey line of the reference weight's width.
+        Directed (black), bidirectional (red), optionally degenerate (grey, dashed), and a grey
+        line of the reference weight's width.
+
+    References
+    ----------
+    Paper section 3.4 (black directed, red bidirectional edges; width by Eq. 13).
 
     Examples
     --------
     >>> [h.get_label() for h in network_legend_handles()]
     ['directed X → Y', 'bidirectional', 'weight 0.2 (width ∝ weight)']
+    >>> network_legend_handles(degenerate=True)[2].get_label()
+    'degenerate pair (arrow meaningless)'
     """
-    return [Line2D([], [], color=DIRECTED_COLOR, linewidth=1.5, marker=">", label="directed X → Y"),
-            Line2D([], [], color=BIDIRECTIONAL_COLOR, linewidth=1.5, label="bidirectional"),
-            Line2D([], [], color="0.4", linewidth=width_scale * weight,
-                   label=f"weight {weight:g} (width ∝ weight)")]
+    handles = [Line2D([], [], color=DIRECTED_COLOR, linewidth=1.5, marker=">",
+                      label="directed X → Y"),
+               Line2D([], [], color=BIDIRECTIONAL_COLOR, linewidth=1.5, label="bidirectional")]
+    if degenerate:
+        handles.append(Line2D([], [], color=DEGENERATE_COLOR, linewidth=1.5, linestyle="--",
+                              label="degenerate pair (arrow meaningless)"))
+    handles.append(Line2D([], [], color="0.4", linewidth=width_scale * weight,
+                          label=f"weight {weight:g} (width ∝ weight)"))
+    return handles
 
 
-def network_edges(net: Any) -> pd.DataFrame:
+def network_edges(net: Any, *, degenerate: str = "drop") -> pd.DataFrame:
     """The edges to draw: a network's ``.edges``, or those of a pairs table.
 
     Parameters
     ----------
     net : FunctionalNetwork or pandas.DataFrame
-        A :class:`funcnet.FunctionalNetwork`, or a pairs table with at least the columns
-        ``x, y, kind, weight`` (e.g. one window's rows of a study's results).
+        A :class:`funcnet.FunctionalNetwork` (its own ``edges``, which hold degenerate pairs
+        only when it was built with ``degenerate="keep"``), or a pairs table with at least the
+        columns ``x, y, kind, weight`` (e.g. one window's rows of a study's results); a table
+        without ``degenerate`` counts as having no degenerate pair.
+    degenerate : {"drop", "keep"}
+        For a pairs table: leave degenerate pairs out (default) or keep them as edges flagged
+        ``degenerate`` (:func:`funcnet.network.rule.edges_from_pairs`).
 
     Returns
     -------
     pandas.DataFrame
-        Columns ``source, target, weight, kind`` (:func:`funcnet.network.edges_from_pairs`).
+        Columns ``source, target, weight, kind, degenerate``
+        (:data:`funcnet.network.schema.EDGE_COLUMNS`).
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> pairs = pd.DataFrame({"x": ["A", "A"], "y": ["B", "C"], "kind": ["y->x", "x->y"],
+    ...                       "weight": [0.2, 0.4], "degenerate": [False, True]})
+    >>> network_edges(pairs)[["source", "target"]].values.tolist()
+    [['B', 'A']]
+    >>> network_edges(pairs, degenerate="keep")["degenerate"].tolist()
+    [False, True]
     """
-    if isinstance(net, pd.DataFrame):
-        return edges_from_pairs(net)
-    return net.edges
+    if not isinstance(net, pd.DataFrame):
+        return net.edges
+    if "degenerate" in net.columns:
+        # Rows of older results mixed with newer ones hold NaN there: not degenerate.
+        flags = net["degenerate"].eq(True)
+    else:
+        flags = pd.Series(False, index=net.index)
+    return edges_from_pairs(net.assign(degenerate=flags.astype(bool)), degenerate=degenerate)
 
 
 def _network_nodes(net: Any) -> list[str]:
@@ -168,6 +217,7 @@ def plot_network(
     title: str | None = None,
     fontsize: float = 8.0,
     legend: bool = True,
+    degenerate: str = "drop",
 ) -> Axes:
     """Draw a functional network in a circular layout (paper section 3.4, Fig. 9-11).
 
@@ -198,13 +248,18 @@ def plot_network(
     legend : bool
         Add a legend below the network explaining the edge colours and the width scale
         (:func:`network_legend_handles`); multi-panel figures draw one for the whole figure.
+        When degenerate edges are drawn, the legend has their entry too.
+    degenerate : {"drop", "keep"}
+        For a pairs table only: draw degenerate pairs as edges (``"keep"``) or not (see
+        :func:`network_edges`); a network's own edges say it themselves.
 
     Returns
     -------
     matplotlib.axes.Axes
         The axes; each node is a :class:`~matplotlib.patches.Circle` with gid ``node:NAME``,
         each edge a :class:`~matplotlib.patches.FancyArrowPatch` with gid
-        ``edge:SOURCE->TARGET:KIND``, black when directed and red when bidirectional.
+        ``edge:SOURCE->TARGET:KIND``, black when directed and red when bidirectional; an edge
+        of a degenerate pair is grey and dashed, with gid ``edge:SOURCE->TARGET:KIND:degenerate``.
 
     References
     ----------
@@ -235,24 +290,28 @@ def plot_network(
         ax.add_patch(circle)
         ax.text(*position[name], str(name), ha="center", va="center", zorder=4,
                 fontsize=fontsize * min(1.0, 4.0 / max(len(str(name)), 1)) ** 0.5)
-    for edge in network_edges(net).itertuples(index=False):
+    edges = network_edges(net, degenerate=degenerate)
+    for edge in edges.itertuples(index=False):
         bidirectional = edge.kind == "bidirectional"
         width = max(min_width, width_scale * edge.weight)
+        color = BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR
+        if edge.degenerate:
+            color = DEGENERATE_COLOR
         arrow = FancyArrowPatch(
             position[edge.source], position[edge.target],
             arrowstyle="<|-|>" if bidirectional else "-|>",
             # The head grows with the line so that a thick edge does not hide it.
             mutation_scale=fontsize + 1 + 2.0 * width, shrinkA=0, shrinkB=0,
             patchA=None, patchB=None, joinstyle="miter", capstyle="butt",
-            linewidth=width,
-            color=BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR,
+            linewidth=width, color=color, linestyle="--" if edge.degenerate else "-",
             # Curved slightly so that the arrows of a cycle do not overlap the node labels.
             connectionstyle="arc3,rad=0.08", zorder=2,
         )
         # Stop the arrow at the node's rim rather than its centre.
         arrow.set_positions(*_trim(position[edge.source], position[edge.target],
                                    radius[edge.source], radius[edge.target]))
-        arrow.set_gid(f"edge:{edge.source}->{edge.target}:{edge.kind}")
+        suffix = ":degenerate" if edge.degenerate else ""
+        arrow.set_gid(f"edge:{edge.source}->{edge.target}:{edge.kind}{suffix}")
         ax.add_patch(arrow)
     ax.set_xlim(-1.3, 1.3)
     ax.set_ylim(-1.3, 1.3)
@@ -261,7 +320,9 @@ def plot_network(
     if title is not None:
         ax.set_title(title, fontsize=fontsize + 1)
     if legend:
-        ax.legend(handles=network_legend_handles(width_scale), loc="upper center",
+        handles = network_legend_handles(width_scale,
+                                         degenerate=bool(edges["degenerate"].any()))
+        ax.legend(handles=handles, loc="upper center",
                   bbox_to_anchor=(0.5, 0.0), ncol=2, fontsize=fontsize - 1, frameon=False,
                   handlelength=2.5)
     return ax
@@ -280,29 +341,21 @@ def _trim(a: tuple[float, float], b: tuple[float, float], ra: float,
 
 
 def plot_recurrence(
-    x: Any,
-    y: Any = None,
+    matrix: Any,
     *,
-    dim: int = 3,
-    delay: int = 10,
-    rr: float | None = None,
-    eps: float | None = None,
-    metric: str = "euclidean",
-    theiler: int = 0,
+    cross: bool = False,
     ax: Axes | None = None,
     title: str | None = None,
 ) -> Axes:
-    """Recurrence plot of one window (or cross-recurrence plot of two).
+    """Draw a recurrence matrix (or a cross-recurrence matrix) as a recurrence plot.
 
     Parameters
     ----------
-    x : array_like, shape (N,)
-        The signal (e.g. one column of a window of a recording), used as given.
-    y : array_like, optional
-        A second signal: draw the cross-recurrence matrix ``CR_XY`` (Eq. 3) instead.
-    dim, delay, rr, eps, metric, theiler
-        As in :func:`funcnet.recurrence_matrix` (``rr`` or ``eps``; for a cross plot ``rr`` is
-        passed as the cross rate ``cr``). Neither given: ``rr=0.05`` (paper section 3.4).
+    matrix : array_like of bool, shape (M, M) or (M_X, M_Y)
+        The computed matrix, e.g. :func:`funcnet.recurrence.recurrence_matrix` (Eq. 2) or
+        :func:`funcnet.recurrence.cross_recurrence_matrix` (Eq. 3).
+    cross : bool
+        Label the axes as a cross plot (rows X, columns Y).
     ax : matplotlib.axes.Axes, optional
         Where to draw.
     title : str, optional
@@ -311,36 +364,105 @@ def plot_recurrence(
     Returns
     -------
     matplotlib.axes.Axes
-        Black dots at the recurrent pairs (Eq. 2-3); the image's array is the boolean matrix.
+        Black dots at the recurrent pairs; the image's array is the boolean matrix.
 
     References
     ----------
-    Paper section 2.1, Eq. 1-3 and Fig. 1c.
+    Paper section 2.1, Eq. 2-3 and Fig. 1c.
 
     Examples
     --------
     >>> import numpy as np
-    >>> ax = plot_recurrence(np.sin(np.linspace(0, 8 * np.pi, 251)), eps=0.15)
+    >>> ax = plot_recurrence(np.eye(5, dtype=bool))
     >>> ax.images[0].get_array().shape
-    (231, 231)
+    (5, 5)
     """
-    import funcnet
-
     ax = _new_axes(ax)
-    if rr is None and eps is None:
-        rr = 0.05
-    if y is None:
-        matrix = funcnet.recurrence_matrix(x, dim=dim, delay=delay, rr=rr, eps=eps,
-                                           metric=metric, theiler=theiler)
-    else:
-        matrix = funcnet.cross_recurrence_matrix(x, y, dim=dim, delay=delay, cr=rr, eps=eps,
-                                                 metric=metric)
     ax.imshow(np.asarray(matrix, dtype=bool), cmap="binary", origin="lower",
               interpolation="nearest", vmin=0, vmax=1)
-    ax.set_xlabel("j" if y is None else "j (Y)")
-    ax.set_ylabel("i" if y is None else "i (X)")
+    ax.set_xlabel("j (Y)" if cross else "j")
+    ax.set_ylabel("i (X)" if cross else "i")
     if title is not None:
         ax.set_title(title)
+    return ax
+
+
+def plot_graph(adjacency: Any, ax: Axes | None = None, *, colors: Any = "tab:blue",
+               seed: int = 0) -> Axes:
+    """Draw an undirected graph given by its adjacency matrix in a spring layout.
+
+    Parameters
+    ----------
+    adjacency : array_like, shape (n, n)
+        Symmetric adjacency (e.g. a recurrence network, Eq. 2, or an ISRN, Eq. 4); the diagonal
+        is ignored.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw.
+    colors : colour or sequence of colours
+        Node colour(s), one per row.
+    seed : int
+        Seed of the force-directed layout (the drawing is deterministic).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        Edges as one line collection (gid ``isrn-edges``), nodes as one scatter (gid
+        ``isrn-nodes``).
+
+    References
+    ----------
+    Paper Fig. 1d and Fig. 2d.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> ax = plot_graph(np.ones((3, 3)))
+    >>> [len(c.get_paths() if c.get_gid() == "isrn-edges" else c.get_offsets())
+    ...  for c in ax.collections]
+    [3, 3]
+    """
+    import networkx as nx
+
+    ax = _new_axes(ax)
+    matrix = np.asarray(adjacency, dtype=np.int8)
+    graph = nx.from_numpy_array(matrix)
+    graph.remove_edges_from(nx.selfloop_edges(graph))
+    pos = nx.spring_layout(graph, seed=seed)
+    xy = np.array([pos[k] for k in range(len(matrix))])
+    segments = [(xy[a], xy[b]) for a, b in graph.edges()]
+    lines = LineCollection(segments, colors="0.55", linewidths=0.3, zorder=1)
+    lines.set_gid("isrn-edges")
+    ax.add_collection(lines)
+    nodes = ax.scatter(xy[:, 0], xy[:, 1], s=6, c=colors, zorder=2, linewidths=0)
+    nodes.set_gid("isrn-nodes")
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    return ax
+
+
+def plot_no_network(ax: Axes, label: Any = None) -> Axes:
+    """Mark a panel whose network could not be computed: "no network", no axes.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel.
+    label : str, optional
+        Its title.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> plot_no_network(Figure().add_subplot(), "cruise").texts[0].get_text()
+    'no network'
+    """
+    ax.set_axis_off()
+    if label is not None:
+        ax.set_title(str(label), fontsize=9)
+    ax.text(0.5, 0.5, "no network", ha="center", va="center", transform=ax.transAxes)
     return ax
 
 
@@ -354,10 +476,6 @@ def _mark_spans(ax: Axes, spans: Sequence[tuple[str, float, float]], prefix: str
             ax.annotate(str(name), ((start + stop) / 2, 1.0), xycoords=ax.get_xaxis_transform(),
                         xytext=(0, 2 + 9 * (k % 2)), textcoords="offset points", fontsize=7,
                         ha="center", va="bottom")
-
-
-# Title padding (points) that clears the two rows of phase names drawn by _mark_spans.
-_SPAN_TITLE_PAD = 22.0
 
 
 def _spans(phases: Any) -> list[tuple[str, float, float]]:
@@ -429,7 +547,8 @@ def _pair_table(networks: Any, time: str) -> pd.DataFrame:
     frames = []
     for t, net in networks.items():
         pairs = net if isinstance(net, pd.DataFrame) else net.pairs
-        frame = pairs[["x", "y", "kind", "weight"]].copy()
+        columns = ["x", "y", "kind", "weight", *(["degenerate"] if "degenerate" in pairs else [])]
+        frame = pairs[columns].copy()
         frame[time] = float(t)
         frames.append(frame)
     return pd.concat(frames, ignore_index=True)
@@ -446,15 +565,17 @@ def plot_edge_timeline(
 
     One horizontal track per pair of signals ``X–Y`` (X the first signal of the pair); at each
     window's time a marker whose colour and shape tell the kind (blue ▶ ``X → Y``, orange ◀
-    ``Y → X``, red dot bidirectional, grey dot conflict = no edge) and whose area is proportional
-    to the weight of Eq. 13. Two legends beside the axes explain the kinds (gid ``legend:kind``)
+    ``Y → X``, red dot bidirectional, grey dot conflict = no edge; a grey cross for a pair
+    flagged ``degenerate``, whatever its kind) and whose area is proportional to the weight of
+    Eq. 13. Two legends beside the axes explain the kinds (gid ``legend:kind``)
     and give the marker size of reference weights (gid ``legend:weight``).
 
     Parameters
     ----------
     networks : mapping of time -> FunctionalNetwork (or pairs table), or pandas.DataFrame
         Networks keyed by the time of their window (e.g. its centre, seconds), or one pairs
-        table of all windows with columns ``x, y, kind, weight`` and ``time``.
+        table of all windows with columns ``x, y, kind, weight``, ``time`` and optionally
+        ``degenerate``.
     time : str
         Name of the time column of a table.
     ax : matplotlib.axes.Axes, optional
@@ -465,7 +586,9 @@ def plot_edge_timeline(
     Returns
     -------
     matplotlib.axes.Axes
-        One scatter collection per kind present (gid ``kind:...``), one point per pair and window.
+        One scatter collection per kind present (gid ``kind:KIND``, KIND one of
+        :data:`funcnet.network.schema.PAIR_KINDS`, or ``kind:degenerate``), one point per pair
+        and window.
 
     References
     ----------
@@ -486,20 +609,23 @@ def plot_edge_timeline(
     track = {name: k for k, name in enumerate(pair_names)}
     names = [f"{a}–{b}" for a, b in zip(table["x"], table["y"], strict=True)]
     y = np.array([track[n] for n in names], dtype=float)
-    kinds = table["kind"].map({"x->y": "forward", "y->x": "backward"}).fillna(table["kind"])
+    kinds = table["kind"].astype(str)
+    if "degenerate" in table.columns:
+        kinds = kinds.where(~table["degenerate"].eq(True), "degenerate")
     first, second = (str(table["x"].iloc[0]), str(table["y"].iloc[0])) if len(table) else "XY"
     weights = table["weight"].to_numpy(dtype=float)
     for kind, marker, label in (
-            ("forward", ">", f"X → Y, e.g. {first} → {second} on track {first}–{second}"),
-            ("backward", "<", f"Y → X, e.g. {second} → {first} on track {first}–{second}"),
-            ("bidirectional", "o", "bidirectional"),
-            ("conflict", "o", "conflict (no edge)")):
+            (_X_Y, ">", f"X → Y, e.g. {first} → {second} on track {first}–{second}"),
+            (_Y_X, "<", f"Y → X, e.g. {second} → {first} on track {first}–{second}"),
+            (_BIDIRECTIONAL, "o", "bidirectional"),
+            (_CONFLICT, "o", "conflict (no edge)"),
+            ("degenerate", "X", "degenerate (arrow meaningless)")):
         mask = (kinds == kind).to_numpy()
         if not mask.any():
             continue
         points = ax.scatter(table[time].to_numpy(dtype=float)[mask], y[mask],
                             s=np.maximum(4.0, size_scale * weights[mask]), marker=marker,
-                            color=_KIND_COLORS[kind], label=label, linewidths=0)
+                            color=KIND_COLORS[kind], label=label, linewidths=0)
         points.set_gid(f"kind:{kind}")
     ax.set_yticks(range(len(pair_names)), pair_names, fontsize=7)
     ax.set_ylabel("pair X–Y", fontsize=8)
@@ -530,213 +656,10 @@ def _reference_weights(weights: np.ndarray) -> list[float]:
     return [float(f"{w:.1g}") for w in round_weights if w <= top][-3:]
 
 
-def _sine(n: int, periods: float) -> tuple[np.ndarray, np.ndarray]:
-    t = np.linspace(0.0, 2 * np.pi * periods, n)
-    return t, np.sin(t)
 
 
-def _draw_graph(ax: Axes, adjacency: np.ndarray, colors: Any, seed: int) -> None:
-    import networkx as nx
-
-    graph = nx.from_numpy_array(np.asarray(adjacency, dtype=np.int8))
-    graph.remove_edges_from(nx.selfloop_edges(graph))
-    pos = nx.spring_layout(graph, seed=seed)
-    xy = np.array([pos[k] for k in range(len(adjacency))])
-    segments = [(xy[a], xy[b]) for a, b in graph.edges()]
-    lines = LineCollection(segments, colors="0.55", linewidths=0.3, zorder=1)
-    lines.set_gid("isrn-edges")
-    ax.add_collection(lines)
-    nodes = ax.scatter(xy[:, 0], xy[:, 1], s=6, c=colors, zorder=2, linewidths=0)
-    nodes.set_gid("isrn-nodes")
-    ax.set_aspect("equal")
-    ax.set_axis_off()
-
-
-def figure_embedding_network(
-    *, n: int = 251, periods: float = 4, dim: int = 3, delay: int = 10, eps: float = 0.15,
-    seed: int = 0,
-) -> Figure:
-    """Fig. 1: a sine, its embedding, its recurrence matrix and its recurrence network.
-
-    Parameters
-    ----------
-    n : int
-        Number of samples of ``x(t) = sin t`` over ``periods`` periods (paper: 251 over four).
-    periods : float
-        Number of periods.
-    dim, delay : int
-        Embedding dimension and delay in samples (paper: 3 and 10).
-    eps : float
-        Fixed recurrence threshold (paper: 0.15).
-    seed : int
-        Seed of the spring layout (the drawing is deterministic).
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        Panels (a) signal, (b) ``x(t)`` vs ``x(t+τ)``, (c) recurrence matrix, (d) recurrence
-        network in a force-directed spring layout.
-
-    References
-    ----------
-    Paper section 2.1, Eq. 1-2 and Fig. 1.
-
-    Examples
-    --------
-    >>> fig = figure_embedding_network(n=101, periods=2)
-    >>> len(fig.axes)
-    4
-    """
-    import funcnet
-
-    t, x = _sine(n, periods)
-    states = funcnet.embed(x, dim, delay)
-    matrix = funcnet.recurrence_matrix(x, dim=dim, delay=delay, eps=eps)
-    fig = Figure(figsize=(12.0, 3.2), layout="constrained")
-    ax_a, ax_b, ax_c, ax_d = fig.subplots(1, 4)
-    ax_a.plot(np.arange(n), x, color="tab:blue", linewidth=1)
-    ax_a.set_xlabel("$t_i$")
-    ax_a.set_ylabel("x")
-    ax_a.set_title("(a) x(t) = sin t", fontsize=9)
-    ax_b.plot(states[:, 0], states[:, 1], ".", markersize=2, color="tab:blue")
-    ax_b.set_xlabel("x(t)")
-    ax_b.set_ylabel(f"x(t+{delay})")
-    ax_b.set_title(f"(b) embedding, m={dim}, τ={delay}", fontsize=9)
-    plot_recurrence(x, dim=dim, delay=delay, eps=eps, ax=ax_c)
-    ax_c.set_title(f"(c) recurrence matrix, ε={eps}", fontsize=9)
-    _draw_graph(ax_d, matrix, "tab:blue", seed)
-    ax_d.set_title("(d) recurrence network", fontsize=9)
-    return fig
-
-
-def _coupled_pair(n: int, periods: float, alpha: float) -> tuple[np.ndarray, np.ndarray]:
-    t, x = _sine(n, periods)
-    return x, np.sin(1.5 * t) + alpha * x
-
-
-def figure_isrn(
-    *, n: int = 251, periods: float = 4, alpha: float = 0.3, dim: int = 3, delay: int = 10,
-    eps: tuple[float, float, float] = (0.15, 0.15, 0.05), seed: int = 0,
-) -> Figure:
-    """Fig. 2: the inter-system recurrence network of ``x = sin t``, ``y = sin 1.5t + 0.3x``.
-
-    Parameters
-    ----------
-    n, periods : int, float
-        Samples and periods (paper: 251 over four).
-    alpha : float
-        Coupling strength of X into Y (paper: 0.3).
-    dim, delay : int
-        Embedding (paper: m = 3, τ = 10).
-    eps : (float, float, float)
-        ``(ε_X, ε_Y, ε_XY)`` (paper: 0.15, 0.15, 0.05).
-    seed : int
-        Seed of the spring layout.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        (a) both signals, (b) their embeddings, (c) the ISRN adjacency of Eq. 4 (blocks
-        ``A_X``, ``CR_XY``, ``A_Y``), (d) the ISRN in a spring layout, X blue and Y red.
-
-    References
-    ----------
-    Paper section 2.2, Eq. 3-4 and Fig. 2.
-
-    Examples
-    --------
-    >>> len(figure_isrn(n=101, periods=2).axes)
-    4
-    """
-    import funcnet
-
-    x, y = _coupled_pair(n, periods, alpha)
-    adjacency = np.asarray(funcnet.isrn_adjacency(x, y, dim=dim, delay=delay, eps=eps))
-    m = len(adjacency) // 2
-    fig = Figure(figsize=(12.0, 3.2), layout="constrained")
-    ax_a, ax_b, ax_c, ax_d = fig.subplots(1, 4)
-    ax_a.plot(x, color="tab:blue", linewidth=1, label="x")
-    ax_a.plot(y, color="tab:red", linewidth=1, label="y")
-    ax_a.legend(fontsize=7, frameon=False)
-    ax_a.set_xlabel("$t_i$")
-    ax_a.set_title(f"(a) x = sin t, y = sin 1.5t + {alpha}x", fontsize=9)
-    for signal, color in ((x, "tab:blue"), (y, "tab:red")):
-        states = funcnet.embed(signal, dim, delay)
-        ax_b.plot(states[:, 0], states[:, 1], ".", markersize=2, color=color)
-    ax_b.set_xlabel("s(t)")
-    ax_b.set_ylabel(f"s(t+{delay})")
-    ax_b.set_title(f"(b) embeddings, m={dim}, τ={delay}", fontsize=9)
-    ax_c.imshow(adjacency.astype(bool), cmap="binary", origin="upper", interpolation="nearest")
-    ax_c.axhline(m - 0.5, color="tab:green", linewidth=0.8)
-    ax_c.axvline(m - 0.5, color="tab:green", linewidth=0.8)
-    ax_c.set_title("(c) $A_X$ | $CR_{XY}$ / $CR_{YX}$ | $A_Y$", fontsize=9)
-    _draw_graph(ax_d, adjacency, ["tab:blue"] * m + ["tab:red"] * m, seed)
-    ax_d.set_title("(d) ISRN", fontsize=9)
-    return fig
-
-
-def figure_pair_network(
-    *, n: int = 251, periods: float = 4, alpha: float = 0.3, dim: int = 3, delay: int = 10,
-    mu: float = 0.05, ax: Axes | None = None,
-) -> Axes:
-    """Fig. 5: the functional network of the coupled pair of Fig. 2, from ``C_diff`` alone.
-
-    The network is computed by :func:`funcnet.functional_network` with ``measure="clustering"``
-    on the signals as given (``normalize=None``) at the default rates (RR = CR = 0.05).
-
-    Parameters
-    ----------
-    n, periods, alpha, dim, delay
-        As in :func:`figure_isrn`.
-    mu : float
-        Bidirectionality threshold of section 2.4.
-    ax : matplotlib.axes.Axes, optional
-        Where to draw.
-
-    Returns
-    -------
-    matplotlib.axes.Axes
-        The network (nodes ``x`` and ``y``); the title gives ``C_diff``.
-
-    References
-    ----------
-    Paper section 2.4, Eq. 10 and Fig. 5.
-
-    Examples
-    --------
-    >>> ax = figure_pair_network(n=151, periods=3)
-    >>> sorted(p.get_gid() for p in ax.patches if p.get_gid().startswith("node:"))
-    ['node:x', 'node:y']
-    """
-    import funcnet
-
-    x, y = _coupled_pair(n, periods, alpha)
-    net = funcnet.functional_network(np.column_stack([x, y]), names=["x", "y"], dim=dim,
-                                     delay=delay, mu=mu, normalize=None, measure="clustering",
-                                     label="Fig. 5")
-    c_diff = float(net.pairs["c_diff"].iloc[0])
-    return plot_network(net, ax, title=f"C_diff = {c_diff:+.3f} (μ = {mu})")
-
-
-def _no_network(ax: Axes, label: Any) -> None:
-    ax.set_axis_off()
-    if label is not None:
-        ax.set_title(str(label), fontsize=9)
-    ax.text(0.5, 0.5, "no network", ha="center", va="center", transform=ax.transAxes)
-
-
-def _network_row(fig: Figure, grid: Any, row: int, networks: Mapping[str, Any],
-                 nodes: Sequence[str]) -> None:
-    """One network per column of a grid row, each node at the same place in every panel."""
-    for k, (label, net) in enumerate(networks.items()):
-        ax = fig.add_subplot(grid[row, k])
-        if net is None:
-            _no_network(ax, label)
-        else:
-            plot_network(net, ax, nodes=nodes, title=str(label), legend=False)
-
-
-def add_network_legend(fig: Figure, width_scale: float = 10.0) -> Any:
+def add_network_legend(fig: Figure, width_scale: float = 10.0, *,
+                       degenerate: bool = False) -> Any:
     """One legend of the edge colours and widths below a figure of several networks.
 
     Draw the panels with ``plot_network(..., legend=False)`` and call this once.
@@ -747,6 +670,8 @@ def add_network_legend(fig: Figure, width_scale: float = 10.0) -> Any:
         The figure (constrained layout makes room for the legend below the panels).
     width_scale : float
         The panels' line width per unit of weight.
+    degenerate : bool
+        Explain degenerate edges too (when a panel draws some).
 
     Returns
     -------
@@ -759,231 +684,36 @@ def add_network_legend(fig: Figure, width_scale: float = 10.0) -> Any:
     >>> add_network_legend(fig).get_gid()
     'legend:network'
     """
-    legend = fig.legend(handles=network_legend_handles(width_scale), loc="outside lower center",
-                        ncol=3, fontsize=7, frameon=False, handlelength=2.5)
+    legend = fig.legend(handles=network_legend_handles(width_scale, degenerate=degenerate),
+                        loc="outside lower center", ncol=3, fontsize=7, frameon=False,
+                        handlelength=2.5)
     legend.set_gid("legend:network")
     return legend
 
 
-def _signal_figure_legend(fig: Figure, names: Sequence[str]) -> None:
-    """One legend of the signals' colours above a figure of several series panels."""
+def add_signal_legend(fig: Figure, names: Sequence[str]) -> Any:
+    """One legend of the signals' colours above a figure of several series panels.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    names : sequence of str
+        The signals, in legend order (colours of :func:`signal_color`).
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+        The legend (gid ``legend:signals``).
+
+    Examples
+    --------
+    >>> [t.get_text() for t in add_signal_legend(Figure(), ["RP", "V"]).get_texts()]
+    ['RP', 'V']
+    """
     handles = [Line2D([], [], color=signal_color(name), linewidth=1.5, label=str(name))
                for name in names]
-    legend = fig.legend(handles=handles, loc="outside upper center", ncol=len(handles),
+    legend = fig.legend(handles=handles, loc="outside upper center", ncol=max(len(handles), 1),
                         fontsize=7, frameon=False)
     legend.set_gid("legend:signals")
-
-
-def _raw_groups(data: pd.DataFrame) -> list[tuple[str, list[str]]]:
-    """Panels of raw signals that share units: positions, velocity, currents, the rest."""
-    groups = [("positions [°]", [c for c in ("RP", "AP", "MP") if c in data]),
-              ("velocity [°/s]", [c for c in ("V",) if c in data]),
-              ("currents [A]", [c for c in ("RC", "AC") if c in data])]
-    grouped = {c for _, columns in groups for c in columns}
-    groups.append(("other", [c for c in data.columns if c not in grouped]))
-    return [(label, columns) for label, columns in groups if columns]
-
-
-def figure_phases(
-    data: pd.DataFrame,
-    phases: Any,
-    networks: Mapping[str, Any],
-    *,
-    title: str | None = None,
-) -> Figure:
-    """Fig. 9: a trial's normalized and raw signals with its phases, and a network per phase.
-
-    Parameters
-    ----------
-    data : pandas.DataFrame
-        The trial's signals (time in seconds as index; columns RP, AP, MP, V, RC, AC or any).
-    phases : phase table or sequence of Window
-        The phases (``phase, start, stop`` from :func:`funcnet.robot.detect_phases`, or windows).
-    networks : mapping of label -> FunctionalNetwork or None
-        One network per phase, in drawing order (e.g. from :func:`funcnet.robot.phase_networks`);
-        ``None`` where none could be computed. Nodes are placed in the order of ``data``'s
-        columns in every panel.
-    title : str, optional
-        Figure title.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        (a) normalized signals, (b) raw signals in panels of shared units (positions [°],
-        velocity [°/s] as in the paper, currents [A], any other column), phases shaded (gid
-        ``phase:NAME``) on each; below, one network per phase.
-
-    References
-    ----------
-    Paper section 4.1 and Fig. 9.
-
-    Examples
-    --------
-    >>> import numpy as np, pandas as pd
-    >>> t = np.arange(500) * 0.002
-    >>> data = pd.DataFrame({"RP": t ** 2, "AC": np.cos(9 * t)}, index=t)
-    >>> net = pd.DataFrame({"x": ["RP"], "y": ["AC"], "kind": ["y->x"], "weight": [0.2]})
-    >>> phases = pd.DataFrame({"phase": ["spin-up", "cruise"], "start": [0.0, 0.4],
-    ...                        "stop": [0.4, 1.0]})
-    >>> fig = figure_phases(data, phases, {"spin-up": net, "cruise": None})
-    >>> [ax.get_title() for ax in fig.axes if ax.patches and not ax.lines]
-    ['spin-up']
-    """
-    groups = _raw_groups(data)
-    fig = Figure(figsize=(max(8.0, 2.4 * len(networks)), 4.6 + 1.5 * len(groups)),
-                 layout="constrained")
-    grid = fig.add_gridspec(2 + len(groups), max(len(networks), 1),
-                            height_ratios=[1.2, *[0.8] * len(groups), 1.6])
-    top = fig.add_subplot(grid[0, :])
-    plot_signals(data, normalize=True, spans=phases, ax=top)
-    top.set_title("(a) min–max normalized", fontsize=9, loc="left", pad=_SPAN_TITLE_PAD)
-    for k, (ylabel, columns) in enumerate(groups):
-        ax = fig.add_subplot(grid[1 + k, :], sharex=top)
-        plot_signals(data[columns], normalize=False, spans=phases, ax=ax)
-        ax.set_ylabel(ylabel, fontsize=7)
-        ax.set_xlabel("")
-        if k == 0:
-            ax.set_title("(b) raw", fontsize=9, loc="left", pad=_SPAN_TITLE_PAD)
-    _network_row(fig, grid, -1, networks, list(data.columns))
-    add_network_legend(fig)
-    if title:
-        fig.suptitle(title, fontsize=10)
-    return fig
-
-
-def figure_velocity_grid(
-    cells: Mapping[tuple[str, str], tuple[pd.DataFrame, Any]],
-    *,
-    title: str | None = None,
-) -> Figure:
-    """Fig. 10: velocities (columns) × phases (rows), each cell a window's series over its network.
-
-    Parameters
-    ----------
-    cells : mapping of (velocity label, phase label) -> (window data, FunctionalNetwork or None)
-        Column order follows the first appearance of each velocity, row order that of each phase.
-        A cell whose network could not be computed (``None``) shows its series and the text
-        "no network".
-    title : str, optional
-        Figure title.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        For each cell a short axes of normalized series and an axes with the network; one
-        legend of the signals above the grid (gid ``legend:signals``) and one of the edges
-        below it (gid ``legend:network``).
-
-    References
-    ----------
-    Paper section 4.2 and Fig. 10.
-
-    Examples
-    --------
-    >>> import numpy as np, pandas as pd
-    >>> window = pd.DataFrame({"RP": np.arange(10.0), "AC": np.ones(10)})
-    >>> net = pd.DataFrame({"x": ["RP"], "y": ["AC"], "kind": ["bidirectional"], "weight": [0.0]})
-    >>> cells = {(v, p): (window, net) for v in ("V35", "V175") for p in ("cruise", "braking")}
-    >>> len(figure_velocity_grid(cells).axes)
-    8
-    """
-    velocities = list(dict.fromkeys(v for v, _ in cells))
-    phases = list(dict.fromkeys(p for _, p in cells))
-    fig = Figure(figsize=(2.6 * len(velocities), 3.6 * len(phases)), layout="constrained")
-    grid = fig.add_gridspec(2 * len(phases), len(velocities),
-                            height_ratios=[0.6, 1.4] * len(phases))
-    for (velocity, phase), (window, net) in cells.items():
-        row, col = 2 * phases.index(phase), velocities.index(velocity)
-        series = fig.add_subplot(grid[row, col])
-        plot_signals(window, normalize=True, ax=series, legend=False)
-        series.set_title(f"{velocity} · {phase}", fontsize=8)
-        series.tick_params(labelsize=6)
-        series.set_xlabel("time [s]", fontsize=6, labelpad=1)
-        series.set_ylabel("normalized" if col == 0 else "", fontsize=6)
-        graph = fig.add_subplot(grid[row + 1, col])
-        if net is None:
-            _no_network(graph, None)
-        else:
-            plot_network(net, graph, nodes=list(window.columns), legend=False)
-    _signal_figure_legend(fig, list(dict.fromkeys(c for window, _ in cells.values()
-                                                  for c in window.columns)))
-    add_network_legend(fig)
-    if title:
-        fig.suptitle(title, fontsize=10)
-    return fig
-
-
-def figure_reversal(
-    data: pd.DataFrame,
-    windows: Sequence[Any],
-    networks: Mapping[str, Any],
-    *,
-    phases: Any = None,
-    zoom: tuple[float, float] | None = None,
-    title: str | None = None,
-) -> Figure:
-    """Fig. 11: a backlash trial, its reversal and the networks of the shifted windows.
-
-    Parameters
-    ----------
-    data : pandas.DataFrame
-        The whole trial (time in seconds as index).
-    windows : sequence of Window
-        The reversal windows (e.g. offsets −40, −20, 0, +20, +40 ms from
-        :func:`funcnet.robot.reversal_windows`); each is shaded in the zoom (gid
-        ``window:LABEL``).
-    networks : mapping of label -> FunctionalNetwork or None
-        The network of each window, in drawing order.
-    phases : phase table or sequence of Window, optional
-        The trial's phases, shaded on the full view (gid ``phase:NAME``).
-    zoom : (float, float), optional
-        Time range of the zoom; by default the windows' span with a margin of half its length.
-    title : str, optional
-        Figure title.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        (a) full motion, normalized, with the phases; (b) the zoom with the windows; below, one
-        network per window.
-
-    References
-    ----------
-    Paper section 4.3 and Fig. 11.
-
-    Examples
-    --------
-    >>> import numpy as np, pandas as pd
-    >>> from funcnet.robot.windows import Window
-    >>> t = np.arange(1000) * 0.002
-    >>> data = pd.DataFrame({"RP": np.abs(t - 1.0), "V": np.sign(t - 1.0)}, index=t)
-    >>> windows = [Window(f"{s:+d} ms", 0.9 + s / 1000, 1.1 + s / 1000, offset=s / 1000)
-    ...            for s in (-20, 0, 20)]
-    >>> net = pd.DataFrame({"x": ["V"], "y": ["RP"], "kind": ["x->y"], "weight": [0.1]})
-    >>> fig = figure_reversal(data, windows, {w.label: net for w in windows})
-    >>> sorted(p.get_gid() for p in fig.axes[1].patches)
-    ['window:+0 ms', 'window:+20 ms', 'window:-20 ms']
-    """
-    fig = Figure(figsize=(max(8.0, 2.4 * len(networks)), 6.5), layout="constrained")
-    grid = fig.add_gridspec(3, max(len(networks), 1), height_ratios=[1.0, 1.0, 1.5])
-    full = fig.add_subplot(grid[0, :])
-    plot_signals(data, normalize=True, spans=phases, ax=full)
-    full.set_title("(a) full motion", fontsize=9, loc="left",
-                   pad=_SPAN_TITLE_PAD if phases is not None else None)
-    if zoom is None:
-        lo = min(float(w.start) for w in windows)
-        hi = max(float(w.stop) for w in windows)
-        zoom = (lo - (hi - lo) / 2, hi + (hi - lo) / 2)
-    part = data.loc[(data.index >= zoom[0]) & (data.index <= zoom[1])]
-    ax_zoom = fig.add_subplot(grid[1, :])
-    plot_signals(part, normalize=True, ax=ax_zoom, legend=False)
-    for k, window in enumerate(windows):
-        patch = ax_zoom.axvspan(float(window.start), float(window.stop), ymin=0.02 + 0.04 * k,
-                                ymax=0.06 + 0.04 * k, color=f"C{k}", alpha=0.8)
-        patch.set_gid(f"window:{window.label}")
-    ax_zoom.set_title("(b) reversal, shifted windows", fontsize=9, loc="left")
-    _network_row(fig, grid, 2, networks, list(data.columns))
-    add_network_legend(fig)
-    if title:
-        fig.suptitle(title, fontsize=10)
-    return fig
+    return legend

@@ -16,10 +16,10 @@ import numpy as np
 import pandas as pd
 
 from funcnet.errors import ParameterError, SignalError
+from funcnet.parameters import NORMALIZATIONS
 
 __all__ = ["NORMALIZATIONS", "normalize"]
 
-NORMALIZATIONS = ("minmax", "zscore", None)
 _LABEL = {"minmax": "min-max", "zscore": "z-score"}
 
 
@@ -30,7 +30,7 @@ def _signal_names(names: Any, n_signals: int, default: Sequence[str]) -> list[st
         names = [names]
     names = [str(name) for name in names]
     if len(names) != n_signals:
-        raise ParameterError(f"names has {len(names)} entries for {n_signals} signal(s)")
+        raise ParameterError.of("names", f"has {len(names)} entries for {n_signals} signal(s)")
     return names
 
 
@@ -62,7 +62,9 @@ def _as_float_columns(x: Any, names: Any) -> tuple[np.ndarray, list[str]]:
 def _check_normalization(method: Any) -> None:
     """Raise ParameterError unless ``method`` is one of :data:`NORMALIZATIONS`."""
     if method not in NORMALIZATIONS:
-        raise ParameterError(f"normalize must be one of 'minmax', 'zscore' or None, got {method!r}")
+        raise ParameterError.of(
+            "normalize", f"must be one of 'minmax', 'zscore' or None, got {method!r}"
+        )
 
 
 def normalize(x: Any, method: str | None = "minmax", *, names: Any = None) -> Any:

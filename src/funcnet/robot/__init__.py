@@ -1,4 +1,17 @@
-"""Robot-axis controller traces: reading, preprocessing, phases, windows and a simulated axis."""
+"""Robot-axis controller traces: reading, preprocessing, phases and windows; a simulated axis.
+
+Everything here sits below the numerical core and imports none of it: a trace becomes a
+:class:`Recording` (:func:`read_trace`, :func:`read_recording`), its phases and windows are
+tables and :class:`Window` lists. Networks per window are made by
+:func:`funcnet.window_networks` (:mod:`funcnet.pipeline`). The simulated axis lives in
+:mod:`funcnet.robot.sim`. Names are imported lazily.
+
+Examples
+--------
+>>> import funcnet.robot
+>>> funcnet.robot.span_window(1.0, 1.28).label
+'1.000-1.280 s'
+"""
 
 from __future__ import annotations
 
@@ -8,6 +21,7 @@ from typing import Any
 _EXPORTS = {
     "Recording": "funcnet.robot.recording",
     "read_trace": "funcnet.robot.recording",
+    "read_recording": "funcnet.robot.load",
     "SignalInfo": "funcnet.robot.channels",
     "ChannelMap": "funcnet.robot.channels",
     "DEFAULT_CHANNEL_MAP": "funcnet.robot.channels",
@@ -25,16 +39,18 @@ _EXPORTS = {
     "reversal_windows": "funcnet.robot.windows",
     "sliding_windows": "funcnet.robot.windows",
     "span_window": "funcnet.robot.windows",
-    "phase_networks": "funcnet.robot.windows",
-    "AxisParameters": "funcnet.robot.simulate",
-    "SimulatedTrial": "funcnet.robot.simulate",
-    "simulate_trial": "funcnet.robot.simulate",
-    "write_trace": "funcnet.robot.writer",
-    "Trial": "funcnet.robot.plan",
-    "paper_plan": "funcnet.robot.plan",
-    "read_plan": "funcnet.robot.plan",
-    "write_plan": "funcnet.robot.plan",
+    "AxisParameters": "funcnet.robot.sim.axis",
+    "SimulatedTrial": "funcnet.robot.sim.axis",
+    "simulate_trial": "funcnet.robot.sim.axis",
+    "write_trace": "funcnet.robot.sim.writer",
+    "Trial": "funcnet.robot.sim.trial",
+    "paper_plan": "funcnet.robot.sim.plan",
+    "read_plan": "funcnet.robot.sim.plan",
+    "write_plan": "funcnet.robot.sim.plan",
 }
+
+#: Names that left this package, and where they went.
+_MOVED = {"phase_networks": "funcnet.window_networks"}
 
 __all__ = list(_EXPORTS)
 
@@ -43,6 +59,12 @@ def __getattr__(name: str) -> Any:
     try:
         module = _EXPORTS[name]
     except KeyError:
+        if name in _MOVED:
+            # Not an alias: reaching the pipeline from here would import against the flow.
+            raise AttributeError(
+                f"funcnet.robot.{name} moved to {_MOVED[name]} (funcnet.pipeline), which takes "
+                "the same recording and windows"
+            ) from None
         raise AttributeError(f"module 'funcnet.robot' has no attribute {name!r}") from None
     value = getattr(import_module(module), name)
     globals()[name] = value

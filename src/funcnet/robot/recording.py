@@ -13,6 +13,7 @@ import os
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
@@ -28,6 +29,9 @@ from funcnet.robot.channels import (
     select_axis,
 )
 from funcnet.robot.sinumerik import read_sinumerik
+
+if TYPE_CHECKING:
+    import pyarrow as pa
 
 __all__ = ["Recording", "read_trace", "SignalInfo"]
 
@@ -210,7 +214,7 @@ class Recording:
             raise TraceFormatError(path, f"recording metadata is unusable: {exc}") from exc
 
 
-def _read_parquet_table(path: str | os.PathLike[str]):  # -> pyarrow.Table
+def _read_parquet_table(path: str | os.PathLike[str]) -> pa.Table:
     import pyarrow as pa
     import pyarrow.parquet as pq
 

@@ -1,36 +1,24 @@
-"""Analysis windows over a recording, and one functional network per window (paper section 4).
+"""Analysis windows over a recording (paper section 4).
 
 The paper computes networks per motion phase (section 4.1), in fixed windows of 280 / 600 /
 600 ms anchored at the start of spin-up, cruise and braking (section 4.2), and in windows
 shifted by +-20 and +-40 ms around a reversal (section 4.3, Fig. 11). A :class:`Window` is a
-labelled time span ``start <= time < stop`` in seconds; the builders make lists of them and
-:func:`phase_networks` computes a :class:`~funcnet.network.FunctionalNetwork` for each.
+labelled time span ``start <= time < stop`` in seconds
+(:meth:`~funcnet.robot.Recording.window` cuts it out of a recording); the builders make lists
+of them and :func:`funcnet.window_networks` computes a functional network for each.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import math
-import re
-import warnings
 from collections import Counter
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 
-import numpy as np
 import pandas as pd
 
-from funcnet.errors import (
-    ChannelError,
-    FuncnetError,
-    ParameterError,
-    StaircaseWarning,
-    ThresholdWarning,
-    WindowError,
-)
-from funcnet.network import FunctionalNetwork, functional_network
+from funcnet.errors import ParameterError, WindowError
 from funcnet.robot.phases import PHASES, phase_table
-from funcnet.robot.preprocess import staircase_signals
 from funcnet.robot.recording import Recording
 
 __all__ = [
@@ -43,8 +31,6 @@ __all__ = [
     "fixed_windows",
     "reversal_windows",
     "sliding_windows",
-    "phase_networks",
-    "CONSTANT_POLICIES",
 ]
 
 #: Window lengths in seconds of the velocity study (paper section 4.2), by the phase whose start
@@ -52,12 +38,9 @@ __all__ = [
 FIXED_LENGTHS = {"spin-up": 0.28, "cruise": 0.6, "braking": 0.6}
 #: Shifts in seconds of the reversal windows (paper section 4.3, Fig. 11).
 REVERSAL_SHIFTS = (-0.04, -0.02, 0.0, 0.02, 0.04)
-#: The paper's nodes (section 4.1, Fig. 9), the default signals of :func:`phase_networks`.
+#: The paper's nodes (section 4.1, Fig. 9), the default signals of
+#: :func:`funcnet.window_networks`.
 PAPER_NODES = ("RP", "AP", "MP", "V", "RC", "AC")
-#: What :func:`phase_networks` does with a signal constant inside a window: raise, or leave it out.
-CONSTANT_POLICIES = ("error", "drop")
-# The pairs a ThresholdWarning lists (funcnet.measures) differ from window to window.
-_PAIR_LIST = re.compile(r" for \d+ pair\(s\):[^;]*")
 
 
 @dataclass(frozen=True)
@@ -317,7 +300,9 @@ def sliding_windows(
     -------
     list of Window
         ``[start + k step, start + k step + width)`` for every k that fits before ``stop``;
-        labelled by their span (``1.000-1.280 s``).
+        labelled by their span (``1.000-1.280 s``). Each holds the ticks ``start <= t < stop``
+        (:meth:`Recording.window <funcnet.robot.Recording.window>`), so windows with
+        ``step == width`` share no tick.
 
     Raises
     ------
@@ -331,8 +316,11 @@ def sliding_windows(
     >>> data = pd.DataFrame({"RP": [0.0] * 10}, index=pd.Index([i / 10 for i in range(10)],
     ...                     name="time"))
     >>> rec = Recording(data, {}, {"RP": SignalInfo("RP", None, None, 0.1)}, sample_period=0.1)
-    >>> [w.label for w in sliding_windows(rec, 0.4, 0.3)]
+    >>> windows = sliding_windows(rec, 0.4, 0.3)
+    >>> [w.label for w in windows]
     ['0.000-0.400 s', '0.300-0.700 s', '0.600-1.000 s']
+    >>> rec.window(windows[1].start, windows[1].stop).data.index.tolist()
+    [0.3, 0.4, 0.5, 0.6]
     """
     for value, name in ((width, "width"), (step, "step")):
         if not (value > 0 and math.isfinite(value)):
@@ -348,207 +336,3 @@ def sliding_windows(
     count = math.floor((last - first - width) / step + 1e-9) + 1
     starts = [round(first + k * step, 9) for k in range(count)]
     return [span_window(begin, round(begin + width, 9)) for begin in starts]
-
-
-def phase_networks(
-    recording: Recording,
-    windows: Sequence[Window] | pd.DataFrame,
-    *,
-    signals: Sequence[str] | None = None,
-    constant: str = "error",
-    **network_parameters,
-) -> dict[str, FunctionalNetwork]:
-    """One functional network per window.
-
-    Parameters
-    ----------
-    recording : Recording
-        Derived signals (V) should already be columns (:func:`add_derived_signals`), computed
-        over the whole recording.
-    windows : sequence of Window, or a phase table
-        A phase table is turned into :func:`phase_windows`.
-    signals : sequence of str, optional
-        The nodes; default the paper's (:data:`PAPER_NODES`) that the recording has.
-    constant : {"error", "drop"}
-        A signal constant inside a window cannot be normalized (min-max or z-score): ``"error"``
-        raises :class:`~funcnet.errors.SignalError`; ``"drop"`` leaves it out of that window's
-        network (listed in its ``parameters["dropped"]``). Without normalization
-        (``normalize=None``) nothing is dropped.
-    **network_parameters
-        Passed to :func:`funcnet.functional_network` (``dim``, ``delay``, ``rr``, ``cr``, ``mu``,
-        ``normalize`` ...). Normalization (min-max by default) happens there, per window.
-
-    Returns
-    -------
-    dict
-        Window label -> FunctionalNetwork (labelled so), in window order. Each network's
-        ``parameters`` also hold its window: ``window_start``, ``window_stop`` (seconds),
-        ``phase``, ``source`` (the recording's file) and ``dropped`` (the signals left out).
-
-    Raises
-    ------
-    WindowError
-        A window outside the recording, with a signal not recorded (NaN) in it, with fewer than
-        two signals left after dropping constant ones, or a duplicate label; the message names
-        the file.
-    ChannelError
-        A signal that is not a column.
-    ParameterError
-        ``constant`` is not ``"error"`` or ``"drop"``.
-    FuncnetError
-        Any error of :func:`funcnet.functional_network` on a window (a constant signal, a window
-        too short for the embedding, a bad parameter), of the same class, its message prefixed
-        with the file, the window's label and its span.
-
-    Warns
-    -----
-    StaircaseWarning
-        A node's native interval is coarser than the grid (the 4 ms IPO signals AP and MP on the
-        2 ms grid): it is a staircase, and recurrences are counted on repeated values. Use
-        :func:`~funcnet.robot.resample` to avoid it.
-    ThresholdWarning
-        At most one per kind of problem for the whole call (not one per window), naming the
-        windows that have it; the pairs concerned are flagged in each network's pairs table
-        (``eps_ordered``, ``rate_exceeded``).
-
-    References
-    ----------
-    Paper section 3.4 (construction), section 4 (networks per phase and window).
-
-    Examples
-    --------
-    >>> import numpy as np, pandas as pd
-    >>> from funcnet.robot.recording import Recording, SignalInfo
-    >>> t = np.arange(0, 2, 0.002)
-    >>> data = pd.DataFrame({"RP": np.sin(5 * t), "AP": np.sin(5 * t - 0.3),
-    ...                      "AC": np.where(t < 1, 0.0, np.cos(7 * t))},
-    ...                     index=pd.Index(t, name="time"))
-    >>> info = {name: SignalInfo(name, None, None, 0.002) for name in data}
-    >>> rec = Recording(data, {}, info, source="trace.csv", sample_period=0.002)
-    >>> nets = phase_networks(rec, [Window("still", 0.2, 0.8), Window("moving", 1.2, 1.8)],
-    ...                       constant="drop")
-    >>> nets["still"].nodes, nets["still"].parameters["dropped"]
-    (('RP', 'AP'), ['AC'])
-    >>> {k: nets["moving"].parameters[k] for k in ("window_start", "window_stop", "source")}
-    {'window_start': 1.2, 'window_stop': 1.8, 'source': 'trace.csv'}
-    >>> phase_networks(rec, [Window("still", 0.2, 0.8)])
-    Traceback (most recent call last):
-        ...
-    funcnet.errors.SignalError: trace.csv: window 'still' [0.2, 0.8) s: signal 'AC' is constant ...
-    """
-    if constant not in CONSTANT_POLICIES:
-        raise ParameterError(f"constant must be 'error' or 'drop', got {constant!r}")
-    if isinstance(windows, pd.DataFrame):
-        windows = phase_windows(windows)
-    where = recording.source or "<recording>"
-    labels = [window.label for window in windows]
-    duplicated = sorted(label for label, n in Counter(labels).items() if n > 1)
-    if duplicated:
-        raise WindowError(f"{where}: window labels {duplicated} occur more than once")
-    if signals is None:
-        signals = [name for name in PAPER_NODES if name in recording.data.columns]
-    missing = [name for name in signals if name not in recording.data.columns]
-    if missing or not signals:
-        raise ChannelError(
-            where,
-            f"signals {missing or list(signals)} are not columns of the recording; it "
-            f"has {list(recording.data.columns)}",
-        )
-    staircases = staircase_signals(recording, signals)
-    if staircases:
-        warnings.warn(
-            StaircaseWarning(
-                f"{where}: {staircases} change at most every "
-                f"{max(recording.signals[s].interval for s in staircases) * 1e3:g} ms but are "
-                f"analysed on the {recording.sample_period * 1e3:g} ms grid (staircases); "
-                "funcnet.robot.resample decimates or interpolates them"
-            ),
-            stacklevel=2,
-        )
-    drop = constant == "drop" and network_parameters.get("normalize", "minmax") is not None
-    networks = {}
-    # The windows' warnings are gathered and issued once per kind below: a notebook looping
-    # over a dozen windows should not print a dozen copies of the same advice.
-    raised: list[tuple[str, warnings.WarningMessage]] = []
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        for window in windows:
-            part = recording.window(window.start, window.stop).data[list(signals)]
-            values = part.to_numpy(dtype=np.float64)
-            if np.isnan(values).any():
-                column = part.columns[np.isnan(values).any(axis=0)][0]
-                raise WindowError(
-                    f"{where}: window {window.label!r} {_span(window)}: "
-                    f"signal {column!r} has no recorded value at some of its ticks"
-                )
-            dropped: list[str] = []
-            if drop:
-                dropped = [str(name) for name in part.columns[np.ptp(values, axis=0) == 0]]
-            if dropped and len(signals) - len(dropped) < 2:
-                raise WindowError(
-                    f"{where}: window {window.label!r} {_span(window)}: signals {dropped} are "
-                    "constant in it, which leaves fewer than two signals"
-                )
-            seen = len(caught)
-            try:
-                network = functional_network(
-                    part.drop(columns=dropped), label=window.label, **network_parameters
-                )
-            except FuncnetError as error:
-                _locate(error, where, window)
-                raise
-            raised.extend((window.label, w) for w in caught[seen:])
-            networks[window.label] = dataclasses.replace(
-                network,
-                parameters={
-                    **network.parameters,
-                    "window_start": window.start,
-                    "window_stop": window.stop,
-                    "phase": window.phase,
-                    "source": recording.source,
-                    "dropped": dropped,
-                },
-            )
-    # Kind -> (window label, first line without its list of pairs) of each window that has it.
-    threshold_windows: dict[tuple[type[Warning], str], list[tuple[str, str]]] = {}
-    for label, w in raised:
-        if issubclass(w.category, ThresholdWarning):
-            first_line = _PAIR_LIST.sub("", (str(w.message).splitlines() or [""])[0])
-            kind = (w.category, _warning_kind(first_line, signals))
-            threshold_windows.setdefault(kind, []).append((label, first_line))
-        else:
-            warnings.warn(w.message, stacklevel=2)
-    for (category, _), concerned in threshold_windows.items():
-        (label, text), *others = concerned
-        details = f" (details as in {label!r})" if any(t != text for _, t in others) else ""
-        warnings.warn(
-            f"{text}\n{where}: in {len(concerned)} of {len(windows)} window(s): "
-            f"{', '.join(repr(label) for label, _ in concerned)}{details}",
-            category,
-            stacklevel=2,
-        )
-    return networks
-
-
-def _warning_kind(text: str, signals: Sequence[str]) -> str:
-    """The words of ``text`` before its first detail (a number, a parenthesis, a signal name).
-
-    The details differ from window to window; the words before them name the kind of problem.
-    """
-    words = []
-    for word in text.split():
-        if word[0] in "(0123456789" or word.strip(",;:") in signals:
-            break
-        words.append(word)
-    return " ".join(words)
-
-
-def _locate(error: FuncnetError, where: str, window: Window) -> None:
-    """Put the recording's file and the window in front of ``error``'s message."""
-    # Changed in place: the class, the traceback and attributes such as TraceError.path stay,
-    # whatever the class's constructor takes.
-    error.args = (f"{where}: window {window.label!r} {_span(window)}: {error}",)
-
-
-def _span(window: Window) -> str:
-    return f"[{window.start:g}, {window.stop:g}) s"

@@ -1,9 +1,10 @@
-"""The design of experiments: trials, the paper's plan (Table 1), user plans, writing traces.
+"""The design of experiments: the paper's plan (Table 1), user plans, writing traces.
 
-A :class:`Trial` is one motion of the simulated axis (:mod:`funcnet.robot.simulate`): speed, TCP
-distance, step, forward or forward-then-reverse, and optional fault knobs. :func:`paper_plan`
-gives the 36 trials of the paper's Table 1, :func:`read_plan` reads a plan from a TOML file and
-:func:`write_plan` simulates a plan into a directory of SINUMERIK traces with a manifest.
+A :class:`~funcnet.robot.sim.trial.Trial` is one motion of the simulated axis
+(:mod:`funcnet.robot.sim.axis`): speed, TCP distance, step, forward or forward-then-reverse, and
+optional fault knobs. :func:`paper_plan` gives the 36 trials of the paper's Table 1,
+:func:`read_plan` reads a plan from a TOML file and :func:`write_plan` simulates a plan into a
+directory of SINUMERIK traces with a manifest.
 
 A plan file lists groups; each group is the Cartesian product of its lists::
 
@@ -40,35 +41,30 @@ import hashlib
 import io
 import itertools
 import json
-import math
 import multiprocessing
 import os
-import re
 import tomllib
 from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from funcnet._io import file_sha256, write_text_atomic
 from funcnet.errors import ParameterError, StudyError
-from funcnet.robot.simulate import (
-    FAULT_KNOBS,
+from funcnet.robot.sim.axis import (
     AxisParameters,
     effective_parameters,
     simulate_trial,
     trial_duration,
 )
-from funcnet.robot.writer import write_trace
+from funcnet.robot.sim.trial import FAULT_KNOBS, NAME_PATTERN, Trial
+from funcnet.robot.sim.writer import write_trace
 
 __all__ = ["Trial", "paper_plan", "read_plan", "write_plan", "MANIFEST_COLUMNS"]
 
 #: Bump when the simulator or the writer changes what a trial's bytes are: older files are then
 #: written again instead of being skipped.
 FORMAT_VERSION = 1
-
-_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._-]*")
 
 #: Columns of ``manifest.csv``: the trial, the parameters in effect, the ground truth, and the
 #: file's fingerprint (inputs) and SHA-256 (bytes).
@@ -96,78 +92,6 @@ MANIFEST_COLUMNS = (
     "fingerprint",
     "sha256",
 )
-
-
-@dataclass(frozen=True)
-class Trial:
-    """One motion of the simulated axis.
-
-    Parameters
-    ----------
-    name : str
-        Unique within a plan; the trace's file name without ``.xml`` (letters, digits, ``.``,
-        ``_``, ``-``).
-    group : str
-        The experiment group, e.g. ``"main"``, ``"static-friction"``, ``"backlash"``.
-    speed : float
-        Programmed joint speed in deg/min (> 0).
-    tcp : float
-        TCP distance from the axis in m (> 0); sets the arm inertia.
-    step : float
-        Step size in deg (non-zero; the sign is the direction of the forward move).
-    reverse : bool
-        Whether the axis returns to its start right after the forward move (same trace).
-    backlash, friction_scale, stiffness_scale : float or None
-        Fault knobs overriding :class:`~funcnet.robot.simulate.AxisParameters` (None keeps
-        the axis's value).
-
-    Examples
-    --------
-    >>> Trial("main-v35-p16-s3", "main", speed=35, tcp=1.6, step=3).reverse
-    False
-    """
-
-    name: str
-    group: str
-    speed: float
-    tcp: float
-    step: float
-    reverse: bool = False
-    backlash: float | None = None
-    friction_scale: float | None = None
-    stiffness_scale: float | None = None
-
-    def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not _NAME.fullmatch(self.name):
-            raise ParameterError(f"Trial.name must be a file-name-safe string: {self.name!r}")
-        for key in ("speed", "tcp", "step"):
-            value = getattr(self, key)
-            if (
-                isinstance(value, bool)
-                or not isinstance(value, int | float)
-                or not math.isfinite(value)
-            ):
-                raise ParameterError(f"Trial {self.name}: {key} must be a finite number: {value!r}")
-            object.__setattr__(self, key, float(value))  # 35 and 35.0: one trial, one fingerprint
-        if self.speed <= 0 or self.tcp <= 0 or self.step == 0:
-            raise ParameterError(
-                f"Trial {self.name}: speed and tcp must be positive and step non-zero "
-                f"(speed={self.speed}, tcp={self.tcp}, step={self.step})"
-            )
-        if not isinstance(self.reverse, bool):
-            raise ParameterError(f"Trial {self.name}: reverse must be a bool: {self.reverse!r}")
-        for knob in FAULT_KNOBS:
-            value = getattr(self, knob)
-            if value is not None and (
-                isinstance(value, bool)
-                or not isinstance(value, int | float)
-                or not math.isfinite(value)
-                or value < 0
-                or (value == 0 and knob != "backlash")
-            ):
-                raise ParameterError(f"Trial {self.name}: {knob} out of range: {value!r}")
-            if value is not None:
-                object.__setattr__(self, knob, float(value))
 
 
 def _trial_name(group: str, speed: float, tcp: float, step: float, knobs: dict[str, float]) -> str:
@@ -260,7 +184,7 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
         the key.
     ParameterError
         A trial's value is out of range (from :class:`Trial`), or a trial would span more than
-        :data:`~funcnet.robot.simulate.MAX_TRIAL_DURATION` with the default axis parameters.
+        :data:`~funcnet.robot.sim.axis.MAX_TRIAL_DURATION` with the default axis parameters.
         The message names the file, the group and the trial.
 
     Examples
@@ -294,7 +218,7 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
         if unknown:
             raise StudyError(f"{where}: unknown key(s) {sorted(unknown)}")
         name = group.get("name")
-        if not isinstance(name, str) or not _NAME.fullmatch(name):
+        if not isinstance(name, str) or not NAME_PATTERN.fullmatch(name):
             raise StudyError(f"{where}: 'name' must be a file-name-safe string")
         lists = {}
         for key in ("speeds", "tcps", "steps", *FAULT_KNOBS):
@@ -405,7 +329,7 @@ def write_plan(
     out_dir : path-like
         Created if missing; may already hold an earlier run.
     seed : int
-        Noise seed (see :func:`~funcnet.robot.simulate.simulate_trial`).
+        Noise seed (see :func:`~funcnet.robot.sim.axis.simulate_trial`).
     params : AxisParameters, optional
         The axis; the defaults when omitted.
     progress : callable, optional
@@ -426,7 +350,7 @@ def write_plan(
     ------
     ParameterError
         Two trials share a name, ``workers`` < 1, or a trial would span more than
-        :data:`~funcnet.robot.simulate.MAX_TRIAL_DURATION` (checked for every trial before
+        :data:`~funcnet.robot.sim.axis.MAX_TRIAL_DURATION` (checked for every trial before
         anything is simulated or written).
 
     Notes

@@ -1,11 +1,14 @@
 """A simulated robot base axis: two-mass drivetrain with backlash, friction and a CNC cascade.
 
+(Over 600 lines: about half is the model's documentation and the sourcing of each parameter.)
+
 The paper's recordings (first axis of a large milling robot, SINUMERIK 840D sl, 500 Hz) cannot be
 downloaded here, and nobody can check a diagnosis without ground truth. This module stands in for
 the machine: it produces the five signals the paper records -- reference position RP, arm-side
 (direct encoder) position AP, motor-encoder position MP, reference current RC and actual current
-AC -- every 2 ms, for any trial of the design of experiments (:mod:`funcnet.robot.plan`), together
-with the quantities a real trace never shows (gear torque, true lost motion, breakaway time).
+AC -- every 2 ms, for any trial of the design of experiments (:mod:`funcnet.robot.sim.plan`),
+together with the quantities a real trace never shows (gear torque, true lost motion, breakaway
+time).
 
 Model
 -----
@@ -34,7 +37,8 @@ Control, as the cascade of a CNC axis:
   on a DC-equivalent q-axis winding ``L di/dt = u - R i - k_t w_m``.
 
 Everything is integrated at the current loop's rate (16 kHz by default) by one Numba-compiled
-kernel (semi-implicit Euler for the mechanics, the exact exponential step for the winding).
+kernel in :mod:`funcnet.robot.sim._kernel` (semi-implicit Euler for the mechanics, the exact
+exponential step for the winding).
 
 Assumptions the docs must state
 -------------------------------
@@ -77,16 +81,14 @@ import dataclasses
 import math
 import zlib
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-import numba
 import numpy as np
 import pandas as pd
 
 from funcnet.errors import ParameterError
-
-if TYPE_CHECKING:
-    from funcnet.robot.plan import Trial
+from funcnet.robot.sim._kernel import axis_kernel
+from funcnet.robot.sim.trial import FAULT_KNOBS, Trial
 
 __all__ = [
     "AxisParameters",
@@ -98,9 +100,6 @@ __all__ = [
     "FAULT_KNOBS",
     "MAX_TRIAL_DURATION",
 ]
-
-#: Fields of :class:`AxisParameters` a :class:`~funcnet.robot.plan.Trial` may override.
-FAULT_KNOBS = ("backlash", "friction_scale", "stiffness_scale")
 
 #: The longest trace a trial may span, in s (lead time, motion and settling; one hour). The
 #: simulator holds about 0.65 MB per simulated second at the default loop rates (measured with
@@ -115,7 +114,7 @@ class AxisParameters:
 
     Angles and speeds without a suffix are on the joint (arm) side; ``motor_*`` friction acts on
     the motor shaft. The three fault knobs -- ``backlash``, ``friction_scale``,
-    ``stiffness_scale`` -- are what a :class:`~funcnet.robot.plan.Trial` may override.
+    ``stiffness_scale`` -- are what a :class:`~funcnet.robot.sim.trial.Trial` may override.
 
     Parameters
     ----------
@@ -218,6 +217,40 @@ class AxisParameters:
     log_period : float
         s between logged samples, 0.002 (500 Hz, the paper's rate). Must be a multiple of the
         speed-loop period.
+    position_log_period : float
+        s between updates of the logged measuring-system positions AP and MP: 0.002 (every
+        servo tick, the paper's description) or 0.004 -- the real 840D sl trace logs
+        ``measPos1/2`` as IPO signals every 4 ms (``interval="0.004"``). A multiple of
+        ``log_period``; the value is held in between (a staircase on the 2 ms grid).
+    noise_scale : float
+        Plan knob: multiplies every noise source (current-sensor noise, its drift, cogging), 1.
+    current_drift : float
+        A, standard deviation of a slow, first-order low-pass component of the current
+        measurement (offset drift): 0 by default; the real trace's standstill current wanders
+        with a lag-1 autocorrelation of 0.9-0.99 at 2 ms.
+    current_drift_frequency : float
+        Hz, corner frequency of that drift, 2.0 (from the real trace's standstill
+        autocorrelation: ``-ln(0.977) / (2 pi 2 ms)``).
+    cogging_torque : float
+        N m, amplitude of a torque ripple periodic in the motor angle (cogging), 0 by default;
+        it makes the current ripple in spin-up and cruise that a real servo motor shows.
+    cogging_periods : float
+        Ripple periods per motor turn, 72 (the least common multiple of 36 slots and 8 pole
+        pairs; assumption).
+    arm_model : {"rigid", "elastic"}
+        ``"elastic"`` adds a third mass: the arm's TCP share ``arm_tcp_mass * r**2`` becomes a
+        tip coupled to the hub (``arm_inertia_base``, which carries the bearing friction and
+        the arm encoder) through ``link_stiffness`` and ``link_damping``: the standard
+        flexible-joint / flexible-link chain [4]_. ``"rigid"`` (default) is the two-mass model.
+    link_stiffness : float
+        N m/rad of the elastic link, 1.6e6: a first link mode near 10 Hz at 1.6 m, where large
+        serial robots have their first structural modes (assumption).
+    link_damping : float
+        N m s/rad of the elastic link, 1.6e3 (about 3 % damping at 1.6 m; assumption).
+    position_feedback : {"arm", "motor"}
+        The encoder the position loop reads: ``"arm"`` (default, the direct encoder as in the
+        paper's robot) or ``"motor"`` (a robot without the second encoder): RC, AC and MP then
+        carry no arm-side feedback.
 
     References
     ----------
@@ -271,9 +304,24 @@ class AxisParameters:
     dwell_time: float = 0.0
     settle_time: float = 1.5
     log_period: float = 0.002
+    position_log_period: float = 0.002
+    noise_scale: float = 1.0
+    current_drift: float = 0.0
+    current_drift_frequency: float = 2.0
+    cogging_torque: float = 0.0
+    cogging_periods: float = 72.0
+    arm_model: str = "rigid"
+    link_stiffness: float = 1.6e6
+    link_damping: float = 1.6e3
+    position_feedback: str = "arm"
 
     def __post_init__(self) -> None:
-        for f in dataclasses.fields(self):
+        for name, allowed in _CHOICES.items():
+            if getattr(self, name) not in allowed:
+                raise ParameterError(
+                    f"AxisParameters.{name} must be one of {allowed}: {getattr(self, name)!r}"
+                )
+        for f in _numeric_fields():
             value = getattr(self, f.name)
             if not (isinstance(value, int | float) and math.isfinite(value)):
                 raise ParameterError(f"AxisParameters.{f.name} must be a finite number: {value!r}")
@@ -286,13 +334,17 @@ class AxisParameters:
             "current_resolution",
             "velocity_feedforward",
             "gear_damping",
+            "noise_scale",
+            "current_drift",
+            "cogging_torque",
+            "link_damping",
         }
         nonnegative |= {
             f.name
-            for f in dataclasses.fields(self)
+            for f in _numeric_fields()
             if "coulomb" in f.name or "static" in f.name or "viscous" in f.name
         }
-        for f in dataclasses.fields(self):
+        for f in _numeric_fields():
             value = getattr(self, f.name)
             if value < 0 or (value == 0 and f.name not in nonnegative):
                 kind = "non-negative" if f.name in nonnegative else "positive"
@@ -307,6 +359,11 @@ class AxisParameters:
             )
         ratio = self.current_loop_rate / self.speed_loop_rate
         per_log = self.log_period * self.speed_loop_rate
+        per_position = self.position_log_period / self.log_period
+        if abs(per_position - round(per_position)) > 1e-9:
+            raise ParameterError(
+                "AxisParameters: position_log_period must be a multiple of log_period"
+            )
         if abs(ratio - round(ratio)) > 1e-9 or abs(per_log - round(per_log)) > 1e-6:
             raise ParameterError(
                 "AxisParameters: current_loop_rate must be a multiple of speed_loop_rate and "
@@ -323,6 +380,62 @@ class AxisParameters:
         if unknown:
             raise ParameterError(f"AxisParameters has no field(s) {sorted(unknown)}")
         return dataclasses.replace(self, **changes)
+
+
+#: Fields of :class:`AxisParameters` that take a word, and the words.
+_CHOICES = {"arm_model": ("rigid", "elastic"), "position_feedback": ("arm", "motor")}
+
+
+def _numeric_fields() -> list[dataclasses.Field[Any]]:
+    return [f for f in dataclasses.fields(AxisParameters) if f.name not in _CHOICES]
+
+
+def real_axis_parameters(**changes: Any) -> AxisParameters:
+    """The axis with its sensors and logging set from the real 840D sl trace.
+
+    The mechanics stay those of :class:`AxisParameters`; what a controller trace shows is set
+    from ``axis7-braking-trace.xml`` (see ``docs/backlash.md`` for the side-by-side table):
+
+    - ``position_log_period = 0.004``: ``measPos1/2`` are IPO signals (4 ms);
+    - ``arm_encoder_counts = 2**22``: ``measPos2`` steps by 8-9e-5 deg (360 / 2**22 =
+      8.6e-5 deg);
+    - ``motor_encoder_counts = 2**18``: ``measPos1`` steps by 1e-5 deg joint side at standstill
+      (360 / (2**18 * 150) = 9.2e-6 deg);
+    - ``current_noise = 0.013`` A: the standstill current's sample-to-sample scatter
+      (``std(diff(AC)) / sqrt(2)`` = 0.013-0.014 A in all three standstill stretches);
+    - ``current_drift = 0.04`` A at 2 Hz: the slow wander of the standstill current (within
+      0.5 s: 0.02-0.055 A; lag-1 autocorrelation 0.89-0.99);
+    - ``cogging_torque = 1.0`` N m: a current ripple of a few tenths of an ampere in cruise
+      (the real cruise current's sample-to-sample scatter is 0.50 A at 108 deg/s; at the
+      sweep's speeds the ripple is slower and partly regulated away).
+
+    Parameters
+    ----------
+    **changes
+        Further fields to set (validated as in the constructor).
+
+    Returns
+    -------
+    AxisParameters
+
+    Examples
+    --------
+    >>> p = real_axis_parameters()
+    >>> p.position_log_period, p.arm_encoder_counts == 2**22
+    (0.004, True)
+    >>> real_axis_parameters(noise_scale=2.0).noise_scale
+    2.0
+    """
+    base = AxisParameters(
+        position_log_period=0.004,
+        arm_encoder_counts=2**22,
+        motor_encoder_counts=2**18,
+        current_noise=0.013,
+        current_drift=0.04,
+        current_drift_frequency=2.0,
+        cogging_torque=1.0,
+    )
+    return base.replace(**changes) if changes else base
 
 
 @dataclass(frozen=True)
@@ -470,107 +583,6 @@ def setpoint_profile(
     return pos, vel, timing
 
 
-@numba.njit(cache=True)
-def _friction_step(w, torque, inertia, dt, coulomb, static, viscous, stribeck):
-    """New velocity of a body with Coulomb + viscous + Stribeck friction (Karnopp's stick)."""
-    if w == 0.0:
-        if abs(torque) <= static:
-            return 0.0
-        return dt / inertia * (torque - math.copysign(static, torque))
-    sliding = coulomb + (static - coulomb) * math.exp(-((w / stribeck) ** 2))
-    new = w + dt / inertia * (torque - math.copysign(sliding, w) - viscous * w)
-    if new * w < 0.0:  # passed through zero within the step: stick, decided again next step
-        return 0.0
-    return new
-
-
-@numba.njit(cache=True)
-def _axis_kernel(sp_pos, sp_vel, noise, dt, steps, mechanics, friction, control, sensors):
-    """Integrate the axis at ``dt``; log RP, AP, MP, RC, AC and the hidden states.
-
-    ``sp_pos``, ``sp_vel``: set-point (joint rad, rad/s) per speed-controller cycle; ``noise``:
-    current-sensor noise (A) per step; the tuples are unpacked below (SI units, joint side
-    except the motor's own quantities). Returns the log, the states and the truth events.
-    """
-    per_speed, per_log, n_start, n_reverse = steps
-    ratio, j_m, j_a, k, c, half_b, kt, r, l_ind = mechanics
-    m_coul, m_stat, m_visc, m_strib, a_coul, a_stat, a_visc, a_strib = friction
-    i_max, kp_i, ki_i, kp_v, ki_v, kv, ffw = control
-    q_m, q_a, q_i = sensors
-    n_steps = sp_pos.shape[0] * per_speed
-    n_log = (n_steps + per_log - 1) // per_log
-    log = np.empty((n_log, 5))
-    states = np.empty((n_log, 4))
-    events = np.full(6, np.nan)  # breakaway, reversal, restart, lost motion, windups fwd / rev
-    th_m = w_m = th_a = w_a = cur = 0.0
-    u_next = u_now = integ_i = integ_v = i_cmd = 0.0
-    enc_m_prev = enc_m = enc_a = 0.0
-    decay = math.exp(-dt * r / l_ind)
-    t_speed = dt * per_speed
-    d_max = -np.inf
-    t_d_max = np.nan
-    for n in range(n_steps):
-        if n % per_speed == 0:
-            kk = n // per_speed
-            enc_m = round(th_m / q_m) * q_m
-            enc_a = round(th_a / q_a) * q_a
-            w_meas = (enc_m - enc_m_prev) / t_speed
-            enc_m_prev = enc_m
-            w_cmd = ratio * (ffw * sp_vel[kk] + kv * (sp_pos[kk] - enc_a))
-            err_v = w_cmd - w_meas
-            wanted = kp_v * err_v + integ_v
-            i_cmd = min(max(wanted, -i_max), i_max)
-            if wanted == i_cmd or wanted * err_v < 0.0:  # anti-windup: freeze when saturated
-                integ_v += ki_v * t_speed * err_v
-        i_meas = round((cur + noise[n]) / q_i) * q_i
-        err_i = i_cmd - i_meas
-        u_now = u_next  # one controller cycle of computation delay
-        u_next = kp_i * err_i + integ_i
-        integ_i += ki_i * dt * err_i
-        delta = th_m / ratio - th_a
-        if delta > half_b:
-            tau = max(k * (delta - half_b) + c * (w_m / ratio - w_a), 0.0)
-        elif delta < -half_b:
-            tau = min(k * (delta + half_b) + c * (w_m / ratio - w_a), 0.0)
-        else:
-            tau = 0.0
-        if n % per_log == 0:
-            j = n // per_log
-            log[j, 0] = sp_pos[n // per_speed]
-            log[j, 1] = enc_a
-            log[j, 2] = enc_m / ratio
-            log[j, 3] = i_cmd
-            log[j, 4] = i_meas
-            states[j, 0] = tau
-            states[j, 1] = delta
-            states[j, 2] = w_a
-            states[j, 3] = w_m / ratio
-        cur = cur * decay + (1.0 - decay) * (u_now - kt * w_m) / r
-        w_m_new = _friction_step(
-            w_m, kt * cur - tau / ratio, j_m, dt, m_coul, m_stat, m_visc, m_strib
-        )
-        w_a_new = _friction_step(w_a, tau, j_a, dt, a_coul, a_stat, a_visc, a_strib)
-        if w_a == 0.0:
-            if w_a_new == 0.0:
-                if delta > d_max:  # the arm rests: follow the motor's forward extreme
-                    d_max, t_d_max = delta, n * dt
-            else:
-                if n >= n_start and np.isnan(events[0]):
-                    events[0] = (n + 1) * dt
-                if n_reverse >= 0 and n >= n_reverse and w_a_new < 0.0 and np.isnan(events[2]):
-                    events[1] = t_d_max
-                    events[2] = (n + 1) * dt
-                    events[3] = d_max - delta
-                    events[4] = d_max - half_b
-                    events[5] = -delta - half_b
-        elif w_a_new == 0.0:
-            d_max, t_d_max = delta, n * dt
-        w_m, w_a = w_m_new, w_a_new
-        th_m += w_m * dt
-        th_a += w_a * dt
-    return log, states, events
-
-
 def _trial_seed(seed: int, name: str) -> np.random.SeedSequence:
     """Noise seed of one trial: the user's seed with the trial's name, independent of order."""
     return np.random.SeedSequence([int(seed), zlib.crc32(name.encode("utf-8"))])
@@ -609,7 +621,7 @@ def trial_duration(trial: Trial, params: AxisParameters | None = None) -> float:
 
     Examples
     --------
-    >>> from funcnet.robot.plan import Trial
+    >>> from funcnet.robot.sim.trial import Trial
     >>> round(trial_duration(Trial("base", "main", speed=35, tcp=1.6, step=3)), 4)
     7.5929
     >>> trial_duration(Trial("slow", "main", speed=0.001, tcp=1.6, step=1))  # doctest: +ELLIPSIS
@@ -671,7 +683,7 @@ def simulate_trial(
 
     Examples
     --------
-    >>> from funcnet.robot.plan import Trial
+    >>> from funcnet.robot.sim.trial import Trial
     >>> sim = simulate_trial(Trial("demo", "main", speed=350, tcp=1.2, step=1.0), seed=1)
     >>> list(sim.data.columns)
     ['RP', 'AP', 'MP', 'RC', 'AC']
@@ -708,7 +720,7 @@ def simulate_trial(
                p.velocity_feedforward)  # fmt: skip
     sensors = (2 * math.pi / p.motor_encoder_counts, 2 * math.pi / p.arm_encoder_counts,
                p.current_resolution)  # fmt: skip
-    log, states, events = _axis_kernel(
+    log, states, events = axis_kernel(
         sp_pos * rad, sp_vel * rad, noise, dt, steps,
         *(tuple(map(float, group)) for group in (mechanics, friction, control, sensors)),
     )  # fmt: skip

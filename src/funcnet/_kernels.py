@@ -1,0 +1,421 @@
+"""Compiled kernels of the recurrence structures and the cross measures (private).
+
+Distances are compared through a monotone *key*: the sum of squares for "euclidean" (no square
+root in the hot loops), the distance itself otherwise. A threshold eps becomes the largest key
+whose distance is <= eps (or < eps), computed exactly with the same correctly rounded square
+root (:func:`funcnet._order_statistic._key_bound`), so every comparison equals the one on
+distances. Keys are accumulated coordinate by coordinate in the order pyunicorn's kernels use,
+so both give the same bits. One row of keys at a time is held, never the distance matrix.
+
+Recurrence rows are bit-packed: bit ``j`` of row ``i`` is word ``j // 64``, bit ``j % 64``.
+The cross-triangle kernel of Eq. 6-9 counts with popcounts over those words.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from llvmlite import ir
+from numba import njit, prange, types
+from numba.extending import intrinsic
+
+Array = np.ndarray
+# Numba hands kernels NumPy integer scalars as well as ints.
+Int = int | np.integer[Any]
+
+_METRIC_CODE = {"euclidean": 0, "supremum": 1, "manhattan": 2}
+
+
+if TYPE_CHECKING:  # what the intrinsics compute, as mypy should see them
+
+    def _popcount(word: Any) -> int: ...
+
+    def _lowest_bit(word: Any) -> int: ...
+
+else:
+
+    @intrinsic
+    def _popcount(typingctx: Any, word: Any) -> Any:
+        """Number of set bits of a uint64 (LLVM ``ctpop``, one instruction on x86-64)."""
+        signature = types.uint64(types.uint64)
+
+        def codegen(context: Any, builder: Any, sig: Any, args: Any) -> Any:
+            return builder.ctpop(args[0])
+
+        return signature, codegen
+
+
+    @intrinsic
+    def _lowest_bit(typingctx: Any, word: Any) -> Any:
+        """Index of the lowest set bit of a non-zero uint64 (LLVM ``cttz``)."""
+        signature = types.uint64(types.uint64)
+
+        def codegen(context: Any, builder: Any, sig: Any, args: Any) -> Any:
+            return builder.cttz(args[0], ir.Constant(ir.IntType(1), 1))
+
+        return signature, codegen
+
+
+@njit(cache=True)
+def _row_keys(a: Array, i: Int, bt: Array, start: int, metric: int, keys: Array) -> int:
+    """keys[j - start] = key of (a[i], b[j]) for j >= start; ``bt`` is b transposed, (dim, n)."""
+    # Loops run over views from 0 so that the compiler sees non-negative indices and
+    # vectorizes (a runtime start index costs a wrap-around check per element).
+    n = bt.shape[1] - start
+    for c in range(bt.shape[0]):
+        value = a[i, c]
+        column = bt[c, start:]
+        if metric == 0:
+            if c == 0:
+                for t in range(n):
+                    diff = value - column[t]
+                    keys[t] = diff * diff
+            else:
+                for t in range(n):
+                    diff = value - column[t]
+                    keys[t] += diff * diff
+        elif metric == 1:
+            if c == 0:
+                for t in range(n):
+                    keys[t] = abs(value - column[t])
+            else:
+                for t in range(n):
+                    keys[t] = max(keys[t], abs(value - column[t]))
+        else:
+            if c == 0:
+                for t in range(n):
+                    keys[t] = abs(value - column[t])
+            else:
+                for t in range(n):
+                    keys[t] += abs(value - column[t])
+    return n
+
+
+@njit(cache=True)
+def _n_iterations(n_rows: int, auto: bool) -> int:
+    # A conditional expression written inside prange(...) keeps Numba from parallelizing the
+    # loop (silently, when other parts of the function are parallel): call this instead.
+    return (n_rows + 1) // 2 if auto else n_rows
+
+
+@njit(cache=True)
+def _row_of(r: Int, side: int, n_rows: int, auto: bool) -> Int:
+    # For the triangle j > i of an auto-recurrence, iteration r handles rows r and n - 1 - r, so
+    # that every iteration does the same work; -1 marks "no row".
+    if not auto:
+        return r if side == 0 else -1
+    i = r if side == 0 else n_rows - 1 - r
+    return -1 if side == 1 and i == r else i
+
+
+@njit(cache=True, parallel=True)
+def _sample_keys(a: Array, bt: Array, rows: Array, cols: Array, metric: int) -> Array:
+    out = np.empty(rows.size, dtype=np.float64)
+    for t in prange(rows.size):
+        acc = 0.0
+        for c in range(bt.shape[0]):
+            diff = abs(a[rows[t], c] - bt[c, cols[t]])
+            if metric == 0:
+                acc += diff * diff
+            elif metric == 1:
+                acc = max(acc, diff)
+            else:
+                acc += diff
+        out[t] = acc
+    return out
+
+
+# The parallel loops only call row functions: Numba optimizes (vectorizes) loops in a plain
+# function far better than the same loops written inside a prange body.
+
+
+@njit(cache=True)
+def _padded_row_keys(a: Array, i: Int, bt: Array, start: int, metric: int, keys: Array) -> None:
+    """Keys of row i indexed by column, NaN (false in every comparison) before start and after
+    the end. ``keys`` holds whole words: each word is assembled by a fixed loop of 64 compares.
+    """
+    _row_keys(a, i, bt, start, metric, keys[start:])
+    keys[(start // 64) * 64 : start] = np.nan
+    keys[bt.shape[1] :] = np.nan
+
+
+@njit(cache=True)
+def _pack_keys(keys: Array, first_word: int, bound: float, packed_row: Array) -> Int:
+    """packed_row[w] = bits of keys <= bound for the words from first_word on; bits set."""
+    count: Int = 0
+    for w in range(first_word, packed_row.size):
+        block = keys[w * 64 : w * 64 + 64]
+        word = np.uint64(0)
+        for b in range(64):
+            word |= np.uint64(block[b] <= bound) << np.uint64(b)
+        packed_row[w] = word
+        count += np.int64(_popcount(word))
+    return count
+
+
+@njit(cache=True)
+def _pack_row(
+    a: Array, i: Int, bt: Array, start: int, metric: int, bound: float, keys: Array,
+    packed: Array,
+) -> Int:
+    _padded_row_keys(a, i, bt, start, metric, keys)
+    return _pack_keys(keys, start // 64, bound, packed[i])
+
+
+@njit(cache=True)
+def _scan_row(
+    a: Array, i: Int, bt: Array, start: int, metric: int, lo: float, hi: float, keys: Array,
+    counts: Array, packed: Array, band_keys: Array, band_index: Array, at: int,
+) -> int:
+    """Pack key < lo of row i, count #key < lo and #key <= hi, and append the band pairs
+    lo <= key <= hi (key, flat index i * n + j) to the band buffers from ``at`` on while they
+    have room. Returns the new band position (beyond the buffer size on overflow)."""
+    _padded_row_keys(a, i, bt, start, metric, keys)
+    n_cols = bt.shape[1]
+    below: Int = 0
+    upto: Int = 0
+    for w in range(start // 64, packed.shape[1]):
+        block = keys[w * 64 : w * 64 + 64]
+        below_word = np.uint64(0)
+        upto_word = np.uint64(0)
+        for b in range(64):
+            below_word |= np.uint64(block[b] < lo) << np.uint64(b)
+            upto_word |= np.uint64(block[b] <= hi) << np.uint64(b)
+        packed[i, w] = below_word
+        below += np.int64(_popcount(below_word))
+        upto += np.int64(_popcount(upto_word))
+        band = upto_word & ~below_word
+        while band:
+            if at < band_keys.size:
+                j = w * 64 + np.int64(_lowest_bit(band))
+                band_keys[at] = keys[j]
+                band_index[at] = i * n_cols + j
+            at += 1
+            band &= band - np.uint64(1)
+    counts[i, 0] = below
+    counts[i, 1] = upto
+    return at
+
+
+@njit(cache=True)
+def _collect_row(
+    a: Array, i: Int, bt: Array, start: int, metric: int, lo: float, hi: float, keys: Array,
+    position: int, band_keys: Array, band_index: Array,
+) -> None:
+    """Write key and flat index of every lo <= key <= hi of row i from ``position`` on."""
+    n = _row_keys(a, i, bt, start, metric, keys)
+    for t in range(n):
+        if lo <= keys[t] <= hi:
+            band_keys[position] = keys[t]
+            band_index[position] = i * bt.shape[1] + start + t
+            position += 1
+
+
+@njit(cache=True, parallel=True)
+def _scan_rows(
+    a: Array, bt: Array, auto: bool, theiler: int, metric: int, lo: float, hi: float,
+    n_chunks: int, capacity: int,
+) -> tuple[Array, Array, Array, Array, Array]:
+    """One pass (see _rate_rows): packed rows of key < lo, per-row counts of key < lo and
+    key <= hi, and the band lo <= key <= hi in ``n_chunks`` buffers of ``capacity`` (each
+    chunk is a block of rows; ``filled[c] > capacity`` means chunk c overflowed)."""
+    n_rows = a.shape[0]
+    n_iterations = _n_iterations(n_rows, auto)
+    counts = np.zeros((n_rows, 2), dtype=np.int64)
+    packed = np.zeros((n_rows, (bt.shape[1] + 63) // 64), dtype=np.uint64)
+    band_keys = np.empty((n_chunks, capacity), dtype=np.float64)
+    band_index = np.empty((n_chunks, capacity), dtype=np.int64)
+    filled = np.zeros(n_chunks, dtype=np.int64)
+    for chunk in prange(n_chunks):
+        keys = np.empty(packed.shape[1] * 64, dtype=np.float64)
+        position = 0
+        first = chunk * n_iterations // n_chunks
+        for r in range(first, (chunk + 1) * n_iterations // n_chunks):
+            for side in range(2):
+                i = _row_of(np.int64(r), side, n_rows, auto)
+                if i >= 0:
+                    start = i + theiler + 1 if auto else 0
+                    position = _scan_row(
+                        a,
+                        i,
+                        bt,
+                        start,
+                        metric,
+                        lo,
+                        hi,
+                        keys,
+                        counts,
+                        packed,
+                        band_keys[chunk],
+                        band_index[chunk],
+                        position,
+                    )
+        filled[chunk] = position
+    return counts, packed, band_keys, band_index, filled
+
+
+@njit(cache=True, parallel=True)
+def _collect_band(
+    a: Array, bt: Array, auto: bool, theiler: int, metric: int, lo: float, hi: float,
+    offsets: Array, band_keys: Array, band_index: Array,
+) -> None:
+    """Pass 2 when a band buffer overflowed: keys and flat indices of lo <= key <= hi, row i
+    from offsets[i] on."""
+    n_rows = a.shape[0]
+    for r in prange(_n_iterations(n_rows, auto)):
+        keys = np.empty(bt.shape[1], dtype=np.float64)
+        for side in range(2):
+            i = _row_of(np.int64(r), side, n_rows, auto)
+            if i >= 0:
+                start = i + theiler + 1 if auto else 0
+                _collect_row(
+                    a, i, bt, start, metric, lo, hi, keys, offsets[i], band_keys, band_index
+                )
+
+
+@njit(cache=True)
+def _count_row(a: Array, i: Int, bt: Array, start: int, metric: int, bound: float,
+               keys: Array) -> int:
+    n = _row_keys(a, i, bt, start, metric, keys)
+    count = 0
+    for t in range(n):
+        count += keys[t] <= bound
+    return count
+
+
+@njit(cache=True, parallel=True)
+def _count_upto(a: Array, bt: Array, auto: bool, theiler: int, metric: int, bound: float) -> int:
+    """Number of candidate pairs with key <= bound; memory one row of keys per thread."""
+    n_rows = a.shape[0]
+    counts = np.zeros(n_rows, dtype=np.int64)
+    for r in prange(_n_iterations(n_rows, auto)):
+        keys = np.empty(bt.shape[1], dtype=np.float64)
+        for side in range(2):
+            i = _row_of(np.int64(r), side, n_rows, auto)
+            if i >= 0:
+                start = i + theiler + 1 if auto else 0
+                counts[i] = _count_row(a, i, bt, start, metric, bound, keys)
+    return int(counts.sum())
+
+
+@njit(cache=True)
+def _add_band_bits(
+    packed: Array, n_cols: int, band_keys: Array, band_index: Array, bound: float
+) -> int:
+    """Set the bits of the band pairs with key <= bound; return how many were set."""
+    count = 0
+    for t in range(band_keys.size):
+        if band_keys[t] <= bound:
+            i = band_index[t] // n_cols
+            j = band_index[t] - i * n_cols
+            packed[i, j >> 6] |= np.uint64(1) << np.uint64(j & 63)
+            count += 1
+    return count
+
+
+@njit(cache=True, parallel=True)
+def _pack_rows(
+    a: Array, bt: Array, auto: bool, theiler: int, metric: int, bound: float
+) -> tuple[Array, int]:
+    """Bit-packed rows of key <= bound, and the number of bits set.
+
+    For an auto-recurrence only the triangle j > i + theiler is filled (see _threshold_rows).
+    """
+    n_rows = a.shape[0]
+    packed = np.zeros((n_rows, (bt.shape[1] + 63) // 64), dtype=np.uint64)
+    degree = np.zeros(n_rows, dtype=np.int64)
+    for r in prange(_n_iterations(n_rows, auto)):
+        keys = np.empty(packed.shape[1] * 64, dtype=np.float64)
+        for side in range(2):
+            i = _row_of(np.int64(r), side, n_rows, auto)
+            if i >= 0:
+                start = i + theiler + 1 if auto else 0
+                degree[i] = _pack_row(a, i, bt, start, metric, bound, keys, packed)
+    return packed, int(degree.sum())
+
+
+@njit(cache=True, parallel=True)
+def _transpose_packed(packed: Array, n_cols: int) -> Array:
+    n_rows, n_words = packed.shape
+    out = np.zeros((n_cols, (n_rows + 63) // 64), dtype=np.uint64)
+    # Each iteration owns the 64 output rows of one input word column: no write conflicts.
+    for w in prange(n_words):
+        for v in range(n_rows):
+            word = packed[v, w]
+            bit = np.uint64(1) << np.uint64(v & 63)
+            while word:
+                u = w * 64 + np.int64(_lowest_bit(word))
+                out[u, v >> 6] |= bit
+                word &= word - np.uint64(1)
+    return out
+
+
+@njit(cache=True, parallel=True)
+def _merge_into(packed: Array, other: Array) -> None:
+    for i in prange(packed.shape[0]):
+        for w in range(packed.shape[1]):
+            packed[i, w] |= other[i, w]
+
+
+@njit(cache=True, parallel=True)
+def _row_popcounts(packed: Array) -> Array:
+    sums = np.zeros(packed.shape[0], dtype=np.int64)
+    for i in prange(packed.shape[0]):
+        count: Int = 0
+        for w in range(packed.shape[1]):
+            count += np.int64(_popcount(packed[i, w]))
+        sums[i] = count
+    return sums
+
+
+@njit(cache=True)
+def _unpack(packed: Array, n_cols: int) -> Array:
+    dense = np.zeros((packed.shape[0], n_cols), dtype=np.bool_)
+    for i in range(packed.shape[0]):
+        for j in range(n_cols):
+            dense[i, j] = (packed[i, j >> 6] >> np.uint64(j & 63)) & np.uint64(1)
+    return dense
+
+
+
+
+@njit(cache=True)
+def _row_triangles(row: Array, auto_rows: Array) -> tuple[Int, Int]:
+    """``(k_v, tri_v)`` of one packed cross-recurrence row against the packed ``auto_rows``."""
+    first = -1
+    last = -1
+    degree: Int = 0
+    for w in range(row.size):
+        if row[w]:
+            if first < 0:
+                first = w
+            last = w
+            degree += np.int64(_popcount(row[w]))
+    # Each unordered neighbour pair p < q is counted once: for neighbour p, the AND runs over
+    # the neighbours above p only (the rest of p's word, then the words up to v's last one).
+    # Contiguous word ranges let the compiler vectorize the popcounts.
+    pairs: Int = 0
+    for w in range(max(first, 0), last + 1):
+        word = row[w]
+        row_tail = row[w + 1 : last + 1]
+        while word:
+            p = w * 64 + np.int64(_lowest_bit(word))
+            word &= word - np.uint64(1)
+            neighbours = auto_rows[p]
+            pairs += np.int64(_popcount(neighbours[w] & word))
+            neighbours_tail = neighbours[w + 1 : last + 1]
+            for s in range(row_tail.size):
+                pairs += np.int64(_popcount(neighbours_tail[s] & row_tail[s]))
+    return degree, 2 * pairs
+
+
+@njit(cache=True, parallel=True)
+def _cross_triangles(cross_rows: Array, auto_rows: Array) -> tuple[Array, Array]:
+    """Per row v of ``cross_rows``: cross-degree k_v and ordered cross-triangles tri_v (Eq. 6-7)."""
+    n_rows = cross_rows.shape[0]
+    degree = np.zeros(n_rows, dtype=np.int64)
+    triangles = np.zeros(n_rows, dtype=np.int64)
+    for v in prange(n_rows):
+        degree[v], triangles[v] = _row_triangles(cross_rows[v], auto_rows)
+    return degree, triangles

@@ -1,0 +1,218 @@
+"""Exact order statistics of pairwise distances without the distance matrix (private).
+
+The threshold rule of :mod:`funcnet.recurrence`: the ``rank``-th smallest candidate distance,
+with the rank computed exactly from the rate as written in decimal
+(:func:`_rank_from_rate`), or pyunicorn 1.0.0's float index (:func:`_pyunicorn_rank`).
+
+Selection (:func:`_rate_rows`): a random sample of distances brackets the order statistic; one
+pass over the pairs packs those below the bracket, counts, and keeps only the few pairs inside it
+(a few per cent), whose partial sort gives the exact value. If the sample misses (probability
+far below 1e-9) a wider bracket is tried, and last a bisection of the key range by counting
+passes (memory one row of keys per thread).
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+
+import numpy as np
+
+from funcnet._kernels import (
+    _add_band_bits,
+    _collect_band,
+    _count_upto,
+    _pack_rows,
+    _sample_keys,
+    _scan_rows,
+)
+
+Array = np.ndarray
+
+# Below this many candidate pairs every key is collected directly (at most 2 MB); above, a
+# random sample of pairs brackets the order statistic.
+_DIRECT_PAIRS = 1 << 18
+# Half-widths of the bracket around the sampled quantile, in binomial standard deviations; the
+# last, unbounded one always succeeds (it is needed with a probability far below 1e-9): it is
+# found by bisection of the key range with counting passes, down to at most _BAND_LIMIT pairs.
+_BRACKET_WIDTHS = (8.0, 64.0, math.inf)
+_BAND_LIMIT = 1 << 22
+# Band buffers hold this many times the pairs the sample expects inside the bracket (plus two
+# rows); a buffer that overflows costs one more pass, not a wrong result.
+_BAND_SLACK = 2.0
+
+
+def _key_bound(eps: float, strict: bool, metric: int) -> float:
+    """The largest key whose distance is <= eps (< eps if strict); -inf when there is none."""
+    if metric != 0:
+        return math.nextafter(eps, -math.inf) if strict else eps
+    if math.isinf(eps):
+        return eps
+
+    def within(key: float) -> bool:
+        distance = math.sqrt(key)
+        return distance < eps if strict else distance <= eps
+
+    key = eps * eps if eps > 0 else 0.0
+    while key > 0 and not within(key):
+        key = math.nextafter(key, -math.inf)
+    if not within(key):
+        return -math.inf
+    while within(math.nextafter(key, math.inf)):
+        key = math.nextafter(key, math.inf)
+    return key
+
+
+def _key_distance(key: float, metric: int) -> float:
+    return math.sqrt(key) if metric == 0 else key
+
+
+def _sample_bracket(
+    a: Array, bt: Array, auto: bool, theiler: int, metric: int, quantile: float, width: float,
+    rng: np.random.Generator,
+) -> tuple[float, float, float]:
+    """Keys [lo, hi] that bracket the ``quantile`` of all candidate keys w.h.p., and the share
+    of the sample inside (what the band is expected to hold)."""
+    # About one pair in a thousand: the bracket then holds about 2 % of the pairs at M = 2000
+    # and 0.7 % at M = 20000 (its width shrinks as 1 / sqrt(sample size)).
+    size = min(1 << 18, max(1 << 14, a.shape[0] * bt.shape[1] >> 10))
+    rows = rng.integers(0, a.shape[0], size=2 * size)
+    cols = rng.integers(0, bt.shape[1], size=2 * size)
+    if auto:
+        keep = np.abs(rows - cols) > theiler
+        rows, cols = rows[keep], cols[keep]
+    sample = _sample_keys(a, bt, rows[:size], cols[:size], metric)
+    n = sample.size
+    spread = width * (math.sqrt(n * quantile * (1.0 - quantile)) + 1.0)
+    lo_index = math.floor(quantile * n - spread)
+    hi_index = math.ceil(quantile * n + spread)
+    inside = [index for index in (lo_index, hi_index) if 0 <= index < n]
+    sample = np.partition(sample, inside) if inside else sample
+    lo = sample[lo_index] if lo_index >= 0 else -math.inf
+    hi = sample[hi_index] if hi_index < n else math.inf
+    return float(lo), float(hi), (min(hi_index, n) - max(lo_index, 0)) / n
+
+
+def _bisect_bracket(
+    a: Array, bt: Array, auto: bool, theiler: int, metric: int, rank: int
+) -> tuple[float, float, float]:
+    """A bracket [lo, hi] of keys holding the rank-th key and, unless ties forbid, at most
+    _BAND_LIMIT pairs; slow (a counting pass per halving) but with memory O(M) per thread."""
+
+    def count_upto(key: float) -> int:
+        return int(_count_upto(a, bt, auto, theiler, metric, key))
+
+    lo, hi, n_lo = -1.0, 1.0, 0  # every key is >= 0
+    n_hi = count_upto(hi)
+    while n_hi < rank:
+        hi *= 2.0
+        n_hi = count_upto(hi)
+    while n_hi - n_lo > _BAND_LIMIT:
+        middle = lo + (hi - lo) / 2
+        if middle in (lo, hi):  # the band is one value, tied
+            break
+        n_middle = count_upto(middle)
+        if n_middle >= rank:
+            hi, n_hi = middle, n_middle
+        else:
+            lo, n_lo = middle, n_middle
+    return lo, hi, (n_hi - n_lo) / max(1, a.shape[0] * bt.shape[1])
+
+
+def _rate_rows(
+    a: Array, bt: Array, auto: bool, theiler: int, metric: int, rank: int, n_pairs: int,
+    strict: bool,
+) -> tuple[float, Array, int]:
+    """Threshold at the ``rank``-th smallest candidate distance, exactly, and the packed rows.
+
+    Candidates are the pairs ``j > i + theiler`` when ``auto``, else all ``(i, j)``. A random
+    sample gives a bracket [lo, hi] of keys that holds the order statistic with overwhelming
+    probability. One pass over the pairs packs those with key < lo, counts the keys below and
+    up to the bracket, and keeps key and position of the few inside [lo, hi]; a partial sort of
+    these picks the exact value, and their bits are added. Memory: O(M + pairs inside the
+    bracket), a few per cent of the pairs; never the distance matrix. (If a band buffer
+    overflows, a second pass collects the band; if the sample missed, a wider bracket is tried.)
+
+    Returns ``(eps, packed rows, number of bits set)``.
+    """
+    rng = np.random.default_rng([a.shape[0], bt.shape[1], rank])
+    n_cols = bt.shape[1]
+    for width in _BRACKET_WIDTHS:
+        if n_pairs <= _DIRECT_PAIRS:
+            lo, hi, share = -math.inf, math.inf, 1.0
+        elif math.isfinite(width):
+            lo, hi, share = _sample_bracket(
+                a, bt, auto, theiler, metric, rank / n_pairs, width, rng
+            )
+        else:
+            lo, hi, share = _bisect_bracket(a, bt, auto, theiler, metric, rank)
+        n_chunks = 1 if share >= 1.0 or n_pairs <= _DIRECT_PAIRS else 16
+        capacity = int(_BAND_SLACK * (min(n_pairs, share * n_pairs) / n_chunks + n_cols))
+        counts, packed, chunk_keys, chunk_index, filled = _scan_rows(
+            a, bt, auto, theiler, metric, lo, hi, n_chunks, capacity
+        )
+        below_lo, upto_hi = (int(c) for c in counts.sum(axis=0))
+        if below_lo < rank <= upto_hi:
+            break
+    else:  # unreachable: the last bracket is unbounded
+        raise AssertionError("unreachable: the unbounded bracket holds every key")
+
+    if (filled <= capacity).all():
+        band_keys = np.concatenate([chunk_keys[c, : filled[c]] for c in range(n_chunks)])
+        band_index = np.concatenate([chunk_index[c, : filled[c]] for c in range(n_chunks)])
+    else:
+        inside = counts[:, 1] - counts[:, 0]
+        offsets = np.zeros(inside.size, dtype=np.int64)
+        np.cumsum(inside[:-1], out=offsets[1:])
+        band_keys = np.empty(int(inside.sum()), dtype=np.float64)
+        band_index = np.empty(band_keys.size, dtype=np.int64)
+        _collect_band(a, bt, auto, theiler, metric, lo, hi, offsets, band_keys, band_index)
+    del chunk_keys, chunk_index
+    position = rank - below_lo - 1
+    eps = _key_distance(float(np.partition(band_keys, position)[position]), metric)
+    bound = _key_bound(eps, strict, metric)
+    if lo <= bound <= hi:
+        return eps, packed, below_lo + _add_band_bits(packed, n_cols, band_keys, band_index, bound)
+    # Strict comparison at lo, or distinct keys with the same square root across a bracket end.
+    packed, n_recurrent = _pack_rows(a, bt, auto, theiler, metric, bound)
+    return eps, packed, n_recurrent
+
+
+# --------------------------------------------------------------------------------------------
+# ranks
+
+
+def _rank_from_rate(rate: float, n_candidates: int) -> int:
+    """``k = max(1, ceil(rate * P))`` for the rate as written in decimal, exactly.
+
+    ``repr`` gives the shortest decimal that reads back as the same float (``0.07``, not
+    ``0.070000000000000007``); the product is a rational, so no float rounding can add a pair.
+
+    Examples
+    --------
+    >>> 0.07 * 399_980_000  # float64 lands above the integer
+    27998600.000000004
+    >>> _rank_from_rate(0.07, 399_980_000)
+    27998600
+    >>> _rank_from_rate(0.05, 10)
+    1
+    """
+    return max(1, math.ceil(Fraction(repr(float(rate))) * n_candidates))
+
+
+def _pyunicorn_rank(rate: float, n_states: int | None, n_candidates: int) -> int:
+    """pyunicorn 1.0.0's rank: index ``int(rate * (P - 1))`` of the sorted full matrix, in float.
+
+    For an auto-recurrence (``n_states`` given) the full matrix holds the ``M`` zeros of the
+    diagonal first, and ``n_candidates`` is ``M**2``; an index among them gives rank 0
+    (threshold 0, nothing recurrent with ``d < 0``). Otherwise (cross) the rank is index + 1.
+
+    Examples
+    --------
+    >>> _pyunicorn_rank(0.05, None, 231 * 231), _pyunicorn_rank(0.05, 231, 231 * 231)
+    (2669, 2438)
+    """
+    index = int(rate * (n_candidates - 1))
+    if n_states is None:
+        return index + 1
+    return max(0, index + 1 - n_states)

@@ -1,0 +1,365 @@
+"""Whether two signals are coupled at all: a joint-recurrence test with time-shift surrogates.
+
+The ISRN asymmetry never uses time alignment (shifting Y leaves ``C_diff`` unchanged), so it
+cannot say whether X and Y are coupled. This test does: it pairs the state ``x_t`` with
+``y_t``.
+
+Statistic
+    ``phi``: the correlation, over the pairs of times ``i < j`` of a window of ``L`` states
+    (``|i - j| > theiler``), of the recurrence indicators ``A_X[i, j]`` and ``A_Y[i, j]`` --
+    the excess of joint recurrences (Romano et al. 2004) over what the two recurrence rates
+    of the window give by chance, scaled to [-1, 1]. ``A_X`` and ``A_Y`` are each signal's
+    recurrence matrix over the whole window (thresholds by rate, :mod:`funcnet.recurrence`),
+    computed once.
+
+Surrogates: non-circular time shifts of equal length
+    A surrogate pairs ``x[a + i]`` with ``y[a + o + i]``, ``i < L``, for an offset ``o`` with
+    ``s0 <= |o| <= S`` and a placement ``a`` inside the data; the observed statistic pairs
+    ``x[c + i]`` with ``y[c + i]`` on the same length ``L = M - S`` (``c = S // 2``). Nothing
+    wraps around: a circular shift joins the end of Y to its start, so the pairs of times that
+    straddle the wrap get a different lag in Y than in X; two independent copies of the same
+    oscillator recur at the same lags, the wrap destroys exactly that, and the circular test
+    rejected independence in about 20 % of such pairs (issue 10). With equal-length windows and
+    no wrap, every surrogate is, when X and Y are independent and each is stationary, a draw
+    of the same law as the observed window, whatever the signals' periods. The price is the
+    ``S`` states the observed window leaves out (``S = s0 + ceil(M / 4)``): the test sees 3/4
+    of the window or a little less.
+
+    ``s0`` is the larger decorrelation time of the two signals (first lag where the
+    autocorrelation falls below 1/e), at least the embedding span ``(dim - 1) * delay + 1`` and
+    at most ``M / 4``: shorter offsets would leave a coupled pair's surrogates coupled (a loss of
+    power, not of validity). Distinct ``(o, a)`` windows are drawn without replacement with the
+    seed; when fewer exist than asked, all are used and their number is reported.
+
+p-value
+    ``(1 + #{surrogate phi >= observed phi}) / (K + 1)`` (one-sided: coupling adds joint
+    recurrences). No p-value is below ``1 / (K + 1)``: with ``m`` pairs a lone discovery under
+    Benjamini-Hochberg at level ``alpha`` needs ``K >= m / alpha - 1``
+    (:func:`default_surrogates`).
+
+Direction (tested, kept as a secondary reading; see docs/evidence.md for its error rates)
+    The mean conditional probabilities of recurrence ``MCR(X|Y) = <sum_j JR_ij / sum_j
+    A_Y[i, j]>_i`` and ``MCR(Y|X)`` (Romano et al. 2007): if X drives Y, Y's recurrences imply
+    X's more than the reverse, ``MCR(X|Y) > MCR(Y|X)``. Two signals of different character
+    show an asymmetry without any coupling, so the index reported is the observed
+    ``MCR(X|Y) - MCR(Y|X)`` minus its mean over the surrogates (which keep each signal's
+    character and lose the coupling), with a two-sided surrogate p-value.
+
+Validity needs stationarity inside the window: a ramp or a spin-up makes every time offset a
+different part of the trend (docs/evidence.md, "Robot windows").
+
+References
+----------
+M. C. Romano, M. Thiel, J. Kurths, W. von Bloh, "Multivariate recurrence plots", Phys. Lett. A
+330, 214-223 (2004) (joint recurrences).
+M. C. Romano, M. Thiel, J. Kurths, C. Grebogi, "Estimation of the direction of the coupling by
+conditional probabilities of recurrence", Phys. Rev. E 76, 036211 (2007).
+N. Marwan, M. C. Romano, M. Thiel, J. Kurths, "Recurrence plots for the analysis of complex
+systems", Phys. Rep. 438, 237-329 (2007), section 3.7 (surrogates).
+Y. Benjamini, Y. Hochberg, "Controlling the false discovery rate", J. R. Stat. Soc. B 57,
+289-300 (1995).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from funcnet.errors import ParameterError
+from funcnet.evidence._kernels import _windows
+
+__all__ = [
+    "ShiftPlan",
+    "DependenceResult",
+    "decorrelation_time",
+    "shift_plan",
+    "dependence_test",
+    "default_surrogates",
+    "benjamini_hochberg",
+]
+
+#: The fewest states a test window may hold.
+MIN_WINDOW = 20
+
+
+def decorrelation_time(x: Any) -> int:
+    """First lag at which the autocorrelation of ``x`` falls below 1/e (of any channel: the max).
+
+    Parameters
+    ----------
+    x : array_like, shape (N,) or (N, c)
+
+    Returns
+    -------
+    int
+        At least 1; ``N - 1`` when it never falls below 1/e (a trend).
+
+    Examples
+    --------
+    >>> decorrelation_time(np.random.default_rng(0).standard_normal(500))
+    1
+    >>> decorrelation_time(np.sin(np.linspace(0, 20 * np.pi, 1000)))
+    20
+    """
+    array = np.asarray(x, dtype=np.float64)
+    if array.ndim == 1:
+        array = array[:, None]
+    n = array.shape[0]
+    longest = 1
+    for column in array.T:
+        centred = column - column.mean()
+        size = 1 << (2 * n - 1).bit_length()
+        spectrum = np.fft.rfft(centred, size)
+        acf = np.fft.irfft(spectrum * np.conj(spectrum), size)[:n]
+        if acf[0] <= 0:
+            continue
+        below = np.flatnonzero(acf / acf[0] < 1.0 / math.e)
+        longest = max(longest, int(below[0]) if below.size else n - 1)
+    return longest
+
+
+@dataclass(frozen=True)
+class ShiftPlan:
+    """The windows of one dependence test: the observed one and the surrogates.
+
+    Attributes
+    ----------
+    n_states : int
+        ``M``, states per signal.
+    length : int
+        ``L``, states per window.
+    min_shift, max_shift : int
+        ``s0`` and ``S``: the surrogates' offsets satisfy ``s0 <= |o| <= S``.
+    observed : int
+        Start of the observed window (the same in X and Y).
+    starts_x, starts_y : ndarray of int64
+        Starts of the surrogate windows in X and in Y.
+    """
+
+    n_states: int
+    length: int
+    min_shift: int
+    max_shift: int
+    observed: int
+    starts_x: np.ndarray
+    starts_y: np.ndarray
+
+    @property
+    def surrogates(self) -> int:
+        """``K``, the number of surrogate windows."""
+        return int(self.starts_x.size)
+
+
+def shift_plan(n_states: int, surrogates: int, *, min_shift: int = 1, seed: int = 0) -> ShiftPlan:
+    """Observed and surrogate windows for ``M = n_states`` states (module notes).
+
+    Parameters
+    ----------
+    n_states : int
+        ``M``.
+    surrogates : int
+        ``K`` asked for; fewer when fewer distinct windows exist.
+    min_shift : int
+        ``s0`` (clipped to ``[1, M // 4]``).
+    seed : int
+        Draws the surrogate windows.
+
+    Returns
+    -------
+    ShiftPlan
+
+    Raises
+    ------
+    ParameterError
+        ``surrogates < 1``, or ``M`` too small for a window of :data:`MIN_WINDOW` states.
+
+    Examples
+    --------
+    >>> plan = shift_plan(138, 99, min_shift=3)
+    >>> plan.length, plan.max_shift, plan.surrogates
+    (100, 38, 99)
+    """
+    if isinstance(surrogates, bool) or not isinstance(surrogates, (int, np.integer)) or \
+            surrogates < 1:
+        raise ParameterError.of("surrogates", f"must be an integer >= 1, got {surrogates!r}")
+    s0 = int(min(max(1, min_shift), max(1, n_states // 4)))
+    max_shift = s0 + math.ceil(n_states / 4)
+    length = n_states - max_shift
+    if length < MIN_WINDOW:
+        raise ParameterError.of(
+            "surrogates",
+            f"a dependence test needs windows of at least {MIN_WINDOW} states; {n_states} "
+            f"states leave {length}",
+        )
+    offsets = np.arange(s0, max_shift + 1)
+    # (offset, placement) pairs: a placement a in [0, S - |o|], both signs of the offset.
+    counts = max_shift - offsets + 1
+    total = 2 * int(counts.sum())
+    rng = np.random.default_rng(seed)
+    k = min(int(surrogates), total)
+    picks = np.sort(rng.choice(total, size=k, replace=False))
+    sign = np.where(picks < total // 2, 1, -1)
+    index = picks % (total // 2)
+    ends = np.cumsum(counts)
+    which = np.searchsorted(ends, index, side="right")
+    placement = index - (ends[which] - counts[which])
+    offset = offsets[which]
+    starts_x = np.where(sign > 0, placement, placement + offset).astype(np.int64)
+    starts_y = np.where(sign > 0, placement + offset, placement).astype(np.int64)
+    return ShiftPlan(
+        n_states=int(n_states), length=int(length), min_shift=s0, max_shift=int(max_shift),
+        observed=max_shift // 2, starts_x=starts_x, starts_y=starts_y,
+    )
+
+
+@dataclass(frozen=True)
+class DependenceResult:
+    """The dependence test of one pair, and the direction reading of the same surrogates.
+
+    Attributes
+    ----------
+    statistic : float
+        Observed ``phi`` (joint-recurrence correlation).
+    p_value : float
+        Unadjusted surrogate p-value, in ``[1 / (K + 1), 1]``.
+    surrogates : int
+        ``K`` used.
+    direction_index : float
+        ``MCR(X|Y) - MCR(Y|X)`` observed minus its surrogate mean; positive reads X -> Y.
+    direction_p : float
+        Two-sided surrogate p-value of ``direction_index`` (unadjusted).
+    null_statistics : ndarray
+        The surrogates' ``phi``.
+    """
+
+    statistic: float
+    p_value: float
+    surrogates: int
+    direction_index: float
+    direction_p: float
+    null_statistics: np.ndarray
+
+
+def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan, *,
+                    theiler: int = 0) -> DependenceResult:
+    """Joint-recurrence dependence test of X and Y on precomputed recurrence matrices.
+
+    Parameters
+    ----------
+    a_x, a_y : ndarray of uint8, shape (M, M)
+        Dense recurrence matrices (no self-loops), e.g. ``PackedRecurrence.to_dense()``.
+    plan : ShiftPlan
+        From :func:`shift_plan` for this ``M``.
+    theiler : int
+        Pairs of times with ``|i - j| <= theiler`` are not counted.
+
+    Returns
+    -------
+    DependenceResult
+
+    Raises
+    ------
+    ParameterError
+        Matrices of another shape than ``(M, M)``.
+
+    References
+    ----------
+    Romano et al. (2004, 2007); module notes.
+
+    Examples
+    --------
+    >>> from funcnet.embedding import embed
+    >>> from funcnet.recurrence import auto_recurrence
+    >>> from funcnet.systems import henon_pair
+    >>> data = henon_pair(300, 0.6, seed=0)
+    >>> a_x, a_y = (auto_recurrence(embed(data[:, k], 2, 1), rr=0.05).to_dense().astype(np.uint8)
+    ...             for k in (0, 1))
+    >>> result = dependence_test(a_x, a_y, shift_plan(299, 99, min_shift=2, seed=0))
+    >>> result.p_value, result.surrogates
+    (0.01, 99)
+    """
+    m = plan.n_states
+    for name, matrix in (("a_x", a_x), ("a_y", a_y)):
+        if np.shape(matrix) != (m, m):
+            raise ParameterError.of(name, f"must have shape ({m}, {m}), got {np.shape(matrix)}")
+    a_x = np.ascontiguousarray(a_x, dtype=np.uint8)
+    a_y = np.ascontiguousarray(a_y, dtype=np.uint8)
+    starts_x = np.concatenate([[plan.observed], plan.starts_x]).astype(np.int64)
+    starts_y = np.concatenate([[plan.observed], plan.starts_y]).astype(np.int64)
+    values = _windows(a_x, a_y, starts_x, starts_y, plan.length, int(theiler))
+    phi = values[:, 0]
+    index = values[:, 1] - values[:, 2]
+    k = plan.surrogates
+    observed, null = float(phi[0]), phi[1:]
+    p_value = (1 + int(np.count_nonzero(null >= observed))) / (k + 1)
+    centre = float(index[1:].mean())
+    excess = float(index[0]) - centre
+    spread = np.abs(index[1:] - centre)
+    direction_p = (1 + int(np.count_nonzero(spread >= abs(excess)))) / (k + 1)
+    return DependenceResult(
+        statistic=observed, p_value=p_value, surrogates=k, direction_index=excess,
+        direction_p=direction_p, null_statistics=null.copy(),
+    )
+
+
+def default_surrogates(n_pairs: int, alpha: float = 0.05) -> int:
+    """``K`` such that a lone discovery among ``n_pairs`` survives Benjamini-Hochberg at ``alpha``.
+
+    ``K = max(99, ceil(n_pairs / alpha) - 1)``: the smallest p-value is ``1 / (K + 1)``, and
+    BH's smallest threshold is ``alpha / n_pairs``.
+
+    Parameters
+    ----------
+    n_pairs : int
+    alpha : float in (0, 1)
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    >>> default_surrogates(1), default_surrogates(15), default_surrogates(15, 0.01)
+    (99, 299, 1499)
+    """
+    if not 0.0 < alpha < 1.0:
+        raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha}")
+    return max(99, math.ceil(round(n_pairs / alpha, 9)) - 1)
+
+
+def benjamini_hochberg(p_values: Any) -> np.ndarray:
+    """Benjamini-Hochberg adjusted p-values (step-up; reject where adjusted <= alpha).
+
+    Parameters
+    ----------
+    p_values : array_like of float
+        NaN entries are left NaN and not counted.
+
+    Returns
+    -------
+    ndarray
+        ``min_{j >= i} (m / j) p_(j)``, capped at 1, in the input order.
+
+    References
+    ----------
+    Benjamini and Hochberg (1995).
+
+    Examples
+    --------
+    >>> benjamini_hochberg([0.01, 0.04, 0.03, 0.5]).round(3).tolist()
+    [0.04, 0.053, 0.053, 0.5]
+    """
+    p = np.asarray(p_values, dtype=np.float64)
+    out = np.full(p.shape, np.nan)
+    valid = np.flatnonzero(~np.isnan(p))
+    m = valid.size
+    if m == 0:
+        return out
+    order = valid[np.argsort(p[valid], kind="stable")]
+    ranked = p[order] * m / np.arange(1, m + 1)
+    adjusted = np.minimum.accumulate(ranked[::-1])[::-1]
+    out[order] = np.minimum(adjusted, 1.0)
+    return out

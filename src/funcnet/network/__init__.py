@@ -1,0 +1,47 @@
+"""Functional networks: the edge rule, the network as data, its readers and writers.
+
+=================  ==========================================================================
+module             what it holds
+=================  ==========================================================================
+``schema``         the one pairs-table and edges-table schema, the kind vocabulary
+``rule``           the edge rule as pure functions of a pairs table (section 2.4, Eq. 10, 13)
+``functional``     :class:`FunctionalNetwork` and :func:`functional_network`
+``readwrite``      JSON, GraphML, networkx
+=================  ==========================================================================
+
+Examples
+--------
+>>> from funcnet.network import PAIR_KINDS, EDGE_KINDS
+>>> PAIR_KINDS, EDGE_KINDS
+(('x->y', 'y->x', 'bidirectional', 'conflict'), ('directed', 'bidirectional'))
+"""
+
+from __future__ import annotations
+
+from funcnet.network.functional import FunctionalNetwork, check_parameters, functional_network
+from funcnet.network.rule import combine_kinds, edge_kind, edges_from_pairs, kinds_for, pair_kinds
+from funcnet.network.schema import (
+    EDGE_COLUMNS,
+    EDGE_KINDS,
+    MEASURE_KINDS,
+    PAIR_COLUMNS,
+    PAIR_KINDS,
+)
+from funcnet.parameters import MEASURES
+
+__all__ = [
+    "MEASURES",
+    "PAIR_KINDS",
+    "MEASURE_KINDS",
+    "EDGE_KINDS",
+    "PAIR_COLUMNS",
+    "EDGE_COLUMNS",
+    "FunctionalNetwork",
+    "functional_network",
+    "check_parameters",
+    "edge_kind",
+    "combine_kinds",
+    "kinds_for",
+    "pair_kinds",
+    "edges_from_pairs",
+]

@@ -1,0 +1,119 @@
+"""The input of :func:`funcnet.network.functional_network`: columns, their names, the nodes.
+
+A node is one column or a group of columns (a multichannel signal, embedded jointly); every
+problem is named: the column, the node, or the ``names``/``nodes`` argument.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from funcnet.errors import ParameterError, SignalError
+
+__all__ = ["column_names", "float_columns", "node_groups"]
+
+
+def column_names(data: Any, names: Any) -> list[str]:
+    """One name per column of ``data`` (a DataFrame's columns, ``names``, or "0", "1", ...)."""
+    if isinstance(data, pd.DataFrame):
+        count, default = data.shape[1], [str(column) for column in data.columns]
+    else:
+        array = np.asarray(data)
+        if array.ndim not in (1, 2):
+            raise SignalError(
+                f"signals must be 1-D or 2-D (time x signals), got an array of shape "
+                f"{array.shape}"
+            )
+        count = 1 if array.ndim == 1 else array.shape[1]
+        default = [str(i) for i in range(count)]
+    if names is None:
+        columns = default
+    else:
+        columns = [str(name) for name in ([names] if isinstance(names, str) else names)]
+        if len(columns) != count:
+            raise ParameterError.of("names", f"has {len(columns)} entries for {count} signal(s)")
+    repeated = sorted({name for name in columns if columns.count(name) > 1})
+    if repeated:
+        if names is None:
+            raise ParameterError(
+                f"the columns of data must be unique; repeated: {', '.join(repeated)}"
+            )
+        raise ParameterError.of("names", f"must be unique; repeated: {', '.join(repeated)}")
+    return columns
+
+
+def float_columns(data: Any, used: Sequence[int], columns: Sequence[str]) -> np.ndarray:
+    """The columns ``used`` of ``data`` as one float64 array (time x columns)."""
+    if isinstance(data, pd.DataFrame):
+        values = np.empty((data.shape[0], len(used)), dtype=np.float64)
+        for k, i in enumerate(used):
+            try:
+                values[:, k] = data.iloc[:, i].to_numpy(dtype=np.float64)
+            except (TypeError, ValueError) as error:
+                raise SignalError(f"signal {columns[i]!r} is not numeric ({error})") from None
+        return values
+    array = np.asarray(data)
+    table = array if array.ndim == 2 else array[:, np.newaxis]
+    if table.dtype.kind not in "biuf":
+        raise SignalError(
+            f"signals must be real numbers, got dtype {array.dtype} "
+            f"(signals {', '.join(columns[i] for i in used)})"
+        )
+    return table[:, list(used)].astype(np.float64)
+
+
+def node_groups(nodes: Any, columns: Sequence[str]) -> tuple[list[str], list[list[int]]]:
+    """Node names and, per node, the indices of its columns."""
+    if nodes is None:
+        return list(columns), [[i] for i in range(len(columns))]
+    if not isinstance(nodes, Mapping):
+        raise ParameterError.of(
+            "nodes",
+            f"must be a mapping node name -> column or list of columns, got "
+            f"{type(nodes).__name__}",
+        )
+    index = {name: i for i, name in enumerate(columns)}
+    names: list[str] = []
+    groups: list[list[int]] = []
+    owner: dict[str, str] = {}
+    for node, members in nodes.items():
+        name = str(node)
+        if name in names:
+            raise ParameterError.of("nodes", f"names node {name!r} twice")
+        listed = [members] if isinstance(members, str) else members
+        if not isinstance(listed, Sequence) or isinstance(listed, bytes) or not listed:
+            raise ParameterError.of(
+                "nodes", f"node {name!r} must be a column or a non-empty list of columns, "
+                f"got {members!r}"
+            )
+        listed = [str(column) for column in listed]
+        unknown = [column for column in listed if column not in index]
+        if unknown:
+            raise ParameterError.of(
+                "nodes",
+                f"node {name!r} names unknown column(s) {', '.join(map(repr, unknown))} "
+                f"(columns: {', '.join(columns)})",
+            )
+        for column in listed:
+            if column in owner:
+                raise ParameterError.of(
+                    "nodes",
+                    f"column {column!r} is in node {owner[column]!r} and in node {name!r}",
+                )
+            owner[column] = name
+        names.append(name)
+        groups.append([index[column] for column in listed])
+    sizes = {len(group) for group in groups}
+    if len(sizes) > 1:
+        # CR_XY compares states of X with states of Y: they must live in one space.
+        shown = ", ".join(f"{name!r} {len(g)}" for name, g in zip(names, groups, strict=True))
+        raise ParameterError.of(
+            "nodes",
+            f"must give every node the same number of columns (a cross-recurrence compares "
+            f"states of equal dimension); got {shown}",
+        )
+    return names, groups

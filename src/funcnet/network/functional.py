@@ -1,0 +1,494 @@
+"""Functional networks: one node per signal, edges from the asymmetry of the ISRN (section 2.4).
+
+:func:`functional_network` normalizes each signal over the data it is given -- one analysis
+window -- (``normalize="minmax"`` by default, section 3.3), computes the cross measures of every
+unordered pair of nodes (:func:`funcnet.measures.pairwise_cross_measures`, Eq. 6-10) and applies
+the edge rule of :mod:`funcnet.network.rule` to the pairs table. A node is one signal (a column)
+or a group of columns embedded jointly (a multichannel signal).
+
+:class:`FunctionalNetwork` is the result, as data: the nodes, the pairs table (every pair's
+numbers and flags, :mod:`funcnet.network.schema`), the edges, the :class:`NetworkParameters` that
+made it and the number of samples; its readers and writers are in
+:mod:`funcnet.network.readwrite`.
+"""
+
+from __future__ import annotations
+
+import html
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import networkx as nx
+import pandas as pd
+
+from funcnet.errors import SignalError
+from funcnet.measures import pairwise_cross_measures
+from funcnet.network import readwrite
+from funcnet.network._inputs import column_names, float_columns, node_groups
+from funcnet.network.rule import edges_from_pairs, pair_kinds
+from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
+from funcnet.parameters import NetworkParameters, resolve
+from funcnet.preprocess import normalize as normalize_signals
+
+__all__ = ["FunctionalNetwork", "functional_network", "check_parameters"]
+
+
+@dataclass(frozen=True, eq=False)
+class FunctionalNetwork:
+    """A functional network: signals as nodes, directed weighted edges from ISRN asymmetry.
+
+    Build it with :func:`functional_network`; it keeps every pair's numbers, not only the graph.
+
+    Attributes
+    ----------
+    nodes : tuple of str
+        Node names, in the order of the input columns (or of the ``nodes`` mapping).
+    pairs : pandas.DataFrame
+        One row per unordered pair (``x`` before ``y`` in node order), the columns of
+        :data:`funcnet.network.schema.PAIR_COLUMNS`: ``c_xy``, ``c_yx``, ``t_xy``, ``t_yx``
+        (Eq. 6-9), ``c_diff``, ``t_diff`` (Eq. 10), the thresholds and achieved rates, the flags
+        ``eps_ordered``, ``rate_exceeded``, ``degenerate`` (too few distinct states: the pair's
+        arrow means nothing) with its ``degenerate_reason``, the per-measure kinds ``c_kind``,
+        ``t_kind``, the ``kind`` under the network's measure and the ``weight`` of Eq. 13.
+    edges : pandas.DataFrame
+        ``source, target, weight, kind, degenerate`` (:func:`funcnet.network.edges_from_pairs`
+        under ``parameters.degenerate``): a directed edge points from the inferred driver to
+        the driven node; degenerate pairs are no edges unless ``degenerate="keep"``.
+    parameters : NetworkParameters
+        The parameters that produced the network.
+    n_samples : int
+        Samples per signal (the window's length).
+    label : str or None
+        A name for the network (e.g. the analysis window).
+    window : mapping or None
+        Where the data comes from (e.g. a recording's window: label, start, stop, phase,
+        source, dropped signals), as the pipeline records it; JSON-able values.
+    channels : mapping or None
+        Node name -> its columns, when nodes were given as groups of columns; None when every
+        node is the column of its name.
+
+    Notes
+    -----
+    Two networks compare equal when every attribute is equal, the tables cell for cell.
+
+    References
+    ----------
+    Eq. 10 (asymmetry), section 2.4 (edges, ``mu``), Eq. 13 (weights) of the paper.
+    """
+
+    nodes: tuple[str, ...]
+    pairs: pd.DataFrame
+    edges: pd.DataFrame
+    parameters: NetworkParameters
+    n_samples: int
+    label: str | None = None
+    window: Mapping[str, Any] | None = None
+    channels: Mapping[str, tuple[str, ...]] | None = None
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, FunctionalNetwork):
+            return NotImplemented
+        return (
+            self.nodes == other.nodes
+            and self.label == other.label
+            and self.parameters == other.parameters
+            and self.n_samples == other.n_samples
+            and _plain(self.window) == _plain(other.window)
+            and _plain(self.channels) == _plain(other.channels)
+            and self.pairs.equals(other.pairs)
+            and self.edges.equals(other.edges)
+        )
+
+    __hash__ = None  # type: ignore[assignment]  # holds DataFrames
+
+    def edges_for(self, measure: str | None = None, *,
+                  degenerate: str | None = None) -> pd.DataFrame:
+        """Edges of the network under another measure or degenerate policy, at the same ``mu``.
+
+        Parameters
+        ----------
+        measure : {"both", "clustering", "transitivity"}, optional
+            ``"clustering"`` uses ``C_diff`` only, ``"transitivity"`` ``T_diff`` only, ``"both"``
+            their intersection (section 2.4); default the network's. Weights stay those of
+            Eq. 13.
+        degenerate : {"drop", "keep"}, optional
+            Leave degenerate pairs out, or keep them as edges flagged ``degenerate``; default
+            the network's ``parameters.degenerate``.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Columns ``source, target, weight, kind, degenerate``, as :attr:`edges`.
+
+        Raises
+        ------
+        ParameterError
+            Unknown ``measure`` or ``degenerate``.
+
+        References
+        ----------
+        Section 2.4 and Eq. 13 of the paper.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> rng = np.random.default_rng(0)
+        >>> x = rng.random(203)
+        >>> data = np.column_stack([x, x + 0.1 * rng.random(203)])  # a noisy copy: no arrow
+        >>> network = functional_network(data, names=["x", "y"], delay=1)
+        >>> network.edges_for("transitivity")
+          source target    weight           kind  degenerate
+        0      x      y  0.027588  bidirectional       False
+        """
+        return edges_from_pairs(
+            self.pairs,
+            measure=self.parameters.measure if measure is None else measure,
+            degenerate=self.parameters.degenerate if degenerate is None else degenerate,
+        )
+
+    # ----------------------------------------------------------------------------------------
+    # readers and writers (funcnet.network.readwrite)
+
+    def to_networkx(self) -> nx.DiGraph:
+        """The network as a :class:`networkx.DiGraph` (:func:`readwrite.to_networkx
+        <funcnet.network.readwrite.to_networkx>`).
+
+        Returns
+        -------
+        networkx.DiGraph
+            Every node; one arc per directed edge, two per bidirectional one, each with
+            ``weight``, ``kind`` and ``degenerate``; graph attributes ``label``, ``parameters``
+            (a dict) and ``n_samples``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> rng = np.random.default_rng(0)
+        >>> x = rng.random(203)
+        >>> data = np.column_stack([x, x + 0.1 * rng.random(203)])
+        >>> graph = functional_network(data, names=["x", "y"], delay=1).to_networkx()
+        >>> sorted(graph.edges(data="kind"))
+        [('x', 'y', 'bidirectional'), ('y', 'x', 'bidirectional')]
+        """
+        return readwrite.to_networkx(self)
+
+    def to_json(self) -> str:
+        """Serialize to JSON; :meth:`from_json` restores an equal network, floats bit for bit.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> rng = np.random.default_rng(0)
+        >>> x = rng.random(203)
+        >>> data = np.column_stack([x, x + 0.1 * rng.random(203)])
+        >>> network = functional_network(data, names=["x", "y"], delay=1, label="copy")
+        >>> FunctionalNetwork.from_json(network.to_json()) == network
+        True
+        """
+        return readwrite.to_json(self)
+
+    @classmethod
+    def from_json(cls, text: str) -> FunctionalNetwork:
+        """Restore a network written by :meth:`to_json` (also format version 1).
+
+        Parameters
+        ----------
+        text : str
+            The JSON document.
+
+        Returns
+        -------
+        FunctionalNetwork
+
+        Raises
+        ------
+        ParameterError
+            ``text`` is not JSON or not a functional network of a known format version.
+
+        Examples
+        --------
+        See :meth:`to_json`.
+        """
+        return cls(**readwrite.fields_from_json(text))
+
+    def write(self, path: str | os.PathLike[str]) -> Path:
+        """Write the network atomically, ``*.json`` or ``*.graphml`` (:func:`readwrite.write
+        <funcnet.network.readwrite.write>`); :meth:`read` reads both back exactly.
+
+        Parameters
+        ----------
+        path : path-like
+
+        Returns
+        -------
+        pathlib.Path
+            ``path``.
+
+        Raises
+        ------
+        ParameterError
+            Any other suffix.
+
+        Examples
+        --------
+        >>> import tempfile, pathlib
+        >>> import numpy as np
+        >>> rng = np.random.default_rng(0)
+        >>> x = rng.random(203)
+        >>> data = np.column_stack([x, x + 0.1 * rng.random(203)])
+        >>> network = functional_network(data, names=["x", "y"], delay=1)
+        >>> out = network.write(pathlib.Path(tempfile.mkdtemp()) / "copy.graphml")
+        >>> sorted(nx.read_graphml(out).nodes), FunctionalNetwork.read(out) == network
+        (['x', 'y'], True)
+        """
+        return readwrite.write(self, path)
+
+    @classmethod
+    def read(cls, path: str | os.PathLike[str]) -> FunctionalNetwork:
+        """Read a network written by :meth:`write`; an exact round trip.
+
+        Parameters
+        ----------
+        path : path-like
+            A ``*.json`` or ``*.graphml`` file from :meth:`write`.
+
+        Returns
+        -------
+        FunctionalNetwork
+
+        Raises
+        ------
+        ParameterError
+            Another suffix, or a file that holds no functional network; the message names it.
+        FileNotFoundError
+            No file at ``path``.
+
+        Examples
+        --------
+        See :meth:`write`.
+        """
+        return cls(**readwrite.read_fields(path))
+
+    # ----------------------------------------------------------------------------------------
+
+    def _summary(self) -> str:
+        flagged = self.pairs["degenerate"].to_numpy(dtype=bool)
+        kinds = self.pairs["kind"][~flagged]
+        directed = int(kinds.isin(["x->y", "y->x"]).sum())
+        bidirectional = int((kinds == "bidirectional").sum())
+        conflicts = int((kinds == "conflict").sum())
+        degenerate = f", {int(flagged.sum())} degenerate" if flagged.any() else ""
+        label = "" if self.label is None else f"{self.label!r}, "
+        p = self.parameters
+        mu = (
+            f"mu={p.mu}" if p.mu_c is None and p.mu_t is None
+            else f"mu_c={p.mu_clustering}, mu_t={p.mu_transitivity}"
+        )
+        return (
+            f"FunctionalNetwork({label}{len(self.nodes)} nodes, {directed} directed, "
+            f"{bidirectional} bidirectional, {conflicts} conflict{degenerate}; "
+            f"measure={p.measure!r}, {mu})"
+        )
+
+    def __repr__(self) -> str:
+        return self._summary()
+
+    def _repr_html_(self) -> str:
+        return f"<p><code>{html.escape(self._summary())}</code></p>" + self.edges.to_html(
+            index=False, float_format=lambda value: f"{value:.4f}"
+        )
+
+
+def _plain(value: Any) -> Any:
+    """Lists as tuples, recursively (what survives a JSON round trip compares equal)."""
+    if isinstance(value, Mapping):
+        return {key: _plain(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return tuple(_plain(item) for item in value)
+    return value
+
+
+def check_parameters(**parameters: Any) -> NetworkParameters:
+    """The :class:`NetworkParameters` of ``parameters``, validated without any data.
+
+    Kept for callers of the earlier API; ``NetworkParameters(**parameters)`` is the same.
+
+    Parameters
+    ----------
+    **parameters
+        Any of :meth:`NetworkParameters.names`.
+
+    Returns
+    -------
+    NetworkParameters
+
+    Raises
+    ------
+    ParameterError
+        The first bad value or unknown name; the message names the parameter.
+
+    Examples
+    --------
+    >>> check_parameters(rr=0.1, metric="supremum").rr
+    0.1
+    >>> check_parameters(rr=2)
+    Traceback (most recent call last):
+        ...
+    funcnet.errors.ParameterError: rr must be in (0, 1), got 2.0
+    """
+    return resolve(None, parameters)
+
+
+def functional_network(
+    data: Any,
+    *,
+    names: Any = None,
+    nodes: Mapping[str, str | Sequence[str]] | None = None,
+    parameters: NetworkParameters | None = None,
+    label: str | None = None,
+    warn: bool = True,
+    **overrides: Any,
+) -> FunctionalNetwork:
+    """Functional network of simultaneously sampled signals (section 2.3-2.4, 3.4).
+
+    Each column is normalized, each node embedded (a group of columns jointly: each column
+    embedded with ``dim``, ``delay`` and the states concatenated) and its recurrence network
+    computed once; every unordered pair of nodes (X, Y), X first in node order, gives ``C^XY``,
+    ``C^YX``, ``T^XY``, ``T^YX`` (:func:`funcnet.measures.pairwise_cross_measures`), the
+    differences of Eq. 10, a kind under ``mu_c``/``mu_t`` and the weight of Eq. 13
+    (:mod:`funcnet.network.rule`).
+
+    Parameters
+    ----------
+    data : pandas.DataFrame or array_like, shape (N, k)
+        Time on axis 0, one signal per column. A DataFrame's columns (as ``str``) name them.
+    names : sequence of str, optional
+        Column names; default the DataFrame's columns, else ``"0"``, ``"1"``, ...
+    nodes : mapping, optional
+        Node name -> a column name or a list of column names (a multichannel node, embedded
+        jointly); columns not named are left out. Every node has the same number of columns
+        (the states of X and Y share one space in ``CR_XY``, Eq. 3). Default: one node per
+        column, named as it.
+    parameters : NetworkParameters, optional
+        Every parameter (default :class:`NetworkParameters`'s defaults): embedding (``dim``,
+        ``delay``), rates (``rr`` one or one per node, ``cr``) or thresholds (``eps``),
+        ``metric``, ``rule``, ``theiler``, ``mu``/``mu_c``/``mu_t``, ``normalize`` (per column,
+        before the embedding; section 3.3: min-max), ``measure`` and ``degenerate``.
+    label : str, optional
+        Stored on the network (e.g. the window's name).
+    warn : bool
+        Emit the threshold warnings of the pairs (:func:`funcnet.measures.threshold_warnings`);
+        with False, the flags in the pairs table are the only record.
+    **overrides
+        Any parameter by name, applied to ``parameters`` (``delay=1``).
+
+    Returns
+    -------
+    FunctionalNetwork
+
+    Raises
+    ------
+    ParameterError
+        A bad parameter (checked before the data is read; the message names it); ``names`` of
+        the wrong length or repeated; ``nodes`` naming an unknown column, a column twice,
+        groups of different sizes, or not a mapping.
+    SignalError
+        Fewer than two nodes; a column not numeric, with NaN/inf, constant under ``"minmax"``
+        or ``"zscore"``, or too short for the embedding; the message names it.
+
+    Warns
+    -----
+    ThresholdWarning
+        With ``warn``: ``eps_xy`` not below ``eps_x`` and ``eps_y``, or ties pushing achieved
+        rates above their targets, naming the pairs; a :class:`~funcnet.errors.DegenerateWarning`
+        for pairs with too few distinct states (no edges unless ``degenerate="keep"``).
+
+    References
+    ----------
+    Eq. 10 (asymmetry), section 2.4 (edges and ``mu``), Eq. 13 (weights), section 3.4 (rates and
+    ``mu`` of the robot study). Direction convention: :mod:`funcnet.network.rule`.
+
+    Examples
+    --------
+    A rough driver ``x``, its smooth response ``y`` (a moving average: x -> y) and a rough ``z``
+    coupled to nothing:
+
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> x = rng.random(300)
+    >>> y = np.convolve(x, np.ones(5) / 5)[:300]
+    >>> z = rng.random(300)
+    >>> network = functional_network(np.column_stack([x, y, z]), names=["x", "y", "z"],
+    ...                              delay=1, warn=False)
+    >>> network
+    FunctionalNetwork(3 nodes, 2 directed, 1 bidirectional, 0 conflict; measure='both', mu=0.05)
+    >>> network.edges
+      source target    weight           kind  degenerate
+    0      x      y  0.317522       directed       False
+    1      x      z  0.021947  bidirectional       False
+    2      z      y  0.433247       directed       False
+
+    ``z -> y`` has no coupling behind it: the rougher signal looks like the driver (the
+    README's "Direction" section). At rr = cr = 0.05, ``eps_xy`` is rarely below ``eps_x`` and
+    ``eps_y`` for signals this different; the pairs table flags it:
+
+    >>> bool(network.pairs["eps_ordered"].all())
+    False
+    """
+    p = resolve(parameters, overrides)
+    columns = column_names(data, names)
+    node_names, groups = node_groups(nodes, columns)
+    if len(node_names) < 2:
+        raise SignalError(
+            f"a functional network needs at least two signals, got {len(node_names)}"
+        )
+    used = [i for group in groups for i in group]
+    values = float_columns(data, used, columns)
+    values = normalize_signals(values, p.normalize, names=[columns[i] for i in used])
+    position = {i: k for k, i in enumerate(used)}
+    # A one-column node is a 1-D signal (bit for bit the numbers of a plain column); a group
+    # is an (N, c) multichannel signal.
+    signals = [
+        values[:, position[group[0]]] if len(group) == 1
+        else values[:, [position[i] for i in group]]
+        for group in groups
+    ]
+    results = pairwise_cross_measures(signals, names=node_names, parameters=p, warn=warn)
+    pairs = _pairs_table(results, p)
+    channels = None if nodes is None else {
+        name: tuple(columns[i] for i in group)
+        for name, group in zip(node_names, groups, strict=True)
+    }
+    return FunctionalNetwork(
+        nodes=tuple(node_names),
+        pairs=pairs,
+        edges=edges_from_pairs(pairs, degenerate=p.degenerate),
+        parameters=p,
+        n_samples=int(values.shape[0]),
+        label=None if label is None else str(label),
+        channels=channels,
+    )
+
+
+def _pairs_table(results: Mapping[tuple[str, str], Any],
+                 parameters: NetworkParameters) -> pd.DataFrame:
+    """The pairs table of pairwise results (keyed by node names), the rule applied."""
+    measures = list(results.values())
+    columns: dict[str, list[Any]] = {
+        "x": [str(x) for x, _ in results],
+        "y": [str(y) for _, y in results],
+    }
+    for name in RESULT_COLUMNS:
+        columns[name] = [getattr(r, name) for r in measures]
+    columns["degenerate"] = [bool(flag) for flag in columns["degenerate"]]
+    columns.update(dict.fromkeys(RULE_COLUMNS, [""] * len(measures)))
+    columns["weight"] = [0.0] * len(measures)  # set by the rule
+    return pair_kinds(pairs_frame(columns), parameters)
+

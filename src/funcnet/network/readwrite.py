@@ -1,0 +1,339 @@
+"""Readers and writers of functional networks: JSON, GraphML, networkx.
+
+The ``degenerate`` flag travels through every format: the pairs table keeps it with its reason,
+and every edge -- in the edges table, as a networkx or a GraphML arc -- carries a boolean
+``degenerate`` attribute (True only for a pair kept with ``degenerate="keep"``).
+
+- **JSON** (:func:`to_json`, :func:`fields_from_json`): the whole network, floats bit for bit
+  (Python's ``json`` writes each float as its shortest round-tripping ``repr``). Format
+  ``funcnet.FunctionalNetwork`` version 2; version 1 files (before the parameter contract) are
+  read too: their columns ``rr_x``, ``rr_y``, ``cr`` become ``achieved_rr_x``,
+  ``achieved_rr_y``, ``achieved_cr``, window metadata kept in their parameters moves to
+  ``window``, and their edges are rebuilt under ``degenerate="drop"``.
+- **networkx** (:func:`to_networkx`): every node, one arc per directed edge and two per
+  bidirectional one.
+- **GraphML** (:func:`write`): the networkx graph for other tools (scalar attributes only: the
+  parameters as one JSON string) plus the JSON document as the graph attribute ``funcnet``, so
+  that :func:`read_fields` restores the network exactly.
+
+The readers return the fields of a :class:`~funcnet.network.FunctionalNetwork` (its constructor
+arguments), which :meth:`FunctionalNetwork.read <funcnet.network.FunctionalNetwork.read>` and
+:meth:`~funcnet.network.FunctionalNetwork.from_json` turn into the network; this module stays
+below the class it serializes.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import networkx as nx
+
+from funcnet._io import atomic_path, write_text_atomic
+from funcnet.errors import ParameterError
+from funcnet.network.rule import edges_from_pairs
+from funcnet.network.schema import EDGE_COLUMNS, PAIR_COLUMNS, edges_frame, pairs_frame
+from funcnet.parameters import NetworkParameters
+
+if TYPE_CHECKING:
+    from funcnet.network.functional import FunctionalNetwork
+
+__all__ = ["FORMAT", "VERSION", "to_json", "fields_from_json", "to_networkx", "write",
+           "read_fields"]
+
+FORMAT = "funcnet.FunctionalNetwork"
+VERSION = 2
+_SUFFIXES = (".json", ".graphml")
+#: Renamed columns of version 1 files.
+_V1_COLUMNS = {"rr_x": "achieved_rr_x", "rr_y": "achieved_rr_y", "cr": "achieved_cr"}
+_V1_REASON = "flagged degenerate (read from a version-1 file, which kept no reason)"
+
+
+def to_json(network: FunctionalNetwork) -> str:
+    """The network as a JSON document; :func:`fields_from_json` restores it exactly.
+
+    Parameters
+    ----------
+    network : FunctionalNetwork
+
+    Returns
+    -------
+    str
+        An object with ``format``, ``version``, ``label``, ``nodes``, ``channels``,
+        ``parameters`` (:meth:`NetworkParameters.to_dict`), ``n_samples``, ``window`` and the
+        ``pairs`` and ``edges`` tables column by column.
+
+    Examples
+    --------
+    >>> import json
+    >>> import numpy as np
+    >>> from funcnet.network import functional_network
+    >>> rng = np.random.default_rng(0)
+    >>> x = rng.random(203)
+    >>> network = functional_network(np.column_stack([x, x + 0.1 * rng.random(203)]), delay=1)
+    >>> document = json.loads(to_json(network))
+    >>> document["version"], document["edges"]["degenerate"]
+    (2, [False])
+    """
+    document = {
+        "format": FORMAT,
+        "version": VERSION,
+        "label": network.label,
+        "nodes": list(network.nodes),
+        "channels": None if network.channels is None else {
+            node: list(columns) for node, columns in network.channels.items()
+        },
+        "parameters": network.parameters.to_dict(),
+        "n_samples": network.n_samples,
+        "window": None if network.window is None else dict(network.window),
+        "pairs": {name: network.pairs[name].tolist() for name in PAIR_COLUMNS},
+        "edges": {name: network.edges[name].tolist() for name in EDGE_COLUMNS},
+    }
+    return json.dumps(document, indent=1)
+
+
+def _tuples(value: Any) -> Any:
+    """JSON lists back to tuples (the fields hold tuples)."""
+    if isinstance(value, list):
+        return tuple(_tuples(item) for item in value)
+    if isinstance(value, dict):
+        return {key: _tuples(item) for key, item in value.items()}
+    return value
+
+
+def _fields_v1(document: Mapping[str, Any]) -> dict[str, Any]:
+    """The fields of a version-1 document (see the module notes)."""
+    stored = dict(document["parameters"])
+    n_samples = int(stored.pop("n_samples"))
+    known = {name: stored.pop(name) for name in list(stored) if name in
+             NetworkParameters.names()}
+    parameters = NetworkParameters.from_mapping(known)
+    columns = {_V1_COLUMNS.get(name, name): values for name, values in document["pairs"].items()}
+    count = len(columns["x"])
+    columns.setdefault("degenerate", [False] * count)
+    columns["degenerate_reason"] = [_V1_REASON if flag else "" for flag in columns["degenerate"]]
+    pairs = pairs_frame(columns)
+    return {
+        "nodes": tuple(document["nodes"]),
+        "pairs": pairs,
+        "edges": edges_from_pairs(pairs, degenerate=parameters.degenerate),
+        "parameters": parameters,
+        "n_samples": n_samples,
+        "label": document["label"],
+        "window": _tuples(stored) or None,
+        "channels": None,
+    }
+
+
+def fields_from_json(text: str) -> dict[str, Any]:
+    """The fields of the network a JSON document holds (version 2 or 1).
+
+    Parameters
+    ----------
+    text : str
+        A document from :func:`to_json`.
+
+    Returns
+    -------
+    dict
+        The constructor arguments of :class:`~funcnet.network.FunctionalNetwork`.
+
+    Raises
+    ------
+    ParameterError
+        ``text`` is not JSON, not a functional network, or of an unknown version.
+
+    Examples
+    --------
+    >>> fields_from_json('{"format": "something else"}')
+    Traceback (most recent call last):
+        ...
+    funcnet.errors.ParameterError: text is not a funcnet functional network in JSON: format is \
+'something else', not 'funcnet.FunctionalNetwork'
+    """
+    try:
+        document = json.loads(text)
+        if not isinstance(document, dict) or document.get("format") != FORMAT:
+            found = document.get("format") if isinstance(document, dict) else document
+            raise ValueError(f"format is {found!r}, not {FORMAT!r}")
+        version = document.get("version")
+        if version == 1:
+            return _fields_v1(document)
+        if version != VERSION:
+            raise ValueError(f"unknown version {version!r}")
+        channels = document["channels"]
+        window = document["window"]
+        return {
+            "nodes": tuple(document["nodes"]),
+            "pairs": pairs_frame(document["pairs"]),
+            "edges": edges_frame(document["edges"]),
+            "parameters": NetworkParameters.from_mapping(document["parameters"]),
+            "n_samples": int(document["n_samples"]),
+            "label": document["label"],
+            "window": None if window is None else _tuples(window),
+            "channels": None if channels is None else {
+                node: tuple(columns) for node, columns in channels.items()
+            },
+        }
+    except (ValueError, KeyError, TypeError, AttributeError) as error:
+        # ParameterError is a ValueError: a bad parameter or table in the file lands here too.
+        raise ParameterError(f"text is not a funcnet functional network in JSON: {error}") from None
+
+
+def to_networkx(network: FunctionalNetwork) -> nx.DiGraph:
+    """The network as a :class:`networkx.DiGraph`.
+
+    Parameters
+    ----------
+    network : FunctionalNetwork
+
+    Returns
+    -------
+    networkx.DiGraph
+        Every node, even one without edges. A directed edge is one arc, a bidirectional
+        relation two arcs; each arc has the attributes ``weight`` (Eq. 13), ``kind``
+        (``directed`` or ``bidirectional``) and ``degenerate``. The graph attributes hold
+        ``label``, ``parameters`` (:meth:`NetworkParameters.to_dict`) and ``n_samples``.
+
+    References
+    ----------
+    Section 2.4 and Eq. 13 of the paper.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from funcnet.network import functional_network
+    >>> rng = np.random.default_rng(0)
+    >>> x = rng.random(203)
+    >>> network = functional_network(np.column_stack([x, x + 0.1 * rng.random(203)]), delay=1)
+    >>> to_networkx(network).edges["0", "1"]
+    {'weight': 0.027588..., 'kind': 'bidirectional', 'degenerate': False}
+    """
+    graph = nx.DiGraph(
+        label=network.label,
+        parameters=network.parameters.to_dict(),
+        n_samples=network.n_samples,
+    )
+    graph.add_nodes_from(network.nodes)
+    for source, target, weight, kind, degenerate in network.edges[list(EDGE_COLUMNS)].itertuples(
+        index=False
+    ):
+        attributes = {"weight": float(weight), "kind": str(kind), "degenerate": bool(degenerate)}
+        graph.add_edge(source, target, **attributes)
+        if kind == "bidirectional":
+            graph.add_edge(target, source, **attributes)
+    return graph
+
+
+def _suffix(path: Path) -> str:
+    suffix = path.suffix.lower()
+    if suffix not in _SUFFIXES:
+        raise ParameterError.of(
+            "path", f"must end in .json or .graphml, got {path.name!r}"
+        )
+    return suffix
+
+
+def write(network: FunctionalNetwork, path: str | os.PathLike[str]) -> Path:
+    """Write the network atomically, in the format its suffix names.
+
+    Parameters
+    ----------
+    network : FunctionalNetwork
+    path : path-like
+        ``*.json`` (:func:`to_json`) or ``*.graphml`` (:func:`to_networkx`, with the parameters
+        as one JSON string graph attribute and the JSON document as the attribute
+        ``funcnet``); either reads back exactly (:func:`read_fields`).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    ParameterError
+        Any other suffix (nothing is written).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> from funcnet.network import functional_network
+    >>> rng = np.random.default_rng(0)
+    >>> x = rng.random(203)
+    >>> network = functional_network(np.column_stack([x, x + 0.1 * rng.random(203)]), delay=1)
+    >>> out = write(network, pathlib.Path(tempfile.mkdtemp()) / "copy.graphml")
+    >>> nx.read_graphml(out).edges["0", "1"]["degenerate"]
+    False
+    """
+    path = Path(path)
+    if _suffix(path) == ".json":
+        return write_text_atomic(path, to_json(network))
+    graph = to_networkx(network)
+    # GraphML attributes are scalars: no None, no dict.
+    graph.graph = {
+        "parameters": json.dumps(network.parameters.to_dict()),
+        "n_samples": network.n_samples,
+        "funcnet": to_json(network),
+    }
+    if network.label is not None:
+        graph.graph["label"] = network.label
+    with atomic_path(path) as tmp:
+        nx.write_graphml(graph, tmp)
+    return path
+
+
+def read_fields(path: str | os.PathLike[str]) -> dict[str, Any]:
+    """The fields of the network in a file from :func:`write` (``*.json`` or ``*.graphml``).
+
+    Parameters
+    ----------
+    path : path-like
+
+    Returns
+    -------
+    dict
+        The constructor arguments of :class:`~funcnet.network.FunctionalNetwork`.
+
+    Raises
+    ------
+    ParameterError
+        Another suffix, or a file that holds no functional network (a GraphML file from
+        another tool or an older funcnet holds no pairs table); the message names the file.
+    FileNotFoundError
+        No file at ``path``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import numpy as np
+    >>> from funcnet.network import functional_network
+    >>> rng = np.random.default_rng(0)
+    >>> x = rng.random(203)
+    >>> network = functional_network(np.column_stack([x, x + 0.1 * rng.random(203)]), delay=1)
+    >>> out = write(network, pathlib.Path(tempfile.mkdtemp()) / "copy.json")
+    >>> read_fields(out)["nodes"]
+    ('0', '1')
+    """
+    path = Path(path)
+    suffix = _suffix(path)
+    try:
+        if suffix == ".json":
+            return fields_from_json(path.read_text(encoding="utf-8"))
+        try:
+            graph = nx.read_graphml(path)
+        except (ValueError, KeyError, TypeError, SyntaxError) as error:
+            # ElementTree's ParseError is a SyntaxError.
+            raise ParameterError(f"not a GraphML file: {error}") from None
+        if "funcnet" not in graph.graph:
+            raise ParameterError(
+                "this GraphML file holds the graph but not the pairs table (another tool or an "
+                "older funcnet wrote it), so it cannot be read back as a FunctionalNetwork"
+            )
+        return fields_from_json(graph.graph["funcnet"])
+    except (ParameterError, UnicodeDecodeError) as error:
+        raise ParameterError(f"{path}: {error}") from None

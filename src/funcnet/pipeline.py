@@ -1,0 +1,388 @@
+"""From a recording and its windows to one functional network per window (paper section 4).
+
+:func:`window_networks` cuts each window out of a :class:`~funcnet.robot.Recording`, computes
+its :class:`~funcnet.network.FunctionalNetwork` with one :class:`~funcnet.NetworkParameters`
+and says, once per kind of problem for the whole call, what the networks' pairs tables flag.
+The warnings are built from those flags (:func:`window_warnings`), not caught from the
+computation, so that several calls may run at once in threads.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import sys
+import warnings
+from collections import Counter
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from funcnet.errors import (
+    ChannelError,
+    FuncnetError,
+    FuncnetWarning,
+    ParameterError,
+    StaircaseWarning,
+    WindowError,
+)
+from funcnet.measures import CrossMeasures, threshold_warnings
+from funcnet.network import FunctionalNetwork, functional_network
+from funcnet.network.schema import RESULT_COLUMNS
+from funcnet.parameters import NetworkParameters, resolve
+from funcnet.robot.preprocess import staircase_signals
+from funcnet.robot.recording import Recording
+from funcnet.robot.windows import PAPER_NODES, Window, phase_windows
+
+__all__ = ["window_networks", "window_warnings", "CONSTANT_POLICIES"]
+
+#: What :func:`window_networks` does with a signal constant inside a window: raise, or leave it
+#: out of that window's network.
+CONSTANT_POLICIES = ("error", "drop")
+
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+# How a summary names a problem (what is wrong, what to read); the pairs follow the first part.
+_SUMMARIES: dict[str, tuple[str, str]] = {
+    "eps_order": (
+        "eps_xy is not below eps_x and eps_y",
+        "section 2.2 of the paper asks eps_xy < eps_x, eps_y for a modular ISRN "
+        "(eps_ordered is False)",
+    ),
+    "rate_exceeded": (
+        "ties at a threshold pushed an achieved rate above its target",
+        "see achieved_rr_x, achieved_rr_y, achieved_cr (rate_exceeded is True)",
+    ),
+    "degenerate": (
+        "degenerate recurrence structure",
+        "threshold 0, an achieved rate more than twice its target or a constant signal, i.e. "
+        "too few distinct states (e.g. a signal that barely moves); the arrows of these pairs "
+        "are meaningless (degenerate is True)",
+    ),
+}
+
+
+def window_networks(
+    recording: Recording,
+    windows: Sequence[Window] | pd.DataFrame,
+    *,
+    signals: Sequence[str] | None = None,
+    parameters: NetworkParameters | None = None,
+    constant: str = "error",
+    progress: Callable[[int, int, str], None] | None = None,
+    **overrides: Any,
+) -> dict[str, FunctionalNetwork]:
+    """One functional network per window of a recording.
+
+    Parameters
+    ----------
+    recording : Recording
+        Derived signals (V) should already be columns, computed over the whole recording
+        (:func:`funcnet.robot.read_recording` or :func:`~funcnet.robot.add_derived_signals`).
+    windows : sequence of Window, or a phase table
+        Any windows (:func:`~funcnet.robot.phase_windows`, :func:`~funcnet.robot.fixed_windows`,
+        :func:`~funcnet.robot.reversal_windows`, :func:`~funcnet.robot.sliding_windows`, by
+        hand); each holds the ticks ``start <= time < stop``. A phase table is turned into
+        :func:`~funcnet.robot.phase_windows`.
+    signals : sequence of str, optional
+        The nodes; default the paper's (:data:`~funcnet.robot.windows.PAPER_NODES`) that the
+        recording has.
+    parameters : NetworkParameters, optional
+        The network parameters (default :class:`~funcnet.NetworkParameters`'s defaults), the
+        same for every window. Normalization (min-max by default) happens per window. Per-signal
+        ``rr`` and ``eps`` follow the order of ``signals``; a window that drops a signal drops
+        its entries too.
+    constant : {"error", "drop"}
+        A signal constant inside a window cannot be normalized (min-max or z-score): ``"error"``
+        raises :class:`~funcnet.errors.SignalError`; ``"drop"`` leaves it out of that window's
+        network (listed in its ``window["dropped"]``). Without normalization
+        (``normalize=None``) nothing is dropped.
+    progress : callable, optional
+        Called as ``progress(done, total, label)`` after each window's network.
+    **overrides
+        Network parameters by name (``dim=2``, ``rr=0.1``, ...), applied to ``parameters``.
+
+    Returns
+    -------
+    dict
+        Window label -> FunctionalNetwork (labelled so), in window order. Each network's
+        ``window`` says where it comes from: the window's ``label``, ``start``, ``stop``
+        (seconds), ``phase`` and ``offset``, the ``source`` (the recording's file) and
+        ``dropped`` (a tuple of the signals left out).
+
+    Raises
+    ------
+    ParameterError
+        A bad network parameter (before any window is computed), or ``constant`` not one of
+        :data:`CONSTANT_POLICIES`.
+    WindowError
+        A window outside the recording, with a signal not recorded (NaN) in it, with fewer than
+        two signals left after dropping constant ones, or a duplicate label; the message names
+        the file.
+    ChannelError
+        A signal that is not a column.
+    FuncnetError
+        Any error of :func:`funcnet.functional_network` on a window (a constant signal, a window
+        too short for the embedding), of the same class, its message prefixed with the file,
+        the window's label and its span.
+
+    Warns
+    -----
+    StaircaseWarning
+        A node's native interval is coarser than the grid (the 4 ms IPO signals AP and MP on the
+        2 ms grid): it is a staircase, and recurrences are counted on repeated values. Use
+        :func:`~funcnet.robot.resample` to avoid it.
+    ThresholdWarning, DegenerateWarning
+        At most one per problem (``eps_order``, ``rate_exceeded``, ``degenerate``) for the whole
+        call, not one per window; it carries its ``problem``, the ``pairs`` (and for a
+        degenerate structure the ``signals``) concerned in any window, and ``window`` when a
+        single window has it; its message names the file and every window. The pairs are
+        flagged in each network's pairs table; :func:`window_warnings` gives one warning per
+        window and problem.
+
+    References
+    ----------
+    Paper section 3.4 (construction), section 4 (networks per phase and window).
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot import Recording, SignalInfo, Window
+    >>> t = np.arange(0, 2, 0.002)
+    >>> data = pd.DataFrame({"RP": np.sin(5 * t), "AP": np.sin(5 * t - 0.3),
+    ...                      "AC": np.where(t < 1, 0.0, np.cos(7 * t))},
+    ...                     index=pd.Index(t, name="time"))
+    >>> info = {name: SignalInfo(name, None, None, 0.002) for name in data}
+    >>> rec = Recording(data, {}, info, source="trace.csv", sample_period=0.002)
+    >>> import warnings
+    >>> windows = [Window("still", 0.2, 0.8), Window("moving", 1.2, 1.8)]
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     nets = window_networks(rec, windows, constant="drop", delay=5)
+    >>> nets["still"].nodes, nets["still"].window["dropped"]
+    (('RP', 'AP'), ('AC',))
+    >>> [(w.message.problem, w.message.pairs[:2], w.message.window) for w in caught]
+    [('eps_order', (('RP', 'AP'), ('RP', 'AC')), None)]
+    >>> window_networks(rec, [Window("still", 0.2, 0.8)])
+    Traceback (most recent call last):
+        ...
+    funcnet.errors.SignalError: trace.csv: window 'still' [0.2, 0.8) s: signal 'AC' is constant ...
+    """
+    p = resolve(parameters, overrides)
+    if constant not in CONSTANT_POLICIES:
+        raise ParameterError.of(
+            "constant", f"must be one of {', '.join(CONSTANT_POLICIES)}; got {constant!r}"
+        )
+    if isinstance(windows, pd.DataFrame):
+        windows = phase_windows(windows)
+    windows = list(windows)
+    where = recording.source or "<recording>"
+    duplicated = sorted(label for label, n in Counter(w.label for w in windows).items() if n > 1)
+    if duplicated:
+        raise WindowError(f"{where}: window labels {duplicated} occur more than once")
+    if signals is None:
+        signals = [name for name in PAPER_NODES if name in recording.data.columns]
+    signals = list(signals)
+    missing = [name for name in signals if name not in recording.data.columns]
+    if missing or not signals:
+        raise ChannelError(
+            where,
+            f"signals {missing or signals} are not columns of the recording; it "
+            f"has {list(recording.data.columns)}",
+        )
+    staircases = staircase_signals(recording, signals)
+    if staircases:
+        coarsest = max(recording.signals[s].interval for s in staircases)
+        warnings.warn(
+            StaircaseWarning(
+                f"{where}: {staircases} change at most every {coarsest * 1e3:g} ms but are "
+                f"analysed on the {recording.sample_period * 1e3:g} ms grid (staircases); "
+                "funcnet.robot.resample decimates or interpolates them",
+                problem="staircase",
+                signals=tuple(staircases),
+            ),
+            stacklevel=_caller_stacklevel(),
+        )
+    drop = constant == "drop" and p.normalize is not None
+    networks: dict[str, FunctionalNetwork] = {}
+    for done, window in enumerate(windows, start=1):
+        networks[window.label] = _window_network(recording, window, signals, p, drop, where)
+        if progress is not None:
+            progress(done, len(windows), window.label)
+    for warning in _summarized(window_warnings(networks), where, len(windows)):
+        warnings.warn(warning, stacklevel=_caller_stacklevel())
+    return networks
+
+
+def _window_network(recording: Recording, window: Window, signals: Sequence[str],
+                    p: NetworkParameters, drop: bool, where: str) -> FunctionalNetwork:
+    """The network of one window, located (errors name the window; the network records it)."""
+    part = recording.window(window.start, window.stop).data[list(signals)]
+    values = part.to_numpy(dtype=np.float64)
+    if np.isnan(values).any():
+        column = part.columns[np.isnan(values).any(axis=0)][0]
+        raise WindowError(
+            f"{where}: window {window.label!r} {_span(window)}: "
+            f"signal {column!r} has no recorded value at some of its ticks"
+        )
+    dropped: tuple[str, ...] = ()
+    if drop:
+        dropped = tuple(str(name) for name in part.columns[np.ptp(values, axis=0) == 0])
+    if dropped and len(signals) - len(dropped) < 2:
+        raise WindowError(
+            f"{where}: window {window.label!r} {_span(window)}: signals {list(dropped)} are "
+            "constant in it, which leaves fewer than two signals"
+        )
+    if dropped:
+        p = _without(p, [name not in dropped for name in signals])
+    try:
+        network = functional_network(
+            part.drop(columns=list(dropped)), parameters=p, label=window.label, warn=False
+        )
+    except FuncnetError as error:
+        _locate(error, where, window)
+        raise
+    return dataclasses.replace(
+        network,
+        window={
+            "label": window.label,
+            "start": window.start,
+            "stop": window.stop,
+            "phase": window.phase,
+            "offset": window.offset,
+            "source": recording.source,
+            "dropped": dropped,
+        },
+    )
+
+
+def _without(p: NetworkParameters, kept: Sequence[bool]) -> NetworkParameters:
+    """``p`` for the kept signals: per-signal rates and thresholds of dropped ones left out."""
+    changes: dict[str, Any] = {}
+    if isinstance(p.rr, tuple) and len(p.rr) == len(kept):
+        changes["rr"] = tuple(r for r, keep in zip(p.rr, kept, strict=True) if keep)
+    if p.eps is not None and isinstance(p.eps[0], tuple) and len(p.eps[0]) == len(kept):
+        auto = tuple(e for e, keep in zip(p.eps[0], kept, strict=True) if keep)
+        changes["eps"] = (auto, p.eps[1])
+    return p.replace(**changes) if changes else p
+
+
+# --------------------------------------------------------------------------------------------
+# warnings, from the flags of the pairs tables
+
+
+def _pair_parameters(p: NetworkParameters, nodes: Sequence[str], x: str,
+                     y: str) -> NetworkParameters:
+    """``p`` as the measures of the pair (x, y) hold it: per-signal values become pairs."""
+    i, j = nodes.index(x), nodes.index(y)
+    changes: dict[str, Any] = {}
+    if isinstance(p.rr, tuple):
+        changes["rr"] = (p.rr[i], p.rr[j])
+    if p.eps is not None and isinstance(p.eps[0], tuple):
+        changes["eps"] = ((p.eps[0][i], p.eps[0][j]), p.eps[1])
+    return p.replace(**changes) if changes else p
+
+
+def _pair_results(network: FunctionalNetwork) -> dict[tuple[str, str], CrossMeasures]:
+    """The pairs table's rows as the cross measures they were made from."""
+    p = network.parameters
+    states = network.n_samples - (p.dim - 1) * p.delay  # not used by the warnings
+    results = {}
+    for row in network.pairs.to_dict("records"):
+        x, y = str(row["x"]), str(row["y"])
+        results[(x, y)] = CrossMeasures(
+            **{name: row[name] for name in RESULT_COLUMNS},
+            m_x=states,
+            m_y=states,
+            parameters=_pair_parameters(p, network.nodes, x, y),
+        )
+    return results
+
+
+def window_warnings(networks: Mapping[str, FunctionalNetwork]) -> list[FuncnetWarning]:
+    """The warnings the networks' pairs tables call for: one per window and problem.
+
+    Parameters
+    ----------
+    networks : mapping
+        Window label -> FunctionalNetwork (as :func:`window_networks` returns).
+
+    Returns
+    -------
+    list of FuncnetWarning
+        In window order, then as :func:`funcnet.measures.threshold_warnings` orders them: a
+        :class:`~funcnet.errors.ThresholdWarning` for pairs whose ``eps_ordered`` is False
+        (``problem="eps_order"``) and for pairs whose ``rate_exceeded`` is True, degenerate
+        pairs aside (``"rate_exceeded"``), a :class:`~funcnet.errors.DegenerateWarning` for the
+        ``degenerate`` pairs, naming the signals whose own structure is degenerate
+        (``"degenerate"``). Each carries ``problem``, ``pairs``, ``signals`` and ``window``
+        (the label): the warnings ``functional_network(..., warn=True)`` gives for that window,
+        located. Nothing is emitted: this is a pure function of the tables.
+
+    References
+    ----------
+    Section 2.2 of the paper (``eps_xy < eps_x, eps_y``).
+
+    Examples
+    --------
+    >>> window_warnings({})
+    []
+    """
+    return [
+        warning.located(str(label))
+        for label, network in networks.items()
+        for warning in threshold_warnings(_pair_results(network))
+    ]
+
+
+def _summarized(found: Sequence[FuncnetWarning], where: str,
+                n_windows: int) -> list[FuncnetWarning]:
+    """One warning per (class, problem), naming every window, pair and signal that has it."""
+    groups: dict[tuple[type[FuncnetWarning], str | None], list[FuncnetWarning]] = {}
+    for warning in found:
+        groups.setdefault((type(warning), warning.problem), []).append(warning)
+    summary = []
+    for (cls, problem), group in groups.items():
+        labels = [str(w.window) for w in group]
+        pairs = tuple(dict.fromkeys(pair for w in group for pair in w.pairs))
+        signals = tuple(dict.fromkeys(name for w in group for name in w.signals))
+        what, advice = _SUMMARIES.get(str(problem), (group[0].message, ""))
+        about = f" of signal(s) {', '.join(signals)}" if signals else ""
+        listed = ", ".join(f"({x}, {y})" for x, y in pairs)
+        text = f"{what}{about} for {len(pairs)} pair(s): {listed}" if pairs else what
+        summary.append(
+            cls(
+                f"{text}{'; ' + advice if advice else ''}\n{where}: in {len(labels)} of "
+                f"{n_windows} window(s): " + ", ".join(repr(label) for label in labels),
+                problem=problem,
+                signals=signals,
+                pairs=pairs,
+                window=labels[0] if len(labels) == 1 else None,
+            )
+        )
+    return summary
+
+
+def _caller_stacklevel() -> int:
+    """``stacklevel`` of the first frame outside funcnet, seen from this function's caller.
+
+    A warning then points at the user's line, whether the pipeline was called directly or
+    through a study or the command line.
+    """
+    frame, level = sys._getframe(1), 1
+    while frame.f_back is not None and frame.f_code.co_filename.startswith(_PACKAGE_DIR):
+        frame, level = frame.f_back, level + 1
+    return level
+
+
+def _locate(error: FuncnetError, where: str, window: Window) -> None:
+    """Put the recording's file and the window in front of ``error``'s message."""
+    # Changed in place: the class, the traceback and attributes such as TraceError.path stay,
+    # whatever the class's constructor takes.
+    error.args = (f"{where}: window {window.label!r} {_span(window)}: {error}",)
+
+
+def _span(window: Window) -> str:
+    return f"[{window.start:g}, {window.stop:g}) s"

@@ -1,0 +1,149 @@
+"""Page building for the static HTML reports: escaping, tables, figures, the page itself.
+
+A report is one ``index.html`` with PNG figures beside it in ``figures/`` and nothing loaded
+from elsewhere (no CDN, no script, no web font). Every file is written atomically
+(:mod:`funcnet._io`): a report folder never holds a half-written figure or page.
+"""
+
+from __future__ import annotations
+
+import html
+import os
+from collections.abc import Callable, Iterable, Mapping
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from funcnet._io import atomic_path
+from funcnet.network.schema import PAIR_COLUMNS
+
+__all__ = ["Progress", "PACKAGES", "save_figure", "escape", "table", "mapping_table",
+           "pairs_table", "figure_html", "page", "step"]
+
+Progress = Callable[[int, int, str], None] | None
+#: Packages whose versions a report records.
+PACKAGES = ("numpy", "numba", "scipy", "pandas", "pyarrow", "networkx", "matplotlib")
+
+_STYLE = """
+body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;max-width:1200px;margin:2em auto;
+padding:0 1em;color:#222;line-height:1.45}
+h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}
+table{border-collapse:collapse;font-size:.82em;margin:.5em 0;max-width:100%}
+th,td{border:1px solid #ccc;padding:2px 6px;text-align:left;vertical-align:top;
+overflow-wrap:anywhere}
+td.hash{font-family:ui-monospace,monospace;word-break:break-all;min-width:12ch}
+pre{white-space:pre-wrap;overflow-wrap:anywhere}
+th{background:#f3f3f3}td.num{text-align:right;font-variant-numeric:tabular-nums}
+figure{margin:1em 0}figure img{max-width:100%;height:auto;border:1px solid #eee}
+figcaption{font-size:.88em;color:#444}
+.yes{background:#d9f2d9}.partly{background:#fff2c2}.no{background:#f8d4d4}.na{background:#e8e8f4}
+.ne{background:#e6e6e6;font-style:italic}
+details{margin:.3em 0}summary{cursor:pointer}code{font-size:.9em}
+.note{background:#f6f6f6;border-left:4px solid #999;padding:.5em 1em}
+"""
+
+
+def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: int = 100) -> Path:
+    """Save a matplotlib figure as PNG, atomically.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    path : path-like
+        Target file (``.png``).
+    dpi : int
+        Resolution.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png", dpi=dpi)
+    return Path(path)
+
+
+def escape(value: Any) -> str:
+    """``value`` as text safe inside HTML (quotes too).
+
+    Examples
+    --------
+    >>> escape('<a href="x">')
+    '&lt;a href=&quot;x&quot;&gt;'
+    """
+    return html.escape(str(value), quote=True)
+
+
+def _format(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:.4g}"
+    return str(value)
+
+
+def table(frame: pd.DataFrame, *, classes: Mapping[str, Callable[[Any], str]] | None = None
+          ) -> str:
+    """A small HTML table (escaped), numbers right-aligned, hashes (``*sha256*``) wrapped."""
+    classes = classes or {}
+    head = "".join(f"<th>{escape(c)}</th>" for c in frame.columns)
+    rows = []
+    for record in frame.itertuples(index=False):
+        cells = []
+        for column, value in zip(frame.columns, record, strict=True):
+            if column in classes:
+                css = classes[column](value)
+            elif "sha256" in str(column):  # a long hash wraps instead of widening the page
+                css = "hash"
+            else:
+                css = ("num" if isinstance(value, int | float) and not isinstance(value, bool)
+                       else "")
+            cells.append(f'<td class="{css}">{escape(_format(value))}</td>' if css
+                         else f"<td>{escape(_format(value))}</td>")
+        rows.append("<tr>" + "".join(cells) + "</tr>")
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>"
+
+
+def mapping_table(mapping: Mapping[str, Any], key: str = "name", value: str = "value") -> str:
+    """A two-column table of a mapping (values as text)."""
+    return table(pd.DataFrame({key: list(mapping), value: [str(v) for v in mapping.values()]}))
+
+
+def pairs_table(pairs: pd.DataFrame) -> str:
+    """A pairs table: the columns of :data:`funcnet.network.schema.PAIR_COLUMNS` it has.
+
+    The schema's order, whatever the table's; other columns (a study's identity and parameter
+    columns) are left out.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> rows = pd.DataFrame({"kind": ["x->y"], "recording": ["a.xml"], "y": ["B"], "x": ["A"]})
+    >>> pairs_table(rows).count("<th>"), pairs_table(rows).index("<th>x</th>") < pairs_table(
+    ...     rows).index("<th>kind</th>")
+    (3, True)
+    """
+    return table(pairs[[c for c in PAIR_COLUMNS if c in pairs.columns]])
+
+
+def figure_html(out_dir: Path, name: str, fig: Any, caption: str) -> str:
+    """Save ``fig`` as ``figures/NAME.png`` under ``out_dir``; its ``<figure>`` element."""
+    save_figure(fig, out_dir / "figures" / f"{name}.png")
+    return (f'<figure id="{escape(name)}"><img src="figures/{escape(name)}.png" '
+            f'alt="{escape(caption)}"><figcaption>{escape(caption)}</figcaption></figure>')
+
+
+def page(title: str, body: Iterable[str]) -> str:
+    """The whole HTML page: title, the inline style, ``body``'s parts in order."""
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            f"<title>{escape(title)}</title><style>{_STYLE}</style></head><body>"
+            + "\n".join(body) + "</body></html>\n")
+
+
+def step(progress: Progress, done: int, total: int, description: str) -> None:
+    """Report progress, if anyone listens."""
+    if progress is not None:
+        progress(done, total, description)
+
+

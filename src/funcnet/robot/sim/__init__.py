@@ -1,0 +1,54 @@
+"""A simulated robot base axis: the axis model, plans of experiments and the trace writer.
+
+It stands in for the paper's machine and gives ground truth: :mod:`~funcnet.robot.sim.trial`
+(one motion, :class:`Trial`), :mod:`~funcnet.robot.sim.axis` (the drivetrain and control
+cascade, :func:`simulate_trial`), :mod:`~funcnet.robot.sim.plan` (the paper's Table 1 and TOML
+plans, :func:`write_plan`) and :mod:`~funcnet.robot.sim.writer` (SINUMERIK trace XML,
+:func:`write_trace`). The names are imported lazily: ``import funcnet.robot.sim`` does not
+compile the kernel.
+
+Examples
+--------
+>>> from funcnet.robot.sim import Trial
+>>> Trial("quick", "main", speed=350, tcp=1.2, step=1).step
+1.0
+"""
+
+from __future__ import annotations
+
+from importlib import import_module
+from typing import Any
+
+_EXPORTS = {
+    "Trial": "funcnet.robot.sim.trial",
+    "FAULT_KNOBS": "funcnet.robot.sim.trial",
+    "AxisParameters": "funcnet.robot.sim.axis",
+    "SimulatedTrial": "funcnet.robot.sim.axis",
+    "simulate_trial": "funcnet.robot.sim.axis",
+    "setpoint_profile": "funcnet.robot.sim.axis",
+    "effective_parameters": "funcnet.robot.sim.axis",
+    "trial_duration": "funcnet.robot.sim.axis",
+    "MAX_TRIAL_DURATION": "funcnet.robot.sim.axis",
+    "paper_plan": "funcnet.robot.sim.plan",
+    "read_plan": "funcnet.robot.sim.plan",
+    "write_plan": "funcnet.robot.sim.plan",
+    "MANIFEST_COLUMNS": "funcnet.robot.sim.plan",
+    "write_trace": "funcnet.robot.sim.writer",
+    "role_names": "funcnet.robot.sim.writer",
+}
+
+__all__ = list(_EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    try:
+        module = _EXPORTS[name]
+    except KeyError:
+        raise AttributeError(f"module 'funcnet.robot.sim' has no attribute {name!r}") from None
+    value = getattr(import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -1,0 +1,328 @@
+"""Tasks of a study and what a worker does with them.
+
+A task is plain, picklable data keyed by the SHA-256 of its content; the functions
+:func:`expand_windows` and :func:`network_rows` run on a worker (this process, a local process
+or a Dask worker thread) and return an :class:`Outcome` instead of raising, so one bad window
+does not stop the run. Nothing here writes files or changes process-wide state: the warnings of
+a task are read from its networks' pairs-table flags, not captured from :mod:`warnings`.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import json
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Any
+
+from funcnet._io import file_sha256
+from funcnet.errors import FuncnetError, ParameterError, StudyError
+from funcnet.parameters import NetworkParameters
+from funcnet.study.spec import BUILDERS, WindowSpec, phase_options
+from funcnet.study.store import rows_table
+
+__all__ = [
+    "Source",
+    "WindowTask",
+    "NetworkTask",
+    "Outcome",
+    "content_key",
+    "expand_windows",
+    "network_rows",
+    "task_warnings",
+]
+
+
+@dataclass(frozen=True)
+class Source:
+    """A recording as the tasks see it: its path, its name and trial in the results, its hash."""
+
+    path: str
+    name: str
+    trial: str
+    sha256: str
+
+
+@dataclass(frozen=True)
+class WindowTask:
+    """Expand one window specification on one recording."""
+
+    key: str
+    source: Source
+    spec: WindowSpec
+    signals: tuple[str, ...] | None
+    channels: str | None
+    axis: int | None
+    resample: str | None
+
+
+@dataclass(frozen=True)
+class NetworkTask:
+    """One functional network: a recording, a window (as a dict), a parameter set."""
+
+    key: str
+    source: Source
+    window: dict[str, Any]
+    parameters: NetworkParameters
+    signals: tuple[str, ...] | None
+    channels: str | None
+    axis: int | None
+    resample: str | None
+    constant: str
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What a worker returns: a value, or the message of an error.
+
+    ``error`` is a task's own failure (recorded, the run goes on); ``fatal`` an error that
+    would fail every task (the run stops). ``warnings`` holds, per kind of problem, the number
+    of pairs (or signals) that have it and one message.
+    """
+
+    key: str
+    value: Any = None
+    error: str | None = None
+    fatal: str | None = None
+    warnings: tuple[tuple[str, int, str], ...] = ()
+
+
+def content_key(**content: Any) -> str:
+    """The SHA-256 of ``content`` as canonical JSON: a task's key.
+
+    Parameters
+    ----------
+    **content
+        JSON-compatible values (no NaN).
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits.
+
+    Examples
+    --------
+    >>> content_key(a=1, b=[2]) == content_key(b=[2], a=1)
+    True
+    """
+    text = json.dumps(content, sort_keys=True, separators=(",", ":"), allow_nan=False)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def _cached_recording(task: WindowTask | NetworkTask) -> Any:
+    return _read(task.source.path, task.source.sha256, task.signals, task.channels, task.axis,
+                 task.resample)
+
+
+@lru_cache(maxsize=2)
+def _read(path: str, sha256: str, signals: tuple[str, ...] | None, channels: str | None,
+          axis: int | None, resample: str | None) -> Any:
+    # The read is cached per worker: every task of a recording on that worker reuses it. The
+    # content hash is checked so that a file changed during the run cannot be mislabelled.
+    from funcnet.robot import read_recording
+
+    if file_sha256(path) != sha256:
+        raise StudyError(f"{path}: the file changed while the study was running")
+    return read_recording(path, signals=signals, channels=channels, axis=axis, resample=resample)
+
+
+def window_record(window: Any) -> dict[str, Any]:
+    """A :class:`funcnet.robot.Window` as JSON-compatible data (its fields).
+
+    Parameters
+    ----------
+    window : funcnet.robot.Window
+
+    Returns
+    -------
+    dict
+        ``label``, ``phase``, ``offset``, ``start``, ``stop``; ``Window(**record)`` rebuilds it.
+
+    Examples
+    --------
+    >>> from funcnet.robot import span_window
+    >>> window_record(span_window(1.0, 1.5))
+    {'label': '1.000-1.500 s', 'phase': None, 'offset': 0.0, 'start': 1.0, 'stop': 1.5}
+    """
+    return {
+        "label": str(window.label),
+        "phase": None if window.phase is None else str(window.phase),
+        "offset": float(window.offset),
+        "start": float(window.start),
+        "stop": float(window.stop),
+    }
+
+
+def expand_windows(task: WindowTask) -> Outcome:
+    """Worker side: the windows a specification gives on a recording.
+
+    Parameters
+    ----------
+    task : WindowTask
+
+    Returns
+    -------
+    Outcome
+        ``value``: the windows as :func:`window_record` dicts; ``error`` if the recording
+        cannot be read or has no such windows; ``fatal`` for a bad option value.
+    """
+    import funcnet.robot as robot
+
+    try:
+        recording = _cached_recording(task)
+        options = dict(task.spec.options)
+        if task.spec.kind == "range":
+            windows = [robot.span_window(options["start"], options["stop"])]
+        elif task.spec.kind == "sliding":
+            windows = robot.sliding_windows(recording, **options)
+        else:
+            detect = phase_options()
+            phases = robot.detect_phases(
+                recording, **{k: v for k, v in options.items() if k in detect}
+            )
+            builder = getattr(robot, BUILDERS[task.spec.kind])
+            if task.spec.kind == "reversal" and not phases["phase"].eq("reversal").any():
+                windows = []  # a trial without a reversal has no reversal windows
+            else:
+                windows = builder(phases, **{k: v for k, v in options.items() if k not in detect})
+        return Outcome(task.key, value=[window_record(w) for w in windows])
+    except ParameterError as exc:
+        return Outcome(task.key, fatal=str(exc))
+    except FuncnetError as exc:
+        return Outcome(task.key, error=str(exc))
+
+
+def network_rows(task: NetworkTask) -> Outcome:
+    """Worker side: compute one network and return its rows as an Arrow table.
+
+    Parameters
+    ----------
+    task : NetworkTask
+
+    Returns
+    -------
+    Outcome
+        ``value``: :func:`funcnet.study.store.rows_table`; ``warnings``: :func:`task_warnings`;
+        ``error`` if the window cannot be analysed (a constant signal, too short ...).
+    """
+    import funcnet.robot as robot
+    from funcnet.pipeline import window_networks
+
+    try:
+        recording = _cached_recording(task)
+        signals = _nodes(task.signals, recording.data.columns, robot.PAPER_NODES)
+        window = robot.Window(**task.window)
+        with _one_thread_per_task():
+            networks = window_networks(
+                recording, [window], signals=signals, parameters=task.parameters,
+                constant=task.constant,
+            )
+        (network,) = networks.values()
+    except ParameterError as exc:
+        return Outcome(task.key, fatal=str(exc))
+    except FuncnetError as exc:
+        return Outcome(task.key, error=str(exc))
+    dropped = [s for s in signals if s not in network.nodes]
+    identity = {
+        "recording": task.source.name,
+        "trial": task.source.trial,
+        "source_sha256": task.source.sha256,
+        "window": task.window["label"],
+        "phase": task.window["phase"],
+        "offset": task.window["offset"],
+        "start": task.window["start"],
+        "stop": task.window["stop"],
+        "signals": ",".join(network.nodes),
+        "constant": task.constant,
+        "dropped": ",".join(dropped),
+    }
+    rows = rows_table(identity, task.parameters, network.pairs)
+    found = task_warnings(networks, recording, signals, task.source.name)
+    return Outcome(task.key, value=rows, warnings=found)
+
+
+def _nodes(signals: Sequence[str] | None, columns: Any, paper: Sequence[str]) -> list[str]:
+    # Passed explicitly so that the signals a window left out are known (``dropped``).
+    if signals is not None:
+        return list(signals)
+    return [name for name in paper if name in set(columns)]
+
+
+def task_warnings(networks: Mapping[str, Any], recording: Any, signals: Sequence[str],
+                  where: str) -> tuple[tuple[str, int, str], ...]:
+    """Per kind of problem: how many pairs (or signals) have it, and one message.
+
+    Built from typed warnings that are themselves built from the networks' pairs-table flags
+    (:func:`funcnet.pipeline.window_warnings`) and from the recording's sampling
+    (:func:`funcnet.robot.preprocess.staircase_signals`), never caught from :mod:`warnings`, so
+    it is the same on every back end and thread.
+
+    Parameters
+    ----------
+    networks : mapping
+        Window label -> FunctionalNetwork.
+    recording : Recording
+        The recording the networks come from.
+    signals : sequence of str
+        The signals asked for.
+    where : str
+        The recording's name, put in front of the messages.
+
+    Returns
+    -------
+    tuple of (problem, count, message)
+        ``problem`` is the warning's :attr:`~funcnet.errors.FuncnetWarning.problem`
+        (``"eps_order"``, ``"rate_exceeded"``, ``"degenerate"``, ``"staircase"``).
+    """
+    from funcnet.pipeline import window_warnings
+    from funcnet.robot.preprocess import staircase_signals
+
+    found: dict[str, tuple[int, str]] = {}
+    staircases = staircase_signals(recording, list(signals))
+    if staircases:
+        found["staircase"] = (
+            len(staircases),
+            f"{where}: {', '.join(staircases)} change more slowly than the sampling grid "
+            "(staircases); funcnet.robot.resample decimates or interpolates them",
+        )
+    for warning in window_warnings(networks):
+        problem = str(warning.problem)
+        count, message = found.get(problem, (0, f"{where}: {warning}"))
+        found[problem] = (count + max(len(warning.pairs), 1), message)
+    return tuple((problem, count, message) for problem, (count, message) in found.items())
+
+
+@contextlib.contextmanager
+def _one_thread_per_task() -> Iterator[None]:
+    # Tasks run in parallel already (one per process or Dask thread): Numba's parallel loops
+    # inside a task only oversubscribe the cores (measured: 10-20x slower on small windows of a
+    # loaded machine). The setting is per thread; it is restored for an in-process run.
+    import numba
+
+    previous = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        yield
+    finally:
+        numba.set_num_threads(previous)
+
+
+def parameters_record(parameters: NetworkParameters) -> Mapping[str, Any]:
+    """A parameter set as JSON-compatible data (tuples as lists), for keys and files.
+
+    Parameters
+    ----------
+    parameters : NetworkParameters
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> parameters_record(NetworkParameters(eps=(0.2, None)))["eps"]
+    [0.2, None]
+    """
+    return json.loads(json.dumps(parameters.to_dict()))

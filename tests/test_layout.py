@@ -1,0 +1,612 @@
+"""The package's layout follows its data flow: the import graph of ``src/funcnet``, parsed.
+
+Every ``import`` and ``from ... import`` of every module counts, those inside functions too, and
+so does ``importlib.import_module("funcnet...")`` with a literal name; only imports under
+``if TYPE_CHECKING:`` do not. ``from funcnet import name`` (and ``funcnet.name`` after
+``import funcnet``) counts as an import of the module the lazy table of ``funcnet/__init__.py``
+names for ``name``, so that a module cannot reach the core out of sight through the top level.
+The lazy ``__init__`` tables themselves are exempt from the layers (they load on demand), but
+every module they name must exist and every name must resolve.
+
+The layers are those of PLAN.md (issue 8): imports only go down the list.
+"""
+
+from __future__ import annotations
+
+import ast
+import importlib
+import re
+import subprocess
+import sys
+import tomllib
+from collections.abc import Iterator
+from dataclasses import dataclass
+from functools import cache
+from importlib.metadata import packages_distributions
+from pathlib import Path
+
+import pytest
+from packaging.requirements import Requirement
+from packaging.utils import canonicalize_name
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+PACKAGE = SRC / "funcnet"
+
+# (group, rank): a module may import modules of its own group or of a lower rank, except where
+# FORBIDDEN says otherwise. Groups of one rank are siblings and import nothing of each other.
+LAYERS: dict[str, tuple[str, float]] = {
+    "funcnet.errors": ("base", 0),
+    "funcnet._io": ("base", 0),
+    "funcnet.parameters": ("base", 0),
+    "funcnet.preprocess": ("core1", 1),
+    "funcnet.embedding": ("core1", 1),
+    "funcnet._kernels": ("core1", 1),
+    "funcnet._order_statistic": ("core1", 1),
+    "funcnet.robot": ("robot", 1),
+    "funcnet.robot.sim": ("robot.sim", 1.5),
+    "funcnet.recurrence": ("recurrence", 2),
+    "funcnet.measures": ("measures", 3),
+    "funcnet.network": ("network", 4),
+    "funcnet.pipeline": ("pipeline", 5),
+    "funcnet.plot": ("plot", 6),
+    "funcnet.study": ("study", 7),
+    "funcnet.paper": ("paper", 7),
+    "funcnet.report": ("report", 8),
+    "funcnet.cli": ("cli", 9),
+    "funcnet.__main__": ("cli", 9),
+}
+# Beyond the ranks: robot imports only the base and itself (not the L1 core beside it).
+FORBIDDEN: dict[str, tuple[str, ...]] = {
+    "robot": ("core1",),
+    "core1": ("robot", "robot.sim"),
+}
+ROBOT_MAY_NOT_IMPORT = ("funcnet.recurrence", "funcnet.measures", "funcnet.network",
+                        "funcnet.pipeline")
+PLOT_MAY_NOT_IMPORT = ("funcnet.recurrence", "funcnet.measures", "funcnet.pipeline")
+MAX_LINES, REASON_LINES = 900, 600
+# A module over 600 lines says why in its docstring, on a line such as
+# "Length: the TOML schema and its checks belong together." or "... over 600 lines because ...".
+REASON = re.compile(
+    r"^\s*(length|size|why (this|it) is (so )?long|long because)\s*:|"
+    r"\b(over|more than|above|exceeds?)\s+(~\s*)?600\s+lines\b",
+    re.IGNORECASE | re.MULTILINE,
+)
+
+
+# --------------------------------------------------------------------------------------------
+# the modules and their imports
+
+
+def _module_name(path: Path) -> str:
+    parts = list(path.relative_to(SRC).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+@cache
+def modules() -> dict[str, Path]:
+    """Every module of the package: dotted name -> file."""
+    return {_module_name(path): path for path in sorted(PACKAGE.rglob("*.py"))}
+
+
+@cache
+def _tree(name: str) -> ast.Module:
+    path = modules()[name]
+    return ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+
+
+def _is_package(name: str) -> bool:
+    return modules()[name].name == "__init__.py"
+
+
+@cache
+def lazy_table(name: str) -> dict[str, str] | None:
+    """The ``_EXPORTS`` table (name -> module) of a package ``__init__``, if it has one."""
+    if name not in modules() or not _is_package(name):
+        return None
+    for node in _tree(name).body:
+        targets = (
+            node.targets if isinstance(node, ast.Assign)
+            else [node.target] if isinstance(node, ast.AnnAssign) else []
+        )
+        if any(isinstance(t, ast.Name) and t.id == "_EXPORTS" for t in targets):
+            assert node.value is not None
+            table = ast.literal_eval(node.value)
+            assert isinstance(table, dict), f"{name}._EXPORTS is not a dict literal"
+            return {str(k): str(v) for k, v in table.items()}
+    return None
+
+
+def _is_type_checking(test: ast.expr) -> bool:
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"
+    )
+
+
+def _walk(node: ast.AST) -> Iterator[ast.AST]:
+    """Every node below ``node``, except the bodies of ``if TYPE_CHECKING:``."""
+    for child in ast.iter_child_nodes(node):
+        if isinstance(child, ast.If) and _is_type_checking(child.test):
+            for other in child.orelse:
+                yield other
+                yield from _walk(other)
+            continue
+        yield child
+        yield from _walk(child)
+
+
+def _absolute(module: str | None, level: int, importer: str) -> str:
+    if level == 0:
+        return module or ""
+    base = importer.split(".")
+    if not _is_package(importer):
+        base = base[:-1]
+    base = base[: len(base) - (level - 1)]
+    return ".".join([*base, module] if module else base)
+
+
+def _target(package: str, name: str) -> str:
+    """What ``from package import name`` imports: a submodule, a lazily exported name's module,
+    or the package itself."""
+    if f"{package}.{name}" in modules():
+        return f"{package}.{name}"
+    table = lazy_table(package)
+    if table is not None and name in table:
+        return table[name]
+    return package
+
+
+@dataclass(frozen=True)
+class Import:
+    importer: str
+    imported: str
+    line: int
+
+    def __str__(self) -> str:
+        return f"{self.importer} (line {self.line}) imports {self.imported}"
+
+
+@cache
+def imports(name: str) -> tuple[Import, ...]:
+    """The funcnet modules ``name`` imports (deduplicated by target, first line kept)."""
+    return _imports_of(_tree(name), name)
+
+
+def _imports_of(tree: ast.Module, name: str) -> tuple[Import, ...]:
+    found: dict[str, int] = {}
+
+    def add(target: str, line: int) -> None:
+        if target == "funcnet" or target.startswith("funcnet."):
+            found.setdefault(target, line)
+
+    bound: dict[str, str] = {}  # local names bound to a funcnet module
+    for node in _walk(tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name == "funcnet" or alias.name.startswith("funcnet."):
+                    if alias.asname is None:
+                        bound["funcnet"] = "funcnet"  # `import funcnet.x` binds `funcnet`
+                    else:
+                        bound[alias.asname] = alias.name
+                add(alias.name, node.lineno)
+        elif isinstance(node, ast.ImportFrom):
+            package = _absolute(node.module, node.level, name)
+            for alias in node.names:
+                target = _target(package, alias.name) if alias.name != "*" else package
+                if target == f"{package}.{alias.name}":
+                    bound[alias.asname or alias.name] = target
+                add(target, node.lineno)
+        elif isinstance(node, ast.Call) and node.args:
+            function, first = node.func, node.args[0]
+            called = function.attr if isinstance(function, ast.Attribute) else getattr(
+                function, "id", None
+            )
+            if called in ("import_module", "__import__") and isinstance(first, ast.Constant):
+                if isinstance(first.value, str):
+                    add(first.value, node.lineno)
+    # `funcnet.functional_network`, `robot.read_trace`: attributes of a bound module.
+    for node in _walk(tree):
+        chain = _attribute_chain(node)
+        if chain is None or chain[0] not in bound:
+            continue
+        module = bound[chain[0]]
+        for part in chain[1:]:
+            if f"{module}.{part}" not in modules():
+                module = _target(module, part)
+                break
+            module = f"{module}.{part}"
+        add(module, getattr(node, "lineno", 0))
+    return tuple(Import(name, target, line) for target, line in found.items())
+
+
+def _attribute_chain(node: ast.AST) -> list[str] | None:
+    """``["a", "b", "c"]`` for the expression ``a.b.c``; None for anything else."""
+    parts: list[str] = []
+    while isinstance(node, ast.Attribute):
+        parts.append(node.attr)
+        node = node.value
+    if not parts or not isinstance(node, ast.Name):
+        return None
+    return [node.id, *reversed(parts)]
+
+
+def _layer(name: str) -> tuple[str, float] | None:
+    """The layer of a module: its own entry or its closest package's; private siblings
+    (``funcnet._measures_kernels``) share the layer of the module they serve."""
+    parts = name.split(".")
+    while parts:
+        key = ".".join(parts)
+        if key in LAYERS:
+            return LAYERS[key]
+        parts.pop()
+    if name.startswith("funcnet._"):
+        private = name.removeprefix("funcnet._")
+        for key, layer in LAYERS.items():
+            public = key.removeprefix("funcnet.")
+            if "." not in public and not public.startswith("_") and private.startswith(public):
+                return layer
+    return None
+
+
+def _exempt(name: str) -> bool:
+    """The lazy re-export tables, and the top-level package (``__version__``)."""
+    return name == "funcnet" or lazy_table(name) is not None
+
+
+def _all_imports() -> list[Import]:
+    return [edge for name in modules() for edge in imports(name)]
+
+
+# --------------------------------------------------------------------------------------------
+# the rules
+
+
+def test_every_module_has_a_place_in_the_flow() -> None:
+    unplaced = [name for name in modules() if not _exempt(name) and _layer(name) is None]
+    assert not unplaced, f"modules with no layer (add them to LAYERS, per PLAN.md): {unplaced}"
+
+
+def test_every_imported_funcnet_module_exists() -> None:
+    missing = [str(e) for e in _all_imports() if e.imported not in modules()]
+    assert not missing, "\n".join(missing)
+
+
+def test_no_import_against_the_flow() -> None:
+    wrong = []
+    for edge in _all_imports():
+        if _exempt(edge.importer) or _exempt(edge.imported):
+            continue
+        source, target = _layer(edge.importer), _layer(edge.imported)
+        if source is None or target is None:
+            continue  # reported by the test above
+        (group, rank), (other, other_rank) = source, target
+        if group == other:
+            continue
+        if other_rank >= rank or other in FORBIDDEN.get(group, ()):
+            wrong.append(f"{edge} (layer {group} {rank} -> {other} {other_rank})")
+    assert not wrong, "imports against the flow:\n" + "\n".join(wrong)
+
+
+def test_no_import_cycle() -> None:
+    graph: dict[str, set[str]] = {name: set() for name in modules()}
+    for edge in _all_imports():
+        if edge.imported in graph and edge.imported != edge.importer:
+            graph[edge.importer].add(edge.imported)
+    # Tarjan's strongly connected components: any component of two or more is a cycle.
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    cycles: list[list[str]] = []
+
+    def connect(node: str) -> None:
+        index[node] = low[node] = len(index)
+        stack.append(node)
+        on_stack.add(node)
+        for nxt in sorted(graph[node]):
+            if nxt not in index:
+                connect(nxt)
+                low[node] = min(low[node], low[nxt])
+            elif nxt in on_stack:
+                low[node] = min(low[node], index[nxt])
+        if low[node] == index[node]:
+            component = []
+            while True:
+                member = stack.pop()
+                on_stack.discard(member)
+                component.append(member)
+                if member == node:
+                    break
+            if len(component) > 1:
+                cycles.append(sorted(component))
+
+    for node in sorted(graph):
+        if node not in index:
+            connect(node)
+    assert not cycles, f"import cycles: {cycles}"
+
+
+def _robot_module(name: str) -> bool:
+    return (name == "funcnet.robot" or name.startswith("funcnet.robot.")) and not (
+        name == "funcnet.robot.sim" or name.startswith("funcnet.robot.sim.")
+    )
+
+
+def _under(name: str, roots: tuple[str, ...]) -> bool:
+    return any(name == root or name.startswith(f"{root}.") for root in roots)
+
+
+def test_robot_imports_none_of_the_numerical_core() -> None:
+    wrong = [
+        str(e) for e in _all_imports()
+        if _robot_module(e.importer) and _under(e.imported, ROBOT_MAY_NOT_IMPORT)
+    ]
+    # Its lazy table included: a name it re-exports must not be reached through the core.
+    table = lazy_table("funcnet.robot") or {}
+    wrong += [
+        f"funcnet.robot's table: {key} -> {module}"
+        for key, module in table.items() if _under(module, ROBOT_MAY_NOT_IMPORT)
+    ]
+    assert not wrong, "\n".join(wrong)
+
+
+def test_robot_loads_none_of_the_numerical_core() -> None:
+    # At run time too: every name funcnet.robot exports, in a fresh interpreter.
+    code = (
+        "import sys, funcnet.robot as r\n"
+        "for name in r.__all__: getattr(r, name)\n"
+        f"print([m for m in sys.modules if m.startswith({ROBOT_MAY_NOT_IMPORT!r})])\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True
+    )
+    assert result.stdout.strip() == "[]", result.stdout
+
+
+def test_plot_draws_what_it_is_given() -> None:
+    wrong = [
+        str(e) for e in _all_imports()
+        if _under(e.importer, ("funcnet.plot",))
+        and (_under(e.imported, PLOT_MAY_NOT_IMPORT) or e.imported == "funcnet.network.functional")
+    ]
+    assert not wrong, "\n".join(wrong)
+
+
+def test_plot_calls_no_functional_network() -> None:
+    calls = []
+    for name in modules():
+        if not _under(name, ("funcnet.plot",)):
+            continue
+        for node in ast.walk(_tree(name)):
+            if isinstance(node, ast.Call):
+                function = node.func
+                called = function.attr if isinstance(function, ast.Attribute) else getattr(
+                    function, "id", None
+                )
+                if called in ("functional_network", "window_networks", "cross_measures"):
+                    calls.append(f"{name} line {node.lineno}: {called}")
+    assert not calls, "\n".join(calls)
+
+
+def test_module_sizes() -> None:
+    too_long, unexplained = [], []
+    for name, path in modules().items():
+        lines = len(path.read_text(encoding="utf-8").splitlines())
+        if lines > MAX_LINES:
+            too_long.append(f"{name}: {lines} lines")
+        elif lines > REASON_LINES:
+            docstring = ast.get_docstring(_tree(name)) or ""
+            if not REASON.search(docstring):
+                unexplained.append(f"{name}: {lines} lines")
+    assert not too_long, f"modules over {MAX_LINES} lines: {too_long}"
+    assert not unexplained, (
+        f"modules over {REASON_LINES} lines without a reason line in their docstring "
+        f"(e.g. 'Length: ...' or '... over 600 lines because ...'): {unexplained}"
+    )
+
+
+# --------------------------------------------------------------------------------------------
+# the lazy tables
+
+
+def _tables() -> list[tuple[str, str, str]]:
+    return [
+        (package, key, module)
+        for package in modules()
+        for key, module in (lazy_table(package) or {}).items()
+    ]
+
+
+def test_lazy_tables_exist() -> None:
+    assert lazy_table("funcnet") and lazy_table("funcnet.robot")
+
+
+def test_lazy_tables_name_existing_modules() -> None:
+    missing = [f"{p}.{k} -> {m}" for p, k, m in _tables() if m not in modules()]
+    assert not missing, f"lazy tables naming modules that do not exist: {missing}"
+
+
+@pytest.mark.parametrize(
+    ("package", "name", "module"), _tables(), ids=[f"{p}.{k}" for p, k, _ in _tables()]
+)
+def test_lazy_names_resolve(package: str, name: str, module: str) -> None:
+    value = getattr(importlib.import_module(package), name)
+    assert value is getattr(importlib.import_module(module), name)
+    assert name in importlib.import_module(package).__all__
+
+
+# Every name funcnet and funcnet.robot exported before issue 8 stays importable from there
+# (except funcnet.robot.phase_networks, which became funcnet.window_networks).
+OLD_NAMES = {
+    "funcnet": (
+        "__version__ embed recurrence_matrix cross_recurrence_matrix isrn_adjacency "
+        "estimate_delay estimate_dimension signal_states PackedRecurrence auto_recurrence "
+        "cross_recurrence CrossMeasures isrn_measures cross_measures local_cross_clustering "
+        "cross_degree normalize FunctionalNetwork functional_network edge_kind combine_kinds "
+        "edges_from_pairs check_parameters pairwise_cross_measures Study load_study run_study "
+        "load_results FuncnetError ParameterError SignalError TraceError"
+    ).split(),
+    "funcnet.robot": (
+        "Recording read_trace SignalInfo ChannelMap DEFAULT_CHANNEL_MAP velocity "
+        "add_derived_signals trim resample PHASES detect_phases phase_table PAPER_NODES Window "
+        "phase_windows fixed_windows reversal_windows sliding_windows span_window "
+        "AxisParameters SimulatedTrial simulate_trial write_trace Trial paper_plan read_plan "
+        "write_plan"
+    ).split(),
+}
+NEW_NAMES = {
+    "funcnet": ["NetworkParameters", "window_networks", "DegenerateWarning", "ThresholdWarning",
+                "FuncnetWarning", "StaircaseWarning", "threshold_warnings"],
+    "funcnet.robot": ["read_recording"],
+}
+
+
+@pytest.mark.parametrize(
+    ("package", "name"),
+    [(package, name) for table in (OLD_NAMES, NEW_NAMES) for package, names in table.items()
+     for name in names],
+)
+def test_public_names_stay_importable(package: str, name: str) -> None:
+    module = importlib.import_module(package)
+    assert getattr(module, name) is not None
+    assert name in dir(module)
+
+
+def test_phase_networks_moved_to_window_networks() -> None:
+    import funcnet
+    import funcnet.robot
+
+    assert callable(funcnet.window_networks)
+    with pytest.raises(AttributeError, match="window_networks"):
+        funcnet.robot.phase_networks  # noqa: B018
+
+
+def test_the_layout_test_sees_hidden_imports() -> None:
+    # The parser itself: a function-level import, `import funcnet` + attribute, import_module,
+    # a relative import, and one under TYPE_CHECKING (not counted).
+    source = (
+        "from __future__ import annotations\n"
+        "from typing import TYPE_CHECKING\n"
+        "if TYPE_CHECKING:\n"
+        "    from funcnet.measures import CrossMeasures\n"
+        "def f():\n"
+        "    import funcnet\n"
+        "    return funcnet.functional_network\n"
+        "def g():\n"
+        "    from importlib import import_module\n"
+        "    return import_module('funcnet.recurrence')\n"
+        "from . import _io\n"
+        "from .errors import ParameterError\n"
+    )
+    found = {e.imported for e in _imports_of(ast.parse(source), "funcnet.plot")}
+    network = lazy_table("funcnet")["functional_network"]  # type: ignore[index]
+    assert {network, "funcnet.recurrence", "funcnet._io", "funcnet.errors"} <= found
+    assert "funcnet.measures" not in found
+
+
+# --------------------------------------------------------------------------------------------
+# the README's picture of it
+
+
+def _readme_layout() -> list[str]:
+    """The module paths of the README's Layout block (relative to src/funcnet)."""
+    readme = (SRC.parent / "README.md").read_text(encoding="utf-8")
+    section = readme.split("\n## Layout", 1)[1].split("\n## ", 1)[0]
+    block = section.split("```", 2)[1]
+    paths, folders = [], []  # folders: the open folder at each indentation
+    for line in block.splitlines():
+        entry = line.split()[0] if line.strip() else ""
+        if not entry or entry.startswith("src/"):
+            continue
+        depth = (len(line) - len(line.lstrip())) // 2 - 1
+        if depth < 0:
+            continue  # tests/, benchmarks/
+        folders = folders[:depth]
+        if entry.endswith("/"):
+            folders.append(entry.rstrip("/"))
+        elif entry.endswith(".py"):
+            paths.append("/".join([*folders, entry]))
+    return paths
+
+
+def test_readme_layout_matches_the_tree() -> None:
+    listed = _readme_layout()
+    present = sorted(
+        path.relative_to(PACKAGE).as_posix() for path in PACKAGE.rglob("*.py")
+        if path.name != "__init__.py" or path.parent == PACKAGE
+    )
+    assert len(listed) == len(set(listed)), "a module is listed twice"
+    assert sorted(listed) == present, (
+        f"missing from README: {sorted(set(present) - set(listed))}; "
+        f"not in the tree: {sorted(set(listed) - set(present))}"
+    )
+
+
+# --------------------------------------------------------------------------------------------
+# the dependencies it declares
+
+
+def _third_party_imports() -> dict[str, str]:
+    """Top-level name of every non-funcnet, non-standard-library import -> one importer."""
+    found: dict[str, str] = {}
+    for name in modules():
+        for node in ast.walk(_tree(name)):
+            if isinstance(node, ast.Import):
+                tops = [alias.name.split(".")[0] for alias in node.names]
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                tops = [node.module.split(".")[0]]
+            else:
+                continue
+            for top in tops:
+                if top != "funcnet" and top not in sys.stdlib_module_names:
+                    found.setdefault(top, name)
+    return found
+
+
+def _declared() -> tuple[set[str], dict[str, set[str]]]:
+    project = tomllib.loads((SRC.parent / "pyproject.toml").read_text())["project"]
+
+    def names(requirements: list[str]) -> set[str]:
+        return {canonicalize_name(Requirement(r).name) for r in requirements}
+
+    extras = {
+        extra: names(requirements)
+        | {canonicalize_name(e) for r in requirements for e in Requirement(r).extras}
+        for extra, requirements in project["optional-dependencies"].items()
+    }
+    return names(project["dependencies"]), extras
+
+
+def test_every_import_is_a_declared_dependency_and_back() -> None:
+    runtime, extras = _declared()
+    distributions = packages_distributions()
+    imported: dict[str, str] = {}
+    for top, importer in _third_party_imports().items():
+        for dist in distributions.get(top, [top]):
+            imported[canonicalize_name(dist)] = importer
+    optional = extras["dask"]  # imported only where a study runs on a Dask cluster
+    undeclared = {d: m for d, m in imported.items() if d not in runtime | optional}
+    assert not undeclared, f"imported but not declared in pyproject.toml: {undeclared}"
+    unused = runtime - set(imported)
+    assert not unused, f"declared but never imported by the package: {sorted(unused)}"
+    pinned = [r for r in tomllib.loads((SRC.parent / "pyproject.toml").read_text())["project"][
+        "dependencies"] if "==" in r]
+    assert not pinned, f"runtime dependencies are ranges (pins go to constraints.txt): {pinned}"
+
+
+def test_constraints_pin_every_dependency() -> None:
+    lines = (SRC.parent / "constraints.txt").read_text().splitlines()
+    pins = {
+        canonicalize_name(name): version
+        for name, version in (
+            line.split("==", 1) for line in map(str.strip, lines)
+            if line and not line.startswith("#")
+        )
+    }
+    project = tomllib.loads((SRC.parent / "pyproject.toml").read_text())["project"]
+    extras = [r for group in project["optional-dependencies"].values() for r in group]
+    for requirement in map(Requirement, [*project["dependencies"], *extras]):
+        name = canonicalize_name(requirement.name)
+        assert name in pins, f"{name} is not pinned in constraints.txt"
+        assert requirement.specifier.contains(pins[name]), (str(requirement), pins[name])
