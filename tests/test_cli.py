@@ -6,6 +6,7 @@ import io
 import json
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import networkx as nx
@@ -264,6 +265,18 @@ def test_network_help_shows_the_defaults_of_network_parameters() -> None:
     assert helps["mu_c"].endswith("\\[default: --mu]")
     assert helps["mu_t"].endswith("\\[default: --mu]")
     assert "chebyshev" in helps["metric"] and "cityblock" in helps["metric"]
+
+
+def test_network_has_an_option_for_every_network_parameter() -> None:
+    import typer.main
+
+    from funcnet import NetworkParameters
+
+    command = typer.main.get_command(app).commands["network"]  # type: ignore[attr-defined]
+    options = {opt for param in command.params for opt in param.opts}
+    for name in NetworkParameters.names():
+        if name not in cli._NO_OPTION:
+            assert cli._FLAGS[name] in options, name
 
 
 def test_study_help_shows_the_default_workers() -> None:
@@ -535,6 +548,9 @@ def test_study_and_report_commands(trial: Path, tmp_path: Path) -> None:
     assert first.exit_code == 1, first.output
     assert "4 tasks: 4 computed, 0 already done, 2 failed" in first.stdout
     assert first.stderr.count("funcnet: failed: ") == 2
+    # Warnings once per problem, counted over the tasks (not once more per task in-process).
+    warned = [line for line in first.stderr.splitlines() if line.startswith("funcnet: warning")]
+    assert all(" networks computed, e.g. " in line for line in warned), warned
     second = runner.invoke(app, arguments)
     assert "4 tasks: 0 computed, 4 already done, 2 failed" in second.stdout
     from funcnet.study import load_results
@@ -592,7 +608,11 @@ def tiny_demo(monkeypatch) -> list:
     calls = []
 
     def build_demo_report(plan_dir, out_dir, *, progress=None):
+        from funcnet.errors import ThresholdWarning
+
         calls.append((Path(plan_dir), Path(out_dir), progress))
+        # The real analyses warn per trial; the report counts those warnings.
+        warnings.warn(ThresholdWarning("eps_xy is not below", problem="eps_order"), stacklevel=1)
         return write_text_atomic(Path(out_dir) / "index.html", "<html></html>")
 
     monkeypatch.setattr(funcnet.report, "build_demo_report", build_demo_report)
@@ -606,6 +626,7 @@ def test_demo_simulates_the_plan_then_writes_the_report(tmp_path: Path, tiny_dem
     assert (out / "plan" / "tiny.xml").is_file() and (out / "plan" / "manifest.csv").is_file()
     assert tiny_demo == [(out / "plan", out, None)]
     assert result.stdout.strip() == f"report: {out / 'index.html'}"
+    assert result.stderr == ""  # the report counts the analyses' warnings
 
 
 def test_demo_writes_into_out_of_the_current_folder(tmp_path: Path, monkeypatch, tiny_demo) -> None:

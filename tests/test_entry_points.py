@@ -104,13 +104,22 @@ def test_pair_measures(signals: pd.DataFrame, name: str, value: Any, _text: str)
     assert str(pairs.value) == str(pair.value)
 
 
+def _toml(value: Any) -> str:
+    return f'"{value}"' if isinstance(value, str) else repr(value)
+
+
+@pytest.mark.parametrize("grid", [False, True], ids=["value", "grid"])
 @pytest.mark.parametrize(("name", "value", "_text"), BAD_VALUES, ids=IDS)
-def test_study_file(trace: Path, tmp_path: Path, name: str, value: Any, _text: str) -> None:
+def test_study_file(
+    trace: Path, tmp_path: Path, name: str, value: Any, _text: str, grid: bool
+) -> None:
     from funcnet import load_study
     from funcnet.errors import StudyError
 
     study = (tmp_path / "study.toml").resolve()
-    toml_value = f'"{value}"' if isinstance(value, str) else repr(value)
+    toml_value = _toml(value)
+    if grid:  # a list spans a grid: a good value first, the bad one is still named
+        toml_value = f"[{_toml(NetworkParameters.defaults()[name])}, {toml_value}]"
     study.write_text(
         f'signals = ["RP", "AP", "AC"]\n[recordings]\npaths = ["{trace}"]\n'
         '[[windows]]\nkind = "range"\nstart = 0.1\nstop = 0.7\n'

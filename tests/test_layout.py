@@ -8,7 +8,7 @@ names for ``name``, so that a module cannot reach the core out of sight through 
 The lazy ``__init__`` tables themselves are exempt from the layers (they load on demand), but
 every module they name must exist and every name must resolve.
 
-The layers are those of PLAN.md (issue 8): imports only go down the list.
+The layers are those of PLAN.md (issues 8, 10, 11): imports only go down the list.
 """
 
 from __future__ import annotations
@@ -42,23 +42,28 @@ LAYERS: dict[str, tuple[str, float]] = {
     "funcnet.embedding": ("core1", 1),
     "funcnet._kernels": ("core1", 1),
     "funcnet._order_statistic": ("core1", 1),
+    "funcnet.systems": ("systems", 1),
     "funcnet.robot": ("robot", 1),
     "funcnet.robot.sim": ("robot.sim", 1.5),
     "funcnet.recurrence": ("recurrence", 2),
     "funcnet.measures": ("measures", 3),
+    "funcnet.evidence": ("evidence", 3.5),
     "funcnet.network": ("network", 4),
     "funcnet.pipeline": ("pipeline", 5),
     "funcnet.plot": ("plot", 6),
+    "funcnet.diagnosis": ("diagnosis", 7),
     "funcnet.study": ("study", 7),
     "funcnet.paper": ("paper", 7),
     "funcnet.report": ("report", 8),
     "funcnet.cli": ("cli", 9),
     "funcnet.__main__": ("cli", 9),
 }
-# Beyond the ranks: robot imports only the base and itself (not the L1 core beside it).
+# Beyond the ranks: the L1 groups import only the base (robot.sim also robot), not each other.
 FORBIDDEN: dict[str, tuple[str, ...]] = {
-    "robot": ("core1",),
-    "core1": ("robot", "robot.sim"),
+    "robot": ("core1", "systems"),
+    "robot.sim": ("core1", "systems"),
+    "core1": ("robot", "robot.sim", "systems"),
+    "systems": ("core1", "robot", "robot.sim"),
 }
 ROBOT_MAY_NOT_IMPORT = ("funcnet.recurrence", "funcnet.measures", "funcnet.network",
                         "funcnet.pipeline")
@@ -288,12 +293,8 @@ def test_no_import_against_the_flow() -> None:
     assert not wrong, "imports against the flow:\n" + "\n".join(wrong)
 
 
-def test_no_import_cycle() -> None:
-    graph: dict[str, set[str]] = {name: set() for name in modules()}
-    for edge in _all_imports():
-        if edge.imported in graph and edge.imported != edge.importer:
-            graph[edge.importer].add(edge.imported)
-    # Tarjan's strongly connected components: any component of two or more is a cycle.
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components of two or more modules (Tarjan): the cycles."""
     index: dict[str, int] = {}
     low: dict[str, int] = {}
     stack: list[str] = []
@@ -304,7 +305,7 @@ def test_no_import_cycle() -> None:
         index[node] = low[node] = len(index)
         stack.append(node)
         on_stack.add(node)
-        for nxt in sorted(graph[node]):
+        for nxt in sorted(graph.get(node, ())):
             if nxt not in index:
                 connect(nxt)
                 low[node] = min(low[node], low[nxt])
@@ -324,6 +325,15 @@ def test_no_import_cycle() -> None:
     for node in sorted(graph):
         if node not in index:
             connect(node)
+    return cycles
+
+
+def test_no_import_cycle() -> None:
+    graph: dict[str, set[str]] = {name: set() for name in modules()}
+    for edge in _all_imports():
+        if edge.imported in graph and edge.imported != edge.importer:
+            graph[edge.importer].add(edge.imported)
+    cycles = _cycles(graph)
     assert not cycles, f"import cycles: {cycles}"
 
 
@@ -482,7 +492,7 @@ def test_phase_networks_moved_to_window_networks() -> None:
         funcnet.robot.phase_networks  # noqa: B018
 
 
-def test_the_layout_test_sees_hidden_imports() -> None:
+def test_the_checks_themselves() -> None:
     # The parser itself: a function-level import, `import funcnet` + attribute, import_module,
     # a relative import, and one under TYPE_CHECKING (not counted).
     source = (
@@ -503,6 +513,8 @@ def test_the_layout_test_sees_hidden_imports() -> None:
     network = lazy_table("funcnet")["functional_network"]  # type: ignore[index]
     assert {network, "funcnet.recurrence", "funcnet._io", "funcnet.errors"} <= found
     assert "funcnet.measures" not in found
+    assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+    assert _cycles({"a": {"b"}, "b": set()}) == []
 
 
 # --------------------------------------------------------------------------------------------
@@ -610,3 +622,16 @@ def test_constraints_pin_every_dependency() -> None:
         name = canonicalize_name(requirement.name)
         assert name in pins, f"{name} is not pinned in constraints.txt"
         assert requirement.specifier.contains(pins[name]), (str(requirement), pins[name])
+
+
+def test_data_files_ship_with_the_package() -> None:
+    config = tomllib.loads((SRC.parent / "pyproject.toml").read_text())["tool"]["setuptools"]
+    patterns = [p for patterns in config.get("package-data", {}).values() for p in patterns]
+    data = [
+        path for path in PACKAGE.rglob("*")
+        if path.is_file() and path.suffix not in (".py", ".pyc", ".nbi", ".nbc")
+        and "__pycache__" not in path.parts
+    ]
+    unshipped = [str(p.relative_to(PACKAGE)) for p in data
+                 if not any(p.match(pattern) for pattern in patterns)]
+    assert not unshipped, f"data files no package-data pattern of pyproject.toml ships: {unshipped}"

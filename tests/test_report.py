@@ -27,6 +27,21 @@ window.addEventListener("load", () => {
   // Every table shown, then the page's width: it must fit the window (no sideways scrolling).
   for (const details of document.querySelectorAll("details")) { details.open = true; }
   document.body.setAttribute("data-scroll-width", document.documentElement.scrollWidth);
+  // A cell narrower than its longest word wraps inside the word ("n/o/t/e/v/a/l"): measure
+  // each word of each cell in the cell's own font and compare with the cell's content width.
+  const canvas = document.createElement("canvas").getContext("2d");
+  const narrow = [];
+  for (const cell of document.querySelectorAll("td, th")) {
+    const style = getComputedStyle(cell);
+    if (style.wordBreak === "break-all") { continue; }  // hashes wrap on purpose
+    canvas.font = `${style.fontWeight} ${style.fontSize} ${style.fontFamily}`;
+    const inner = cell.clientWidth - parseFloat(style.paddingLeft)
+      - parseFloat(style.paddingRight);
+    for (const word of cell.textContent.split(/\\s+/)) {
+      if (word && canvas.measureText(word).width > inner + 1) { narrow.push(word); break; }
+    }
+  }
+  document.body.setAttribute("data-narrow", narrow.slice(0, 20).join(" | "));
   document.body.setAttribute("data-probed", "yes");
 });
 </script>"""
@@ -38,6 +53,7 @@ class _Images(html.parser.HTMLParser):
         self.images: list[dict[str, str | None]] = []
         self.probed = False
         self.scroll_width = -1
+        self.narrow = ""
 
     def handle_starttag(self, tag, attrs):
         attributes = dict(attrs)
@@ -46,6 +62,7 @@ class _Images(html.parser.HTMLParser):
         if tag == "body" and attributes.get("data-probed") == "yes":
             self.probed = True
             self.scroll_width = int(attributes["data-scroll-width"])
+            self.narrow = attributes.get("data-narrow") or ""
 
 
 def images_of(page: Path) -> list[dict[str, str | None]]:
@@ -86,6 +103,7 @@ def check_page(page: Path, tmp_path: Path) -> list[dict[str, str | None]]:
     assert len(dom.images) == len(images)
     assert [i["src"] for i in dom.images if i.get("data-loaded") != "yes"] == []
     assert 0 < dom.scroll_width <= WINDOW_WIDTH, "the page scrolls sideways"
+    assert dom.narrow == "", f"table cells narrower than their longest word: {dom.narrow}"
     return images
 
 

@@ -157,7 +157,13 @@ def test_read_plan_expands_groups(tmp_path):
     path = tmp_path / "plan.toml"
     path.write_text(documented_plan())
     trials = read_plan(path)
-    assert len(trials) == 27 + 3
+    assert len(trials) == 27 + 3 + 2 * 3
+    plant = [t for t in trials if t.group == "plant-like"]
+    assert [(t.noise_scale, t.seed) for t in plant] == [(n, s) for n in (1, 2) for s in (1, 2, 3)]
+    assert {(t.sensors, t.arm_model, t.position_feedback) for t in plant} == {
+        ("real", "elastic", "motor")
+    }
+    assert plant[4].name == "plant-like-v175-p20-s1-b0.0083333-n2-r2"
     main = {(t.speed, t.tcp, t.step) for t in trials if t.group == "main"}
     assert main == {(t.speed, t.tcp, t.step) for t in paper_plan() if t.group == "main"}
     worn = [t for t in trials if t.group == "worn-gear"]

@@ -275,28 +275,31 @@ def _collect_band(
 
 
 @njit(cache=True)
-def _count_row(a: Array, i: Int, bt: Array, start: int, metric: int, bound: float,
-               keys: Array) -> int:
+def _count_row(a: Array, i: Int, bt: Array, start: int, metric: int, value: float,
+               keys: Array) -> tuple[int, int]:
     n = _row_keys(a, i, bt, start, metric, keys)
-    count = 0
+    below = 0
+    upto = 0
     for t in range(n):
-        count += keys[t] <= bound
-    return count
+        below += keys[t] < value
+        upto += keys[t] <= value
+    return below, upto
 
 
 @njit(cache=True, parallel=True)
-def _count_upto(a: Array, bt: Array, auto: bool, theiler: int, metric: int, bound: float) -> int:
-    """Number of candidate pairs with key <= bound; memory one row of keys per thread."""
+def _count_keys(a: Array, bt: Array, auto: bool, theiler: int, metric: int,
+                value: float) -> Array:
+    """Numbers of candidate keys < value and <= value; memory one row of keys per thread."""
     n_rows = a.shape[0]
-    counts = np.zeros(n_rows, dtype=np.int64)
+    counts = np.zeros((n_rows, 2), dtype=np.int64)
     for r in prange(_n_iterations(n_rows, auto)):
         keys = np.empty(bt.shape[1], dtype=np.float64)
         for side in range(2):
             i = _row_of(np.int64(r), side, n_rows, auto)
             if i >= 0:
                 start = i + theiler + 1 if auto else 0
-                counts[i] = _count_row(a, i, bt, start, metric, bound, keys)
-    return int(counts.sum())
+                counts[i, 0], counts[i, 1] = _count_row(a, i, bt, start, metric, value, keys)
+    return counts.sum(axis=0)
 
 
 @njit(cache=True)
@@ -419,3 +422,86 @@ def _cross_triangles(cross_rows: Array, auto_rows: Array) -> tuple[Array, Array]
     for v in prange(n_rows):
         degree[v], triangles[v] = _row_triangles(cross_rows[v], auto_rows)
     return degree, triangles
+
+
+# --------------------------------------------------------------------------------------------
+# blocked triangle counts: both directions, each auto row read once per block of cross rows
+
+
+@njit(cache=True)
+def _word_spans(rows: Array) -> Array:
+    """First and last non-zero word of each row (``(0, -1)`` for an empty row)."""
+    spans = np.zeros((rows.shape[0], 2), dtype=np.int64)
+    for v in range(rows.shape[0]):
+        spans[v, 1] = -1
+        for w in range(rows.shape[1]):
+            if rows[v, w]:
+                spans[v, 0] = w
+                break
+        for w in range(rows.shape[1] - 1, -1, -1):
+            if rows[v, w]:
+                spans[v, 1] = w
+                break
+    return spans
+
+
+@njit(cache=True)
+def _block_pairs(
+    rows: Array, columns: Array, auto_rows: Array, row_spans: Array, auto_spans: Array,
+    first_word: int, n_block_words: int, pairs: Array,
+) -> None:
+    """Unordered neighbour pairs of the rows ``v`` of one block (the rows of ``columns`` words
+    ``first_word ..``): for each neighbour ``p`` (a row of ``columns``, the transposed
+    ``rows``), the auto row ``p`` is read once and ANDed with every block row that holds it,
+    over the words where both rows have bits. The same bits are counted as by _row_triangles,
+    in another order: the integer sums agree."""
+    end_word = min(first_word + n_block_words, columns.shape[1])
+    for p in range(columns.shape[0]):
+        neighbours = auto_rows[p]
+        wp = p >> 6
+        # Bits above p in its own word; 2 << 63 wraps to 0, leaving no bit above bit 63.
+        above = ~((np.uint64(2) << np.uint64(p & 63)) - np.uint64(1))
+        start = max(wp + 1, auto_spans[p, 0])
+        for mw in range(first_word, end_word):
+            holders = columns[p, mw]
+            while holders:
+                v = mw * 64 + np.int64(_lowest_bit(holders))
+                holders &= holders - np.uint64(1)
+                row = rows[v]
+                count: Int = np.int64(_popcount(neighbours[wp] & row[wp] & above))
+                stop = min(row_spans[v, 1], auto_spans[p, 1]) + 1
+                if stop > start:
+                    row_tail = row[start:stop]
+                    neighbours_tail = neighbours[start:stop]
+                    for s in range(row_tail.size):
+                        count += np.int64(_popcount(neighbours_tail[s] & row_tail[s]))
+                pairs[v] += count
+
+
+@njit(cache=True, parallel=True)
+def _cross_triangles_both(
+    cross_rows: Array, cross_columns: Array, auto_x: Array, auto_y: Array, block_words: int,
+    n_threads: int,
+) -> tuple[Array, Array, Array, Array]:
+    """``(k_xy, tri_xy, k_yx, tri_yx)`` of Eq. 6-7 in one parallel pass over blocks of
+    ``64 * block_words`` rows of ``CR_XY`` (``cross_rows``) and of ``CR_YX``
+    (``cross_columns``, its transpose). Blocks of both directions are dealt to the
+    ``n_threads`` workers in turn, so that uneven blocks even out."""
+    spans_xy = _word_spans(cross_rows)
+    spans_yx = _word_spans(cross_columns)
+    spans_x = _word_spans(auto_x)
+    spans_y = _word_spans(auto_y)
+    pairs_xy = np.zeros(cross_rows.shape[0], dtype=np.int64)
+    pairs_yx = np.zeros(cross_columns.shape[0], dtype=np.int64)
+    n_xy = (cross_columns.shape[1] + block_words - 1) // block_words
+    n_yx = (cross_rows.shape[1] + block_words - 1) // block_words
+    for thread in prange(n_threads):
+        for task in range(thread, n_xy + n_yx, n_threads):
+            if task < n_xy:
+                _block_pairs(cross_rows, cross_columns, auto_y, spans_xy, spans_y,
+                             task * block_words, block_words, pairs_xy)
+            else:
+                _block_pairs(cross_columns, cross_rows, auto_x, spans_yx, spans_x,
+                             (task - n_xy) * block_words, block_words, pairs_yx)
+    return (_row_popcounts(cross_rows), 2 * pairs_xy, _row_popcounts(cross_columns),
+            2 * pairs_yx)

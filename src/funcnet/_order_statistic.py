@@ -9,6 +9,11 @@ pass over the pairs packs those below the bracket, counts, and keeps only the fe
 (a few per cent), whose partial sort gives the exact value. If the sample misses (probability
 far below 1e-9) a wider bracket is tried, and last a bisection of the key range by counting
 passes (memory one row of keys per thread).
+
+Heavy ties (a signal that rests: a third of its pairs at distance 0) put millions of pairs on
+one key. The band is then never collected: counting passes find the tied order statistic
+directly (:func:`_narrow`), and one more pass packs the rows, so memory stays O(M) per thread
+plus the packed rows.
 """
 
 from __future__ import annotations
@@ -21,7 +26,7 @@ import numpy as np
 from funcnet._kernels import (
     _add_band_bits,
     _collect_band,
-    _count_upto,
+    _count_keys,
     _pack_rows,
     _sample_keys,
     _scan_rows,
@@ -93,30 +98,73 @@ def _sample_bracket(
     return float(lo), float(hi), (min(hi_index, n) - max(lo_index, 0)) / n
 
 
+def _key_bits(key: float) -> int:
+    """Keys are >= 0: their float64 bit patterns, read as integers, are in the same order."""
+    return int(np.float64(key).view(np.int64)) if key >= 0 else -1
+
+
+def _bits_key(bits: int) -> float:
+    return float(np.int64(bits).view(np.float64))
+
+
+def _narrow(
+    a: Array, bt: Array, auto: bool, theiler: int, metric: int, rank: int, lo_bits: int,
+    n_lo: int, hi_bits: int, n_hi: int, probes: tuple[float, ...] = (),
+) -> tuple[float, float, bool]:
+    """Shrink a bracket of the rank-th key by counting passes (memory one row per thread).
+
+    The bracket is (lo, hi] as bit patterns (:func:`_key_bits`; -1 is below every key) with
+    ``n_lo = #key <= lo < rank <= n_hi = #key <= hi``. Each pass counts the keys below and up
+    to one value: first the ``probes``, then the middle bit pattern, so a value tied millions of
+    times is recognized as the order statistic when probed. Returns ``(lo, hi, exact)``:
+    ``exact`` when the rank-th key is ``hi`` (then ``lo == hi``), else a band [lo, hi] (lo the
+    smallest key above the bracket's lower end) of at most ``_BAND_LIMIT`` keys.
+    """
+    queue = [_key_bits(value) for value in probes]
+    while True:
+        if hi_bits - lo_bits <= 1:  # (lo, hi] holds the single value hi
+            return _bits_key(hi_bits), _bits_key(hi_bits), True
+        if not queue and n_hi - n_lo <= _BAND_LIMIT:
+            return _bits_key(lo_bits + 1), _bits_key(hi_bits), False
+        if queue:
+            middle = queue.pop(0)
+            if not lo_bits < middle <= hi_bits:
+                continue
+        else:
+            middle = lo_bits + (hi_bits - lo_bits) // 2
+        below, upto = (int(c) for c in _count_keys(a, bt, auto, theiler, metric,
+                                                   _bits_key(middle)))
+        if below < rank <= upto:
+            return _bits_key(middle), _bits_key(middle), True
+        if upto < rank:
+            lo_bits, n_lo = middle, upto
+        else:  # #key <= (middle - 1 ulp) is #key < middle
+            hi_bits, n_hi = middle - 1, below
+
+
 def _bisect_bracket(
     a: Array, bt: Array, auto: bool, theiler: int, metric: int, rank: int
 ) -> tuple[float, float, float]:
     """A bracket [lo, hi] of keys holding the rank-th key and, unless ties forbid, at most
-    _BAND_LIMIT pairs; slow (a counting pass per halving) but with memory O(M) per thread."""
-
-    def count_upto(key: float) -> int:
-        return int(_count_upto(a, bt, auto, theiler, metric, key))
-
-    lo, hi, n_lo = -1.0, 1.0, 0  # every key is >= 0
-    n_hi = count_upto(hi)
+    _BAND_LIMIT pairs; slow (a counting pass per halving) but with memory O(M) per thread.
+    ``lo == hi`` when the passes met the rank-th key itself."""
+    hi = 1.0
+    n_hi = int(_count_keys(a, bt, auto, theiler, metric, hi)[1])
     while n_hi < rank:
         hi *= 2.0
-        n_hi = count_upto(hi)
-    while n_hi - n_lo > _BAND_LIMIT:
-        middle = lo + (hi - lo) / 2
-        if middle in (lo, hi):  # the band is one value, tied
-            break
-        n_middle = count_upto(middle)
-        if n_middle >= rank:
-            hi, n_hi = middle, n_middle
-        else:
-            lo, n_lo = middle, n_middle
-    return lo, hi, (n_hi - n_lo) / max(1, a.shape[0] * bt.shape[1])
+        n_hi = int(_count_keys(a, bt, auto, theiler, metric, hi)[1])
+    lo, hi, exact = _narrow(a, bt, auto, theiler, metric, rank, -1, 0, _key_bits(hi), n_hi)
+    n_pairs = max(1, a.shape[0] * bt.shape[1])
+    return lo, hi, 1.0 / n_pairs if exact else min(1.0, _BAND_LIMIT / n_pairs)
+
+
+def _exact_rows(
+    a: Array, bt: Array, auto: bool, theiler: int, metric: int, key: float, strict: bool
+) -> tuple[float, Array, int]:
+    """Threshold and packed rows when the order statistic's key is known: one packing pass."""
+    eps = _key_distance(key, metric)
+    packed, n_recurrent = _pack_rows(a, bt, auto, theiler, metric, _key_bound(eps, strict, metric))
+    return eps, packed, n_recurrent
 
 
 def _rate_rows(
@@ -131,7 +179,8 @@ def _rate_rows(
     up to the bracket, and keeps key and position of the few inside [lo, hi]; a partial sort of
     these picks the exact value, and their bits are added. Memory: O(M + pairs inside the
     bracket), a few per cent of the pairs; never the distance matrix. (If a band buffer
-    overflows, a second pass collects the band; if the sample missed, a wider bracket is tried.)
+    overflows, a second pass collects the band, narrowed first by counting passes when it is
+    large -- heavy ties; if the sample missed, a wider bracket is tried.)
 
     Returns ``(eps, packed rows, number of bits set)``.
     """
@@ -146,6 +195,8 @@ def _rate_rows(
             )
         else:
             lo, hi, share = _bisect_bracket(a, bt, auto, theiler, metric, rank)
+            if lo == hi:
+                return _exact_rows(a, bt, auto, theiler, metric, hi, strict)
         n_chunks = 1 if share >= 1.0 or n_pairs <= _DIRECT_PAIRS else 16
         capacity = int(_BAND_SLACK * (min(n_pairs, share * n_pairs) / n_chunks + n_cols))
         counts, packed, chunk_keys, chunk_index, filled = _scan_rows(
@@ -157,7 +208,25 @@ def _rate_rows(
     else:  # unreachable: the last bracket is unbounded
         raise AssertionError("unreachable: the unbounded bracket holds every key")
 
-    if (filled <= capacity).all():
+    overflow = not (filled <= capacity).all()
+    if overflow and (lo == hi or upto_hi - below_lo > _BAND_LIMIT):
+        # Too many pairs in the band to hold (ties): count instead of collecting.
+        del packed, chunk_keys, chunk_index
+        if lo == hi:
+            return _exact_rows(a, bt, auto, theiler, metric, hi, strict)
+        lo, hi, exact = _narrow(
+            a, bt, auto, theiler, metric, rank, _key_bits(lo) - 1 if lo >= 0 else -1, below_lo,
+            _key_bits(hi), upto_hi, probes=(lo, hi),
+        )
+        if exact:
+            return _exact_rows(a, bt, auto, theiler, metric, hi, strict)
+        n_chunks, capacity = 16, int(_BAND_SLACK * (_BAND_LIMIT / 16 + n_cols))
+        counts, packed, chunk_keys, chunk_index, filled = _scan_rows(
+            a, bt, auto, theiler, metric, lo, hi, n_chunks, capacity
+        )
+        below_lo, upto_hi = (int(c) for c in counts.sum(axis=0))
+        overflow = not (filled <= capacity).all()
+    if not overflow:
         band_keys = np.concatenate([chunk_keys[c, : filled[c]] for c in range(n_chunks)])
         band_index = np.concatenate([chunk_index[c, : filled[c]] for c in range(n_chunks)])
     else:
@@ -174,6 +243,7 @@ def _rate_rows(
     if lo <= bound <= hi:
         return eps, packed, below_lo + _add_band_bits(packed, n_cols, band_keys, band_index, bound)
     # Strict comparison at lo, or distinct keys with the same square root across a bracket end.
+    del packed
     packed, n_recurrent = _pack_rows(a, bt, auto, theiler, metric, bound)
     return eps, packed, n_recurrent
 

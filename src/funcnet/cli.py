@@ -12,7 +12,8 @@ Conventions:
   exactly one plain-text line, ``funcnet: error: MESSAGE``, on stderr and exits with status 2.
   Nothing is left half-written: outputs are written to a temporary file and renamed.
 * Warnings of the library print as one line each, ``funcnet: warning: MESSAGE``, once per
-  distinct message, after the command succeeded (an error prints its one line only).
+  distinct message, after the command succeeded (an error prints its one line only); ``demo``
+  and ``study`` count them per problem instead (in the report, in the summary lines).
 * Progress bars go to stderr, only when stderr is a terminal and ``--quiet`` is not given.
 * ``funcnet study`` exits with status 1 when it finished but some tasks could not be analysed
   (listed in ``study.json``), so that scripts notice.
@@ -37,7 +38,7 @@ from typer._click.exceptions import ClickException, NoArgsIsHelpError
 from typer.core import TyperGroup
 
 from funcnet import __version__
-from funcnet.errors import FuncnetError, ParameterError, WindowError
+from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError, WindowError
 from funcnet.parameters import NetworkParameters
 
 __all__ = ["app", "main"]
@@ -109,11 +110,12 @@ def _os_error_message(exc: OSError) -> str:
 
 
 @contextlib.contextmanager
-def _reported_errors() -> Iterator[None]:
+def _reported_errors(*, summarized: bool = False) -> Iterator[None]:
     """Turn input errors into one plain line on stderr and exit status 2.
 
     Warnings are collected (each distinct message once) and printed as plain lines when the
-    command succeeds; a failed command prints its error line only.
+    command succeeds; a failed command prints its error line only. ``summarized``: the command
+    reports the library's warnings itself (counted per problem), so they are not printed too.
     """
     messages: list[str] = []
 
@@ -124,6 +126,8 @@ def _reported_errors() -> Iterator[None]:
 
     with warnings.catch_warnings():
         warnings.simplefilter("always")
+        if summarized:
+            warnings.simplefilter("ignore", FuncnetWarning)
         warnings.showwarning = collect
         try:
             yield
@@ -211,7 +215,8 @@ def demo(
     the same parameters are kept), the analyses of the paper's section 4 run on them, and the
     report is written to OUT. The path of the report is printed.
     """
-    with _reported_errors():
+    # The report counts the analyses' warnings per problem: not printed once per trial here.
+    with _reported_errors(summarized=True):
         from funcnet.report import build_demo_report
         from funcnet.robot import paper_plan, write_plan
 
@@ -285,21 +290,12 @@ def _default(name: str) -> str:
 
 # How the command spells the parameters it takes, for the messages of a bad value.
 _FLAGS = {
-    "dim": "--dim",
-    "delay": "--delay",
-    "rr": "--rr",
-    "cr": "--cr",
-    "mu": "--mu",
-    "mu_c": "--mu-c",
-    "mu_t": "--mu-t",
-    "metric": "--metric",
-    "normalize": "--normalize",
-    "measure": "--measure",
-    "rule": "--rule",
-    "theiler": "--theiler",
+    **{name: "--" + name.replace("_", "-") for name in NetworkParameters.names()},
     "degenerate": "--keep-degenerate",
     "resample": "--resample",
 }
+# Parameters the network command has no option for: explicit thresholds replace the rates.
+_NO_OPTION = ("eps",)
 
 
 @contextlib.contextmanager
@@ -696,7 +692,8 @@ def study(
     what is new and a killed run resumes where it stopped. OUT/study.json keeps the study and its
     provenance. Exit status 1 when some windows could not be analysed (see study.json).
     """
-    with _reported_errors():
+    # Warnings are counted per problem over the tasks (printed below), wherever they ran.
+    with _reported_errors(summarized=True):
         from funcnet.study import load_study, run_study
 
         described = load_study(study_file)

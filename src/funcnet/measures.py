@@ -47,9 +47,10 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+import numba
 import numpy as np
 
-from funcnet._kernels import _cross_triangles
+from funcnet._kernels import _cross_triangles_both, _transpose_packed
 from funcnet.embedding import signal_states
 from funcnet.errors import (
     DegenerateWarning,
@@ -79,12 +80,21 @@ __all__ = [
 ]
 
 
+# Rows of CR_XY (and of CR_YX) per block of the triangle kernel, in 64-row words: 4 keeps a
+# block's rows (256 x M / 8 bytes) in L2 up to M ~ 25,000 and was fastest at M = 22,700
+# (benchmarks/bench_long.py).
+_BLOCK_WORDS = 4
+
+
 def _cross_counts(
     a_x: PackedRecurrence, a_y: PackedRecurrence, cr_xy: PackedRecurrence
 ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
     """``(k_v, tri_v)`` of every node of X towards Y, then of every node of Y towards X."""
-    cr_yx = cr_xy.transposed()
-    return _cross_triangles(cr_xy.rows, a_y.rows), _cross_triangles(cr_yx.rows, a_x.rows)
+    cr_yx = _transpose_packed(cr_xy.rows, cr_xy.n_cols)
+    k_xy, tri_xy, k_yx, tri_yx = _cross_triangles_both(
+        cr_xy.rows, cr_yx, a_x.rows, a_y.rows, _BLOCK_WORDS, numba.get_num_threads()
+    )
+    return (k_xy, tri_xy), (k_yx, tri_yx)
 
 
 def _local_clustering(degree: np.ndarray, triangles: np.ndarray) -> np.ndarray:

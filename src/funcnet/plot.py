@@ -48,7 +48,9 @@ __all__ = [
     "SIGNAL_COLORS",
     "KIND_COLORS",
     "SPAN_TITLE_PAD",
+    "PHASE_COLORS",
     "signal_color",
+    "phase_color",
     "network_edges",
     "network_legend_handles",
     "add_network_legend",
@@ -79,12 +81,50 @@ SIGNAL_COLORS = {
 }
 _OTHER_COLORS = ("#bcbd22", "#17becf", "#9c755f", "#f0e442", "#4e79a7", "#b07aa1")
 _PHASE_SHADES = ("#dbe9f6", "#fde9d9", "#e2f0d9", "#ede0f3", "#fff2cc", "#e7e6e6")
+#: One shade per phase kind (:data:`funcnet.robot.phases.PHASES`), the same in every figure and
+#: report whatever order the phases come in: "cruise 2" is shaded as "cruise".
+PHASE_COLORS = {
+    "standstill": "#e7e6e6",  # grey: nothing moves
+    "early spin-up": "#fde2c4",  # light orange
+    "late spin-up": "#f9c58f",  # orange
+    "cruise": "#cfe2f3",  # light blue
+    "braking": "#f4cccc",  # light red
+    "reversal": "#d9ead3",  # light green
+}
 _X_Y, _Y_X, _BIDIRECTIONAL, _CONFLICT = PAIR_KINDS
 #: Colour of each pair kind in :func:`plot_edge_timeline`.
 KIND_COLORS = {_X_Y: "#1f4e9c", _Y_X: "#e07b00", _BIDIRECTIONAL: "red", _CONFLICT: "0.6",
                "degenerate": "0.35"}
 #: Title padding (points) that clears the two rows of span names drawn by :func:`plot_signals`.
-SPAN_TITLE_PAD = 22.0
+SPAN_TITLE_PAD = 26.0
+
+
+def phase_color(name: Any, position: int = 0) -> str:
+    """The shade of a phase (or of a window labelled by its phase) in every figure.
+
+    Parameters
+    ----------
+    name : str
+        A phase kind (``"cruise"``) or a window label made from one (``"cruise 2"``).
+    position : int
+        For a label that names no phase kind (``"+20 ms"``, ``"1.000-1.280 s"``): its position
+        among the spans drawn, which picks a stable neutral shade.
+
+    Returns
+    -------
+    str
+        :data:`PHASE_COLORS` of the kind, else one of a fixed set of shades.
+
+    Examples
+    --------
+    >>> phase_color("cruise 2") == phase_color("cruise") == PHASE_COLORS["cruise"]
+    True
+    """
+    text = str(name)
+    base = text.rsplit(" ", 1)[0] if text.rsplit(" ", 1)[-1].isdigit() else text
+    if base in PHASE_COLORS:
+        return PHASE_COLORS[base]
+    return _PHASE_SHADES[position % len(_PHASE_SHADES)]
 
 
 def _new_axes(ax: Axes | None, figsize: tuple[float, float] = (4.0, 4.0)) -> Axes:
@@ -215,7 +255,7 @@ def plot_network(
     node_size: float = 0.13,
     node_color: str = "#f2f2f2",
     title: str | None = None,
-    fontsize: float = 8.0,
+    fontsize: float = 10.0,
     legend: bool = True,
     degenerate: str = "drop",
 ) -> Axes:
@@ -323,7 +363,7 @@ def plot_network(
         handles = network_legend_handles(width_scale,
                                          degenerate=bool(edges["degenerate"].any()))
         ax.legend(handles=handles, loc="upper center",
-                  bbox_to_anchor=(0.5, 0.0), ncol=2, fontsize=fontsize - 1, frameon=False,
+                  bbox_to_anchor=(0.5, 0.0), ncol=2, fontsize=max(9.0, fontsize - 1), frameon=False,
                   handlelength=2.5)
     return ax
 
@@ -469,12 +509,12 @@ def plot_no_network(ax: Axes, label: Any = None) -> Axes:
 def _mark_spans(ax: Axes, spans: Sequence[tuple[str, float, float]], prefix: str,
                 label: bool = True) -> None:
     for k, (name, start, stop) in enumerate(spans):
-        patch = ax.axvspan(start, stop, color=_PHASE_SHADES[k % len(_PHASE_SHADES)], alpha=0.7,
+        patch = ax.axvspan(start, stop, color=phase_color(name, k), alpha=0.7,
                            zorder=0, linewidth=0)
         patch.set_gid(f"{prefix}:{name}")
         if label:  # alternate heights so that the names of short phases do not overlap
             ax.annotate(str(name), ((start + stop) / 2, 1.0), xycoords=ax.get_xaxis_transform(),
-                        xytext=(0, 2 + 9 * (k % 2)), textcoords="offset points", fontsize=7,
+                        xytext=(0, 2 + 11 * (k % 2)), textcoords="offset points", fontsize=9,
                         ha="center", va="bottom")
 
 
@@ -537,7 +577,7 @@ def plot_signals(
     ax.set_xlabel("time [s]")
     ax.set_ylabel("normalized" if normalize else "value")
     if legend:
-        ax.legend(fontsize=6, ncol=min(len(data.columns), 6), loc="upper left", frameon=False)
+        ax.legend(fontsize=9, ncol=min(len(data.columns), 6), loc="upper left", frameon=False)
     return ax
 
 
@@ -627,13 +667,13 @@ def plot_edge_timeline(
                             s=np.maximum(4.0, size_scale * weights[mask]), marker=marker,
                             color=KIND_COLORS[kind], label=label, linewidths=0)
         points.set_gid(f"kind:{kind}")
-    ax.set_yticks(range(len(pair_names)), pair_names, fontsize=7)
-    ax.set_ylabel("pair X–Y", fontsize=8)
+    ax.set_yticks(range(len(pair_names)), pair_names, fontsize=9)
+    ax.set_ylabel("pair X–Y", fontsize=9)
     ax.set_ylim(-0.7, len(pair_names) - 0.3)
     ax.invert_yaxis()
     ax.set_xlabel("window time [s]")
-    kind_legend = ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0),
-                            frameon=False, title="edge kind (marker)", title_fontsize=7)
+    kind_legend = ax.legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.0, 1.0),
+                            frameon=False, title="edge kind (marker)", title_fontsize=9)
     kind_legend.set_gid("legend:kind")
     for handle in kind_legend.legend_handles:  # same size for every kind in the key
         if isinstance(handle, PathCollection):
@@ -642,9 +682,9 @@ def plot_edge_timeline(
     scale = [Line2D([], [], linestyle="", marker="o", color="0.5",
                     markersize=float(np.sqrt(max(4.0, size_scale * w))), label=f"{w:g}")
              for w in _reference_weights(weights)]
-    weight_legend = ax.legend(handles=scale, fontsize=7, loc="lower left",
+    weight_legend = ax.legend(handles=scale, fontsize=9, loc="lower left",
                               bbox_to_anchor=(1.0, 0.0), frameon=False, ncol=len(scale),
-                              title="weight (Eq. 13, marker area ∝ weight)", title_fontsize=7)
+                              title="weight (Eq. 13, marker area ∝ weight)", title_fontsize=9)
     weight_legend.set_gid("legend:weight")
     return ax
 
@@ -685,7 +725,7 @@ def add_network_legend(fig: Figure, width_scale: float = 10.0, *,
     'legend:network'
     """
     legend = fig.legend(handles=network_legend_handles(width_scale, degenerate=degenerate),
-                        loc="outside lower center", ncol=3, fontsize=7, frameon=False,
+                        loc="outside lower center", ncol=3, fontsize=9, frameon=False,
                         handlelength=2.5)
     legend.set_gid("legend:network")
     return legend
@@ -714,6 +754,6 @@ def add_signal_legend(fig: Figure, names: Sequence[str]) -> Any:
     handles = [Line2D([], [], color=signal_color(name), linewidth=1.5, label=str(name))
                for name in names]
     legend = fig.legend(handles=handles, loc="outside upper center", ncol=max(len(handles), 1),
-                        fontsize=7, frameon=False)
+                        fontsize=9, frameon=False)
     legend.set_gid("legend:signals")
     return legend

@@ -69,6 +69,7 @@ import math
 from dataclasses import dataclass, replace
 from typing import Any
 
+import numba
 import numpy as np
 
 from funcnet._kernels import (
@@ -88,6 +89,7 @@ from funcnet.parameters import (
     RULES,
     NetworkParameters,
     check_eps_value,
+    check_int,
     check_rate,
     resolve,
 )
@@ -95,12 +97,14 @@ from funcnet.parameters import (
 __all__ = [
     "METRICS",
     "RULES",
+    "CostEstimate",
     "PackedRecurrence",
     "auto_recurrence",
     "cross_recurrence",
     "recurrence_matrix",
     "cross_recurrence_matrix",
     "isrn_adjacency",
+    "estimate_cost",
 ]
 
 
@@ -696,3 +700,167 @@ def isrn_adjacency(
     a_x, a_y, cr_xy = _isrn_blocks(x, y, p)
     cross = cr_xy.to_dense()
     return np.block([[a_x.to_dense(), cross], [cross.T, a_y.to_dense()]])
+
+
+# --------------------------------------------------------------------------------------------
+# cost of a long window, before computing it
+
+# CPU seconds per candidate pair of one threshold pass (auto: M^2 / 2 pairs, cross: M^2) and
+# per unit of cr * M^3 of the triangle counts, and the resident size of an interpreter with
+# NumPy, Numba and the kernels loaded: measured at M = 22,686 on the real 45 s trace
+# (benchmarks/bench_long.py, AMD EPYC, 2 threads). Triangle costs vary about 2x with the data.
+_CPU_PER_AUTO_PAIR = 1.5e-9
+_CPU_PER_CROSS_PAIR = 1.2e-9
+_CPU_PER_TRIANGLE_UNIT = 1.8e-12
+_CPU_PER_PAIR_CALL = 2e-4
+_BASE_BYTES = 200 * 2**20
+_BAND_SAMPLE_MAX, _BAND_SAMPLE_MIN = 1 << 18, 1 << 14
+
+
+@dataclass(frozen=True)
+class CostEstimate:
+    """A rough forecast of one functional network over a long window (:func:`estimate_cost`).
+
+    Attributes
+    ----------
+    seconds : float
+        Wall time on ``threads`` otherwise idle cores (a machine busy with other work takes
+        longer: the CPU seconds do not change much, the wall time does).
+    cpu_seconds : float
+        CPU time of all threads.
+    bytes : int
+        Peak resident memory of the process: the interpreter (with NumPy, Numba and the
+        kernels, about 200 MiB), every signal's packed ``A_X`` (held for all its pairs) and the
+        largest transient of one pair (its ``CR_XY`` with the candidate band of its threshold,
+        or ``CR_XY`` with its transpose).
+    held_bytes : int
+        The packed recurrence matrices held for the whole computation (``n_signals`` of them).
+    pair_bytes : int
+        The transient of one pair, freed before the next.
+    n_states : int
+        ``M = n_samples - (dim - 1) * delay``.
+    n_pairs : int
+        Pairs of signals, ``n_signals * (n_signals - 1) / 2``.
+    threads : int
+        Threads the forecast assumes.
+    """
+
+    seconds: float
+    cpu_seconds: float
+    bytes: int
+    held_bytes: int
+    pair_bytes: int
+    n_states: int
+    n_pairs: int
+    threads: int
+
+    def __str__(self) -> str:
+        return (
+            f"about {self.seconds:.2g} s on {self.threads} thread(s) ({self.cpu_seconds:.2g} "
+            f"CPU s) and {self.bytes / 2**30:.2f} GiB peak for {self.n_pairs} pair(s) of "
+            f"M = {self.n_states:,} states"
+        )
+
+
+def _band_bytes(n_pairs: int, rate: float) -> int:
+    """Bytes the exact threshold of one block touches beside its rows: the candidate keys and
+    positions inside the sampled bracket, their concatenation and the partial sort's copy."""
+    if n_pairs <= 1 << 18:
+        return 40 * n_pairs
+    size = min(_BAND_SAMPLE_MAX, max(_BAND_SAMPLE_MIN, n_pairs >> 10))
+    share = 16.0 * (math.sqrt(size * rate * (1.0 - rate)) + 1.0) / size
+    return int(40 * min(1.0, share) * n_pairs)
+
+
+def estimate_cost(
+    n_samples: int,
+    n_signals: int,
+    parameters: NetworkParameters | None = None,
+    *,
+    threads: int | None = None,
+    **overrides: Any,
+) -> CostEstimate:
+    """Forecast time and memory of one functional network of ``n_signals`` signals.
+
+    A rough model from constants measured on the real 45 s trace (22,706 samples, 5 signals):
+    each signal's threshold pass over its ``M^2 / 2`` pairs, each pair's over ``M^2``, the
+    triangle counts growing as ``cr * M^3``; memory ``n_signals`` packed ``M x M`` bit
+    matrices (``M^2 / 8`` bytes each) held throughout plus one pair's transient. Use it to warn
+    or refuse before a long computation (the CLI does, above a limit); the computation itself
+    never asks. Expect the time within a factor of about 2 to 3 (it depends on the data and on
+    the machine), the memory within about 30 %.
+
+    Parameters
+    ----------
+    n_samples : int
+        Samples per signal (the window's length).
+    n_signals : int
+        Number of signals (nodes), at least 2.
+    parameters : NetworkParameters, optional
+        Uses ``dim``, ``delay``, ``rr`` and ``cr`` (the largest when given per signal).
+    threads : int, optional
+        Threads to assume; default Numba's current number of threads.
+    **overrides
+        Fields of ``parameters``.
+
+    Returns
+    -------
+    CostEstimate
+
+    Raises
+    ------
+    ParameterError
+        ``n_samples``, ``n_signals`` or ``threads`` not a positive integer (``n_signals`` < 2),
+        a bad parameter, or a window shorter than the embedding.
+
+    References
+    ----------
+    Eq. 1 (``M``), Eq. 5 and 3 (the threshold passes), Eq. 6-9 (triangle counts).
+
+    Examples
+    --------
+    >>> cost = estimate_cost(22_706, 5, threads=2)
+    >>> cost.n_states, cost.n_pairs, round(cost.held_bytes / 2**20)
+    (22686, 10, 307)
+    >>> cost.bytes < 2**30 < estimate_cost(45_000, 5, threads=2).bytes
+    True
+    """
+    p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
+    n_samples = check_int(n_samples, "n_samples", minimum=1)
+    n_signals = check_int(n_signals, "n_signals", minimum=2)
+    if threads is None:
+        threads = numba.get_num_threads()
+    threads = check_int(threads, "threads", minimum=1)
+    n_states = n_samples - (p.dim - 1) * p.delay
+    if n_states < MIN_STATES:
+        raise ParameterError.of(
+            "n_samples",
+            f"{n_samples} samples give {n_states} states with dim={p.dim}, delay={p.delay}; "
+            f"at least {MIN_STATES} are needed",
+        )
+    rr = max(p.rr) if isinstance(p.rr, tuple) else float(p.rr)
+    n_pairs = n_signals * (n_signals - 1) // 2
+    squares = float(n_states) * n_states
+    cpu = (
+        n_signals * _CPU_PER_AUTO_PAIR * squares / 2
+        + n_pairs * (
+            _CPU_PER_CROSS_PAIR * squares
+            + _CPU_PER_TRIANGLE_UNIT * p.cr * squares * n_states
+            + _CPU_PER_PAIR_CALL
+        )
+    )
+    packed = n_states * ((n_states + 63) // 64) * 8
+    pair = max(2 * packed, packed + _band_bytes(n_states * n_states, p.cr))
+    auto = packed + max(packed, _band_bytes(n_states * (n_states - 1) // 2, rr))
+    transient = max(pair, auto)
+    held = n_signals * packed
+    return CostEstimate(
+        seconds=cpu / threads,
+        cpu_seconds=cpu,
+        bytes=_BASE_BYTES + held + transient,
+        held_bytes=held,
+        pair_bytes=pair,
+        n_states=n_states,
+        n_pairs=n_pairs,
+        threads=threads,
+    )

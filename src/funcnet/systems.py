@@ -63,7 +63,9 @@ Seed = int | Sequence[int]
 
 def _seeds(seed: Seed) -> tuple[list[int], bool]:
     """``(seeds, single)``: the list of seeds and whether one integer was given."""
-    if isinstance(seed, (int, np.integer)) and not isinstance(seed, bool):
+    if isinstance(seed, bool):
+        raise ValueError("seed must be an integer or a non-empty sequence of integers")
+    if isinstance(seed, (int, np.integer)):
         return [int(seed)], True
     seeds = [int(s) for s in seed]
     if not seeds:
@@ -112,7 +114,7 @@ def henon_pair(n: int, coupling: float = 0.0, *, seed: Seed = 0,
     Examples
     --------
     >>> data = henon_pair(500, 0.0, seed=[0, 1])
-    >>> data.shape, bool(np.all(np.abs(data) < 1.5))
+    >>> data.shape, bool(np.all(np.abs(data) < 2.0))
     ((500, 2, 2), True)
     """
     n = _check_n(n)

@@ -18,52 +18,59 @@ Int = int | np.integer[Any]
 
 
 @njit(cache=True)
-def _window_counts(a_x: Array, a_y: Array, start_x: Int, start_y: Int, length: Int,
-                   theiler: Int) -> tuple[float, float, float]:
-    """``(phi, mcr(x|y), mcr(y|x))`` of the window pairing ``x[start_x + i]`` with ``y[start_y + i]``.
+def _window_counts(a_y: Array, pairs_x: Array, pairs_y: Array, start_x: Int, start_y: Int,
+                   length: Int, theiler: Int) -> tuple[float, float, float]:
+    """``(phi, mcr(x|y), mcr(y|x))`` of the window pairing ``x[start_x + i]``, ``y[start_y + i]``.
 
-    ``phi`` is the correlation of the indicators ``A_X[i, j]`` and ``A_Y[i, j]`` over the window's
-    pairs ``i < j``, ``j - i > theiler``; ``mcr(x|y)`` the mean over the window's states of
-    ``sum_j JR_ij / sum_j A_Y_ij`` (states without a Y-neighbour left out).
+    ``phi`` is the correlation of the indicators ``A_X[i, j]`` and ``A_Y[i, j]`` over the
+    window's pairs ``i < j``, ``j - i > theiler``; ``mcr(x|y)`` the mean over the window's states
+    of ``sum_j JR_ij / sum_j A_Y[i, j]`` (states without a Y-neighbour left out). ``pairs_x``
+    and ``pairs_y`` list the recurrent pairs ``(i, j)``, ``i < j``, of each whole matrix: a
+    window visits them, not its ``L^2`` cells.
     """
+    row_x = np.zeros(length, dtype=np.int64)
+    row_y = np.zeros(length, dtype=np.int64)
+    row_xy = np.zeros(length, dtype=np.int64)
     n_x = 0
     n_y = 0
     n_xy = 0
+    stop_x = start_x + length
+    for k in range(pairs_x.shape[0]):
+        i = pairs_x[k, 0]
+        j = pairs_x[k, 1]
+        if i < start_x or j >= stop_x or j - i <= theiler:
+            continue
+        u = i - start_x
+        v = j - start_x
+        n_x += 1
+        row_x[u] += 1
+        row_x[v] += 1
+        if a_y[start_y + u, start_y + v]:
+            n_xy += 1
+            row_xy[u] += 1
+            row_xy[v] += 1
+    stop_y = start_y + length
+    for k in range(pairs_y.shape[0]):
+        i = pairs_y[k, 0]
+        j = pairs_y[k, 1]
+        if i < start_y or j >= stop_y or j - i <= theiler:
+            continue
+        n_y += 1
+        row_y[i - start_y] += 1
+        row_y[j - start_y] += 1
     sum_x_given_y = 0.0
     sum_y_given_x = 0.0
     rows_x = 0
     rows_y = 0
-    for i in range(length):
-        row_x = 0
-        row_y = 0
-        row_xy = 0
-        ix = start_x + i
-        iy = start_y + i
-        for j in range(length):
-            d = j - i
-            if d <= theiler and d >= -theiler:
-                continue
-            bx = a_x[ix, start_x + j]
-            by = a_y[iy, start_y + j]
-            row_x += bx
-            row_y += by
-            row_xy += bx & by
-        if row_y > 0:
-            sum_x_given_y += row_xy / row_y
+    for u in range(length):
+        if row_y[u] > 0:
+            sum_x_given_y += row_xy[u] / row_y[u]
             rows_y += 1
-        if row_x > 0:
-            sum_y_given_x += row_xy / row_x
+        if row_x[u] > 0:
+            sum_y_given_x += row_xy[u] / row_x[u]
             rows_x += 1
-        n_x += row_x
-        n_y += row_y
-        n_xy += row_xy
-    # Every unordered pair was seen twice; the correlation is the same on ordered pairs.
-    n_pairs = 0
-    for i in range(length):
-        low = i - theiler
-        high = i + theiler
-        excluded = min(high, length - 1) - max(low, 0) + 1
-        n_pairs += length - excluded
+    gap = min(theiler + 1, length)
+    n_pairs = (length - gap) * (length - gap + 1) // 2
     phi = 0.0
     if n_pairs > 0:
         px = n_x / n_pairs
@@ -77,13 +84,15 @@ def _window_counts(a_x: Array, a_y: Array, start_x: Int, start_y: Int, length: I
 
 
 @njit(cache=True, parallel=True)
-def _windows(a_x: Array, a_y: Array, starts_x: Array, starts_y: Array, length: Int,
-             theiler: Int) -> Array:
+def _windows(a_y: Array, pairs_x: Array, pairs_y: Array, starts_x: Array, starts_y: Array,
+             length: Int, theiler: Int) -> Array:
     """:func:`_window_counts` of every window ``(starts_x[k], starts_y[k])``: shape (K, 3)."""
     n = starts_x.size
     out = np.empty((n, 3), dtype=np.float64)
     for k in prange(n):
-        phi, xy, yx = _window_counts(a_x, a_y, starts_x[k], starts_y[k], length, theiler)
+        phi, xy, yx = _window_counts(
+            a_y, pairs_x, pairs_y, starts_x[k], starts_y[k], length, theiler
+        )
         out[k, 0] = phi
         out[k, 1] = xy
         out[k, 2] = yx
@@ -110,10 +119,10 @@ def _direction(cross: Array, auto: Array, chosen: Array, buffer: Array) -> tuple
                 buffer[k] = q
                 k += 1
         pairs = 0
-        for s in range(k):
-            p = buffer[s]
-            for t in range(s + 1, k):
-                pairs += auto[p, buffer[t]]
+        for first in range(k):
+            p = buffer[first]
+            for second in range(first + 1, k):
+                pairs += auto[p, buffer[second]]
         if k >= 2:
             local_sum += 2.0 * pairs / (k * (k - 1))
             triangles += 2 * pairs

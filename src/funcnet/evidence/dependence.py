@@ -132,7 +132,7 @@ class ShiftPlan:
     length : int
         ``L``, states per window.
     min_shift, max_shift : int
-        ``s0`` and ``S``: the surrogates' offsets satisfy ``s0 <= |o| <= S``.
+        ``s0`` and ``S``: the surrogates' offsets are the multiples of ``s0`` up to ``S``.
     observed : int
         Start of the observed window (the same in X and Y).
     starts_x, starts_y : ndarray of int64
@@ -153,19 +153,24 @@ class ShiftPlan:
         return int(self.starts_x.size)
 
 
-def shift_plan(n_states: int, surrogates: int, *, min_shift: int = 1, seed: int = 0) -> ShiftPlan:
+def shift_plan(n_states: int, surrogates: int, *, min_shift: int = 1,
+               max_fraction: float = 0.5) -> ShiftPlan:
     """Observed and surrogate windows for ``M = n_states`` states (module notes).
+
+    The offsets form a lattice ``o = +-s0, +-2 s0, ..., +-k s0`` with ``k = ceil(K / 2)``
+    (fewer when ``k s0`` would exceed ``max_fraction * M``); the observed window is the
+    lattice's point 0. Each window is centred in the data.
 
     Parameters
     ----------
     n_states : int
         ``M``.
     surrogates : int
-        ``K`` asked for; fewer when fewer distinct windows exist.
+        ``K`` asked for; the plan holds ``2 k``, fewer than asked when the window is short.
     min_shift : int
-        ``s0`` (clipped to ``[1, M // 4]``).
-    seed : int
-        Draws the surrogate windows.
+        ``s0``, the lattice spacing, at least 1.
+    max_fraction : float in (0, 1)
+        The largest offset as a fraction of ``M``; the windows hold ``M - k s0`` states.
 
     Returns
     -------
@@ -174,41 +179,36 @@ def shift_plan(n_states: int, surrogates: int, *, min_shift: int = 1, seed: int 
     Raises
     ------
     ParameterError
-        ``surrogates < 1``, or ``M`` too small for a window of :data:`MIN_WINDOW` states.
+        ``surrogates < 1``, or ``M`` too small for a window of :data:`MIN_WINDOW` states and
+        one offset.
 
     Examples
     --------
-    >>> plan = shift_plan(138, 99, min_shift=3)
+    >>> plan = shift_plan(498, 99, min_shift=3)
     >>> plan.length, plan.max_shift, plan.surrogates
-    (100, 38, 99)
+    (348, 150, 100)
+    >>> shift_plan(138, 99, min_shift=3).surrogates  # a short window: fewer surrogates
+    46
     """
     if isinstance(surrogates, bool) or not isinstance(surrogates, (int, np.integer)) or \
             surrogates < 1:
         raise ParameterError.of("surrogates", f"must be an integer >= 1, got {surrogates!r}")
-    s0 = int(min(max(1, min_shift), max(1, n_states // 4)))
-    max_shift = s0 + math.ceil(n_states / 4)
+    if not 0.0 < max_fraction < 1.0:
+        raise ParameterError.of("max_fraction", f"must be in (0, 1), got {max_fraction}")
+    s0 = max(1, int(min_shift))
+    steps = min(math.ceil(int(surrogates) / 2), int(max_fraction * n_states) // s0)
+    max_shift = steps * s0
     length = n_states - max_shift
-    if length < MIN_WINDOW:
+    if steps < 1 or length < MIN_WINDOW:
         raise ParameterError.of(
             "surrogates",
-            f"a dependence test needs windows of at least {MIN_WINDOW} states; {n_states} "
-            f"states leave {length}",
+            f"{n_states} states leave no window of {MIN_WINDOW} states with offsets of "
+            f"{s0} (the decorrelation time): the signals are too short to test",
         )
-    offsets = np.arange(s0, max_shift + 1)
-    # (offset, placement) pairs: a placement a in [0, S - |o|], both signs of the offset.
-    counts = max_shift - offsets + 1
-    total = 2 * int(counts.sum())
-    rng = np.random.default_rng(seed)
-    k = min(int(surrogates), total)
-    picks = np.sort(rng.choice(total, size=k, replace=False))
-    sign = np.where(picks < total // 2, 1, -1)
-    index = picks % (total // 2)
-    ends = np.cumsum(counts)
-    which = np.searchsorted(ends, index, side="right")
-    placement = index - (ends[which] - counts[which])
-    offset = offsets[which]
-    starts_x = np.where(sign > 0, placement, placement + offset).astype(np.int64)
-    starts_y = np.where(sign > 0, placement + offset, placement).astype(np.int64)
+    offsets = s0 * np.concatenate([np.arange(1, steps + 1), -np.arange(1, steps + 1)])
+    # Centred windows: x starts at (S - o) // 2, y at that + o.
+    starts_x = ((max_shift - offsets) // 2).astype(np.int64)
+    starts_y = (starts_x + offsets).astype(np.int64)
     return ShiftPlan(
         n_states=int(n_states), length=int(length), min_shift=s0, max_shift=int(max_shift),
         observed=max_shift // 2, starts_x=starts_x, starts_y=starts_y,
@@ -277,9 +277,9 @@ def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan, *,
     >>> data = henon_pair(300, 0.6, seed=0)
     >>> a_x, a_y = (auto_recurrence(embed(data[:, k], 2, 1), rr=0.05).to_dense().astype(np.uint8)
     ...             for k in (0, 1))
-    >>> result = dependence_test(a_x, a_y, shift_plan(299, 99, min_shift=2, seed=0))
-    >>> result.p_value, result.surrogates
-    (0.01, 99)
+    >>> result = dependence_test(a_x, a_y, shift_plan(299, 99, min_shift=2))
+    >>> round(result.p_value, 4), result.surrogates  # the smallest p-value 1 / (K + 1)
+    (0.0099, 100)
     """
     m = plan.n_states
     for name, matrix in (("a_x", a_x), ("a_y", a_y)):
@@ -289,7 +289,9 @@ def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan, *,
     a_y = np.ascontiguousarray(a_y, dtype=np.uint8)
     starts_x = np.concatenate([[plan.observed], plan.starts_x]).astype(np.int64)
     starts_y = np.concatenate([[plan.observed], plan.starts_y]).astype(np.int64)
-    values = _windows(a_x, a_y, starts_x, starts_y, plan.length, int(theiler))
+    pairs_x = np.argwhere(np.triu(a_x, 1)).astype(np.int64)
+    pairs_y = np.argwhere(np.triu(a_y, 1)).astype(np.int64)
+    values = _windows(a_y, pairs_x, pairs_y, starts_x, starts_y, plan.length, int(theiler))
     phi = values[:, 0]
     index = values[:, 1] - values[:, 2]
     k = plan.surrogates

@@ -24,12 +24,26 @@ from typing import Any
 import networkx as nx
 import pandas as pd
 
-from funcnet.errors import SignalError
+from funcnet.errors import ParameterError, SignalError
+from funcnet.evidence import (
+    EDGE_RULES,
+    check_evidence_arguments,
+    evidence_label,
+    interval_kind,
+    pairwise_evidence,
+)
+from funcnet.evidence.pairs import PairEvidence
 from funcnet.measures import pairwise_cross_measures
 from funcnet.network import readwrite
 from funcnet.network._inputs import column_names, float_columns, node_groups
-from funcnet.network.rule import edges_from_pairs, pair_kinds
-from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
+from funcnet.network.rule import combine_kinds, edges_from_pairs, pair_kinds
+from funcnet.network.schema import (
+    EVIDENCE_COLUMNS,
+    PAIR_COLUMNS,
+    RESULT_COLUMNS,
+    RULE_COLUMNS,
+    pairs_frame,
+)
 from funcnet.parameters import NetworkParameters, resolve
 from funcnet.preprocess import normalize as normalize_signals
 
@@ -69,6 +83,10 @@ class FunctionalNetwork:
     channels : mapping or None
         Node name -> its columns, when nodes were given as groups of columns; None when every
         node is the column of its name.
+    evidence : mapping or None
+        With ``evidence=True``: the settings of the evidence (``surrogates`` asked, ``alpha``,
+        ``seed``, ``resamples``, ``level``, ``edge_rule``), and the pairs table has the
+        :data:`~funcnet.network.schema.EVIDENCE_COLUMNS`; None otherwise.
 
     Notes
     -----
@@ -87,6 +105,7 @@ class FunctionalNetwork:
     label: str | None = None
     window: Mapping[str, Any] | None = None
     channels: Mapping[str, tuple[str, ...]] | None = None
+    evidence: Mapping[str, Any] | None = None
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, FunctionalNetwork):
@@ -98,6 +117,7 @@ class FunctionalNetwork:
             and self.n_samples == other.n_samples
             and _plain(self.window) == _plain(other.window)
             and _plain(self.channels) == _plain(other.channels)
+            and _plain(self.evidence) == _plain(other.evidence)
             and self.pairs.equals(other.pairs)
             and self.edges.equals(other.edges)
         )
@@ -285,6 +305,8 @@ class FunctionalNetwork:
         bidirectional = int((kinds == "bidirectional").sum())
         conflicts = int((kinds == "conflict").sum())
         degenerate = f", {int(flagged.sum())} degenerate" if flagged.any() else ""
+        if "coupled" in self.pairs.columns:
+            degenerate += f"; {int(self.pairs['coupled'].sum())} coupled"
         label = "" if self.label is None else f"{self.label!r}, "
         p = self.parameters
         mu = (
@@ -354,6 +376,12 @@ def functional_network(
     parameters: NetworkParameters | None = None,
     label: str | None = None,
     warn: bool = True,
+    evidence: bool = False,
+    surrogates: int | None = None,
+    alpha: float = 0.05,
+    seed: int = 0,
+    resamples: int = 200,
+    edge_rule: str = "paper",
     **overrides: Any,
 ) -> FunctionalNetwork:
     """Functional network of simultaneously sampled signals (section 2.3-2.4, 3.4).
@@ -386,6 +414,26 @@ def functional_network(
     warn : bool
         Emit the threshold warnings of the pairs (:func:`funcnet.measures.threshold_warnings`);
         with False, the flags in the pairs table are the only record.
+    evidence : bool
+        Add the evidence columns (:data:`~funcnet.network.schema.EVIDENCE_COLUMNS`): the
+        joint-recurrence dependence test with time-shift surrogates (BH-adjusted across the
+        pairs), half-sampling intervals of ``C_diff`` and ``T_diff``, the direction index and
+        each pair's reading (:mod:`funcnet.evidence`). Off by default: the plain network is
+        unchanged, bit for bit, and as fast.
+    surrogates : int, optional
+        Surrogates per pair; default enough for a lone discovery among the pairs under BH
+        (:func:`funcnet.evidence.default_surrogates`: 99, or ``m / alpha - 1`` for ``m``
+        pairs). Short windows hold fewer (the ``surrogates`` column says how many).
+    alpha : float
+        Level of the coupling and direction decisions.
+    seed : int
+        Seeds the half-samples; the same seed gives the same table.
+    resamples : int
+        Half-samples per pair for the intervals.
+    edge_rule : {"paper", "interval"}
+        ``"paper"`` (default): ``|diff| >= mu`` (section 2.4). ``"interval"`` (needs
+        ``evidence=True``): a measure is directed only when its interval excludes 0 and
+        ``|diff| >= mu``; ``c_kind``, ``t_kind`` and ``kind`` then follow this rule.
     **overrides
         Any parameter by name, applied to ``parameters`` (``delay=1``).
 
@@ -443,6 +491,13 @@ def functional_network(
     False
     """
     p = resolve(parameters, overrides)
+    if edge_rule not in EDGE_RULES:
+        raise ParameterError.of("edge_rule", f"must be one of {', '.join(EDGE_RULES)}; got "
+                                f"{edge_rule!r}")
+    if edge_rule == "interval" and not evidence:
+        raise ParameterError.of("edge_rule", "'interval' needs evidence=True")
+    if evidence:
+        check_evidence_arguments(surrogates, alpha, resamples)
     columns = column_names(data, names)
     node_names, groups = node_groups(nodes, columns)
     if len(node_names) < 2:
@@ -462,6 +517,15 @@ def functional_network(
     ]
     results = pairwise_cross_measures(signals, names=node_names, parameters=p, warn=warn)
     pairs = _pairs_table(results, p)
+    settings = None
+    if evidence:
+        found = pairwise_evidence(
+            signals, names=node_names, parameters=p, surrogates=surrogates,
+            alpha=alpha, seed=seed, resamples=resamples,
+        )
+        pairs = _with_evidence(pairs, found, p, edge_rule)
+        settings = {"surrogates": surrogates, "alpha": float(alpha), "seed": int(seed),
+                    "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule}
     channels = None if nodes is None else {
         name: tuple(columns[i] for i in group)
         for name, group in zip(node_names, groups, strict=True)
@@ -474,7 +538,35 @@ def functional_network(
         n_samples=int(values.shape[0]),
         label=None if label is None else str(label),
         channels=channels,
+        evidence=settings,
     )
+
+
+def _with_evidence(pairs: pd.DataFrame, found: Mapping[tuple[str, str], PairEvidence],
+                   p: NetworkParameters, edge_rule: str) -> pd.DataFrame:
+    """``pairs`` with the evidence columns; under ``edge_rule="interval"`` new kinds."""
+    columns: dict[str, list[Any]] = {name: pairs[name].tolist() for name in PAIR_COLUMNS}
+    rows = [found[(x, y)] for x, y in zip(columns["x"], columns["y"], strict=True)]
+    if edge_rule == "interval":
+        c_kinds = [interval_kind(e.c_diff, e.c_diff_low, e.c_diff_high, p.mu_clustering)
+                   for e in rows]
+        t_kinds = [interval_kind(e.t_diff, e.t_diff_low, e.t_diff_high, p.mu_transitivity)
+                   for e in rows]
+        if p.measure == "clustering":
+            kinds = c_kinds
+        elif p.measure == "transitivity":
+            kinds = t_kinds
+        else:
+            kinds = [combine_kinds(c, t) for c, t in zip(c_kinds, t_kinds, strict=True)]
+        columns.update(c_kind=c_kinds, t_kind=t_kinds, kind=kinds)
+    for name in EVIDENCE_COLUMNS:
+        if name != "evidence":
+            columns[name] = [getattr(e, name) for e in rows]
+    columns["evidence"] = [
+        evidence_label(e.coupled, e.direction, kind)
+        for e, kind in zip(rows, columns["kind"], strict=True)
+    ]
+    return pairs_frame(columns)
 
 
 def _pairs_table(results: Mapping[tuple[str, str], Any],

@@ -4,7 +4,8 @@ The ``degenerate`` flag travels through every format: the pairs table keeps it w
 and every edge -- in the edges table, as a networkx or a GraphML arc -- carries a boolean
 ``degenerate`` attribute (True only for a pair kept with ``degenerate="keep"``).
 
-- **JSON** (:func:`to_json`, :func:`fields_from_json`): the whole network, floats bit for bit
+- **JSON** (:func:`to_json`, :func:`fields_from_json`): the whole network (with its evidence
+  columns and settings when it has them), floats bit for bit
   (Python's ``json`` writes each float as its shortest round-tripping ``repr``). Format
   ``funcnet.FunctionalNetwork`` version 2; version 1 files (before the parameter contract) are
   read too: their columns ``rr_x``, ``rr_y``, ``cr`` become ``achieved_rr_x``,
@@ -35,14 +36,14 @@ import networkx as nx
 from funcnet._io import atomic_path, write_text_atomic
 from funcnet.errors import ParameterError
 from funcnet.network.rule import edges_from_pairs
-from funcnet.network.schema import EDGE_COLUMNS, PAIR_COLUMNS, edges_frame, pairs_frame
+from funcnet.network.schema import EDGE_COLUMNS, edges_frame, pairs_frame
 from funcnet.parameters import NetworkParameters
 
 if TYPE_CHECKING:
     from funcnet.network.functional import FunctionalNetwork
 
-__all__ = ["FORMAT", "VERSION", "to_json", "fields_from_json", "to_networkx", "write",
-           "read_fields"]
+__all__ = ["FORMAT", "VERSION", "ARC_EVIDENCE", "to_json", "fields_from_json", "to_networkx",
+           "write", "read_fields"]
 
 FORMAT = "funcnet.FunctionalNetwork"
 VERSION = 2
@@ -89,7 +90,8 @@ def to_json(network: FunctionalNetwork) -> str:
         "parameters": network.parameters.to_dict(),
         "n_samples": network.n_samples,
         "window": None if network.window is None else dict(network.window),
-        "pairs": {name: network.pairs[name].tolist() for name in PAIR_COLUMNS},
+        **({} if network.evidence is None else {"evidence": dict(network.evidence)}),
+        "pairs": {str(name): network.pairs[name].tolist() for name in network.pairs.columns},
         "edges": {name: network.edges[name].tolist() for name in EDGE_COLUMNS},
     }
     return json.dumps(document, indent=1)
@@ -177,6 +179,7 @@ def fields_from_json(text: str) -> dict[str, Any]:
             "channels": None if channels is None else {
                 node: tuple(columns) for node, columns in channels.items()
             },
+            "evidence": document.get("evidence"),
         }
     except (ValueError, KeyError, TypeError, AttributeError) as error:
         # ParameterError is a ValueError: a bad parameter or table in the file lands here too.
@@ -197,6 +200,8 @@ def to_networkx(network: FunctionalNetwork) -> nx.DiGraph:
         relation two arcs; each arc has the attributes ``weight`` (Eq. 13), ``kind``
         (``directed`` or ``bidirectional``) and ``degenerate``. The graph attributes hold
         ``label``, ``parameters`` (:meth:`NetworkParameters.to_dict`) and ``n_samples``.
+        A network with evidence adds, on every arc, :data:`ARC_EVIDENCE`: ``coupling_p``,
+        ``coupled``, ``direction`` (``"A->B"`` in node names, or ``""``) and ``evidence``.
 
     References
     ----------
@@ -218,14 +223,36 @@ def to_networkx(network: FunctionalNetwork) -> nx.DiGraph:
         n_samples=network.n_samples,
     )
     graph.add_nodes_from(network.nodes)
+    evidence = _edge_evidence(network)
     for source, target, weight, kind, degenerate in network.edges[list(EDGE_COLUMNS)].itertuples(
         index=False
     ):
         attributes = {"weight": float(weight), "kind": str(kind), "degenerate": bool(degenerate)}
+        attributes.update(evidence.get(frozenset((source, target)), {}))
         graph.add_edge(source, target, **attributes)
         if kind == "bidirectional":
             graph.add_edge(target, source, **attributes)
     return graph
+
+
+#: The evidence columns an arc carries (networkx, GraphML), when the network has them.
+ARC_EVIDENCE = ("coupling_p", "coupled", "direction", "evidence")
+
+
+def _edge_evidence(network: FunctionalNetwork) -> dict[frozenset[str], dict[str, Any]]:
+    """Per unordered pair, the evidence attributes of its arcs (empty without evidence)."""
+    if "evidence" not in network.pairs.columns:
+        return {}
+    found: dict[frozenset[str], dict[str, Any]] = {}
+    for row in network.pairs[["x", "y", *ARC_EVIDENCE]].itertuples(index=False):
+        x, y, p_value, coupled, direction, reading = row
+        # The direction is stored as the arc's source -> target, not as x/y.
+        arrow = {"x->y": f"{x}->{y}", "y->x": f"{y}->{x}"}.get(str(direction), "")
+        found[frozenset((x, y))] = {
+            "coupling_p": float(p_value), "coupled": bool(coupled), "direction": arrow,
+            "evidence": str(reading),
+        }
+    return found
 
 
 def _suffix(path: Path) -> str:

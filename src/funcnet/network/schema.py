@@ -25,6 +25,27 @@ columns                                 dtype    meaning
 ``weight``                              float64  ``(|C_diff| + |T_diff|) / 2`` (Eq. 13)
 ======================================  =======  ==============================================
 
+**Evidence** (only in networks built with ``evidence=True``; :data:`EVIDENCE_COLUMNS`, after the
+pairs columns, in this order; :mod:`funcnet.evidence`):
+
+======================================  =======  ==============================================
+columns                                 dtype    meaning
+======================================  =======  ==============================================
+``coupling_statistic``                  float64  joint-recurrence correlation ``phi``
+``coupling_p``                          float64  its surrogate p-value, BH-adjusted (NaN: the
+                                                 window is too short to test)
+``coupled``                             bool     ``coupling_p <= alpha``
+``surrogates``                          int64    surrogates used (0: not tested)
+``c_diff_low``, ``c_diff_high``         float64  half-sampling interval of ``C_diff``
+``t_diff_low``, ``t_diff_high``         float64  half-sampling interval of ``T_diff``
+``c_sign_fraction``, ``t_sign_fraction``  float64  resamples with the observed sign
+``direction_index``                     float64  conditional-recurrence asymmetry beyond the
+                                                 surrogates' (positive: X -> Y)
+``direction_p``                         float64  its surrogate p-value, BH-adjusted
+``direction``                           str      ``"x->y"``, ``"y->x"`` or ``""``
+``evidence``                            str      one of :data:`EVIDENCE_LABELS`
+======================================  =======  ==============================================
+
 **Edges** (one row per directed edge or bidirectional pair): ``source``, ``target`` (str),
 ``weight`` (float64), ``kind`` (str), ``degenerate`` (bool).
 
@@ -54,6 +75,7 @@ from typing import Any
 import pandas as pd
 
 from funcnet.errors import ParameterError
+from funcnet.evidence.pairs import EVIDENCE_LABELS
 
 __all__ = [
     "PAIR_KINDS",
@@ -64,6 +86,9 @@ __all__ = [
     "RULE_COLUMNS",
     "PAIR_COLUMNS",
     "PAIR_DTYPES",
+    "EVIDENCE_LABELS",
+    "EVIDENCE_COLUMNS",
+    "EVIDENCE_DTYPES",
     "EDGE_COLUMNS",
     "EDGE_DTYPES",
     "empty_pairs",
@@ -111,6 +136,28 @@ PAIR_DTYPES: Mapping[str, str] = MappingProxyType(_PAIR_DTYPES)
 #: The columns of the pairs table, in order.
 PAIR_COLUMNS: tuple[str, ...] = tuple(_PAIR_DTYPES)
 
+_EVIDENCE_DTYPES: dict[str, str] = {
+    "coupling_statistic": "float64",
+    "coupling_p": "float64",
+    "coupled": "bool",
+    "surrogates": "int64",
+    "c_diff_low": "float64",
+    "c_diff_high": "float64",
+    "t_diff_low": "float64",
+    "t_diff_high": "float64",
+    "c_sign_fraction": "float64",
+    "t_sign_fraction": "float64",
+    "direction_index": "float64",
+    "direction_p": "float64",
+    "direction": "str",
+    "evidence": "str",
+}
+#: Column name -> dtype of the evidence group, in column order (after :data:`PAIR_COLUMNS`).
+EVIDENCE_DTYPES: Mapping[str, str] = MappingProxyType(_EVIDENCE_DTYPES)
+#: The evidence columns of the pairs table, present only with ``evidence=True``.
+EVIDENCE_COLUMNS: tuple[str, ...] = tuple(_EVIDENCE_DTYPES)
+_FULL_DTYPES: dict[str, str] = {**_PAIR_DTYPES, **_EVIDENCE_DTYPES}
+
 _EDGE_DTYPES: dict[str, str] = {
     "source": "str",
     "target": "str",
@@ -128,6 +175,11 @@ _VOCABULARY: dict[str, tuple[str, ...]] = {
     "kind": PAIR_KINDS,
     "c_kind": MEASURE_KINDS,
     "t_kind": MEASURE_KINDS,
+}
+_EVIDENCE_VOCABULARY: dict[str, tuple[str, ...]] = {
+    **_VOCABULARY,
+    "evidence": EVIDENCE_LABELS,
+    "direction": ("x->y", "y->x", ""),
 }
 
 
@@ -153,12 +205,14 @@ def pairs_frame(columns: Mapping[str, Sequence[Any]]) -> pd.DataFrame:
     Parameters
     ----------
     columns : mapping of str to sequence
-        One equally long sequence per column of :data:`PAIR_COLUMNS`, in any order.
+        One equally long sequence per column of :data:`PAIR_COLUMNS`, in any order; or per
+        column of :data:`PAIR_COLUMNS` and :data:`EVIDENCE_COLUMNS` (a network with evidence).
 
     Returns
     -------
     pandas.DataFrame
-        Columns :data:`PAIR_COLUMNS` with dtypes :data:`PAIR_DTYPES`, a default index.
+        Columns :data:`PAIR_COLUMNS` (then :data:`EVIDENCE_COLUMNS` if given) with dtypes
+        :data:`PAIR_DTYPES` (:data:`EVIDENCE_DTYPES`), a default index.
 
     Raises
     ------
@@ -175,6 +229,8 @@ def pairs_frame(columns: Mapping[str, Sequence[Any]]) -> pd.DataFrame:
         ...
     funcnet.errors.ParameterError: pairs must have exactly the columns x, y, ...; missing: ...
     """
+    if any(name in columns for name in EVIDENCE_COLUMNS):
+        return _frame(columns, _FULL_DTYPES, "pairs")
     return _frame(columns, PAIR_DTYPES, "pairs")
 
 
@@ -268,6 +324,8 @@ def _check(frame: Any, dtypes: Mapping[str, str], table: str,
 def check_pairs(pairs: Any) -> pd.DataFrame:
     """``pairs`` itself if it follows the schema: columns, order, dtypes and kinds.
 
+    A table with evidence has :data:`EVIDENCE_COLUMNS` after :data:`PAIR_COLUMNS`.
+
     Parameters
     ----------
     pairs : pandas.DataFrame
@@ -292,6 +350,8 @@ def check_pairs(pairs: Any) -> pd.DataFrame:
         ...
     funcnet.errors.ParameterError: pairs must have the columns x, ... in this order; missing: weight
     """
+    if isinstance(pairs, pd.DataFrame) and len(pairs.columns) > len(PAIR_COLUMNS):
+        return _check(pairs, _FULL_DTYPES, "pairs", _EVIDENCE_VOCABULARY)
     return _check(pairs, PAIR_DTYPES, "pairs", _VOCABULARY)
 
 

@@ -383,6 +383,12 @@ def run_paper_analyses(
     funcnet.errors.TraceError
         ``manifest.csv`` is missing or a trace cannot be read.
 
+    Warns
+    -----
+    funcnet.errors.FuncnetWarning
+        What :func:`funcnet.window_networks` says, once per trial and kind of problem; the
+        same problems are counted per network in ``warnings`` (:func:`network_problems`).
+
     Notes
     -----
     Only the phases of each trial's main motion are used (:func:`main_move`). A signal constant

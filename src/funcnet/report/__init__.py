@@ -1,18 +1,21 @@
-"""Static HTML reports: the paper's analyses on the simulated plan, and a study's results.
+"""Static HTML reports: the paper's analyses on the simulated plan, a study's results, a trace.
 
-Both reports are one ``index.html`` with PNG figures beside it in ``figures/`` and nothing
+Every report is one ``index.html`` with PNG figures beside it in ``figures/`` and nothing
 loaded from elsewhere (no CDN, no script, no web font), so the folder can be archived, mailed or
-opened offline; every file is written atomically.
+opened offline; every file is written atomically. Each page opens with its summary and a table
+of contents, then its figures; the tables come last.
 
-============  ================================================================================
-module        what it holds
-============  ================================================================================
-``html``      page building: escaping, tables (pairs columns from
-              :mod:`funcnet.network.schema`), figures, :func:`save_figure`
-``demo``      :func:`build_demo_report`: :func:`funcnet.paper.run_paper_analyses` and the
-              paper's figures on a simulated plan
-``study``     :func:`write_report`: a study's results folder
-============  ================================================================================
+===================  ===========================================================================
+module               what it holds
+===================  ===========================================================================
+``html``             page building: escaping, tables (pairs columns from
+                     :mod:`funcnet.network.schema`), figures, contents, :func:`save_figure`
+``demo``             :func:`build_demo_report`: :func:`funcnet.paper.run_paper_analyses` and
+                     the paper's figures on a simulated plan
+``study``            :func:`write_report`: a study's results folder
+``inspect``          :func:`inspect_trace`: the engineer's report of one or several traces
+``inspect_figures``  its figures
+===================  ===========================================================================
 
 References
 ----------
@@ -21,8 +24,31 @@ References
 
 from __future__ import annotations
 
-from funcnet.report.demo import build_demo_report
-from funcnet.report.html import save_figure
-from funcnet.report.study import write_report
+from importlib import import_module
+from typing import Any
 
-__all__ = ["build_demo_report", "write_report", "save_figure"]
+_EXPORTS = {
+    "build_demo_report": "funcnet.report.demo",
+    "write_report": "funcnet.report.study",
+    "save_figure": "funcnet.report.html",
+    "inspect_trace": "funcnet.report.inspect",
+    "inspect_recording": "funcnet.report.inspect",
+    "write_inspection": "funcnet.report.inspect",
+    "TraceInspection": "funcnet.report.inspect",
+}
+
+__all__ = list(_EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    try:
+        module = _EXPORTS[name]
+    except KeyError:
+        raise AttributeError(f"module 'funcnet.report' has no attribute {name!r}") from None
+    value = getattr(import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

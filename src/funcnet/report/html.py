@@ -19,7 +19,7 @@ from funcnet._io import atomic_path
 from funcnet.network.schema import PAIR_COLUMNS
 
 __all__ = ["Progress", "PACKAGES", "save_figure", "escape", "table", "mapping_table",
-           "pairs_table", "figure_html", "page", "step"]
+           "pairs_table", "figure_html", "page", "step", "contents"]
 
 Progress = Callable[[int, int, str], None] | None
 #: Packages whose versions a report records.
@@ -29,9 +29,10 @@ _STYLE = """
 body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;max-width:1200px;margin:2em auto;
 padding:0 1em;color:#222;line-height:1.45}
 h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}
-table{border-collapse:collapse;font-size:.82em;margin:.5em 0;max-width:100%}
+table{border-collapse:collapse;font-size:.82em;margin:.5em 0;max-width:100%;display:block;
+overflow-x:auto}
 th,td{border:1px solid #ccc;padding:2px 6px;text-align:left;vertical-align:top;
-overflow-wrap:anywhere}
+overflow-wrap:break-word;hyphens:none}
 td.hash{font-family:ui-monospace,monospace;word-break:break-all;min-width:12ch}
 pre{white-space:pre-wrap;overflow-wrap:anywhere}
 th{background:#f3f3f3}td.num{text-align:right;font-variant-numeric:tabular-nums}
@@ -41,6 +42,9 @@ figcaption{font-size:.88em;color:#444}
 .ne{background:#e6e6e6;font-style:italic}
 details{margin:.3em 0}summary{cursor:pointer}code{font-size:.9em}
 .note{background:#f6f6f6;border-left:4px solid #999;padding:.5em 1em}
+nav.toc{background:#fafafa;border:1px solid #ddd;padding:.3em 1em;margin:1em 0}
+nav.toc ol{margin:.2em 0;padding-left:1.5em;columns:2}
+.verdict{background:#eef5ff;border-left:4px solid #4a78c2;padding:.5em 1em}
 """
 
 
@@ -132,6 +136,19 @@ def figure_html(out_dir: Path, name: str, fig: Any, caption: str) -> str:
     save_figure(fig, out_dir / "figures" / f"{name}.png")
     return (f'<figure id="{escape(name)}"><img src="figures/{escape(name)}.png" '
             f'alt="{escape(caption)}"><figcaption>{escape(caption)}</figcaption></figure>')
+
+
+def contents(sections: Iterable[tuple[str, str]]) -> str:
+    """A table of contents: links to the page's sections, given as ``(id, title)``.
+
+    Examples
+    --------
+    >>> contents([("summary", "Summary")])
+    '<nav class="toc"><b>Contents</b><ol><li><a href="#summary">Summary</a></li></ol></nav>'
+    """
+    items = "".join(f'<li><a href="#{escape(key)}">{escape(title)}</a></li>'
+                    for key, title in sections)
+    return f'<nav class="toc"><b>Contents</b><ol>{items}</ol></nav>'
 
 
 def page(title: str, body: Iterable[str]) -> str:

@@ -33,6 +33,7 @@ DERIVED_SIGNALS = {
     "V": (("AP",), "velocity of AP, Eq. 11-12"),
     "FE": (("RP", "AP"), "RP - AP"),
     "TORSION": (("MP", "AP"), "MP - AP"),
+    "VM": (("MP",), "velocity of MP (motor side), Eq. 11-12 applied to MP"),
 }
 
 # Tolerance, in ticks, for intervals that should be whole multiples of the grid.
@@ -139,16 +140,17 @@ def reference_speed(recording: Recording, reference: str = "RP") -> np.ndarray:
 def add_derived_signals(
     recording: Recording, signals: Iterable[str] = ("V", "FE", "TORSION")
 ) -> Recording:
-    """Add derived signals as columns: V, following error FE, torsion / lost motion TORSION.
+    """Add derived signals as columns: V, VM, following error FE, torsion / lost motion TORSION.
 
     Parameters
     ----------
     recording : Recording
     signals : iterable of str
         Any of ``"V"`` (:func:`velocity` of AP, Eq. 11-12), ``"FE"`` (following error
-        ``RP - AP``) and ``"TORSION"`` (``MP - AP``: motor- minus arm-side position, the twist of
-        the gear and its lost motion; both encoders on the joint side). A column of the same
-        name is recomputed where it stands.
+        ``RP - AP``), ``"TORSION"`` (``MP - AP``: motor- minus arm-side position, the twist of
+        the gear and its lost motion; both encoders on the joint side) and ``"VM"`` (the motor
+        velocity: Eq. 11-12 applied to MP, for a robot without the arm-side encoder). A column
+        of the same name is recomputed where it stands.
 
     Returns
     -------
@@ -187,7 +189,7 @@ def add_derived_signals(
             raise ParameterError(f"signals: {name!r} is not one of {sorted(DERIVED_SIGNALS)}")
         inputs, description = DERIVED_SIGNALS[name]
         columns = [_column(recording, column, name) for column in inputs]
-        if name == "V":
+        if name in ("V", "VM"):
             values, interval, units = velocity(columns[0], dt), dt, "velo"
         else:
             values = columns[0] - columns[1]

@@ -33,6 +33,11 @@ _EXPORTS = {
     "read_plan": "funcnet.robot.sim.plan",
     "write_plan": "funcnet.robot.sim.plan",
     "MANIFEST_COLUMNS": "funcnet.robot.sim.plan",
+    "real_axis_parameters": "funcnet.robot.sim.axis",
+    "backlash_sweep_plan": "funcnet.robot.sim.plan",
+    "named_plan": "funcnet.robot.sim.plan",
+    "NAMED_PLANS": "funcnet.robot.sim.plan",
+    "ARCMIN": "funcnet.robot.sim.plan",
     "write_trace": "funcnet.robot.sim.writer",
     "role_names": "funcnet.robot.sim.writer",
 }

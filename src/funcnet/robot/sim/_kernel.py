@@ -15,8 +15,16 @@ __all__ = ["axis_kernel"]
 
 
 @numba.njit(cache=True)
-def _friction_step(w: float, torque: float, inertia: float, dt: float, coulomb: float,
-                   static: float, viscous: float, stribeck: float) -> float:
+def _friction_step(
+    w: float,
+    torque: float,
+    inertia: float,
+    dt: float,
+    coulomb: float,
+    static: float,
+    viscous: float,
+    stribeck: float,
+) -> float:
     """New velocity of a body with Coulomb + viscous + Stribeck friction (Karnopp's stick)."""
     if w == 0.0:
         if abs(torque) <= static:
@@ -31,9 +39,16 @@ def _friction_step(w: float, torque: float, inertia: float, dt: float, coulomb: 
 
 @numba.njit(cache=True)
 def axis_kernel(
-    sp_pos: np.ndarray, sp_vel: np.ndarray, noise: np.ndarray, dt: float,
-    steps: tuple[int, int, int, int], mechanics: tuple[float, ...], friction: tuple[float, ...],
-    control: tuple[float, ...], sensors: tuple[float, ...], extra: tuple[float, ...],
+    sp_pos: np.ndarray,
+    sp_vel: np.ndarray,
+    noise: np.ndarray,
+    dt: float,
+    steps: tuple[int, int, int, int],
+    mechanics: tuple[float, ...],
+    friction: tuple[float, ...],
+    control: tuple[float, ...],
+    sensors: tuple[float, ...],
+    extra: tuple[float, ...],
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Integrate the axis at ``dt``; log RP, AP, MP, RC, AC and the hidden states.
 

@@ -85,6 +85,7 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
+from scipy.signal import lfilter
 
 from funcnet.errors import ParameterError
 from funcnet.robot.sim._kernel import axis_kernel
@@ -99,6 +100,7 @@ __all__ = [
     "trial_duration",
     "FAULT_KNOBS",
     "MAX_TRIAL_DURATION",
+    "real_axis_parameters",
 ]
 
 #: The longest trace a trial may span, in s (lead time, motion and settling; one hour). The
@@ -390,6 +392,12 @@ def _numeric_fields() -> list[dataclasses.Field[Any]]:
     return [f for f in dataclasses.fields(AxisParameters) if f.name not in _CHOICES]
 
 
+#: What :func:`real_axis_parameters` changes: the sensors and the logging, not the mechanics.
+REAL_SENSOR_FIELDS = ("position_log_period", "arm_encoder_counts", "motor_encoder_counts",
+                      "current_noise", "current_drift", "current_drift_frequency",
+                      "cogging_torque")  # fmt: skip
+
+
 def real_axis_parameters(**changes: Any) -> AxisParameters:
     """The axis with its sensors and logging set from the real 840D sl trace.
 
@@ -399,8 +407,10 @@ def real_axis_parameters(**changes: Any) -> AxisParameters:
     - ``position_log_period = 0.004``: ``measPos1/2`` are IPO signals (4 ms);
     - ``arm_encoder_counts = 2**22``: ``measPos2`` steps by 8-9e-5 deg (360 / 2**22 =
       8.6e-5 deg);
-    - ``motor_encoder_counts = 2**18``: ``measPos1`` steps by 1e-5 deg joint side at standstill
-      (360 / (2**18 * 150) = 9.2e-6 deg);
+    - the motor encoder stays at 2**22 counts per turn: ``measPos1`` moves in steps of 1e-5 deg,
+      but every position in the file is written with five decimals (``measPos2``'s steps are
+      8e-5 and 9e-5 deg: its 8.6e-5 deg quantum rounded), so the log does not show the motor
+      encoder's resolution;
     - ``current_noise = 0.013`` A: the standstill current's sample-to-sample scatter
       (``std(diff(AC)) / sqrt(2)`` = 0.013-0.014 A in all three standstill stretches);
     - ``current_drift = 0.04`` A at 2 Hz: the slow wander of the standstill current (within
@@ -429,7 +439,6 @@ def real_axis_parameters(**changes: Any) -> AxisParameters:
     base = AxisParameters(
         position_log_period=0.004,
         arm_encoder_counts=2**22,
-        motor_encoder_counts=2**18,
         current_noise=0.013,
         current_drift=0.04,
         current_drift_frequency=2.0,
@@ -583,6 +592,14 @@ def setpoint_profile(
     return pos, vel, timing
 
 
+def _drift(rng: np.random.Generator, n: int, sigma: float, corner: float, dt: float) -> np.ndarray:
+    """A stationary first-order low-pass (AR(1)) noise of std ``sigma``, corner ``corner`` Hz."""
+    a = math.exp(-2 * math.pi * corner * dt)
+    white = rng.standard_normal(n) * (sigma * math.sqrt(1 - a * a))
+    white[0] = rng.standard_normal() * sigma  # start in the stationary distribution
+    return np.asarray(lfilter([1.0], [1.0, -a], white), dtype=np.float64)
+
+
 def _trial_seed(seed: int, name: str) -> np.random.SeedSequence:
     """Noise seed of one trial: the user's seed with the trial's name, independent of order."""
     return np.random.SeedSequence([int(seed), zlib.crc32(name.encode("utf-8"))])
@@ -591,9 +608,15 @@ def _trial_seed(seed: int, name: str) -> np.random.SeedSequence:
 def effective_parameters(trial: Trial, params: AxisParameters | None = None) -> AxisParameters:
     """``params`` (default :class:`AxisParameters`) with the trial's fault knobs applied."""
     params = AxisParameters() if params is None else params
-    overrides = {
+    if trial.sensors == "real":  # the sensor and logging fields of the real trace
+        real = real_axis_parameters()
+        params = params.replace(**{name: getattr(real, name) for name in REAL_SENSOR_FIELDS})
+    overrides: dict[str, Any] = {
         knob: getattr(trial, knob) for knob in FAULT_KNOBS if getattr(trial, knob) is not None
     }
+    for option in ("arm_model", "position_feedback"):
+        if getattr(trial, option) is not None:
+            overrides[option] = getattr(trial, option)
     return params.replace(**overrides) if overrides else params
 
 
@@ -701,7 +724,10 @@ def simulate_trial(
     t = np.arange(n_speed) * t_speed
     sp_pos, sp_vel, _ = setpoint_profile(t, trial.step, trial.speed, trial.reverse, p)
     rng = np.random.default_rng(_trial_seed(seed, trial.name))
-    noise = rng.standard_normal(n_speed * per_speed) * p.current_noise
+    noise = rng.standard_normal(n_speed * per_speed) * (p.current_noise * p.noise_scale)
+    if p.current_drift > 0:  # drawn after the white noise: without drift nothing changes
+        noise += _drift(rng, noise.size, p.current_drift * p.noise_scale,
+                        p.current_drift_frequency, 1.0 / p.current_loop_rate)  # fmt: skip
 
     dt = 1.0 / p.current_loop_rate
     rad = math.pi / 180.0
@@ -709,7 +735,10 @@ def simulate_trial(
     omega_i = 2 * math.pi * p.current_bandwidth
     n_reverse = round(timing["forward_end"] / dt) if trial.reverse else -1
     steps = (per_speed, per_log, round(timing["motion_start"] / dt), n_reverse)
-    mechanics = (p.gear_ratio, p.motor_inertia, p.arm_inertia(trial.tcp),
+    elastic = p.arm_model == "elastic"
+    tip = p.arm_tcp_mass * trial.tcp**2
+    hub = p.arm_inertia_base if elastic else p.arm_inertia(trial.tcp)
+    mechanics = (p.gear_ratio, p.motor_inertia, hub,
                  p.gear_stiffness * ks, p.gear_damping, p.backlash * rad / 2,
                  p.torque_constant, p.winding_resistance, p.winding_inductance)  # fmt: skip
     friction = (p.motor_coulomb * fs, p.motor_static * fs, p.motor_viscous * fs,
@@ -720,11 +749,18 @@ def simulate_trial(
                p.velocity_feedforward)  # fmt: skip
     sensors = (2 * math.pi / p.motor_encoder_counts, 2 * math.pi / p.arm_encoder_counts,
                p.current_resolution)  # fmt: skip
+    extra = (tip, p.link_stiffness if elastic else 0.0, p.link_damping,
+             1.0 if p.position_feedback == "motor" else 0.0, p.cogging_torque * p.noise_scale,
+             p.cogging_periods)  # fmt: skip
     log, states, events = axis_kernel(
         sp_pos * rad, sp_vel * rad, noise, dt, steps,
-        *(tuple(map(float, group)) for group in (mechanics, friction, control, sensors)),
+        *(tuple(map(float, group)) for group in (mechanics, friction, control, sensors, extra)),
     )  # fmt: skip
     log = log[:n_log]
+    hold = round(p.position_log_period / p.log_period)
+    if hold > 1:  # IPO logging: AP and MP are sampled every `hold` ticks and held in between
+        held = (np.arange(n_log) // hold) * hold
+        log[:, 1:3] = log[held, 1:3]
     index = pd.Index(np.arange(n_log) * p.log_period, name="time")
     deg = 180.0 / math.pi
     data = pd.DataFrame(
@@ -743,6 +779,7 @@ def simulate_trial(
             "torsion": states[:n_log, 1] * deg,
             "arm_velocity": states[:n_log, 2] * deg,
             "motor_velocity": states[:n_log, 3] * deg,
+            "tip_velocity": states[:n_log, 4] * deg,
         },
         index=index,
     )

@@ -1,5 +1,7 @@
 """The design of experiments: the paper's plan (Table 1), user plans, writing traces.
 
+(Over 600 lines: two plan builders, the TOML reader with its error messages, and the writer.)
+
 A :class:`~funcnet.robot.sim.trial.Trial` is one motion of the simulated axis
 (:mod:`funcnet.robot.sim.axis`): speed, TCP distance, step, forward or forward-then-reverse, and
 optional fault knobs. :func:`paper_plan` gives the 36 trials of the paper's Table 1,
@@ -26,11 +28,29 @@ A plan file lists groups; each group is the Cartesian product of its lists::
     friction_scale = 1.5           # backlash in deg (full width), friction and stiffness
     stiffness_scale = 0.7          # as factors of the healthy axis
 
+    [[group]]
+    name = "plant-like"
+    speeds = [175]
+    tcps = [2.0]
+    steps = [1]
+    direction = "forward+reverse"
+    backlash = 0.0083333           # 0.5 arcmin
+    noise_scale = [1, 2]           # multiplies every noise source (a knob too)
+    seeds = [1, 2, 3]              # one trial per seed (its own noise), "-r<seed>" in the name
+    sensors = "real"               # "paper" (default) or "real": the real trace's encoders,
+                                   # current noise and 4 ms IPO logging of AP and MP
+    arm_model = "elastic"          # "rigid" (default) or "elastic" (a third mass)
+    position_feedback = "motor"    # "arm" (default) or "motor": the encoder the loop reads
+
 Every key but ``name``, ``speeds``, ``tcps`` and ``steps`` is optional (``direction`` defaults
 to ``"forward"``; knobs left out keep the axis's values). Trial names are
 ``<group>-v<speed>-p<tcp in dm>-s<step>`` plus ``-b<backlash>``, ``-f<friction_scale>``,
-``-k<stiffness_scale>`` for the knobs a group sets, e.g. ``main-v35-p16-s3`` for the paper's
-baseline.
+``-k<stiffness_scale>``, ``-n<noise_scale>`` for the knobs a group sets and ``-r<seed>`` for
+its seeds, e.g. ``main-v35-p16-s3`` for the paper's baseline. ``backlash`` is the full
+dead-zone width in degrees (1 arcmin = 1/60 deg: 0.25 arcmin is ``backlash = 0.0041667``).
+
+Named plans (:data:`NAMED_PLANS`): ``"paper"`` and ``"backlash-sweep"``
+(:func:`backlash_sweep_plan`); :func:`read_plan` takes those names too.
 """
 
 from __future__ import annotations
@@ -57,10 +77,21 @@ from funcnet.robot.sim.axis import (
     simulate_trial,
     trial_duration,
 )
-from funcnet.robot.sim.trial import FAULT_KNOBS, NAME_PATTERN, Trial
+from funcnet.robot.sim.trial import FAULT_KNOBS, NAME_PATTERN, OPTIONS, Trial
 from funcnet.robot.sim.writer import write_trace
 
-__all__ = ["Trial", "paper_plan", "read_plan", "write_plan", "MANIFEST_COLUMNS"]
+__all__ = [
+    "Trial",
+    "paper_plan",
+    "backlash_sweep_plan",
+    "named_plan",
+    "NAMED_PLANS",
+    "read_plan",
+    "write_plan",
+    "MANIFEST_COLUMNS",
+    "ARCMIN",
+    "SWEEP_GRID",
+]
 
 #: Bump when the simulator or the writer changes what a trial's bytes are: older files are then
 #: written again instead of being skipped.
@@ -89,17 +120,39 @@ MANIFEST_COLUMNS = (
     "lost_motion",
     "windup_forward",
     "windup_reverse",
+    "noise_scale",
+    "sensors",
+    "arm_model",
+    "position_feedback",
     "fingerprint",
     "sha256",
 )
 
+#: 1 arcmin in degrees: plans and manifests give ``backlash`` in degrees (full dead-zone width).
+ARCMIN = 1.0 / 60.0
 
-def _trial_name(group: str, speed: float, tcp: float, step: float, knobs: dict[str, float]) -> str:
-    suffix = "".join(
-        f"-{letter}{knobs[k]:g}"
-        for k, letter in (("backlash", "b"), ("friction_scale", "f"), ("stiffness_scale", "k"))
-        if k in knobs
-    )
+#: The backlash sweep's grid (issue 11): backlash in arcmin, speeds in deg/min, TCP in m,
+#: friction and stiffness scales, noise seeds and noise scales (1: the real trace's level).
+SWEEP_GRID: dict[str, tuple[float, ...]] = {
+    "backlash_arcmin": (0.0, 0.25, 0.5, 1.0, 2.0, 4.0),
+    "speeds": (35.0, 175.0),
+    "tcps": (1.2, 1.6, 2.0),
+    "friction_scale": (0.7, 1.0, 1.4),
+    "stiffness_scale": (0.7, 1.0, 1.4),
+    "seeds": (1.0, 2.0, 3.0),
+    "noise_scale": (1.0, 2.0),
+}
+
+
+_LETTERS = (("backlash", "b"), ("friction_scale", "f"), ("stiffness_scale", "k"),
+            ("noise_scale", "n"))  # fmt: skip
+
+
+def _trial_name(group: str, speed: float, tcp: float, step: float, knobs: dict[str, float],
+                seed: int | None = None) -> str:  # fmt: skip
+    suffix = "".join(f"-{letter}{knobs[k]:g}" for k, letter in _LETTERS if k in knobs)
+    if seed is not None:
+        suffix += f"-r{seed}"
     return f"{group}-v{speed:g}-p{tcp * 10:g}-s{step:g}{suffix}"
 
 
@@ -110,23 +163,114 @@ def _expand(
     steps: Iterable[float],
     reverse: bool,
     knobs: dict[str, list[float]] | None = None,
+    seeds: Sequence[int | None] = (None,),
+    options: dict[str, str] | None = None,
 ) -> list[Trial]:
     knobs = knobs or {}
     trials = []
-    for speed, tcp, step, *values in itertools.product(speeds, tcps, steps, *knobs.values()):
-        chosen = dict(zip(knobs, values, strict=True))
+    combos = itertools.product(speeds, tcps, steps, *knobs.values(), seeds)
+    chosen_options: dict[str, Any] = dict(options or {})
+    for raw in combos:
+        combo: tuple[Any, ...] = tuple(raw)  # numbers, the seed last (an int or None)
+        speed, tcp, step = (float(v) for v in combo[:3])
+        chosen = {k: float(v) for k, v in zip(knobs, combo[3:-1], strict=True)}
+        seed = None if combo[-1] is None else int(combo[-1])
         trials.append(
             Trial(
-                _trial_name(group, speed, tcp, step, chosen),
+                _trial_name(group, speed, tcp, step, chosen, seed),
                 group,
                 speed,
                 tcp,
                 step,
                 reverse,
-                **chosen,
+                **chosen,  # type: ignore[arg-type]  # the knobs are float fields
+                **chosen_options,
+                seed=seed,
             )
         )
     return trials
+
+
+def backlash_sweep_plan(
+    *,
+    noise_scales: Sequence[float] = SWEEP_GRID["noise_scale"],
+    seeds: Sequence[int] = (1, 2, 3),
+    sensors: str = "real",
+    arm_model: str = "rigid",
+    position_feedback: str = "arm",
+    backlash_arcmin: Sequence[float] = SWEEP_GRID["backlash_arcmin"],
+    speeds: Sequence[float] = SWEEP_GRID["speeds"],
+    tcps: Sequence[float] = SWEEP_GRID["tcps"],
+    friction_scales: Sequence[float] = SWEEP_GRID["friction_scale"],
+    stiffness_scales: Sequence[float] = SWEEP_GRID["stiffness_scale"],
+    group: str = "sweep",
+) -> list[Trial]:
+    """The systematic backlash sweep: reversal trials over backlash and the plant's nuisances.
+
+    Every trial moves +1 deg and back at once (as the paper's backlash trials), over backlash
+    {0, 0.25, 0.5, 1, 2, 4} arcmin x speed {35, 175} deg/min x TCP {1.2, 1.6, 2.0} m x friction
+    scale {0.7, 1, 1.4} x stiffness scale {0.7, 1, 1.4} x noise seeds {1, 2, 3} x noise scale
+    {1, 2} (the real trace's noise level and twice it): 1944 trials by default, with the
+    sensors and logging of the real trace (``sensors="real"``).
+
+    Parameters
+    ----------
+    noise_scales, seeds, backlash_arcmin, speeds, tcps, friction_scales, stiffness_scales
+        The grid (backlash in arcmin here; trials and manifests hold it in degrees).
+    sensors, arm_model, position_feedback : str
+        Trial options (:data:`~funcnet.robot.sim.trial.OPTIONS`), the same for every trial.
+    group : str
+        The trials' group and the start of their names.
+
+    Returns
+    -------
+    list of Trial
+        Named ``<group>-v<speed>-p<tcp dm>-s1-b<backlash deg>-f..-k..-n..-r<seed>``.
+
+    Examples
+    --------
+    >>> plan = backlash_sweep_plan()
+    >>> len(plan), plan[0].name
+    (1944, 'sweep-v35-p12-s1-b0-f0.7-k0.7-n1-r1')
+    >>> round(plan[-1].backlash * 60, 6), plan[-1].sensors
+    (4.0, 'real')
+    """
+    knobs = {
+        "backlash": [b * ARCMIN for b in backlash_arcmin],
+        "friction_scale": [float(v) for v in friction_scales],
+        "stiffness_scale": [float(v) for v in stiffness_scales],
+        "noise_scale": [float(v) for v in noise_scales],
+    }
+    options = {"sensors": sensors, "arm_model": arm_model, "position_feedback": position_feedback}
+    return _expand(group, speeds, tcps, (1.0,), True, knobs, [int(s) for s in seeds], options)
+
+
+#: Plans known by name (``funcnet simulate --plan NAME``; :func:`named_plan`).
+NAMED_PLANS: dict[str, Callable[[], list[Trial]]] = {
+    "paper": lambda: paper_plan(),
+    "backlash-sweep": lambda: backlash_sweep_plan(),
+}
+
+
+def named_plan(name: str) -> list[Trial]:
+    """A plan by name: ``"paper"`` (:func:`paper_plan`) or ``"backlash-sweep"``.
+
+    Raises
+    ------
+    ParameterError
+        Not a name of :data:`NAMED_PLANS`.
+
+    Examples
+    --------
+    >>> len(named_plan("paper"))
+    36
+    """
+    try:
+        return NAMED_PLANS[name]()
+    except KeyError:
+        raise ParameterError.of(
+            "plan", f"must be one of {', '.join(NAMED_PLANS)} or a TOML file; got {name!r}"
+        ) from None
 
 
 def paper_plan() -> list[Trial]:
@@ -159,7 +303,7 @@ def paper_plan() -> list[Trial]:
     )
 
 
-_GROUP_KEYS = {"name", "speeds", "tcps", "steps", "direction", *FAULT_KNOBS}
+_GROUP_KEYS = {"name", "speeds", "tcps", "steps", "direction", "seeds", *FAULT_KNOBS, *OPTIONS}
 _DIRECTIONS = {"forward": False, "forward+reverse": True}
 
 
@@ -196,6 +340,8 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
     >>> [t.name for t in read_plan(path)]
     ['slow-v1-p16-s1', 'slow-v35-p16-s1']
     """
+    if isinstance(path, str) and path in NAMED_PLANS and not Path(path).exists():
+        return named_plan(path)
     path = Path(path)
     try:
         document = tomllib.loads(path.read_text(encoding="utf-8"))
@@ -243,10 +389,32 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
                 f"{sorted(_DIRECTIONS)}, got {direction!r}"
             )
         knobs: dict[str, list[float]] = {k: lists[k] for k in FAULT_KNOBS if k in lists}
+        seeds: list[int | None] = [None]
+        if "seeds" in group:
+            raw = group["seeds"]
+            raw = raw if isinstance(raw, list) else [raw]
+            if not raw or not all(
+                isinstance(v, int) and not isinstance(v, bool) and v >= 0 for v in raw
+            ):
+                raise StudyError(
+                    f"{where} ({name}): 'seeds' must be a non-negative integer or a list of "
+                    f"them, got {group['seeds']!r}"
+                )
+            seeds = list(raw)
+        options = {}
+        for option, words in OPTIONS.items():
+            if option in group:
+                if group[option] not in words:
+                    raise StudyError(
+                        f"{where} ({name}): '{option}' must be one of {list(words)}, "
+                        f"got {group[option]!r}"
+                    )
+                options[option] = group[option]
         try:
             expanded = _expand(
-                name, lists["speeds"], lists["tcps"], lists["steps"], _DIRECTIONS[direction], knobs
-            )
+                name, lists["speeds"], lists["tcps"], lists["steps"], _DIRECTIONS[direction],
+                knobs, seeds, options,
+            )  # fmt: skip
             for trial in expanded:
                 trial_duration(trial)
         except ParameterError as exc:
@@ -259,12 +427,26 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
     return trials
 
 
+_LATER_TRIAL_FIELDS = ("noise_scale", "sensors", "arm_model", "position_feedback", "seed")
+_LATER_AXIS_FIELDS = ("position_log_period", "noise_scale", "current_drift",
+                      "current_drift_frequency", "cogging_torque", "cogging_periods",
+                      "arm_model", "link_stiffness", "link_damping",
+                      "position_feedback")  # fmt: skip
+
+
 def _fingerprint(trial: Trial, params: AxisParameters, seed: int) -> str:
     """SHA-256 of everything a trial's bytes depend on."""
+    # Fields added after FORMAT_VERSION 1 enter only when they differ from their defaults, so
+    # that the files of earlier plans keep their fingerprints (and are not simulated again).
+    trial_fields = {k: v for k, v in dataclasses.asdict(trial).items()
+                    if not (k in _LATER_TRIAL_FIELDS and v is None)}  # fmt: skip
+    defaults = dataclasses.asdict(AxisParameters())
+    param_fields = {k: v for k, v in dataclasses.asdict(params).items()
+                    if not (k in _LATER_AXIS_FIELDS and v == defaults[k])}  # fmt: skip
     payload = {
         "format": FORMAT_VERSION,
-        "trial": dataclasses.asdict(trial),
-        "params": dataclasses.asdict(params),
+        "trial": trial_fields,
+        "params": param_fields,
         "seed": int(seed),
     }
     return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()
@@ -274,12 +456,15 @@ def _simulate_and_write(
     trial: Trial, out_dir: Path, seed: int, params: AxisParameters | None
 ) -> dict[str, Any]:
     """Simulate one trial, write its trace, return its manifest row (runs in a worker)."""
+    seed = seed if trial.seed is None else trial.seed
     sim = simulate_trial(trial, params, seed=seed)
     p = sim.params
     target = out_dir / f"{trial.name}.xml"
+    ipo = {"AP": p.position_log_period, "MP": p.position_log_period}
     write_trace(
-        target, sim.data, axis=1, session_name=trial.name, drive_period=1.0 / p.speed_loop_rate
-    )
+        target, sim.data, axis=1, session_name=trial.name, drive_period=1.0 / p.speed_loop_rate,
+        intervals=ipo if p.position_log_period != p.log_period else None,
+    )  # fmt: skip
     row: dict[str, Any] = {
         "name": trial.name,
         "group": trial.group,
@@ -293,6 +478,10 @@ def _simulate_and_write(
         "stiffness_scale": p.stiffness_scale,
         "seed": seed,
         "duration": float(sim.data.index[-1]),
+        "noise_scale": p.noise_scale,
+        "sensors": trial.sensors or "paper",
+        "arm_model": p.arm_model,
+        "position_feedback": p.position_feedback,
     }
     row.update({k: sim.truth[k] for k in MANIFEST_COLUMNS if k in sim.truth and k not in row})
     row["fingerprint"] = _fingerprint(trial, p, seed)
@@ -385,10 +574,12 @@ def write_plan(
     todo = []
     for trial in trials:
         old = previous.get(trial.name)
-        fingerprint = _fingerprint(trial, effective_parameters(trial, params), seed)
+        trial_seed = seed if trial.seed is None else trial.seed
+        fingerprint = _fingerprint(trial, effective_parameters(trial, params), trial_seed)
         target = out / f"{trial.name}.xml"
         if (
             old
+            and all(column in old for column in MANIFEST_COLUMNS)  # else an older manifest
             and old.get("fingerprint") == fingerprint
             and target.is_file()
             and old.get("sha256") == file_sha256(target)

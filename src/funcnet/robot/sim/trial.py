@@ -13,10 +13,20 @@ from dataclasses import dataclass
 
 from funcnet.errors import ParameterError
 
-__all__ = ["Trial", "FAULT_KNOBS", "NAME_PATTERN"]
+__all__ = ["Trial", "FAULT_KNOBS", "NAME_PATTERN", "OPTIONS"]
 
 #: Fields of :class:`~funcnet.robot.sim.axis.AxisParameters` a :class:`Trial` may override.
-FAULT_KNOBS = ("backlash", "friction_scale", "stiffness_scale")
+FAULT_KNOBS = ("backlash", "friction_scale", "stiffness_scale", "noise_scale")
+
+#: Worded options of a :class:`Trial` and their words (the first is what None means): the
+#: sensors and logging (``"paper"``: the default :class:`~funcnet.robot.sim.axis.AxisParameters`;
+#: ``"real"``: :func:`~funcnet.robot.sim.axis.real_axis_parameters`), the arm model and the
+#: encoder the position loop reads.
+OPTIONS = {
+    "sensors": ("paper", "real"),
+    "arm_model": ("rigid", "elastic"),
+    "position_feedback": ("arm", "motor"),
+}
 
 #: A trial's or a plan group's name: safe as a file name.
 NAME_PATTERN = re.compile(r"[A-Za-z0-9][A-Za-z0-9._-]*")
@@ -41,9 +51,13 @@ class Trial:
         Step size in deg (non-zero; the sign is the direction of the forward move).
     reverse : bool
         Whether the axis returns to its start right after the forward move (same trace).
-    backlash, friction_scale, stiffness_scale : float or None
+    backlash, friction_scale, stiffness_scale, noise_scale : float or None
         Fault knobs overriding :class:`~funcnet.robot.sim.axis.AxisParameters` (None keeps
         the axis's value).
+    sensors, arm_model, position_feedback : str or None
+        Options (:data:`OPTIONS`); None keeps the axis's own.
+    seed : int or None
+        The trial's own noise seed (a plan group's ``seeds``); None: the plan's seed.
 
     Examples
     --------
@@ -60,8 +74,23 @@ class Trial:
     backlash: float | None = None
     friction_scale: float | None = None
     stiffness_scale: float | None = None
+    noise_scale: float | None = None
+    sensors: str | None = None
+    arm_model: str | None = None
+    position_feedback: str | None = None
+    seed: int | None = None
 
     def __post_init__(self) -> None:
+        for option, words in OPTIONS.items():
+            value = getattr(self, option)
+            if value is not None and value not in words:
+                raise ParameterError(
+                    f"Trial {self.name}: {option} must be one of {words}: {value!r}"
+                )
+        if self.seed is not None and (
+            isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0
+        ):
+            raise ParameterError(f"Trial {self.name}: seed must be an integer >= 0: {self.seed!r}")
         if not isinstance(self.name, str) or not NAME_PATTERN.fullmatch(self.name):
             raise ParameterError(f"Trial.name must be a file-name-safe string: {self.name!r}")
         for key in ("speed", "tcp", "step"):
@@ -87,9 +116,8 @@ class Trial:
                 or not isinstance(value, int | float)
                 or not math.isfinite(value)
                 or value < 0
-                or (value == 0 and knob != "backlash")
+                or (value == 0 and knob not in ("backlash", "noise_scale"))
             ):
                 raise ParameterError(f"Trial {self.name}: {knob} out of range: {value!r}")
             if value is not None:
                 object.__setattr__(self, knob, float(value))
-

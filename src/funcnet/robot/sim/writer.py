@@ -80,6 +80,7 @@ def write_trace(
     session_name: str = "funcnet",
     start_time: str = DEFAULT_START_TIME,
     drive_period: float | None = None,
+    intervals: Mapping[str, float] | None = None,
 ) -> Path:
     """Write role signals to ``path`` as a SINUMERIK Solution Line trace (XML), atomically.
 
@@ -99,6 +100,10 @@ def write_trace(
         ``frameHeader@startTime`` (ISO 8601).
     drive_period : float, optional
         s, written as ``sampleRateSettings@driveSampleRate1`` when given.
+    intervals : mapping, optional
+        Role -> its own logging interval in s, a multiple of the grid's step (the IPO signals
+        ``measPos1/2`` every 4 ms in a real trace): written as that signal's ``interval``, and
+        its values only at the ticks of its own grid (counted from the first tick).
 
     Returns
     -------
@@ -140,6 +145,16 @@ def write_trace(
     if time.size < 2 or steps[0] <= 0 or not np.allclose(steps, steps[0], rtol=0, atol=1e-9):
         raise ParameterError("write_trace: the index must be a uniform, increasing time grid (s)")
     interval = float(steps[0])
+    own = dict(intervals or {})
+    strides = {}
+    for name, own_interval in own.items():
+        stride = own_interval / interval
+        if name not in data.columns or not (stride >= 1 and abs(stride - round(stride)) < 1e-6):
+            raise ParameterError(
+                f"write_trace: intervals[{name!r}] must be a multiple of the grid's step "
+                f"{interval:g} s for a column of data, got {own_interval!r}"
+            )
+        strides[name] = round(stride)
     columns = []
     for name in data.columns:
         values = data[name].to_numpy(dtype=np.float64)
@@ -165,7 +180,8 @@ def write_trace(
     for number, name in enumerate(data.columns, start=1):
         _, description, units, dtype = SIGNALS[name]
         full = names[name]
-        signal_attrs.append((number, full, description, units, dtype))
+        stride = strides.get(name, 1)
+        signal_attrs.append((number, full, description, units, dtype, stride))
         lines.append(
             f'  <signal domain="NCU_1" event="255" description={quoteattr(description)}'
             f' displayRes="5" eventChannel="1" key="s{number}" name={quoteattr(full)}'
@@ -180,19 +196,22 @@ def write_trace(
         '  <frameHeader stopTriggerInc="0.000000" startTriggerInc="0.000000" dropOuts="0"'
         f' startTime={quoteattr(start_time)} stopInc="{time[-1] - time[0]:.6f}"/>',
     ]
-    for number, full, description, units, dtype in signal_attrs:
+    for number, full, description, units, dtype, stride in signal_attrs:
         lines.append(
-            f'  <dataSignal domain="NCU_1" interval="{interval:.6f}" id="f{number}" event="255"'
-            f' description={quoteattr(description)} displayRes="5" eventChannel="1"'
-            f' datapointCount="{time.size}" key="s{number}" name={quoteattr(full)}'
-            f' unitsType="{units}" dataType="{dtype}"/>'
+            f'  <dataSignal domain="NCU_1" interval="{interval * stride:.6f}" id="f{number}"'
+            f' event="255" description={quoteattr(description)} displayRes="5"'
+            f' eventChannel="1" datapointCount="{(time.size + stride - 1) // stride}"'
+            f' key="s{number}" name={quoteattr(full)} unitsType="{units}" dataType="{dtype}"/>'
         )
     ids = [f" f{number}=" for number in range(1, len(columns) + 1)]
+    column_strides = [attrs[5] for attrs in signal_attrs]
     last = len(times) - 1
     previous: list[str | None] = [None] * len(columns)
     for row, stamp in enumerate(times):
         fields = []
         for k, column in enumerate(columns):
+            if row % column_strides[k] and row != last:
+                continue  # not a tick of this signal's own grid
             value = column[row]
             if value != previous[k] or row == last:
                 fields.append(f'{ids[k]}"{value}"')

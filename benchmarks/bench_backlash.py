@@ -1,0 +1,214 @@
+"""The backlash sweep and its indicator table (issue 11; docs/backlash.md).
+
+    .venv/bin/python benchmarks/bench_backlash.py            # full sweep, table, timings
+    .venv/bin/python benchmarks/bench_backlash.py --calibrate  # also rewrite calibration.json
+    .venv/bin/python benchmarks/bench_backlash.py --quick    # a small sweep (a minute)
+    .venv/bin/python benchmarks/bench_backlash.py --compare  # real trace vs simulated
+
+Simulates :func:`funcnet.robot.sim.plan.backlash_sweep_plan` (1944 reversal trials: backlash x
+speed x TCP x friction x stiffness x 3 seeds x noise 1 and 2, sensors and logging of the real
+trace) and computes every physical indicator per trial; the functional-network features on a
+subset (they cost most of the time); the same for the position loop closed on the motor
+encoder, the elastic arm, and a held-out plan whose values the sweep does not contain. Prints
+markdown tables: AUCs and Spearman's rho with 95 % bootstrap intervals per speed and noise.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from funcnet.diagnosis.diagnose import SCORE
+from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL
+from funcnet.diagnosis.sweep import (
+    calibration,
+    run_sweep,
+    score_indicators,
+    simulated_recording,
+)
+from funcnet.robot import detect_phases, read_trace
+from funcnet.robot.sim.axis import simulate_trial
+from funcnet.robot.sim.plan import backlash_sweep_plan
+from funcnet.robot.sim.trial import Trial
+
+ROOT = Path(__file__).resolve().parents[1]
+CALIBRATION = ROOT / "src" / "funcnet" / "diagnosis" / "calibration.json"
+COLUMNS = ["auc_0.5_vs_0", "auc_1_vs_0", "auc_2_vs_0.5", "rho"]
+
+
+def _fmt(row: pd.Series, name: str) -> str:
+    value, low, high = row[name], row[name + "_low"], row[name + "_high"]
+    return f"{value:.2f} [{low:.2f}, {high:.2f}]"
+
+
+def table(scores: pd.DataFrame, title: str) -> str:
+    """Markdown: one row per (speed, noise, indicator)."""
+    head = "| speed | noise | indicator | n | AUC >=0.5 vs 0 | AUC >=1 vs 0 | AUC >=2 vs <=0.5 |"
+    lines = [f"### {title}", "", head + " Spearman rho |", "|---|---|---|---|---|---|---|---|"]
+    for _, row in scores.iterrows():
+        cells = " | ".join(_fmt(row, c) for c in COLUMNS)
+        noise = row.get("noise_scale", "")
+        lines.append(f"| {row['speed']:g} | {noise} | {row['indicator']} | {row['n']} | {cells} |")
+    return "\n".join(lines) + "\n"
+
+
+class _Printer(list[str]):
+    """Prints each part as it comes (a long run shows its tables early)."""
+
+    def append(self, text: str) -> None:
+        print(text, flush=True)
+        super().append(text)
+
+
+REAL_TRACE = ROOT.parent / "shared" / "data" / "sinumerik" / "axis7-braking-trace.xml"
+
+
+def _trace_figures(rec: Any) -> dict[str, float]:
+    """Noise, resolution, update rates and following error of one recording."""
+    phases = detect_phases(rec)
+    t = rec.data.index.to_numpy()
+    ac = rec.data["AC"].to_numpy(dtype=float)
+    out: dict[str, float] = {}
+    for phase in ("standstill", "cruise"):
+        rows = phases[phases["phase"] == phase]
+        if phase == "standstill":
+            rows = rows[rows["stop"] - rows["start"] > 0.2]
+        mask = np.zeros(t.size, dtype=bool)
+        variances, diffs = [], []
+        for row in rows.itertuples():  # each stretch about its own mean (moves differ in sign)
+            part = (t >= row.start + 0.05) & (t < row.stop - 0.05)
+            mask |= part
+            if part.sum() > 2:
+                variances.append(np.var(ac[part]))
+                diffs.append(np.diff(ac[part]))
+        out[f"AC sigma {phase} (A)"] = float(np.sqrt(np.mean(variances))) if variances else np.nan
+        out[f"AC white sigma {phase} (A)"] = (
+            float(np.std(np.concatenate(diffs)) / np.sqrt(2)) if diffs else np.nan
+        )
+        if phase == "cruise" and mask.any():
+            rp, ap = rec.data["RP"].to_numpy(float), rec.data["AP"].to_numpy(float)
+            v = np.abs(np.gradient(rp, rec.sample_period))[mask]
+            out["following error / speed in cruise (ms)"] = float(
+                np.median(np.abs(rp - ap)[mask] / v) * 1e3
+            )
+    duration = t[-1] - t[0]
+    for name in ("AP", "MP"):
+        x = rec.data[name].to_numpy(float)
+        steps = np.abs(np.diff(x))
+        out[f"smallest {name} step (deg)"] = float(steps[steps > 0].min())
+        out[f"{name} updates per second"] = float((steps > 0).sum() / duration)
+    return out
+
+
+def compare_real() -> str:
+    """Markdown: the real trace beside simulated traces (paper and real sensors)."""
+    columns = {"real trace": _trace_figures(read_trace(REAL_TRACE))}
+    for label, sensors in (("simulated, paper sensors", None), ("simulated, real sensors", "real")):
+        sim = simulate_trial(Trial("cmp", "cmp", speed=175, tcp=1.6, step=10, sensors=sensors))
+        columns[label] = _trace_figures(simulated_recording(sim))
+    names = list(columns["real trace"])
+    lines = ["| | " + " | ".join(columns) + " |", "|---" * (len(columns) + 1) + "|"]
+    lines += [f"| {n} | " + " | ".join(f"{c.get(n, np.nan):.3g}" for c in columns.values()) + " |"
+              for n in names]  # fmt: skip
+    return "\n".join(lines) + "\n"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="a small sweep")
+    parser.add_argument("--calibrate", action="store_true", help="rewrite calibration.json")
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--resamples", type=int, default=1000)
+    parser.add_argument("--compare", action="store_true", help="only the real-vs-sim table")
+    parser.add_argument("--save", type=Path, default=None, help="folder for the tables (CSV)")
+    args = parser.parse_args()
+    if args.compare:
+        print(compare_real())
+        return
+    small: dict[str, Any] = {}
+    if args.quick:
+        small = {"seeds": (1,), "friction_scales": (1.0,), "stiffness_scales": (0.7, 1.4)}
+    physical = list(PHYSICAL)
+    out = _Printer()
+
+    start = time.perf_counter()
+    main_plan = backlash_sweep_plan(**small)
+    sweep = run_sweep(main_plan, networks=False, workers=args.workers)
+    elapsed = time.perf_counter() - start
+    out.append(f"main sweep: {len(main_plan)} trials simulated and analysed (physical "
+               f"indicators) in {elapsed:.0f} s with {args.workers} workers\n")  # fmt: skip
+    out.append(table(score_indicators(sweep, physical, resamples=args.resamples),
+                     "Main sweep (arm-encoder position loop, rigid arm)"))  # fmt: skip
+    lm = sweep[sweep["backlash_arcmin"] > 0]
+    err = (lm["lost_motion"] / lm["true_lost_motion"] - 1).abs()
+    zero = sweep[sweep["backlash_arcmin"] == 0]
+    zero_err = (zero["lost_motion"] - zero["true_lost_motion"]).abs() / (360 / 2**22)
+    out.append(
+        f"two-encoder lost motion, backlash > 0: within 5 % on {(err <= 0.05).mean():.1%} of "
+        f"{len(lm)} trials (median |error| {err.median():.1%}, 90th percentile "
+        f"{err.quantile(0.9):.1%}); backlash 0: within two encoder steps on "
+        f"{(zero_err <= 2).mean():.1%} of {len(zero)} (median {zero_err.median():.1f} steps)\n"
+    )
+
+    start = time.perf_counter()
+    fn_plan = backlash_sweep_plan(seeds=(1,), noise_scales=(1.0,), stiffness_scales=(1.0,),
+                                  tcps=(1.2, 2.0), friction_scales=(0.7, 1.4))  # fmt: skip
+    if args.quick:
+        fn_plan = backlash_sweep_plan(seeds=(1,), noise_scales=(1.0,), tcps=(1.6,),
+                                      friction_scales=(1.0,), stiffness_scales=(1.0,))  # fmt: skip
+    fn = run_sweep(fn_plan, networks=True, workers=args.workers)
+    elapsed = time.perf_counter() - start
+    out.append(f"functional-network subset: {len(fn_plan)} trials in {elapsed:.0f} s\n")
+    out.append(table(score_indicators(fn, [SCORE, "vibration", *FN_FEATURES, "signature"],
+                                      resamples=args.resamples),
+                     "Functional-network features (seed 1, noise 1, stiffness 1, TCP 1.2/2.0, "
+                     "friction 0.7/1.4)"))  # fmt: skip
+    rate = fn.groupby(["speed", "backlash_arcmin"])["signature"].mean().unstack()
+    lines = ["| speed | " + " | ".join(f"{b:g} arcmin" for b in rate.columns) + " |",
+             "|---" * (len(rate.columns) + 1) + "|"]  # fmt: skip
+    lines += [f"| {v:g} | " + " | ".join(f"{x:.2f}" for x in row) + " |"
+              for v, row in zip(rate.index, rate.to_numpy(), strict=True)]  # fmt: skip
+    out.append("paper's signature (V drives all, MP -> AP -> RP), share of trials:\n\n"
+               + "\n".join(lines) + "\n")  # fmt: skip
+
+    extras: tuple[tuple[str, dict[str, Any]], ...] = (
+        ("position loop on the motor encoder", {"position_feedback": "motor"}),
+        ("elastic arm (third mass)", {"arm_model": "elastic"}),
+    )
+    for label, extra in extras:
+        plan = backlash_sweep_plan(
+            seeds=(1,), **extra, **{k: v for k, v in small.items() if k != "seeds"}
+        )
+        part = run_sweep(plan, networks=False, workers=args.workers)
+        out.append(table(score_indicators(part, physical, resamples=args.resamples), label))
+
+    held = backlash_sweep_plan(backlash_arcmin=(0.0, 0.75, 1.5, 3.0), tcps=(1.4, 1.8),
+                               friction_scales=(0.85, 1.2), stiffness_scales=(0.85, 1.2),
+                               seeds=(7,), noise_scales=(1.5,), group="held-out")  # fmt: skip
+    part = run_sweep(held, networks=False, workers=args.workers)
+    out.append(table(score_indicators(part, [SCORE, "motor_travel", "vibration"],
+                                      resamples=args.resamples),
+                     "held-out plan (backlash 0/0.75/1.5/3 arcmin, TCP 1.4/1.8, friction and "
+                     "stiffness 0.85/1.2, noise 1.5, seed 7)"))  # fmt: skip
+    if args.save:
+        args.save.mkdir(parents=True, exist_ok=True)
+        sweep.to_csv(args.save / "sweep.csv", index=False)
+        fn.to_csv(args.save / "sweep_fn.csv", index=False)
+    if args.calibrate:
+        if "peak_speed" not in sweep:  # tables saved before the column existed
+            sweep["peak_speed"] = np.minimum(sweep["speed"], round(60 / 0.85, 1))
+        cal = calibration(sweep, SCORE)
+        cal["source"] = (f"benchmarks/bench_backlash.py --calibrate: backlash_sweep_plan(), "
+                         f"{len(sweep)} trials, noise 1 and 2 pooled")  # fmt: skip
+        CALIBRATION.write_text(json.dumps(cal, indent=1) + "\n", encoding="utf-8")
+        print(f"wrote {CALIBRATION}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,57 @@
+"""Backlash diagnosis from controller traces, validated on a simulated sweep (issue 11).
+
+:mod:`~funcnet.diagnosis.reversals` finds the direction changes of an axis,
+:mod:`~funcnet.diagnosis.indicators` computes the backlash indicators at a reversal (physical
+baselines, motor-side functional-network features, the paper's signature),
+:mod:`~funcnet.diagnosis.sweep` simulates the sweep and scores the indicators against the
+truth, and :mod:`~funcnet.diagnosis.diagnose` diagnoses real traces
+(:func:`diagnose_backlash`). Names are imported lazily.
+
+Examples
+--------
+>>> from funcnet.diagnosis import SCORE
+>>> SCORE
+'motor_hysteresis'
+"""
+
+from __future__ import annotations
+
+from importlib import import_module
+from typing import Any
+
+_EXPORTS = {
+    "DirectionChange": "funcnet.diagnosis.reversals",
+    "find_direction_changes": "funcnet.diagnosis.reversals",
+    "motor_side_recording": "funcnet.diagnosis.reversals",
+    "INDICATORS": "funcnet.diagnosis.indicators",
+    "MOTOR_SIDE": "funcnet.diagnosis.indicators",
+    "reversal_indicators": "funcnet.diagnosis.indicators",
+    "lost_motion": "funcnet.diagnosis.indicators",
+    "run_sweep": "funcnet.diagnosis.sweep",
+    "score_indicators": "funcnet.diagnosis.sweep",
+    "calibration": "funcnet.diagnosis.sweep",
+    "SCORE": "funcnet.diagnosis.diagnose",
+    "BacklashResult": "funcnet.diagnosis.diagnose",
+    "ReversalResult": "funcnet.diagnosis.diagnose",
+    "diagnose_backlash": "funcnet.diagnosis.diagnose",
+    "diagnose_recording": "funcnet.diagnosis.diagnose",
+    "load_calibration": "funcnet.diagnosis.diagnose",
+    "write_results": "funcnet.diagnosis.diagnose",
+    "trend_table": "funcnet.diagnosis.diagnose",
+}
+
+__all__ = list(_EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    try:
+        module = _EXPORTS[name]
+    except KeyError:
+        raise AttributeError(f"module 'funcnet.diagnosis' has no attribute {name!r}") from None
+    value = getattr(import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -1,0 +1,422 @@
+"""Backlash diagnosis of real traces: find the direction changes, compute, read on the sweep.
+
+:func:`diagnose_backlash` reads traces (SINUMERIK XML, CSV, Parquet), finds the direction
+changes of the set-point, computes at each reversal the motor-side indicator the simulated
+sweep supports best (:data:`SCORE`, see ``docs/backlash.md``) and, when the trace has the
+arm-side encoder AP, the two-encoder lost motion; and reads the score on the sweep's
+calibration, which ships with the package (``calibration.json``, written by
+``benchmarks/bench_backlash.py --calibrate``). The reading is **model-based**: it says which
+backlash widths gave such values on the simulated axis, not on this machine.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from funcnet._io import write_text_atomic
+from funcnet.diagnosis.indicators import lost_motion, reversal_indicators
+from funcnet.diagnosis.reversals import (
+    MAX_DWELL,
+    DirectionChange,
+    find_direction_changes,
+    motor_side_recording,
+)
+from funcnet.errors import ParameterError
+from funcnet.robot.channels import ChannelMap
+from funcnet.robot.preprocess import velocity
+from funcnet.robot.recording import Recording, read_trace
+
+__all__ = [
+    "SCORE",
+    "ReversalResult",
+    "BacklashResult",
+    "diagnose_backlash",
+    "diagnose_recording",
+    "load_calibration",
+    "write_results",
+    "trend_table",
+    "MODEL_NOTE",
+]
+
+#: The indicator reported as ``backlash_score``: the motor-side indicator with the best
+#: detection on the simulated sweep (``docs/backlash.md``).
+SCORE = "motor_hysteresis"
+
+#: What every reading says about itself.
+MODEL_NOTE = (
+    "model-based: read on the simulated sweep (funcnet.robot.sim), not on this machine; a "
+    "real axis differs in its mechanics, tuning and noise"
+)
+
+
+@dataclass(frozen=True)
+class ReversalResult:
+    """One direction change of a trace and what was measured there.
+
+    Attributes
+    ----------
+    change : DirectionChange
+    speed : float
+        deg/min, the set-point's peak speed in the move after the change (the calibration is
+        keyed by it).
+    backlash_score : float or None
+        :data:`SCORE` (deg) at a reversal; None after a standstill (the calibration holds
+        reversals only).
+    lost_motion : float or None
+        Two-encoder lost motion (deg); None without AP or when the arm does not restart.
+    indicators : dict
+        Every motor-side indicator computed there (physical ones; NaN -> None).
+    """
+
+    change: DirectionChange
+    speed: float
+    backlash_score: float | None
+    lost_motion: float | None
+    indicators: dict[str, float | None] = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready."""
+        return {
+            **self.change.to_dict(),
+            "speed": self.speed,
+            "backlash_score": self.backlash_score,
+            "lost_motion": self.lost_motion,
+            "indicators": dict(self.indicators),
+        }
+
+
+@dataclass(frozen=True)
+class BacklashResult:
+    """The diagnosis of one trace.
+
+    Attributes
+    ----------
+    path : str
+        As given.
+    backlash_score : float or None
+        Mean of :data:`SCORE` over the trace's reversals (deg; higher = more backlash); None
+        without a reversal.
+    score_spread : float or None
+        Uncertainty of ``backlash_score``: the scatter (half the 10-90 % range) of the score
+        on the simulated sweep at the backlash width read, with friction, stiffness, TCP and
+        noise varied; None without a reading.
+    lost_motion : float or None
+        Mean two-encoder lost motion over every direction change (deg); None without AP.
+    lost_motion_spread : float or None
+        Half the range of the lost motions over the direction changes (None with fewer than
+        two).
+    reversals : tuple of ReversalResult
+        Every direction change (reversals and changes after a standstill).
+    reading : dict or None
+        The calibration's reading: ``indicator``, ``speed`` (calibrated speed used),
+        ``extrapolated`` (the trace's speed is outside the calibrated ones), ``arcmin_low``,
+        ``arcmin_high`` and ``text``; None without a score.
+    message : str
+        One line saying what was found.
+    """
+
+    path: str
+    backlash_score: float | None
+    score_spread: float | None
+    lost_motion: float | None
+    lost_motion_spread: float | None
+    reversals: tuple[ReversalResult, ...]
+    reading: dict[str, Any] | None
+    message: str
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready (the names other tools read: path, backlash_score, lost_motion, ...)."""
+        return {
+            "path": self.path,
+            "backlash_score": self.backlash_score,
+            "score_indicator": SCORE,
+            "score_spread": self.score_spread,
+            "lost_motion": self.lost_motion,
+            "lost_motion_spread": self.lost_motion_spread,
+            "reversals": [r.to_dict() for r in self.reversals],
+            "reading": self.reading,
+            "message": self.message,
+            "note": MODEL_NOTE,
+        }
+
+
+def load_calibration() -> dict[str, Any]:
+    """The sweep's calibration shipped with the package (``calibration.json``).
+
+    Examples
+    --------
+    >>> cal = load_calibration()
+    >>> cal["indicator"] == SCORE, sorted(cal["levels"])  # the set-point's peak speeds
+    (True, ['35', '70.6'])
+    """
+    text = resources.files("funcnet.diagnosis").joinpath("calibration.json").read_text("utf-8")
+    data: dict[str, Any] = json.loads(text)
+    return data
+
+
+def _none(value: float) -> float | None:
+    return None if value is None or not math.isfinite(value) else float(value)
+
+
+def _move_speed(rec: Recording, change: DirectionChange) -> float:
+    t = rec.data.index.to_numpy()
+    rp = rec.data["RP"].to_numpy(dtype=np.float64)
+    v = np.abs(velocity(rp, rec.sample_period))
+    part = (t >= change.start) & (t <= change.start + 60.0)
+    return float(v[part].max() * 60.0) if part.any() else math.nan
+
+
+def _reading(score: float, speed: float, calibration: Mapping[str, Any]) -> dict[str, Any]:
+    levels = calibration["levels"]
+    speeds = sorted(float(s) for s in levels)
+    nearest = min(speeds, key=lambda s: abs(math.log(s / speed)) if speed > 0 else s)
+    table = levels[f"{nearest:g}"]
+    quantiles = list(calibration["quantiles"])
+    lo_i, hi_i = 0, len(quantiles) - 1
+    widths = sorted(float(b) for b in table)
+    inside = [b for b in widths if table[f"{b:g}"][lo_i] <= score <= table[f"{b:g}"][hi_i]]
+    if not inside:  # between the bands or beyond them: the nearest median
+        inside = [min(widths, key=lambda b: abs(table[f"{b:g}"][len(quantiles) // 2] - score))]
+    low, high = min(inside), max(inside)
+    extrapolated = not (min(speeds) <= speed <= max(speeds))
+    span = f"{low:g} arcmin" if low == high else f"{low:g}-{high:g} arcmin"
+    text = (
+        f"on the simulated sweep at {nearest:g} deg/min, {calibration['indicator']} values "
+        f"like this came with {span} of backlash"
+        + (
+            f" (the trace's {speed:.0f} deg/min is outside the calibrated speeds)"
+            if extrapolated
+            else ""
+        )
+    )
+    return {
+        "indicator": calibration["indicator"],
+        "speed": nearest,
+        "extrapolated": extrapolated,
+        "arcmin_low": low,
+        "arcmin_high": high,
+        "text": text,
+    }
+
+
+def _spread(score: float, reading: Mapping[str, Any], calibration: Mapping[str, Any]) -> float:
+    table = calibration["levels"][f"{reading['speed']:g}"]
+    bands = [
+        (q[-1] - q[0]) / 2
+        for b, q in table.items()
+        if reading["arcmin_low"] <= float(b) <= reading["arcmin_high"]
+    ]
+    return float(np.mean(bands)) if bands else math.nan
+
+
+def diagnose_recording(
+    recording: Recording,
+    path: str | None = None,
+    *,
+    calibration: Mapping[str, Any] | None = None,
+    max_dwell: float = MAX_DWELL,
+) -> BacklashResult:
+    """:func:`diagnose_backlash` for a recording already read.
+
+    Parameters
+    ----------
+    recording : Recording
+        With RP and MP, RC or AC; AP optional.
+    path : str, optional
+        Reported as the result's ``path`` (default the recording's source).
+    calibration : mapping, optional
+        Default :func:`load_calibration`.
+    max_dwell : float
+        Longest standstill (s) of a reversal.
+
+    Returns
+    -------
+    BacklashResult
+    """
+    cal = load_calibration() if calibration is None else calibration
+    where = path if path is not None else (recording.source or "<recording>")
+    rec = motor_side_recording(recording)
+    changes = find_direction_changes(rec, max_dwell=max_dwell)
+    has_ap = "AP" in rec.data.columns and bool(np.isfinite(rec.data["AP"]).any())
+    results = []
+    for change in changes:
+        speed = _move_speed(rec, change)
+        if change.kind == "reversal":
+            values = reversal_indicators(rec, change, networks=False)
+            score = _none(values[SCORE])
+            lost = _none(values["lost_motion"]) if has_ap else None
+            shown = {k: _none(v) for k, v in values.items() if k != "signature"}
+        else:
+            score = None
+            lost = _none(lost_motion(rec, change)) if has_ap else None
+            shown = {}
+        results.append(ReversalResult(change, speed, score, lost, shown))
+    scores = [r.backlash_score for r in results if r.backlash_score is not None]
+    losses = [r.lost_motion for r in results if r.lost_motion is not None]
+    score = float(np.mean(scores)) if scores else None
+    reading = None
+    spread = None
+    if score is not None:
+        speed = float(np.mean([r.speed for r in results if r.backlash_score is not None]))
+        reading = _reading(score, speed, cal)
+        spread = _none(_spread(score, reading, cal))
+    n_rev = sum(r.change.kind == "reversal" for r in results)
+    if not changes:
+        message = "no direction change: the axis moves one way only; no backlash indicator"
+    elif n_rev == 0:
+        message = (
+            f"no reversal (a direction change within {max_dwell:g} s): {len(changes)} "
+            "direction change(s) after a standstill; the motor-side score is calibrated on "
+            "reversals only" + ("; two-encoder lost motion measured there" if losses else "")
+        )
+    else:
+        message = f"{n_rev} reversal(s); " + (reading["text"] if reading else "no score")
+    return BacklashResult(
+        path=str(where),
+        backlash_score=score,
+        score_spread=spread,
+        lost_motion=float(np.mean(losses)) if losses else None,
+        lost_motion_spread=float(np.ptp(losses) / 2) if len(losses) > 1 else None,
+        reversals=tuple(results),
+        reading=reading,
+        message=message,
+    )
+
+
+def diagnose_backlash(
+    *paths: str | os.PathLike[str],
+    channels: ChannelMap | Mapping[str, str] | str | os.PathLike[str] | None = None,
+    axis: int | None = None,
+    calibration: Mapping[str, Any] | None = None,
+    max_dwell: float = MAX_DWELL,
+) -> list[BacklashResult]:
+    """Diagnose backlash in traces of one axis, each on its own.
+
+    Parameters
+    ----------
+    *paths : path-like
+        Traces (:func:`funcnet.robot.read_trace`); a trace over time each for a trend.
+    channels, axis
+        As for :func:`funcnet.robot.read_trace`.
+    calibration : mapping, optional
+        Default: the calibration shipped with the package (:func:`load_calibration`).
+    max_dwell : float
+        Longest standstill (s) between two moves of a reversal.
+
+    Returns
+    -------
+    list of BacklashResult
+        One per path, in order. A trace without a direction change is a result (``message``
+        says so; ``backlash_score`` None), not an error.
+
+    Raises
+    ------
+    ParameterError
+        No path.
+    TraceError, ChannelError
+        A trace cannot be read, or has no RP or MP.
+
+    References
+    ----------
+    Paper section 5.1 (reversal signature, diagnosis without additional sensors).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from funcnet.robot.sim import Trial, simulate_trial, write_trace
+    >>> sim = simulate_trial(Trial("rev", "s", speed=175, tcp=1.6, step=1, reverse=True,
+    ...                            backlash=2 / 60, sensors="real", seed=1))
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "rev.xml"
+    >>> _ = write_trace(path, sim.data, intervals={"AP": 0.004, "MP": 0.004})
+    >>> result, = diagnose_backlash(path)
+    >>> len(result.reversals), result.backlash_score > 0.02
+    (1, True)
+    >>> abs(result.lost_motion / sim.truth["lost_motion"] - 1) < 0.1
+    True
+    """
+    if not paths:
+        raise ParameterError.of("paths", "give at least one trace")
+    cal = load_calibration() if calibration is None else calibration
+    return [
+        diagnose_recording(
+            read_trace(path, channels=channels, axis=axis),
+            str(path),
+            calibration=cal,
+            max_dwell=max_dwell,
+        )
+        for path in paths
+    ]
+
+
+def trend_table(results: Sequence[BacklashResult]) -> pd.DataFrame:
+    """One row per trace, in the given order (the monitoring use: one axis over time).
+
+    Returns
+    -------
+    DataFrame
+        ``path``, ``reversals`` (count), ``backlash_score``, ``score_spread``,
+        ``lost_motion``, ``arcmin_low``, ``arcmin_high``, ``message``.
+
+    Examples
+    --------
+    >>> trend_table([]).columns.tolist()[:3]
+    ['path', 'reversals', 'backlash_score']
+    """
+    columns = ["path", "reversals", "backlash_score", "score_spread", "lost_motion",
+               "arcmin_low", "arcmin_high", "message"]  # fmt: skip
+    rows = [
+        {
+            "path": r.path,
+            "reversals": sum(x.change.kind == "reversal" for x in r.reversals),
+            "backlash_score": r.backlash_score,
+            "score_spread": r.score_spread,
+            "lost_motion": r.lost_motion,
+            "arcmin_low": r.reading["arcmin_low"] if r.reading else None,
+            "arcmin_high": r.reading["arcmin_high"] if r.reading else None,
+            "message": r.message,
+        }
+        for r in results
+    ]
+    return pd.DataFrame(rows, columns=columns)
+
+
+def write_results(results: Sequence[BacklashResult], path: str | os.PathLike[str]) -> Path:
+    """Write ``{"traces": [...]}`` as JSON, atomically.
+
+    Parameters
+    ----------
+    results : sequence of BacklashResult
+    path : path-like
+        A ``.json`` file.
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    ParameterError
+        ``path`` does not end in ``.json``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, json
+    >>> out = write_results([], pathlib.Path(tempfile.mkdtemp()) / "r.json")
+    >>> json.loads(out.read_text())["traces"]
+    []
+    """
+    target = Path(path)
+    if target.suffix.lower() != ".json":
+        raise ParameterError.of("output", f"must be a .json file, got {str(path)!r}")
+    payload = {"traces": [r.to_dict() for r in results], "note": MODEL_NOTE}
+    return write_text_atomic(target, json.dumps(payload, indent=2, allow_nan=False) + "\n")

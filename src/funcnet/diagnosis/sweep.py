@@ -1,0 +1,332 @@
+"""The backlash sweep: simulate, compute every indicator per trial, score them against the truth.
+
+:func:`run_sweep` simulates a plan (:func:`funcnet.robot.sim.plan.backlash_sweep_plan`) in
+memory -- each trial's signals exactly as its trace file would hold them (six decimals, AP and
+MP on their own logging grid) -- and computes the indicators of
+:mod:`funcnet.diagnosis.indicators` at its reversal, next to the trial's ground truth.
+:func:`score_indicators` gives, per speed and noise level, detection AUCs and Spearman's rho
+with bootstrap intervals; :func:`calibration` the per-backlash quantiles that
+:func:`funcnet.diagnosis.diagnose_backlash` reads a score on.
+"""
+
+from __future__ import annotations
+
+import math
+import multiprocessing
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from scipy.stats import rankdata
+
+from funcnet.diagnosis.indicators import INDICATORS, reversal_indicators
+from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
+from funcnet.errors import ParameterError
+from funcnet.robot.channels import SignalInfo
+from funcnet.robot.recording import Recording
+from funcnet.robot.sim.axis import SimulatedTrial, simulate_trial
+from funcnet.robot.sim.plan import ARCMIN
+from funcnet.robot.sim.trial import Trial
+
+__all__ = [
+    "simulated_recording",
+    "trial_indicators",
+    "run_sweep",
+    "score_indicators",
+    "calibration",
+    "CONTRASTS",
+]
+
+#: Detection contrasts (arcmin): name -> (positive class test, negative class test).
+CONTRASTS: dict[str, tuple[Callable[[np.ndarray], np.ndarray], Callable[[np.ndarray], np.ndarray]]]
+CONTRASTS = {
+    "auc_0.5_vs_0": (lambda b: b >= 0.5 - 1e-9, lambda b: b <= 1e-9),
+    "auc_1_vs_0": (lambda b: b >= 1 - 1e-9, lambda b: b <= 1e-9),
+    "auc_2_vs_0.5": (lambda b: b >= 2 - 1e-9, lambda b: b <= 0.5 + 1e-9),
+}
+
+_UNITS = {"RP": "posn", "AP": "posn", "MP": "posn", "RC": "current", "AC": "current"}
+
+
+def simulated_recording(sim: SimulatedTrial) -> Recording:
+    """A simulated trial as its trace file holds it: six decimals, AP and MP on their grid.
+
+    Examples
+    --------
+    >>> from funcnet.robot.sim import Trial, simulate_trial
+    >>> sim = simulate_trial(Trial("q", "s", speed=350, tcp=1.2, step=1, sensors="real"))
+    >>> rec = simulated_recording(sim)
+    >>> rec.signals["MP"].interval, rec.signals["RC"].interval
+    (0.004, 0.002)
+    """
+    p = sim.params
+    data = sim.data.round(6) + 0.0
+    info = {
+        name: SignalInfo(
+            name,
+            _UNITS[name],
+            "double",
+            p.position_log_period if name in ("AP", "MP") else p.log_period,
+        )
+        for name in data.columns
+    }
+    return Recording(data, {}, info, source=f"{sim.trial.name}.xml", sample_period=p.log_period)
+
+
+def trial_indicators(trial: Trial, networks: bool = True, seed: int = 0) -> dict[str, Any]:
+    """Simulate one trial and compute its indicators at its first reversal, with its truth.
+
+    Parameters
+    ----------
+    trial : Trial
+        A forward-then-reverse trial.
+    networks : bool
+        Compute the functional-network features too.
+    seed : int
+        Noise seed when the trial has none of its own.
+
+    Returns
+    -------
+    dict
+        The trial's name, speed, tcp, knobs and options, ``backlash_arcmin``, the true
+        ``lost_motion`` (deg), ``peak_speed`` (deg/min the set-point reaches), and every
+        indicator of
+        :data:`~funcnet.diagnosis.indicators.INDICATORS` (NaN without a reversal).
+    """
+    sim = simulate_trial(trial, seed=seed if trial.seed is None else trial.seed)
+    p = sim.params
+    row: dict[str, Any] = {
+        "name": trial.name,
+        "speed": trial.speed,
+        "tcp": trial.tcp,
+        "backlash": p.backlash,
+        "backlash_arcmin": round(p.backlash / ARCMIN, 9),
+        "friction_scale": p.friction_scale,
+        "stiffness_scale": p.stiffness_scale,
+        "noise_scale": p.noise_scale,
+        "seed": trial.seed,
+        "sensors": trial.sensors or "paper",
+        "arm_model": p.arm_model,
+        "position_feedback": p.position_feedback,
+        "true_lost_motion": sim.truth["lost_motion"],
+    }
+    rec = motor_side_recording(simulated_recording(sim))
+    changes = [c for c in find_direction_changes(rec) if c.kind == "reversal"]
+    # the speed the set-point reaches (a short step at a high speed never cruises): what a
+    # trace shows, and what the calibration is keyed by
+    row["peak_speed"] = round(float(np.abs(sim.data["RP"].diff()).max() / p.log_period * 60), 1)
+    if changes:
+        row.update(reversal_indicators(rec, changes[0], networks=networks))
+    else:
+        row.update(dict.fromkeys(("turn_time", *INDICATORS), math.nan))
+    return row
+
+
+def _rows(chunk: Sequence[Trial], networks: bool, seed: int) -> list[dict[str, Any]]:
+    return [trial_indicators(t, networks, seed) for t in chunk]
+
+
+def run_sweep(
+    trials: Sequence[Trial],
+    *,
+    networks: bool = True,
+    workers: int = 1,
+    seed: int = 0,
+    progress: Callable[[int, int, str], None] | None = None,
+) -> pd.DataFrame:
+    """Every trial's indicators and truth, one row per trial (see :func:`trial_indicators`).
+
+    Parameters
+    ----------
+    trials : sequence of Trial
+    networks : bool
+        Compute the functional-network features (most of the time goes there).
+    workers : int
+        Processes (spawned); 1 runs here.
+    seed : int
+        Noise seed for trials without their own.
+    progress : callable, optional
+        ``progress(done, total, name)`` after each chunk.
+
+    Returns
+    -------
+    DataFrame
+
+    Examples
+    --------
+    >>> from funcnet.robot.sim.plan import backlash_sweep_plan
+    >>> plan = backlash_sweep_plan(backlash_arcmin=(0, 2), speeds=(175,), tcps=(1.6,),
+    ...                            friction_scales=(1,), stiffness_scales=(1,), seeds=(1,),
+    ...                            noise_scales=(1,))
+    >>> table = run_sweep(plan, networks=False)
+    >>> bool(table.loc[1, "lost_motion"] > table.loc[0, "lost_motion"])
+    True
+    """
+    trials = list(trials)
+    if not isinstance(workers, int) or workers < 1:
+        raise ParameterError.of("workers", f"must be a positive integer, got {workers!r}")
+    size = max(1, min(25, len(trials) // (4 * workers) or 1))
+    chunks = [trials[i : i + size] for i in range(0, len(trials), size)]
+    rows: list[dict[str, Any]] = []
+    if workers > 1 and len(chunks) > 1:
+        spawn = multiprocessing.get_context("spawn")
+        with ProcessPoolExecutor(max_workers=workers, mp_context=spawn) as pool:
+            futures = [pool.submit(_rows, chunk, networks, seed) for chunk in chunks]
+            for chunk, future in zip(chunks, futures, strict=True):
+                rows += future.result()
+                if progress:
+                    progress(len(rows), len(trials), chunk[-1].name)
+    else:
+        for chunk in chunks:
+            rows += _rows(chunk, networks, seed)
+            if progress:
+                progress(len(rows), len(trials), chunk[-1].name)
+    return pd.DataFrame(rows)
+
+
+def _auc(scores: np.ndarray, positive: np.ndarray, negative: np.ndarray) -> np.ndarray:
+    """AUC of ``scores`` (resamples x n) between the boolean classes (same shape).
+
+    Members of neither class (or with a NaN score) are set below every score: they take the
+    lowest ranks, which shifts each positive's rank by their number, taken off again.
+    """
+    used = (positive | negative) & np.isfinite(scores)
+    positive = positive & used
+    ranks = rankdata(np.where(used, scores, -np.inf), axis=-1)
+    n1 = positive.sum(axis=-1)
+    n0 = (negative & used).sum(axis=-1)
+    excluded = (~used).sum(axis=-1)
+    u = (ranks * positive).sum(axis=-1) - n1 * (n1 + 1) / 2 - n1 * excluded
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.asarray(u / (n1 * n0), dtype=np.float64)
+
+
+def _spearman(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    rx, ry = rankdata(x, axis=-1), rankdata(y, axis=-1)
+    rx = rx - rx.mean(axis=-1, keepdims=True)
+    ry = ry - ry.mean(axis=-1, keepdims=True)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.asarray(
+            (rx * ry).sum(axis=-1) / np.sqrt((rx**2).sum(axis=-1) * (ry**2).sum(axis=-1)),
+            dtype=np.float64,
+        )
+
+
+def score_indicators(
+    table: pd.DataFrame,
+    indicators: Sequence[str] = INDICATORS,
+    *,
+    by: Sequence[str] = ("speed", "noise_scale"),
+    resamples: int = 500,
+    level: float = 0.95,
+    seed: int = 0,
+) -> pd.DataFrame:
+    """Detection AUCs and Spearman's rho of each indicator, with bootstrap intervals.
+
+    Parameters
+    ----------
+    table : DataFrame
+        From :func:`run_sweep` (``backlash_arcmin`` and the indicator columns).
+    indicators : sequence of str
+        Columns to score (higher = more backlash).
+    by : sequence of str
+        Columns to score separately (every other column -- friction, stiffness, TCP, seeds --
+        varies inside a group).
+    resamples : int
+        Bootstrap resamples (trials drawn with replacement within the group).
+    level : float
+        Interval coverage (percentile intervals).
+    seed : int
+        Of the bootstrap.
+
+    Returns
+    -------
+    DataFrame
+        One row per group and indicator: ``n``, for each contrast of :data:`CONTRASTS` its AUC
+        with ``_low`` and ``_high``, ``rho`` with ``rho_low`` and ``rho_high`` (Spearman with
+        the true backlash), and ``signature_rate`` per backlash width for ``signature``.
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"speed": [35.0] * 4, "noise_scale": [1.0] * 4,
+    ...                   "backlash_arcmin": [0, 0, 1, 2], "x": [0.1, 0.2, 0.3, 0.4]})
+    >>> row = score_indicators(t, ["x"], resamples=50).iloc[0]
+    >>> float(row["auc_1_vs_0"]), float(row["rho"])
+    (1.0, 0.9486832980505138)
+    """
+    rng = np.random.default_rng(seed)
+    alpha = (1 - level) / 2
+    out = []
+    for key, group in table.groupby(list(by), sort=True):
+        truth = group["backlash_arcmin"].to_numpy(dtype=np.float64)
+        n = truth.size
+        draws = rng.integers(0, n, size=(resamples, n))
+        for name in indicators:
+            values = group[name].to_numpy(dtype=np.float64)
+            ok = np.isfinite(values)
+            row: dict[str, Any] = dict(
+                zip(by, key if isinstance(key, tuple) else (key,), strict=True)
+            )
+            row.update(indicator=name, n=int(ok.sum()))
+            for contrast, (pos, neg) in CONTRASTS.items():
+                positive, negative = pos(truth), neg(truth)
+                point = _auc(values[None, :], positive[None, :], negative[None, :])[0]
+                boot = _auc(values[draws], positive[draws], negative[draws])
+                boot = boot[np.isfinite(boot)]
+                row[contrast] = point
+                row[contrast + "_low"], row[contrast + "_high"] = (
+                    np.quantile(boot, [alpha, 1 - alpha]) if boot.size else (math.nan, math.nan)
+                )
+            row["rho"] = _spearman(values[ok][None, :], truth[ok][None, :])[0]
+            boot = _spearman(values[draws], truth[draws])  # NaN where a draw holds a NaN
+            boot = boot[np.isfinite(boot)]
+            row["rho_low"], row["rho_high"] = (
+                np.quantile(boot, [alpha, 1 - alpha]) if boot.size else (math.nan, math.nan)
+            )
+            out.append(row)
+    return pd.DataFrame(out)
+
+
+def calibration(
+    table: pd.DataFrame,
+    indicator: str,
+    *,
+    by: str = "peak_speed",
+    quantiles: Sequence[float] = (0.1, 0.5, 0.9),
+) -> dict[str, Any]:
+    """Per speed and backlash width, the quantiles of an indicator on the sweep.
+
+    Parameters
+    ----------
+    table : DataFrame
+        From :func:`run_sweep`.
+    indicator : str
+        The column to calibrate.
+    by : str
+        The speed column: ``peak_speed`` (deg/min the set-point reaches; a 1 deg step at 175
+        deg/min peaks at 70.6 deg/min) by default, as a trace shows it.
+    quantiles : sequence of float
+        Of the indicator at each backlash width.
+
+    Returns
+    -------
+    dict
+        ``{"indicator", "quantiles", "by", "levels": {speed: {backlash_arcmin: [q...]}}}``,
+        JSON-ready.
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"peak_speed": [35.0] * 4, "backlash_arcmin": [0, 0, 1, 1],
+    ...                   "x": [0.1, 0.2, 0.3, 0.4]})
+    >>> calibration(t, "x", quantiles=(0.5,))["levels"]["35"]
+    {'0': [0.15], '1': [0.35]}
+    """
+    levels: dict[str, dict[str, list[float]]] = {}
+    for speed, group in table.groupby(by, sort=True):
+        levels[f"{speed:g}"] = {
+            f"{b:g}": [float(q) for q in np.nanquantile(g[indicator].to_numpy(float), quantiles)]
+            for b, g in group.groupby("backlash_arcmin", sort=True)
+        }
+    return {"indicator": indicator, "quantiles": list(quantiles), "by": by, "levels": levels}

@@ -1,0 +1,71 @@
+"""Evidence for every edge: whether two signals are coupled at all, how sure an asymmetry is.
+
+=================  ==========================================================================
+module             what it holds
+=================  ==========================================================================
+``dependence``     the joint-recurrence dependence test with non-circular time-shift
+                   surrogates, the direction index of conditional recurrence probabilities,
+                   Benjamini-Hochberg, the default number of surrogates
+``interval``       half-sampling (blocks without replacement) intervals of ``C_diff`` and
+                   ``T_diff``, and the interval edge rule
+``pairs``          :func:`pairwise_evidence` over a set of signals, and the reading of a pair
+=================  ==========================================================================
+
+This package sits above the measures and below the network (it never imports
+:mod:`funcnet.network`); :func:`funcnet.network.functional_network` calls it with
+``evidence=True``. Its calibration and error rates are in ``docs/evidence.md``.
+
+Examples
+--------
+>>> from funcnet.evidence import default_surrogates, EVIDENCE_LABELS
+>>> default_surrogates(15), EVIDENCE_LABELS[0]
+(299, 'coupled-directed')
+"""
+
+from __future__ import annotations
+
+from funcnet.evidence.dependence import (
+    DependenceResult,
+    ShiftPlan,
+    benjamini_hochberg,
+    decorrelation_time,
+    default_surrogates,
+    dependence_test,
+    shift_plan,
+)
+from funcnet.evidence.interval import (
+    AsymmetryInterval,
+    asymmetry_interval,
+    half_samples,
+    interval_kind,
+)
+from funcnet.evidence.pairs import (
+    EVIDENCE_LABELS,
+    PairEvidence,
+    check_evidence_arguments,
+    evidence_label,
+    pairwise_evidence,
+)
+
+__all__ = [
+    "EVIDENCE_LABELS",
+    "EDGE_RULES",
+    "AsymmetryInterval",
+    "DependenceResult",
+    "PairEvidence",
+    "ShiftPlan",
+    "asymmetry_interval",
+    "benjamini_hochberg",
+    "check_evidence_arguments",
+    "decorrelation_time",
+    "default_surrogates",
+    "dependence_test",
+    "evidence_label",
+    "half_samples",
+    "interval_kind",
+    "pairwise_evidence",
+    "shift_plan",
+]
+
+#: Edge rules: the paper's (``mu`` only, the default) and ``mu`` with the interval.
+EDGE_RULES: tuple[str, ...] = ("paper", "interval")

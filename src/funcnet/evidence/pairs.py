@@ -1,0 +1,295 @@
+"""Evidence for every pair of a set of signals: coupling test, intervals, direction, reading.
+
+:func:`pairwise_evidence` embeds each signal and computes its recurrence matrix once (the
+thresholds of :func:`funcnet.measures.pairwise_cross_measures`, so ``c_diff``/``t_diff`` are the
+network's own numbers), then per pair runs the dependence test
+(:mod:`funcnet.evidence.dependence`) and the half-sampling intervals
+(:mod:`funcnet.evidence.interval`), and adjusts the coupling and direction p-values across the
+pairs with Benjamini-Hochberg.
+
+The reading of a pair (:func:`evidence_label`):
+
+=====================  ===================================================================
+``coupled-directed``   the dependence test rejects independence (BH-adjusted, at ``alpha``)
+                       and the direction index is significant (BH-adjusted): see
+                       ``direction``
+``coupled``            dependence found, no direction supported
+``asymmetry-only``     no dependence found, yet the network's rule draws an arrow: the arrow
+                       rests on a difference of character only
+``not-coupled``        no dependence found, no arrow
+=====================  ===================================================================
+
+"not-coupled" means the test found nothing, not that the signals are independent: short
+windows and smooth (long-memory) signals leave the test few surrogates and little power
+(docs/evidence.md).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from funcnet.embedding import signal_states
+from funcnet.errors import ParameterError, SignalError
+from funcnet.evidence.dependence import (
+    benjamini_hochberg,
+    decorrelation_time,
+    default_surrogates,
+    dependence_test,
+    shift_plan,
+)
+from funcnet.evidence.interval import asymmetry_interval
+from funcnet.measures import _pair_parameters, isrn_measures
+from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
+from funcnet.recurrence import (
+    _signal_thresholds,
+    auto_recurrence,
+    cross_recurrence,
+)
+
+__all__ = ["EVIDENCE_LABELS", "PairEvidence", "pairwise_evidence", "evidence_label",
+           "check_evidence_arguments"]
+
+#: The readings of a pair (the ``evidence`` column).
+EVIDENCE_LABELS: tuple[str, ...] = ("coupled-directed", "coupled", "not-coupled",
+                                    "asymmetry-only")
+
+
+@dataclass(frozen=True)
+class PairEvidence:
+    """The evidence of one pair (X, Y).
+
+    Attributes
+    ----------
+    coupling_statistic : float
+        Observed joint-recurrence correlation ``phi`` (NaN when the pair could not be tested).
+    coupling_p : float
+        Its surrogate p-value, Benjamini-Hochberg adjusted across the pairs (NaN: not tested).
+    coupled : bool
+        ``coupling_p <= alpha``.
+    surrogates : int
+        ``K`` used (0: not tested: too few states for one offset).
+    c_diff, t_diff : float
+        The network's differences (Eq. 10).
+    c_diff_low, c_diff_high, t_diff_low, t_diff_high : float
+        Half-sampling intervals (always containing the difference).
+    c_sign_fraction, t_sign_fraction : float
+        Fraction of resamples with the observed sign.
+    direction_index : float
+        ``MCR(X|Y) - MCR(Y|X)`` minus its surrogate mean; positive reads X -> Y.
+    direction_p : float
+        Its two-sided surrogate p-value, BH-adjusted across the pairs.
+    direction : str
+        ``"x->y"``, ``"y->x"`` when coupled and ``direction_p <= alpha``; else ``""``.
+    """
+
+    coupling_statistic: float
+    coupling_p: float
+    coupled: bool
+    surrogates: int
+    c_diff: float
+    t_diff: float
+    c_diff_low: float
+    c_diff_high: float
+    t_diff_low: float
+    t_diff_high: float
+    c_sign_fraction: float
+    t_sign_fraction: float
+    direction_index: float
+    direction_p: float
+    direction: str
+
+
+def evidence_label(coupled: bool, direction: str, kind: str) -> str:
+    """The reading of a pair from its test result and the network's kind (module notes).
+
+    Parameters
+    ----------
+    coupled : bool
+    direction : str
+        ``"x->y"``, ``"y->x"`` or ``""``.
+    kind : str
+        The network's pair kind (``"x->y"``, ``"y->x"``, ``"bidirectional"``, ``"conflict"``).
+
+    Returns
+    -------
+    str
+        One of :data:`EVIDENCE_LABELS`.
+
+    Examples
+    --------
+    >>> evidence_label(False, "", "x->y"), evidence_label(True, "y->x", "x->y")
+    ('asymmetry-only', 'coupled-directed')
+    """
+    if coupled:
+        return "coupled-directed" if direction else "coupled"
+    return "asymmetry-only" if kind in ("x->y", "y->x") else "not-coupled"
+
+
+def _check_alpha(alpha: Any) -> float:
+    if isinstance(alpha, bool) or not isinstance(alpha, (int, float)) or not 0 < alpha < 1:
+        raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha!r}")
+    return float(alpha)
+
+
+def check_evidence_arguments(surrogates: Any, alpha: Any, resamples: Any) -> None:
+    """Raise a :class:`ParameterError` naming the first bad evidence argument.
+
+    Examples
+    --------
+    >>> check_evidence_arguments(None, 0.05, 200)
+    >>> check_evidence_arguments(0, 0.05, 200)
+    Traceback (most recent call last):
+        ...
+    funcnet.errors.ParameterError: surrogates must be an integer >= 1 (or None), got 0
+    """
+    if surrogates is not None and (isinstance(surrogates, bool) or not isinstance(
+            surrogates, (int, np.integer)) or surrogates < 1):
+        raise ParameterError.of("surrogates", f"must be an integer >= 1 (or None), got "
+                                f"{surrogates!r}")
+    _check_alpha(alpha)
+    if isinstance(resamples, bool) or not isinstance(resamples, (int, np.integer)) or \
+            resamples < 1:
+        raise ParameterError.of("resamples", f"must be an integer >= 1, got {resamples!r}")
+
+
+def _pair_seed(seed: int, i: int, j: int) -> int:
+    return int(np.random.SeedSequence([int(seed), i, j]).generate_state(1)[0])
+
+
+def pairwise_evidence(
+    signals: Sequence[Any],
+    *,
+    names: Sequence[str] | None = None,
+    parameters: NetworkParameters | None = None,
+    surrogates: int | None = None,
+    alpha: float = 0.05,
+    seed: int = 0,
+    resamples: int = 200,
+    level: float = 0.95,
+    **overrides: Any,
+) -> dict[tuple[Any, Any], PairEvidence]:
+    """Coupling test, intervals and direction of every pair ``i < j`` of equally long signals.
+
+    Parameters
+    ----------
+    signals : sequence of array_like (N,) or (N, c)
+        The signals as the measures use them (already normalized: this function does not
+        normalize).
+    names : sequence of str, optional
+        Keys of the result (default positions).
+    parameters : NetworkParameters, optional
+        Embedding and thresholds (``dim``, ``delay``, ``rr``, ``cr``, ``eps``, ``metric``,
+        ``rule``, ``theiler``), as :func:`funcnet.measures.pairwise_cross_measures`.
+    surrogates : int, optional
+        ``K`` asked per pair; default :func:`default_surrogates` of the number of pairs.
+    alpha : float
+        Level of the coupling and direction decisions (after Benjamini-Hochberg).
+    seed : int
+        Seeds the half-samples (the shift surrogates are a fixed lattice).
+    resamples : int
+        Half-samples per pair.
+    level : float
+        Nominal coverage of the intervals.
+    **overrides
+        Fields of ``parameters`` (pair fields only).
+
+    Returns
+    -------
+    dict
+        ``{(name_i, name_j): PairEvidence}``, the keys of
+        :func:`funcnet.measures.pairwise_cross_measures`.
+
+    Raises
+    ------
+    ParameterError
+        Bad ``alpha``, ``surrogates``, ``resamples``, ``level`` or parameter.
+    SignalError
+        Fewer than two signals, or unequal lengths.
+
+    References
+    ----------
+    Romano et al. (2004, 2007), Benjamini and Hochberg (1995), Politis et al. (1999): see
+    :mod:`funcnet.evidence.dependence` and :mod:`funcnet.evidence.interval`.
+
+    Examples
+    --------
+    >>> from funcnet.systems import henon_pair
+    >>> data = henon_pair(400, 0.6, seed=0)
+    >>> result = pairwise_evidence([data[:, 0], data[:, 1]], names=["x", "y"], delay=1,
+    ...                            resamples=50)
+    >>> pair = result[("x", "y")]
+    >>> pair.coupled, pair.surrogates, pair.c_diff_low <= pair.c_diff <= pair.c_diff_high
+    (True, 100, True)
+    """
+    check_evidence_arguments(surrogates, alpha, resamples)
+    alpha = float(alpha)
+    p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
+    signals = list(signals)
+    n = len(signals)
+    if n < 2:
+        raise SignalError(f"pairwise_evidence needs at least two signals, got {n}")
+    keys: list[Any] = list(range(n)) if names is None else list(names)
+    if len(keys) != n:
+        raise ParameterError.of("names", f"has {len(keys)} entries for {n} signals")
+    lengths = {np.shape(s)[0] for s in signals}
+    if len(lengths) != 1:
+        raise SignalError(f"signals must have equal lengths, got {sorted(lengths)}")
+    n_pairs = n * (n - 1) // 2
+    k = default_surrogates(n_pairs, alpha) if surrogates is None else surrogates
+    called = [f"signals[{i}]" if names is None else repr(str(keys[i])) for i in range(n)]
+    thresholds, (cr, cross_eps) = _signal_thresholds(p, n)
+    states = [signal_states(s, parameters=p, name=c) for s, c in zip(signals, called, strict=True)]
+    autos = [
+        auto_recurrence(s, rr=rate, eps=eps, parameters=p, name=c)
+        for s, (rate, eps), c in zip(states, thresholds, called, strict=True)
+    ]
+    dense = [a.to_dense().astype(np.uint8) for a in autos]
+    decorrelation = [decorrelation_time(s) for s in signals]
+    span = (p.dim - 1) * p.delay + 1
+    raw: list[dict[str, Any]] = []
+    for i in range(n):
+        for j in range(i + 1, n):
+            cr_ij = cross_recurrence(states[i], states[j], cr=cr, eps=cross_eps, parameters=p,
+                                     names=(called[i], called[j]))
+            measures = isrn_measures(autos[i], autos[j], cr_ij,
+                                     parameters=_pair_parameters(p, i, j))
+            m = dense[i].shape[0]
+            try:
+                plan = shift_plan(m, k, min_shift=max(decorrelation[i], decorrelation[j], span))
+            except ParameterError:
+                plan = None
+            entry: dict[str, Any] = {"key": (keys[i], keys[j])}
+            if plan is None:
+                entry.update(statistic=np.nan, p=np.nan, k=0, index=np.nan, index_p=np.nan)
+            else:
+                test = dependence_test(dense[i], dense[j], plan, theiler=p.theiler)
+                entry.update(statistic=test.statistic, p=test.p_value, k=test.surrogates,
+                             index=test.direction_index, index_p=test.direction_p)
+            entry["interval"] = asymmetry_interval(
+                dense[i], dense[j], cr_ij.to_dense().astype(np.uint8),
+                c_diff=measures.c_diff, t_diff=measures.t_diff, resamples=resamples,
+                level=level, seed=_pair_seed(seed, i, j),
+            )
+            raw.append(entry)
+    coupling_p = benjamini_hochberg([e["p"] for e in raw])
+    direction_p = benjamini_hochberg([e["index_p"] for e in raw])
+    out: dict[tuple[Any, Any], PairEvidence] = {}
+    for e, cp, dp in zip(raw, coupling_p, direction_p, strict=True):
+        coupled = bool(cp <= alpha)  # NaN compares False
+        direction = ""
+        if coupled and dp <= alpha and e["index"] != 0:
+            direction = "x->y" if e["index"] > 0 else "y->x"
+        iv = e["interval"]
+        out[e["key"]] = PairEvidence(
+            coupling_statistic=float(e["statistic"]), coupling_p=float(cp), coupled=coupled,
+            surrogates=int(e["k"]), c_diff=iv.c_diff, t_diff=iv.t_diff,
+            c_diff_low=iv.c_diff_low, c_diff_high=iv.c_diff_high,
+            t_diff_low=iv.t_diff_low, t_diff_high=iv.t_diff_high,
+            c_sign_fraction=iv.c_sign_fraction, t_sign_fraction=iv.t_sign_fraction,
+            direction_index=float(e["index"]), direction_p=float(dp), direction=direction,
+        )
+    return out

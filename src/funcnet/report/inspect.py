@@ -1,0 +1,676 @@
+"""The engineer's report of a controller trace: "here is a trace of my axis: what is it doing?".
+
+:func:`inspect_trace` reads one or several traces and writes, for each, one HTML page that reads
+from the top: a plain summary of the motion (moves, phases with their times, speeds, peak
+currents, following error, lost motion at the direction changes where both encoders exist),
+then the functional network of every phase of every move with its evidence, the edge timeline,
+the backlash diagnosis, and what an arrow does and does not say. Several traces get an index
+page. :func:`inspect_recording` is the computation alone (a :class:`TraceInspection`);
+:func:`write_inspection` the page.
+
+Defaults chosen for a real trace: the paper's nodes the trace has (:data:`PAPER_NODES`, V
+derived from AP), one window per detected phase of every move (standstill is summarized, not
+networked: the set-point is constant there), signals sampled coarser than the grid (the 4 ms
+IPO positions on the 2 ms servo grid) interpolated so that no node is a staircase, signals
+constant in a window left out of that window, and the evidence columns of
+:func:`funcnet.functional_network` (``evidence=True``).
+
+The figures are in :mod:`funcnet.report.inspect_figures`. Length: over 600 lines because the
+computation, the summary and the page of one report read best together.
+
+References
+----------
+.. [1] El Dabett, Hansen & Geier, "Functional network analysis of robot dynamics", sections 2.4
+   (reading an edge), 3.3-3.4 (preprocessing, parameters) and 4 (phases).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import datetime as _dt
+import os
+import sys
+import time
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from funcnet._io import write_text_atomic
+from funcnet.errors import FuncnetError, ParameterError
+from funcnet.network import FunctionalNetwork, functional_network
+from funcnet.parameters import NetworkParameters, resolve
+from funcnet.pipeline import window_networks, window_warnings
+from funcnet.report.html import (
+    PACKAGES,
+    Progress,
+    contents,
+    escape,
+    figure_html,
+    mapping_table,
+    page,
+    step,
+    table,
+)
+from funcnet.report.inspect_figures import (
+    ARROWS,
+    figure_evidence,
+    figure_lost_motion,
+    figure_motion,
+    figure_networks,
+    figure_timeline,
+)
+from funcnet.robot import (
+    PAPER_NODES,
+    Recording,
+    Window,
+    add_derived_signals,
+    detect_phases,
+    phase_windows,
+    read_trace,
+    resample,
+)
+from funcnet.robot.preprocess import staircase_signals, velocity
+
+__all__ = ["TraceInspection", "inspect_recording", "inspect_trace", "write_inspection",
+           "READING_AN_ARROW"]
+
+#: What the report says about reading an arrow (paper section 2.4; README "Direction").
+READING_AN_ARROW = (
+    "An arrow X → Y says that the recurrences of X are more often shared by Y than the other "
+    "way round (C_diff, T_diff of Eq. 10 at or above μ). It follows the relative complexity of "
+    "the two signals as well as their coupling: a smooth signal (a position set-point) tends "
+    "to look driven by a rough one (a measured current) even where physics says the opposite. "
+    "Read an arrow as 'these two signals share structure, asymmetrically', not as cause. A red "
+    "(bidirectional) edge means |diff| < μ: mutual coupling or no coupling at all. Where the "
+    "evidence columns are shown, 'coupled' means the joint-recurrence test rejected "
+    "independence (time-shift surrogates, Benjamini-Hochberg across the pairs), "
+    "'coupled-directed' that the direction index agrees, and 'asymmetry-only' that the arrow "
+    "stands on an asymmetry the dependence test could not tell from chance. Compare arrows "
+    "between phases of the same trace, not between traces with other signals or parameters."
+)
+
+_MOTION = ("standstill",)
+
+
+@dataclass(frozen=True)
+class TraceInspection:
+    """What :func:`inspect_recording` found in one trace.
+
+    Attributes
+    ----------
+    source : str
+        The trace's file (as given) or ``"<recording>"``.
+    duration, sample_period : float
+        Seconds.
+    signals : tuple of str
+        The nodes of the networks.
+    phases : pandas.DataFrame
+        :func:`funcnet.robot.detect_phases` with ``move`` (0 for standstill, else the move's
+        number) and ``duration``.
+    moves : pandas.DataFrame
+        One row per move: ``move, start, stop, duration, direction, distance, peak speed``
+        (set-point, unit/s), ``peak V`` (arm side), ``peak |AC|``, ``peak |FE|`` (RP - AP),
+        ``final |FE|`` (at the move's end); columns whose signal is missing are left out.
+    windows : tuple of Window
+        One per phase of a move, labelled as the networks.
+    networks : dict
+        Window label -> FunctionalNetwork (with the evidence columns when ``evidence``).
+    errors : dict
+        Window label -> why it has no network.
+    problems : pandas.DataFrame
+        The networks' flagged problems, counted: ``problem, windows, of, which, pairs``.
+    backlash : Any
+        The :class:`funcnet.diagnosis.BacklashResult`, or None.
+    backlash_error : str
+        Why there is no diagnosis ("" when there is one).
+    parameters : NetworkParameters
+    evidence : bool
+    resampled : tuple of str
+        The signals interpolated onto the grid (they were staircases).
+    elapsed : float
+        Seconds of computation.
+    recording : Recording
+        The recording the networks were computed on (interpolated, with V).
+    """
+
+    source: str
+    duration: float
+    sample_period: float
+    signals: tuple[str, ...]
+    phases: pd.DataFrame
+    moves: pd.DataFrame
+    windows: tuple[Window, ...]
+    networks: dict[str, FunctionalNetwork]
+    errors: dict[str, str]
+    problems: pd.DataFrame
+    backlash: Any
+    backlash_error: str
+    parameters: NetworkParameters
+    evidence: bool
+    resampled: tuple[str, ...]
+    elapsed: float
+    recording: Recording = dataclasses.field(repr=False)
+
+
+# --------------------------------------------------------------------------------------------
+# computation
+
+
+def _numbered_moves(phases: pd.DataFrame) -> pd.DataFrame:
+    """``phases`` with ``move`` (consecutive non-standstill rows form one move) and duration."""
+    moving = (phases["phase"] != "standstill").to_numpy()
+    starts = moving & ~np.concatenate([[False], moving[:-1]])
+    move = np.where(moving, np.cumsum(starts), 0)
+    return phases.assign(move=move, duration=(phases["stop"] - phases["start"]).round(6))
+
+
+def _peak(values: np.ndarray) -> float:
+    finite = values[np.isfinite(values)]
+    return float(np.abs(finite).max()) if finite.size else float("nan")
+
+
+def motion_summary(recording: Recording, phases: pd.DataFrame) -> pd.DataFrame:
+    """One row per move of a recording: times, direction, distance, speeds, currents, errors.
+
+    Parameters
+    ----------
+    recording : Recording
+        With RP (the set-point); AP, V, AC optional.
+    phases : pandas.DataFrame
+        :func:`_numbered_moves` of :func:`funcnet.robot.detect_phases`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        See :attr:`TraceInspection.moves`.
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot import Recording, SignalInfo
+    >>> t = np.arange(0, 2, 0.002)
+    >>> rp = np.clip(t - 0.5, 0, 1) * 90.0
+    >>> data = pd.DataFrame({"RP": rp}, index=pd.Index(t, name="time"))
+    >>> rec = Recording(data, {}, {"RP": SignalInfo("RP", "posn", None, 0.002)})
+    >>> phases = _numbered_moves(pd.DataFrame({"phase": ["standstill", "cruise", "standstill"],
+    ...                                        "start": [0.0, 0.5, 1.5],
+    ...                                        "stop": [0.5, 1.5, 2.0]}))
+    >>> motion_summary(rec, phases)[["move", "direction", "distance"]].round(1)
+       move direction  distance
+    0     1         +      89.8
+    """
+    data = recording.data
+    t = data.index.to_numpy(dtype=float)
+    rp = data["RP"].to_numpy(dtype=float)
+    set_speed = np.abs(velocity(rp, recording.sample_period))
+    rows = []
+    for move, group in phases[phases["move"] > 0].groupby("move"):
+        start, stop = float(group["start"].min()), float(group["stop"].max())
+        inside = (t >= start) & (t < stop)
+        first, last = np.flatnonzero(inside)[[0, -1]]
+        distance = float(rp[last] - rp[first])
+        row: dict[str, Any] = {"move": int(move), "start": start, "stop": stop,
+                               "duration": round(stop - start, 6),
+                               "direction": "+" if distance >= 0 else "−",
+                               "distance": distance,
+                               "peak speed": _peak(set_speed[inside])}
+        if "V" in data:
+            row["peak V"] = _peak(data["V"].to_numpy(dtype=float)[inside])
+        if "AC" in data:
+            row["peak |AC|"] = _peak(data["AC"].to_numpy(dtype=float)[inside])
+        if "AP" in data:
+            fe = rp - data["AP"].to_numpy(dtype=float)
+            row["peak |FE|"] = _peak(fe[inside])
+            row["final |FE|"] = _peak(fe[last:last + 1])
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def _problems(networks: Mapping[str, FunctionalNetwork]) -> pd.DataFrame:
+    """The flagged problems of the networks, one row per problem with its windows counted."""
+    groups: dict[str, dict[str, Any]] = {}
+    for warning in window_warnings(networks):
+        key = str(warning.problem)
+        entry = groups.setdefault(key, {"windows": [], "pairs": {}})
+        entry["windows"].append(str(warning.window))
+        for pair in warning.pairs:
+            entry["pairs"][pair] = entry["pairs"].get(pair, 0) + 1
+    rows = [{"problem": problem, "windows": len(entry["windows"]), "of": len(networks),
+             "which": ", ".join(entry["windows"]),
+             "pairs (windows)": ", ".join(f"{x}–{y} ({n})" for (x, y), n in
+                                          entry["pairs"].items())}
+            for problem, entry in groups.items()]
+    return pd.DataFrame(rows, columns=["problem", "windows", "of", "which", "pairs (windows)"])
+
+
+def inspect_recording(
+    recording: Recording,
+    *,
+    signals: Sequence[str] | None = None,
+    parameters: NetworkParameters | None = None,
+    evidence: bool = True,
+    interpolate: bool = True,
+    backlash: bool = True,
+    progress: Progress = None,
+    **overrides: Any,
+) -> TraceInspection:
+    """Summarize a recording's motion and compute a functional network per phase of each move.
+
+    Parameters
+    ----------
+    recording : Recording
+        As :func:`funcnet.robot.read_trace` returns it (with RP; V is derived from AP here).
+    signals : sequence of str, optional
+        The nodes; default the paper's (RP, AP, MP, V, RC, AC) that the recording has.
+    parameters : NetworkParameters, optional
+        Network parameters (default :class:`~funcnet.NetworkParameters`'s).
+    evidence : bool
+        Add the evidence columns (coupling test, intervals, direction) to every network.
+    interpolate : bool
+        Interpolate signals coarser than the grid (staircases) onto it
+        (:func:`funcnet.robot.resample` with ``method="interpolate"``) before the networks.
+    backlash : bool
+        Run :func:`funcnet.diagnosis.diagnose_recording` on the recording as read.
+    progress : callable, optional
+        ``progress(done, total, description)``.
+    **overrides
+        Network parameters by name (``rr=0.1``).
+
+    Returns
+    -------
+    TraceInspection
+
+    Raises
+    ------
+    ParameterError
+        A bad network parameter (before anything is computed).
+    ChannelError
+        No RP, or a signal that is not in the recording.
+    """
+    started = time.perf_counter()
+    p = resolve(parameters, overrides)
+    where = recording.source or "<recording>"
+    raw = recording
+    step(progress, 0, 4, "phases")
+    phases = _numbered_moves(detect_phases(raw))
+    if interpolate:
+        coarse = tuple(staircase_signals(raw))
+        rec = resample(raw, method="interpolate") if coarse else raw
+    else:
+        coarse, rec = (), raw
+    if "AP" in rec.data.columns:
+        rec = add_derived_signals(rec, ["V"])
+    if signals is None:
+        signals = [s for s in PAPER_NODES if s in rec.data.columns]
+    signals = list(signals)
+    moves = motion_summary(rec, phases)
+    windows = tuple(w for w in phase_windows(phases[["phase", "start", "stop"]])
+                    if w.phase not in _MOTION)
+    total = 2 + len(windows) * (2 if evidence else 1)
+    done = 1
+
+    def tick(description: str) -> None:
+        nonlocal done
+        done += 1
+        step(progress, done, total, description)
+
+    networks: dict[str, FunctionalNetwork] = {}
+    errors: dict[str, str] = {}
+    try:  # one call: its warnings come once per problem for the whole trace
+        networks = window_networks(rec, windows, signals=signals, parameters=p,
+                                   constant="drop",
+                                   progress=lambda k, n, label: tick(f"network {label}"))
+    except ParameterError:
+        raise
+    except FuncnetError:
+        # a bad window (too short for the embedding) must not cost the others their network
+        done = 1
+        for window in windows:
+            try:
+                networks.update(window_networks(rec, [window], signals=signals, parameters=p,
+                                                constant="drop"))
+            except FuncnetError as error:
+                if isinstance(error, ParameterError):
+                    raise
+                errors[window.label] = str(error).removeprefix(f"{where}: ")
+            tick(f"network {window.label}")
+    if evidence:
+        for label, net in list(networks.items()):
+            span = next(w for w in windows if w.label == label)
+            part = rec.window(span.start, span.stop).data[list(net.nodes)]
+            full = functional_network(part, parameters=net.parameters, label=label, warn=False,
+                                      evidence=True)
+            networks[label] = dataclasses.replace(full, window=net.window)
+            tick(f"evidence {label}")
+    diagnosis, diagnosis_error = None, ""
+    if backlash:
+        try:
+            from funcnet.diagnosis import diagnose_recording
+
+            diagnosis = diagnose_recording(raw)
+        except FuncnetError as error:
+            diagnosis_error = str(error)
+    tick("backlash diagnosis")
+    index = rec.data.index
+    return TraceInspection(
+        source=where,
+        duration=round(float(index[-1] - index[0]) + rec.sample_period, 6),
+        sample_period=rec.sample_period,
+        signals=tuple(signals),
+        phases=phases,
+        moves=moves,
+        windows=windows,
+        networks=networks,
+        errors=errors,
+        problems=_problems(networks),
+        backlash=diagnosis,
+        backlash_error=diagnosis_error,
+        parameters=p,
+        evidence=evidence,
+        resampled=coarse,
+        elapsed=time.perf_counter() - started,
+        recording=rec,
+    )
+
+
+# --------------------------------------------------------------------------------------------
+# the page
+
+
+def _fmt(value: Any, digits: int = 3) -> str:
+    if value is None or (isinstance(value, float) and not np.isfinite(value)):
+        return "—"
+    if isinstance(value, float):
+        return f"{value:.{digits}g}"
+    return str(value)
+
+
+def _summary_html(ins: TraceInspection) -> str:
+    moves = ins.moves
+    moving = float(moves["duration"].sum()) if len(moves) else 0.0
+    kinds = ins.phases[ins.phases["move"] > 0]["phase"].value_counts()
+    lines = [f"<p><b>{escape(Path(ins.source).name)}</b>: {ins.duration:.1f} s sampled every "
+             f"{ins.sample_period * 1e3:g} ms; signals used as nodes: "
+             f"{escape(', '.join(ins.signals))}. The axis moves {len(moves)} time(s), "
+             f"{moving:.1f} s in all, and stands still the other "
+             f"{ins.duration - moving:.1f} s.</p>"]
+    if len(moves):
+        facts = []
+        facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} °/s "
+                     f"({moves['peak speed'].max() * 60:.4g} °/min)")
+        if "peak |AC|" in moves:
+            facts.append(f"peak current |AC| {moves['peak |AC|'].max():.3g} A")
+        if "peak |FE|" in moves:
+            facts.append(f"peak following error |RP − AP| {moves['peak |FE|'].max():.3g}° "
+                         f"({moves['peak |FE|'].max() * 60:.3g} arcmin), "
+                         f"{moves['final |FE|'].max() * 3600:.3g} arcsec at the end of a move")
+        lines.append("<ul>" + "".join(f"<li>{escape(f)}</li>" for f in facts)
+                     + "<li>phases within the moves: "
+                     + escape(", ".join(f"{k} ×{n}" for k, n in kinds.items())) + "</li>"
+                     + _lost_motion_item(ins) + "</ul>")
+    n_net = len(ins.networks)
+    lines.append(f"<p>{n_net} of {len(ins.windows)} phase windows have a network"
+                 + (f" ({len(ins.errors)} could not be computed: see "
+                    "<a href=\"#problems\">problems</a>)" if ins.errors else "")
+                 + (", each with its evidence columns" if ins.evidence and n_net else "")
+                 + (f"; {escape(', '.join(ins.resampled))} were interpolated onto the "
+                    f"{ins.sample_period * 1e3:g} ms grid (recorded coarser)" if ins.resampled
+                    else "") + ".</p>")
+    return "".join(lines)
+
+
+def _lost_motion_item(ins: TraceInspection) -> str:
+    result = ins.backlash
+    if result is None:
+        return ""
+    if result.lost_motion is None:
+        return f"<li>backlash: {escape(result.message)}</li>"
+    values = [r.lost_motion for r in result.reversals if r.lost_motion is not None]
+    listed = ", ".join(f"{v * 3600:.3g}" for v in values)
+    return (f"<li>lost motion at the {len(values)} direction change(s), from both encoders: "
+            f"{listed} arcsec (mean {result.lost_motion * 3600:.3g} arcsec)</li>")
+
+
+def _backlash_html(ins: TraceInspection) -> str:
+    result = ins.backlash
+    if result is None:
+        return f"<p>No diagnosis: {escape(ins.backlash_error or 'not asked for')}.</p>"
+    from funcnet.diagnosis.diagnose import MODEL_NOTE
+
+    rows = [{"change": r.change.kind, "stop [s]": r.change.stop, "start [s]": r.change.start,
+             "dwell [s]": r.change.dwell, "direction": "+" if r.change.direction > 0 else "−",
+             "lost motion [arcsec]": _fmt(None if r.lost_motion is None
+                                          else r.lost_motion * 3600),
+             "backlash score": _fmt(r.backlash_score)} for r in result.reversals]
+    reading = result.reading.get("text", "") if result.reading else ""
+    return (f"<p>{escape(result.message)}.{' ' + escape(reading) if reading else ''}</p>"
+            f"<p class=\"note\">The score is {escape(MODEL_NOTE)}.</p>"
+            + (table(pd.DataFrame(rows)) if rows else ""))
+
+
+def _network_tables(ins: TraceInspection) -> str:
+    parts = []
+    for w in ins.windows:
+        net = ins.networks.get(w.label)
+        span = f"{w.start:.3f}–{w.stop:.3f} s"
+        if net is None:
+            parts.append(f"<p><b>{escape(w.label)}</b> ({span}): no network — "
+                         f"{escape(ins.errors.get(w.label, ''))}</p>")
+            continue
+        dropped = net.window.get("dropped") if net.window else ()
+        note = f"; left out (constant): {', '.join(dropped)}" if dropped else ""
+        columns = [c for c in ("x", "y", "kind", "weight", "c_diff", "t_diff", "degenerate",
+                               "evidence", "coupling_p", "direction", "c_diff_low",
+                               "c_diff_high") if c in net.pairs.columns]
+        frame = net.pairs[columns].assign(kind=net.pairs["kind"].map(
+            lambda k: f"{ARROWS.get(k, '')} {k}"))
+        parts.append(f"<details><summary>{escape(w.label)} ({span}, {net.n_samples} samples"
+                     f"{escape(note)})</summary>{table(frame)}</details>")
+    return "".join(parts)
+
+
+def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list[str]:
+    """The body of one trace's page (figures written to ``out/figures``)."""
+    steps = 6
+    figures: list[tuple[str, str, str]] = []  # (section id, title, html)
+
+    def add(k: int, name: str, make: Any, caption: str) -> None:
+        step(progress, k, steps, f"figure: {name}")
+        fig = make(ins)
+        if fig is not None:
+            figures.append((name, caption, figure_html(out, name, fig, caption)))
+
+    add(0, "motion", figure_motion,
+        "Figure 1 — the motion. Top: the set-point RP over the whole trace, the moves named. "
+        "Below, each move zoomed: positions, arm-side speed V (Eq. 11–12 on AP), current AC "
+        "and following error RP − AP. Shading: the detected phase (same colour for the same "
+        "kind of phase in every figure).")
+    add(1, "networks", figure_networks,
+        "Figure 2 — the functional network of every phase window (rows: moves; columns: "
+        "phases), each node at the same place in every panel. Black arrow: directed edge X → "
+        "Y (C_diff and T_diff agree, |diff| ≥ μ); red: bidirectional (|diff| < μ: mutual or no "
+        "coupling); width ∝ weight (Eq. 13); no line: conflict (the measures disagree) or a "
+        "degenerate pair.")
+    add(2, "timeline", figure_timeline,
+        "Figure 3 — edge timeline: every pair's edge kind (marker) and weight (area) in each "
+        "window, windows in time order and equally spaced, shaded by phase. A pair that keeps "
+        "its arrow across the moves is a property of the axis; one that flips between moves "
+        "of the same kind is not to be read.")
+    add(3, "evidence", figure_evidence,
+        "Figure 4 — pairs × windows: the arrow of each pair (→ X → Y, ← Y → X, ↔ "
+        "bidirectional, × conflict, – left out), the cell coloured by what the evidence says "
+        "about it" + (" (coupling test and direction index of funcnet.evidence)."
+                      if ins.evidence else " (evidence not computed: coloured by kind)."))
+    add(4, "lost-motion", figure_lost_motion,
+        "Figure 5 — motor minus arm position (MP − AP, arcsec) around the start of the move "
+        "after each direction change; the dotted line is where the set-point starts it. The "
+        "jump in MP − AP while the motor turns and the arm waits is the lost motion (backlash "
+        "plus elastic windup) the table below lists.")
+    step(progress, steps, steps, "figures done")
+    return [f"<section id=\"{name}\">{html}</section>" for name, _, html in figures]
+
+
+def _provenance(ins: TraceInspection) -> dict[str, Any]:
+    from funcnet.study import package_versions
+
+    return {
+        "trace": Path(ins.source).name,
+        "date (UTC)": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+        "command": " ".join([Path(sys.argv[0]).name, *sys.argv[1:]]),
+        "computation time [s]": f"{ins.elapsed:.1f}",
+        **{f"version of {k}": v for k, v in package_versions(PACKAGES).items()},
+    }
+
+
+def write_inspection(
+    inspection: TraceInspection,
+    out_dir: str | os.PathLike[str],
+    *,
+    progress: Progress = None,
+) -> Path:
+    """Write the HTML page of one inspected trace (``index.html``, ``figures/*.png``).
+
+    Parameters
+    ----------
+    inspection : TraceInspection
+    out_dir : path-like
+        The page's folder.
+    progress : callable, optional
+        ``progress(done, total, description)``.
+
+    Returns
+    -------
+    pathlib.Path
+        The path of ``index.html``.
+    """
+    ins = inspection
+    out = Path(out_dir)
+    figures = _trace_sections(ins, out, progress)
+    name = Path(ins.source).name
+    sections = [("summary", "Summary"), ("figures", "Figures"), ("arrows", "Reading an arrow"),
+                ("backlash", "Backlash and lost motion"), ("phases", "Moves and phases"),
+                ("problems", "Problems flagged"), ("networks", "Pairs tables"),
+                ("parameters", "Parameters and provenance")]
+    problems = ins.problems
+    problem_html = ("<p>None: every pair of every window has ordered thresholds, its target "
+                    "rates and a non-degenerate structure.</p>") if problems.empty else (
+        "<p>Each problem once, with the windows that have it (flags of the pairs tables; "
+        "<code>eps_order</code>: ε_XY is not below ε_X and ε_Y, section 2.2; "
+        "<code>rate_exceeded</code>: ties pushed a rate above its target; "
+        "<code>degenerate</code>: too few distinct states, no edge drawn).</p>"
+        + table(problems))
+    if ins.errors:
+        problem_html += table(pd.DataFrame({"window": list(ins.errors),
+                                            "why no network": list(ins.errors.values())}))
+    body = [
+        f"<h1>What the axis does — {escape(name)}</h1>",
+        f"<section id=\"summary\"><h2>Summary</h2>{_summary_html(ins)}</section>",
+        contents(sections),
+        "<h2 id=\"figures\">Figures</h2>", *figures,
+        f"<section id=\"arrows\"><h2>Reading an arrow</h2><p>{escape(READING_AN_ARROW)}</p>"
+        "</section>",
+        f"<section id=\"backlash\"><h2>Backlash and lost motion</h2>{_backlash_html(ins)}"
+        "</section>",
+        "<section id=\"phases\"><h2>Moves and phases</h2>",
+        table(ins.moves.round(4)) if len(ins.moves) else "<p>No move.</p>",
+        "<details><summary>every phase</summary>",
+        table(ins.phases[["phase", "move", "start", "stop", "duration"]]),
+        "</details></section>",
+        f"<section id=\"problems\"><h2>Problems flagged</h2>{problem_html}</section>",
+        f"<section id=\"networks\"><h2>Pairs tables</h2>{_network_tables(ins)}</section>",
+        "<section id=\"parameters\"><h2>Parameters and provenance</h2>",
+        mapping_table(ins.parameters.to_dict(), "parameter"),
+        mapping_table(_provenance(ins), "item"), "</section>",
+    ]
+    return write_text_atomic(out / "index.html", page(f"funcnet inspect — {name}", body))
+
+
+def _slug(path: Path, taken: set[str]) -> str:
+    base = "".join(ch if ch.isalnum() or ch in "-_" else "-" for ch in path.stem) or "trace"
+    slug, k = base, 1
+    while slug in taken:
+        k += 1
+        slug = f"{base}-{k}"
+    taken.add(slug)
+    return slug
+
+
+def inspect_trace(
+    *paths: str | os.PathLike[str],
+    out_dir: str | os.PathLike[str] = "inspect",
+    signals: Sequence[str] | None = None,
+    parameters: NetworkParameters | None = None,
+    evidence: bool = True,
+    channels: Any = None,
+    axis: int | None = None,
+    progress: Progress = None,
+    **overrides: Any,
+) -> Path:
+    """Read traces and write the engineer's report of each (and an index for several).
+
+    Parameters
+    ----------
+    *paths : path-like
+        Trace files (SINUMERIK XML, CSV, Parquet: :func:`funcnet.robot.read_trace`).
+    out_dir : path-like
+        The report folder. One trace: ``out_dir/index.html``; several: one folder per trace
+        (named after the file) and ``out_dir/index.html`` linking them.
+    signals, parameters, evidence
+        As :func:`inspect_recording`.
+    channels, axis
+        As :func:`funcnet.robot.read_trace`.
+    progress : callable, optional
+        ``progress(done, total, description)``.
+    **overrides
+        Network parameters by name.
+
+    Returns
+    -------
+    pathlib.Path
+        The page to open first.
+
+    Raises
+    ------
+    ParameterError
+        No trace, or a bad parameter (before any file is read).
+    TraceError
+        A file cannot be read.
+
+    Examples
+    --------
+    >>> inspect_trace(out_dir="x")
+    Traceback (most recent call last):
+        ...
+    funcnet.errors.ParameterError: paths: give at least one trace file
+    """
+    if not paths:
+        raise ParameterError.of("paths", "give at least one trace file")
+    p = resolve(parameters, overrides)
+    out = Path(out_dir)
+    if len(paths) == 1:
+        recording = read_trace(paths[0], channels=channels, axis=axis)
+        ins = inspect_recording(recording, signals=signals, parameters=p, evidence=evidence,
+                                progress=progress)
+        return write_inspection(ins, out, progress=progress)
+    taken: set[str] = set()
+    rows = []
+    for path in map(Path, paths):
+        slug = _slug(path, taken)
+        recording = read_trace(path, channels=channels, axis=axis)
+        ins = inspect_recording(recording, signals=signals, parameters=p, evidence=evidence,
+                                progress=progress)
+        write_inspection(ins, out / slug, progress=progress)
+        moves = ins.moves
+        rows.append(f"<tr><td><a href=\"{escape(slug)}/index.html\">{escape(path.name)}</a>"
+                    f"</td><td class=\"num\">{ins.duration:.1f}</td><td class=\"num\">"
+                    f"{len(moves)}</td><td class=\"num\">{len(ins.networks)}</td><td>"
+                    f"{escape(ins.backlash.message if ins.backlash else ins.backlash_error)}"
+                    "</td></tr>")
+    index = ("<h1>funcnet inspect — traces</h1><table><thead><tr><th>trace</th>"
+             "<th>duration [s]</th><th>moves</th><th>networks</th><th>backlash</th></tr>"
+             f"</thead><tbody>{''.join(rows)}</tbody></table>")
+    return write_text_atomic(out / "index.html", page("funcnet inspect", [index]))

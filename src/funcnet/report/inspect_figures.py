@@ -1,0 +1,320 @@
+"""The figures of the inspect report (:mod:`funcnet.report.inspect`): motion, networks per
+phase, edge timeline, evidence, lost motion.
+
+Each takes a :class:`~funcnet.report.inspect.TraceInspection` and returns a matplotlib figure
+(or None when the trace lacks what it draws); phases are shaded in
+:data:`funcnet.plot.PHASE_COLORS`, the same colour for the same kind of phase everywhere; every
+text is at least 9 pt at the figure's native size (100 dpi), the size the report shows.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import pandas as pd
+
+from funcnet.robot import Window
+
+if TYPE_CHECKING:
+    from funcnet.report.inspect import TraceInspection
+
+__all__ = ["figure_motion", "figure_networks", "figure_timeline", "figure_evidence",
+           "figure_lost_motion", "ARROWS"]
+
+#: The arrow shown for each pair kind.
+ARROWS = {"x->y": "→", "y->x": "←", "bidirectional": "↔", "conflict": "×"}
+_EVIDENCE_COLORS = {"coupled-directed": "#1b7837", "coupled": "#7fbf7b",
+                    "asymmetry-only": "#f1a340", "not-coupled": "#d9d9d9",
+                    "degenerate": "#9e9e9e", "left out": "#ffffff"}
+_MAX_MOVE_COLUMNS = 6  # the motion figure zooms into at most this many moves
+
+
+
+
+def _phase_legend(fig: Any, kinds: Sequence[str]) -> None:
+    from matplotlib.patches import Patch
+
+    from funcnet import plot
+
+    handles = [Patch(facecolor=plot.phase_color(k), edgecolor="0.6", label=k) for k in kinds]
+    legend = fig.legend(handles=handles, loc="outside upper center", ncol=len(handles),
+                        fontsize=9, frameon=False, title="phase (shading)", title_fontsize=9)
+    legend.set_gid("legend:phases")
+
+
+def _shade(ax: Any, phases: pd.DataFrame, lo: float, hi: float) -> None:
+    from funcnet import plot
+
+    for row in phases.itertuples():
+        if row.stop > lo and row.start < hi:
+            ax.axvspan(max(row.start, lo), min(row.stop, hi), color=plot.phase_color(row.phase),
+                       alpha=0.8, zorder=0, linewidth=0).set_gid(f"phase:{row.phase}")
+
+
+def figure_motion(inspection: TraceInspection) -> Any:
+    """The motion: the whole trace, then each move zoomed (positions, speed, current, error).
+
+    Parameters
+    ----------
+    inspection : TraceInspection
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Row 0 the set-point over the whole trace; below, one column per move (at most six):
+        positions, V, AC and the following error RP - AP, the phases shaded in the colours of
+        :data:`funcnet.plot.PHASE_COLORS`.
+    """
+    from matplotlib.figure import Figure
+
+    from funcnet import plot
+
+    data = inspection.recording.data
+    phases = inspection.phases
+    moves = inspection.moves.head(_MAX_MOVE_COLUMNS)
+    panels = [("position [°]", [c for c in ("RP", "AP", "MP") if c in data])]
+    if "V" in data:
+        panels.append(("V [°/s]", ["V"]))
+    if "AC" in data:
+        panels.append(("AC [A]", ["AC"]))
+    if "AP" in data:
+        panels.append(("RP − AP [°]", ["FE"]))
+    cols = max(len(moves), 1)
+    fig = Figure(figsize=(11.0, 2.2 + 1.9 * len(panels)), layout="constrained")
+    grid = fig.add_gridspec(1 + len(panels), cols, height_ratios=[1.0] + [1.0] * len(panels))
+    top = fig.add_subplot(grid[0, :])
+    t = data.index.to_numpy(dtype=float)
+    _shade(top, phases, t[0], t[-1])
+    top.plot(t, data["RP"].to_numpy(dtype=float), color=plot.signal_color("RP"), linewidth=1)
+    top.set_ylabel("RP [°]", fontsize=9)
+    top.set_xlabel("time [s]", fontsize=9)
+    top.set_title("(a) the whole trace: set-point RP", fontsize=10, loc="left", pad=16)
+    for move in moves.itertuples():
+        top.annotate(f"move {move.move}", ((move.start + move.stop) / 2, 1.0),
+                     xycoords=top.get_xaxis_transform(), ha="center", va="bottom", fontsize=9)
+    fe = (data["RP"] - data["AP"]) if "AP" in data else None
+    for k, move in enumerate(moves.itertuples()):
+        margin = 0.15 * (move.stop - move.start)
+        lo, hi = move.start - margin, move.stop + margin
+        part = data.loc[(data.index >= lo) & (data.index <= hi)]
+        tt = part.index.to_numpy(dtype=float)
+        for row, (ylabel, columns) in enumerate(panels, start=1):
+            ax = fig.add_subplot(grid[row, k])
+            _shade(ax, phases, lo, hi)
+            for column in columns:
+                values = (fe.loc[part.index] if column == "FE" and fe is not None
+                          else part[column]).to_numpy(dtype=float)
+                ax.plot(tt, values, color=plot.signal_color(column), linewidth=1,
+                        label=column)
+            ax.tick_params(labelsize=9)
+            if k == 0:
+                ax.set_ylabel(ylabel, fontsize=9)
+            if row == 1:
+                ax.set_title(f"(b) move {move.move}: {move.start:.2f}–{move.stop:.2f} s",
+                             fontsize=10, loc="left")
+                if k == 0 and len(columns) > 1:
+                    ax.legend(fontsize=9, frameon=False, loc="best")
+            if row == len(panels):
+                ax.set_xlabel("time [s]", fontsize=9)
+    top.tick_params(labelsize=9)
+    _phase_legend(fig, [k for k in plot.PHASE_COLORS if k in set(phases["phase"])])
+    return fig
+
+
+def _kinds_present(windows: Sequence[Window]) -> list[str]:
+    from funcnet.robot import PHASES
+
+    present = {w.phase for w in windows}
+    return [k for k in PHASES if k in present]
+
+
+def figure_networks(inspection: TraceInspection) -> Any:
+    """One network per phase (columns, in the order of a move) and move (rows).
+
+    Parameters
+    ----------
+    inspection : TraceInspection
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Every node at the same place in every panel; a node left out of a window (constant
+        there) dashed; each panel's background the colour of its phase.
+    """
+    from matplotlib.figure import Figure
+    from matplotlib.lines import Line2D
+
+    from funcnet import plot
+
+    kinds = _kinds_present(inspection.windows)
+    moves = sorted({_move_of(inspection, w) for w in inspection.windows}) or [0]
+    cols = max(len(kinds), 1)
+    fig = Figure(figsize=(2.6 * cols + 0.6, 2.7 * len(moves) + 1.0), layout="constrained")
+    degenerate = dropped = False
+    for w in inspection.windows:
+        r, c = moves.index(_move_of(inspection, w)), kinds.index(str(w.phase))
+        ax = fig.add_subplot(len(moves), cols, r * cols + c + 1)
+        title = f"{w.label}\n{w.start:.2f}–{w.stop:.2f} s"
+        net = inspection.networks.get(w.label)
+        if net is None:
+            plot.plot_no_network(ax, title)
+            continue
+        plot.plot_network(net, ax, nodes=list(inspection.signals), title=title, legend=False)
+        ax.set_facecolor(plot.phase_color(w.phase))
+        ax.set_axis_on()
+        ax.set_xticks([])
+        ax.set_yticks([])
+        degenerate |= bool(plot.network_edges(net)["degenerate"].any())
+        dropped |= bool(net.window and net.window.get("dropped"))
+    legend = plot.add_network_legend(fig, degenerate=degenerate)
+    if dropped:
+        legend.remove()
+        handles = [*plot.network_legend_handles(degenerate=degenerate),
+                   Line2D([], [], color="0.2", linestyle="--", marker="o", markersize=9,
+                          markerfacecolor="white", linewidth=0,
+                          label="dashed node: left out (constant in the window)")]
+        fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=9,
+                   frameon=False).set_gid("legend:network")
+    return fig
+
+
+def _move_of(inspection: TraceInspection, window: Window) -> int:
+    rows = inspection.phases[(inspection.phases["start"] <= window.start)
+                             & (inspection.phases["stop"] > window.start)]
+    return int(rows["move"].iloc[0]) if len(rows) else 0
+
+
+def figure_timeline(inspection: TraceInspection) -> Any:
+    """Every pair's edge over the windows, in time order (one column per window).
+
+    Parameters
+    ----------
+    inspection : TraceInspection
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        :func:`funcnet.plot.plot_edge_timeline` with the windows as equally spaced columns
+        (labelled, the phases shaded) instead of their times: the moves are seconds long and
+        the standstills between them minutes.
+    """
+    from matplotlib.figure import Figure
+
+    from funcnet import plot
+
+    labels = [w.label for w in inspection.windows if w.label in inspection.networks]
+    fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.5), 4.6), layout="constrained")
+    ax = fig.add_subplot()
+    by_label = {w.label: w for w in inspection.windows}
+    for k, label in enumerate(labels):
+        ax.axvspan(k - 0.5, k + 0.5, color=plot.phase_color(by_label[label].phase), alpha=0.8,
+                   zorder=0, linewidth=0)
+    plot.plot_edge_timeline({float(k): inspection.networks[label]
+                             for k, label in enumerate(labels)}, ax=ax)
+    ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
+    ax.set_xlim(-0.5, len(labels) - 0.5)
+    ax.set_xlabel("window (time order)", fontsize=9)
+    return fig
+
+
+def figure_evidence(inspection: TraceInspection) -> Any:
+    """Pairs × windows: each cell the pair's arrow, coloured by its evidence reading.
+
+    Parameters
+    ----------
+    inspection : TraceInspection
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Without evidence columns, cells are coloured by edge kind instead.
+    """
+    from matplotlib.colors import to_rgb
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Patch
+
+    from funcnet import plot
+
+    labels = [w.label for w in inspection.windows if w.label in inspection.networks]
+    signals = list(inspection.signals)
+    pairs = [(a, b) for i, a in enumerate(signals) for b in signals[i + 1:]]
+    image = np.ones((len(pairs), len(labels), 3))
+    fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.0), 0.36 * len(pairs) + 2.8),
+                 layout="constrained")
+    ax = fig.add_subplot()
+    used: dict[str, str] = {}
+    for c, label in enumerate(labels):
+        table_ = inspection.networks[label].pairs.set_index(["x", "y"])
+        for r, (a, b) in enumerate(pairs):
+            if (a, b) not in table_.index:
+                used["left out"] = _EVIDENCE_COLORS["left out"]
+                ax.text(c, r, "–", ha="center", va="center", fontsize=9, color="0.4")
+                continue
+            row = table_.loc[(a, b)]
+            if bool(row["degenerate"]):
+                key = "degenerate"
+            elif "evidence" in table_.columns:
+                key = str(row["evidence"])
+            else:
+                key = str(row["kind"])
+            colour = _EVIDENCE_COLORS.get(key, plot.KIND_COLORS.get(key, "0.8"))
+            used[key] = colour
+            image[r, c] = to_rgb(colour)
+            ax.text(c, r, ARROWS.get(str(row["kind"]), "?"), ha="center", va="center",
+                    fontsize=10)
+    ax.imshow(image, aspect="auto", interpolation="nearest")
+    ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
+    ax.set_yticks(range(len(pairs)), [f"{a}–{b}" for a, b in pairs], fontsize=9)
+    ax.set_ylabel("pair X–Y (arrow: → X drives Y in the rule's sense)", fontsize=9)
+    handles = [Patch(facecolor=colour, edgecolor="0.5", label=key) for key, colour in
+               used.items()]
+    fig.legend(handles=handles, loc="outside right upper", fontsize=9, frameon=False,
+               title="evidence" if inspection.evidence else "edge kind", title_fontsize=9)
+    return fig
+
+
+def figure_lost_motion(inspection: TraceInspection) -> Any | None:
+    """Motor minus arm position (MP − AP) around each direction change, its lost motion marked.
+
+    Parameters
+    ----------
+    inspection : TraceInspection
+
+    Returns
+    -------
+    matplotlib.figure.Figure or None
+        None without both encoders or without a direction change.
+    """
+    from matplotlib.figure import Figure
+
+    from funcnet import plot
+
+    data = inspection.recording.data
+    result = inspection.backlash
+    if result is None or not result.reversals or not {"AP", "MP"} <= set(data.columns):
+        return None
+    changes = result.reversals[:_MAX_MOVE_COLUMNS]
+    fig = Figure(figsize=(max(6.0, 3.6 * len(changes)), 3.6), layout="constrained")
+    for k, reversal in enumerate(changes):
+        change = reversal.change
+        # around the restart: the turn itself when the axis reverses, else the new start
+        lo = (change.stop if change.kind == "reversal" else change.start) - 0.15
+        hi = change.start + 0.3
+        part = data.loc[(data.index >= lo) & (data.index <= hi)]
+        ax = fig.add_subplot(1, len(changes), k + 1)
+        _shade(ax, inspection.phases, lo, hi)
+        t = part.index.to_numpy(dtype=float)
+        ax.plot(t, (part["MP"] - part["AP"]).to_numpy(dtype=float) * 3600,
+                color=plot.signal_color("TORSION"), linewidth=1)
+        ax.axvline(change.start, color="0.3", linewidth=0.8, linestyle=":")
+        lost = reversal.lost_motion
+        text = (f"lost motion {lost * 3600:.3g} arcsec" if lost is not None
+                else "no lost motion measured")
+        ax.set_title(f"{change.kind} at {change.start:.2f} s\n{text}", fontsize=9)
+        ax.set_xlabel("time [s]", fontsize=9)
+        ax.tick_params(labelsize=9)
+        if k == 0:
+            ax.set_ylabel("MP − AP [arcsec]", fontsize=9)
+    return fig

@@ -1,0 +1,103 @@
+"""The backlash sweep plan, seeds in plans, and the indicators on a fixed small sweep."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from funcnet.diagnosis.sweep import run_sweep, score_indicators
+from funcnet.errors import ParameterError, StudyError
+from funcnet.robot import read_trace
+from funcnet.robot.sim.plan import (
+    ARCMIN,
+    MANIFEST_COLUMNS,
+    backlash_sweep_plan,
+    named_plan,
+    read_plan,
+    write_plan,
+)
+
+
+def test_the_sweep_has_the_issue_grid():
+    plan = backlash_sweep_plan()
+    assert len(plan) == 6 * 2 * 3 * 3 * 3 * 3 * 2 >= 500
+    assert {round(t.backlash / ARCMIN, 9) for t in plan} == {0, 0.25, 0.5, 1, 2, 4}
+    assert {t.seed for t in plan} == {1, 2, 3} and {t.noise_scale for t in plan} == {1, 2}
+    assert all(t.reverse and t.sensors == "real" for t in plan)
+    assert len({t.name for t in plan}) == len(plan)
+    assert [t.name for t in read_plan("backlash-sweep")] == [t.name for t in plan]
+    assert len(named_plan("paper")) == 36
+    with pytest.raises(ParameterError, match="plan"):
+        named_plan("nope")
+
+
+def test_seeds_in_a_toml_group_give_one_trial_each_and_reach_the_manifest(tmp_path):
+    path = tmp_path / "p.toml"
+    path.write_text(
+        '[[group]]\nname = "s"\nspeeds = [350]\ntcps = [1.2]\nsteps = [1]\n'
+        'direction = "forward+reverse"\nbacklash = 0.0041667\nseeds = [4, 5]\nsensors = "real"\n'
+    )
+    trials = read_plan(path)
+    assert [t.name for t in trials] == [
+        "s-v350-p12-s1-b0.0041667-r4",
+        "s-v350-p12-s1-b0.0041667-r5",
+    ]
+    manifest = pd.read_csv(write_plan(trials, tmp_path / "out"))
+    assert list(manifest.columns) == list(MANIFEST_COLUMNS)
+    assert manifest["seed"].tolist() == [4, 5]
+    assert manifest["file"].tolist() == [f"{t.name}.xml" for t in trials]
+    assert manifest["backlash"].tolist() == [0.0041667] * 2
+    assert (manifest["lost_motion"] > 0.0041667).all()
+    assert manifest["sensors"].tolist() == ["real", "real"]
+    rec = read_trace(tmp_path / "out" / manifest["file"][0])
+    assert rec.signals["AP"].interval == 0.004 and rec.signals["MP"].interval == 0.004
+    other = read_trace(tmp_path / "out" / manifest["file"][1])
+    assert not np.array_equal(rec.data["AC"], other.data["AC"])  # each seed its own noise
+
+
+@pytest.mark.parametrize(
+    ("text", "match"),
+    [
+        ("seeds = [1.5]", "seeds"),
+        ("seeds = [-1]", "seeds"),
+        ('arm_model = "soft"', "arm_model"),
+    ],
+)
+def test_bad_seeds_and_options_are_named(tmp_path, text, match):
+    path = tmp_path / "p.toml"
+    path.write_text(f'[[group]]\nname = "s"\nspeeds = [35]\ntcps = [1.2]\nsteps = [1]\n{text}\n')
+    with pytest.raises(StudyError, match=match):
+        read_plan(path)
+
+
+@pytest.fixture(scope="module")
+def small_sweep() -> pd.DataFrame:
+    """A fixed small sweep: 0, 0.5, 2, 4 arcmin x both speeds x two stiffnesses, seed 1."""
+    plan = backlash_sweep_plan(backlash_arcmin=(0, 0.5, 2, 4), tcps=(1.6,),
+                               friction_scales=(1.0,), stiffness_scales=(0.7, 1.4), seeds=(1,),
+                               noise_scales=(1.0,))  # fmt: skip
+    return run_sweep(plan, networks=False)
+
+
+def test_two_encoder_lost_motion_follows_the_truth(small_sweep):
+    some = small_sweep[small_sweep["backlash_arcmin"] > 0]
+    error = some["lost_motion"] / some["true_lost_motion"] - 1
+    assert error.abs().max() < 0.12  # measured: docs/backlash.md gives the sweep's figures
+
+
+def test_motor_hysteresis_separates_backlash_on_the_small_sweep(small_sweep):
+    scores = score_indicators(small_sweep, ["motor_hysteresis"], resamples=50)
+    assert (scores["auc_0.5_vs_0"] == 1.0).all()
+    assert (scores["rho"] > 0.8).all()
+
+
+def test_auc_and_rho_with_intervals_on_known_data():
+    table = pd.DataFrame({"speed": 35.0, "noise_scale": 1.0,
+                          "backlash_arcmin": [0, 0, 0.5, 1, 2, 4],
+                          "x": [0.0, 0.3, 0.2, 0.4, 0.5, 0.6]})  # fmt: skip
+    row = score_indicators(table, ["x"], resamples=200).iloc[0]
+    assert row["auc_0.5_vs_0"] == pytest.approx(7 / 8)
+    assert row["auc_2_vs_0.5"] == 1.0
+    assert row["auc_0.5_vs_0_low"] <= row["auc_0.5_vs_0"] <= row["auc_0.5_vs_0_high"]
+    assert row["rho_low"] <= row["rho"] <= row["rho_high"]

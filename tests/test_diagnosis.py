@@ -1,0 +1,100 @@
+"""funcnet.diagnosis: direction changes, the real trace, JSON results, trends."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from funcnet.diagnosis import (
+    SCORE,
+    diagnose_backlash,
+    diagnose_recording,
+    find_direction_changes,
+    load_calibration,
+    trend_table,
+    write_results,
+)
+from funcnet.errors import ParameterError
+from funcnet.robot import read_trace
+from funcnet.robot.sim import Trial, simulate_trial, write_trace
+
+# the shared data sits beside the repository (CI has it there too)
+REAL = (
+    Path(__file__).resolve().parents[2]
+    / "shared"
+    / "data"
+    / "sinumerik"
+    / "axis7-braking-trace.xml"
+)
+
+
+def _reversal_trace(tmp_path: Path, backlash_arcmin: float, name: str) -> tuple[Path, dict]:
+    sim = simulate_trial(Trial(name, "s", speed=175, tcp=1.6, step=1, reverse=True,
+                               backlash=backlash_arcmin / 60, sensors="real", seed=3))  # fmt: skip
+    path = write_trace(tmp_path / f"{name}.xml", sim.data, intervals={"AP": 0.004, "MP": 0.004})
+    return path, sim.truth
+
+
+def test_the_real_trace_has_no_reversal_only_changes_after_long_standstills(tmp_path):
+    (result,) = diagnose_backlash(REAL)
+    assert result.backlash_score is None and result.reading is None
+    kinds = [r.change.kind for r in result.reversals]
+    assert kinds == ["after standstill", "after standstill"]
+    assert all(r.change.dwell > 10 for r in result.reversals)
+    assert "no reversal" in result.message
+    # two-encoder statistics at the direction changes: a few thousandths of a degree
+    assert 0.0005 < result.lost_motion < 0.01
+    out = write_results([result], tmp_path / "r.json")
+    traces = json.loads(out.read_text())["traces"]
+    assert traces[0]["path"] == str(REAL) and traces[0]["backlash_score"] is None
+    assert {"path", "backlash_score", "lost_motion", "reversals"} <= set(traces[0])
+
+
+def test_a_trace_that_moves_one_way_says_so():
+    rec = read_trace(REAL)
+    first_move = rec.window(0.0, 20.0)  # the real trace's first move only
+    result = diagnose_recording(first_move, "first-move")
+    assert result.reversals == () and result.backlash_score is None
+    assert result.lost_motion is None
+    assert result.message.startswith("no direction change")
+
+
+def test_a_simulated_reversal_is_found_scored_and_read(tmp_path):
+    path, truth = _reversal_trace(tmp_path, 2.0, "worn")
+    (result,) = diagnose_backlash(path)
+    (reversal,) = result.reversals
+    assert reversal.change.kind == "reversal"
+    assert reversal.speed == pytest.approx(60 / 0.85, rel=0.01)  # a 1 deg step never cruises
+    assert result.backlash_score == reversal.indicators[SCORE]
+    assert result.lost_motion == pytest.approx(truth["lost_motion"], rel=0.1)
+    assert result.reading is not None and "arcmin" in result.reading["text"]
+    assert result.reading["arcmin_low"] <= 2 <= result.reading["arcmin_high"]
+
+
+def test_several_traces_give_a_trend(tmp_path):
+    paths = [_reversal_trace(tmp_path, b, f"t{i}")[0] for i, b in enumerate((0.0, 1.0, 4.0))]
+    results = diagnose_backlash(*paths, REAL)
+    table = trend_table(results)
+    assert table["path"].tolist() == [str(p) for p in (*paths, REAL)]
+    scores = table["backlash_score"].tolist()
+    assert scores[0] < scores[1] < scores[2] and np.isnan(scores[3])
+
+
+def test_no_path_and_a_wrong_suffix_are_parameter_errors(tmp_path):
+    with pytest.raises(ParameterError):
+        diagnose_backlash()
+    with pytest.raises(ParameterError, match="json"):
+        write_results([], tmp_path / "r.txt")
+
+
+def test_direction_changes_of_the_real_trace():
+    changes = find_direction_changes(read_trace(REAL))
+    assert [c.direction for c in changes] == [-1, 1]
+
+
+def test_the_calibration_ships_with_the_package():
+    cal = load_calibration()
+    assert cal["indicator"] == SCORE and set(cal["levels"]) == {"35", "70.6"}
