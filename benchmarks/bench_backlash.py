@@ -16,6 +16,7 @@ markdown tables: AUCs and Spearman's rho with 95 % bootstrap intervals per speed
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import time
 from pathlib import Path
@@ -23,8 +24,9 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
+from scipy.signal import welch
 
-from funcnet.diagnosis.diagnose import SCORE
+from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE, SCORE
 from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL
 from funcnet.diagnosis.sweep import (
     calibration,
@@ -66,6 +68,10 @@ class _Printer(list[str]):
         super().append(text)
 
 
+def _stretches(t: np.ndarray, rows: pd.DataFrame) -> list[np.ndarray]:
+    return [(t >= row.start + 0.05) & (t < row.stop - 0.05) for row in rows.itertuples()]
+
+
 REAL_TRACE = ROOT.parent / "shared" / "data" / "sinumerik" / "axis7-braking-trace.xml"
 
 
@@ -91,6 +97,16 @@ def _trace_figures(rec: Any) -> dict[str, float]:
         out[f"AC white sigma {phase} (A)"] = (
             float(np.std(np.concatenate(diffs)) / np.sqrt(2)) if diffs else np.nan
         )
+        spectra = [welch(ac[part] - ac[part].mean(), fs=1 / rec.sample_period, nperseg=128)
+                   for part in _stretches(t, rows) if part.sum() >= 128]  # fmt: skip
+        if spectra:
+            freqs = spectra[0][0]
+            power = np.mean([p for _, p in spectra], axis=0)
+            for lo, hi in ((0, 10), (10, 50), (50, 250)):
+                band = (freqs >= lo) & (freqs < hi if hi < 250 else freqs <= hi)
+                out[f"AC {phase}: share of power {lo}-{hi} Hz"] = float(
+                    power[band].sum() / power.sum()
+                )
         if phase == "cruise" and mask.any():
             rp, ap = rec.data["RP"].to_numpy(float), rec.data["AP"].to_numpy(float)
             v = np.abs(np.gradient(rp, rec.sample_period))[mask]
@@ -119,17 +135,96 @@ def compare_real() -> str:
     return "\n".join(lines) + "\n"
 
 
+def figure(sweep: pd.DataFrame, path: Path) -> None:
+    """Scatter of the score against the true backlash, and ROC curves (>= 0.5 arcmin vs 0)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(2, 2, figsize=(10, 8))
+    for col, speed in enumerate(sorted(sweep["speed"].unique())):
+        part = sweep[sweep["speed"] == speed]
+        ax = axes[0, col]
+        for noise, marker in ((1.0, "o"), (2.0, "x")):
+            sub = part[part["noise_scale"] == noise]
+            ax.scatter(sub["backlash_arcmin"], sub[SCORE] * 60, s=6, marker=marker,
+                       alpha=0.4, label=f"noise x{noise:g}")  # fmt: skip
+        ax.set(xlabel="true backlash (arcmin)", ylabel=f"{SCORE} (arcmin)",
+               title=f"{speed:g} deg/min")  # fmt: skip
+        ax.legend()
+        ax = axes[1, col]
+        labels = part["backlash_arcmin"]
+        keep = (labels >= 0.5) | (labels == 0)
+        for name in (SCORE, "vibration", "current_step", "motor_travel", "lost_motion"):
+            values = part.loc[keep, name].to_numpy(float)
+            positive = (labels[keep] >= 0.5).to_numpy()
+            order = np.argsort(-values)
+            tpr = np.concatenate([[0], np.cumsum(positive[order]) / positive.sum()])
+            fpr = np.concatenate([[0], np.cumsum(~positive[order]) / (~positive).sum()])
+            ax.plot(fpr, tpr, label=name)
+        ax.plot([0, 1], [0, 1], color="grey", lw=0.5)
+        ax.set(xlabel="false positive rate", ylabel="true positive rate",
+               title=f"ROC, >= 0.5 arcmin vs none, {speed:g} deg/min")  # fmt: skip
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+    print(f"wrote {path}")
+
+
+def _write_calibration(sweep: pd.DataFrame, motor: pd.DataFrame, source: str) -> None:
+    """calibration.json: SCORE on the main sweep, MOTOR_LOOP_SCORE on the motor-loop sweep."""
+    tables = []
+    for table_ in (sweep, motor):
+        if "peak_speed" not in table_:  # tables saved before the column existed: a 1 deg step
+            table_ = table_.assign(peak_speed=np.minimum(table_["speed"], round(60 / 0.85, 1)))
+        tables.append(table_)
+    cal = calibration(tables[0], SCORE)
+    cal["source"] = (
+        f"benchmarks/bench_backlash.py --calibrate: {source}, {len(sweep)} trials, noise 1 and "
+        "2 pooled, quantiles over TCP, friction, stiffness and seeds"
+    )
+    cal["motor_loop"] = calibration(tables[1], MOTOR_LOOP_SCORE)
+    cal["motor_loop"]["source"] = (
+        f"backlash_sweep_plan(position_feedback='motor', seeds=(1,)), {len(motor)} trials"
+    )
+    CALIBRATION.write_text(json.dumps(cal, indent=1) + "\n", encoding="utf-8")
+    print(f"wrote {CALIBRATION}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="a small sweep")
     parser.add_argument("--calibrate", action="store_true", help="rewrite calibration.json")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--resamples", type=int, default=1000)
+    parser.add_argument(
+        "--calibrate-from",
+        type=Path,
+        default=None,
+        help="rewrite calibration.json from a "
+        "sweep table saved with --save (sweep.csv) without simulating again",
+    )
+    parser.add_argument(
+        "--figure",
+        type=Path,
+        default=None,
+        help="draw docs/backlash.png (scatter and ROC) "
+        "from a sweep table saved with --save (sweep.csv)",
+    )
     parser.add_argument("--compare", action="store_true", help="only the real-vs-sim table")
     parser.add_argument("--save", type=Path, default=None, help="folder for the tables (CSV)")
     args = parser.parse_args()
     if args.compare:
         print(compare_real())
+        return
+    if args.figure:
+        figure(pd.read_csv(args.figure), ROOT / "docs" / "backlash.png")
+        return
+    if args.calibrate_from:
+        folder = args.calibrate_from
+        _write_calibration(pd.read_csv(folder / "sweep.csv"),
+                           pd.read_csv(folder / "sweep_motor.csv"), str(folder))  # fmt: skip
         return
     small: dict[str, Any] = {}
     if args.quick:
@@ -181,11 +276,13 @@ def main() -> None:
         ("position loop on the motor encoder", {"position_feedback": "motor"}),
         ("elastic arm (third mass)", {"arm_model": "elastic"}),
     )
+    parts = {}
     for label, extra in extras:
         plan = backlash_sweep_plan(
             seeds=(1,), **extra, **{k: v for k, v in small.items() if k != "seeds"}
         )
         part = run_sweep(plan, networks=False, workers=args.workers)
+        parts[next(iter(extra.values()))] = part
         out.append(table(score_indicators(part, physical, resamples=args.resamples), label))
 
     held = backlash_sweep_plan(backlash_arcmin=(0.0, 0.75, 1.5, 3.0), tcps=(1.4, 1.8),
@@ -196,18 +293,22 @@ def main() -> None:
                                       resamples=args.resamples),
                      "held-out plan (backlash 0/0.75/1.5/3 arcmin, TCP 1.4/1.8, friction and "
                      "stiffness 0.85/1.2, noise 1.5, seed 7)"))  # fmt: skip
+    held_motor = [dataclasses.replace(t, name=t.name + "-m", position_feedback="motor")
+                  for t in held]  # fmt: skip
+    part_motor = run_sweep(held_motor, networks=False, workers=args.workers)
+    out.append(table(score_indicators(part_motor, [SCORE, MOTOR_LOOP_SCORE, "vibration"],
+                                      resamples=args.resamples),
+                     "held-out plan, position loop on the motor encoder"))  # fmt: skip
     if args.save:
         args.save.mkdir(parents=True, exist_ok=True)
         sweep.to_csv(args.save / "sweep.csv", index=False)
         fn.to_csv(args.save / "sweep_fn.csv", index=False)
+        for key, frame in parts.items():
+            frame.to_csv(args.save / f"sweep_{key}.csv", index=False)
+        part.to_csv(args.save / "heldout.csv", index=False)
+        part_motor.to_csv(args.save / "heldout_motor.csv", index=False)
     if args.calibrate:
-        if "peak_speed" not in sweep:  # tables saved before the column existed
-            sweep["peak_speed"] = np.minimum(sweep["speed"], round(60 / 0.85, 1))
-        cal = calibration(sweep, SCORE)
-        cal["source"] = (f"benchmarks/bench_backlash.py --calibrate: backlash_sweep_plan(), "
-                         f"{len(sweep)} trials, noise 1 and 2 pooled")  # fmt: skip
-        CALIBRATION.write_text(json.dumps(cal, indent=1) + "\n", encoding="utf-8")
-        print(f"wrote {CALIBRATION}")
+        _write_calibration(sweep, parts["motor"], "backlash_sweep_plan()")
 
 
 if __name__ == "__main__":

@@ -108,6 +108,7 @@ def readings(case: Case, n: int, pairs: int) -> list[dict[str, object]]:
             rows.append({
                 "kind": row["kind"], "interval": combine_kinds(c, t),
                 "coupled": bool(row["coupled"]), "direction": row["direction"],
+                "label": row["evidence"],
                 "surrogates": int(row["surrogates"]),
                 "c_diff": row["c_diff"], "t_diff": row["t_diff"],
                 "c_cover0": row["c_diff_low"] <= 0 <= row["c_diff_high"],
@@ -156,8 +157,9 @@ def table_false_positives(pairs: int, lengths: tuple[int, ...]) -> dict[tuple[st
 def table_power(pairs: int) -> None:
     print(f"\n## 2. Power and direction on coupled pairs ({pairs} pairs per cell)\n")
     print("| system | N | arrow (paper) | right arrow (paper) | right arrow (mu + interval) | "
-          "coupled (test) | coupled + right direction (measure) | wrong direction (measure) |")
-    print("|---|---|---|---|---|---|---|---|")
+          "coupled (test) | coupled + right direction (measure) | wrong direction (measure) | "
+          "coupled-directed right (label) | coupled-directed wrong (label) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for case, n in coupled_cases():
         rows = readings(case, n, pairs)
         if case.truth == "dependent":
@@ -165,16 +167,24 @@ def table_power(pairs: int) -> None:
             right_interval = rate([not arrow(r["interval"]) for r in rows])
             right_measure = rate([r["coupled"] and not r["direction"] for r in rows])
             wrong = rate([bool(r["direction"]) for r in rows])
+            label_right = rate([r["label"] == "coupled" for r in rows])
+            label_wrong = rate([r["label"] == "coupled-directed" for r in rows])
         else:
             right_paper = rate([r["kind"] == case.truth for r in rows])
             right_interval = rate([r["interval"] == case.truth for r in rows])
             right_measure = rate([r["coupled"] and r["direction"] == case.truth for r in rows])
             wrong = rate([bool(r["direction"]) and r["direction"] != case.truth for r in rows])
+            label_right = rate([r["label"] == "coupled-directed" and r["kind"] == case.truth
+                                for r in rows])
+            label_wrong = rate([r["label"] == "coupled-directed" and r["kind"] != case.truth
+                                for r in rows])
         print(f"| {case.name} | {n} | {rate([arrow(r['kind']) for r in rows]):.2f} | "
               f"{right_paper:.2f} | {right_interval:.2f} | {rate([r['coupled'] for r in rows]):.2f}"
-              f" | {right_measure:.2f} | {wrong:.2f} |", flush=True)
+              f" | {right_measure:.2f} | {wrong:.2f} | {label_right:.2f} | {label_wrong:.2f} |",
+              flush=True)
     print("\nFor the common driver the right answer is 'no direction': its 'right' columns count "
-          "pairs without an arrow (paper, interval) or coupled without a direction (measure).")
+          "pairs without an arrow (paper, interval), coupled without a direction (measure), "
+          "labelled 'coupled' (label); 'wrong' counts a direction or 'coupled-directed'.")
 
 
 def table_coverage(found: dict[tuple[str, int], list], lengths: tuple[int, ...]) -> None:

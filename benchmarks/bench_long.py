@@ -108,11 +108,22 @@ def whole_network() -> dict[str, Any]:
     return runs[-1]
 
 
+def triangles(cross: Any, auto_x: Any, auto_y: Any, threads: int,
+              block_words: int | None = None) -> tuple[Any, ...]:
+    """``(k_xy, tri_xy, k_yx, tri_yx)``: row-wise kernel twice, or the blocked one; both
+    transpose ``CR_XY`` first."""
+    from funcnet._kernels import _cross_triangles, _cross_triangles_both, _transpose_packed
+
+    transposed = _transpose_packed(cross, auto_y.shape[0])
+    if block_words is None:
+        return (*_cross_triangles(cross, auto_y), *_cross_triangles(transposed, auto_x))
+    return _cross_triangles_both(cross, transposed, auto_x, auto_y, block_words, threads)
+
+
 def kernel_table(sizes: tuple[int, ...], repeats: int) -> list[dict[str, Any]]:
     import numba
     import numpy as np
 
-    from funcnet._kernels import _cross_triangles, _cross_triangles_both, _transpose_packed
     from funcnet.embedding import embed
     from funcnet.preprocess import normalize
     from funcnet.recurrence import auto_recurrence, cross_recurrence
@@ -129,25 +140,16 @@ def kernel_table(sizes: tuple[int, ...], repeats: int) -> list[dict[str, Any]]:
             a_x, a_y = auto_recurrence(xs, rr=0.05), auto_recurrence(ys, rr=0.05)
             cr_xy = cross_recurrence(xs, ys, cr=0.05)
 
-            def rowwise() -> tuple[Any, ...]:
-                cr_yx = _transpose_packed(cr_xy.rows, cr_xy.n_cols)
-                return (*_cross_triangles(cr_xy.rows, a_y.rows),
-                        *_cross_triangles(cr_yx, a_x.rows))
-
-            def blocked(words: int) -> tuple[Any, ...]:
-                cr_yx = _transpose_packed(cr_xy.rows, cr_xy.n_cols)
-                return _cross_triangles_both(cr_xy.rows, cr_yx, a_x.rows, a_y.rows, words,
-                                             threads)
-
-            candidates = {"row-wise": rowwise}
-            candidates.update({f"blocked b={b}": (lambda b=b: blocked(b)) for b in BLOCKS})
-            reference = rowwise()
+            blocks = (cr_xy.rows, a_x.rows, a_y.rows, threads)
+            candidates: dict[str, tuple[int, ...]] = {"row-wise": ()}
+            candidates.update({f"blocked b={b}": (b,) for b in BLOCKS})
+            reference = triangles(*blocks)
             walls: dict[str, list[float]] = {name: [] for name in candidates}
             cpus: dict[str, list[float]] = {name: [] for name in candidates}
             for _ in range(repeats):
-                for name, function in candidates.items():
+                for name, words in candidates.items():
                     wall, cpu = time.perf_counter(), time.process_time()
-                    counts = function()
+                    counts = triangles(*blocks, *words)
                     walls[name].append(time.perf_counter() - wall)
                     cpus[name].append(time.process_time() - cpu)
                     assert all(np.array_equal(c, r) for c, r in zip(counts, reference,

@@ -60,7 +60,7 @@ def _assert_one_error_line(result, *needles: str) -> None:
 @pytest.mark.parametrize(
     ("command", "words"),
     [
-        ([], ["demo", "simulate", "network", "study", "report"]),
+        ([], ["demo", "simulate", "network", "backlash", "study", "report"]),
         (["demo"], ["--out", "report"]),
         (["simulate"], ["--plan", "--seed", "manifest"]),
         (["network"], ["--signals", "--phase", "--window", "--mu", "--theiler", "--channels"]),
@@ -531,6 +531,14 @@ def test_simulate_a_plan_file(tmp_path: Path) -> None:
     assert "1 simulated, 0 skipped" in reseeded.stdout
     bad = runner.invoke(app, ["simulate", "--plan", str(tmp_path / "none.toml"), "--out", str(out)])
     _assert_one_error_line(bad, "none.toml")
+
+
+def test_simulate_knows_the_named_plans() -> None:
+    from funcnet.robot.sim import NAMED_PLANS
+
+    result = runner.invoke(app, ["simulate", "--help"], env={"COLUMNS": "200"})
+    for name in NAMED_PLANS:
+        assert f"'{name}'" in result.stdout
 
 
 def test_study_and_report_commands(trial: Path, tmp_path: Path) -> None:

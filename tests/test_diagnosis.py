@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from funcnet.diagnosis import (
+    MOTOR_LOOP_SCORE,
     SCORE,
     diagnose_backlash,
     diagnose_recording,
@@ -74,6 +75,18 @@ def test_a_simulated_reversal_is_found_scored_and_read(tmp_path):
     assert result.reading["arcmin_low"] <= 2 <= result.reading["arcmin_high"]
 
 
+def test_without_the_arm_encoder_the_motor_loop_indicator_is_read(tmp_path):
+    sim = simulate_trial(Trial("noap", "s", speed=35, tcp=1.6, step=1, reverse=True,
+                               backlash=2 / 60, sensors="real", position_feedback="motor",
+                               seed=3))  # fmt: skip
+    data = sim.data.drop(columns=["AP"])
+    path = write_trace(tmp_path / "noap.xml", data, intervals={"MP": 0.004})
+    (result,) = diagnose_backlash(path)
+    assert result.score_indicator == MOTOR_LOOP_SCORE and result.lost_motion is None
+    assert result.backlash_score == result.reversals[0].indicators[MOTOR_LOOP_SCORE]
+    assert result.reading is not None and result.reading["indicator"] == MOTOR_LOOP_SCORE
+
+
 def test_several_traces_give_a_trend(tmp_path):
     paths = [_reversal_trace(tmp_path, b, f"t{i}")[0] for i, b in enumerate((0.0, 1.0, 4.0))]
     results = diagnose_backlash(*paths, REAL)
@@ -81,6 +94,8 @@ def test_several_traces_give_a_trend(tmp_path):
     assert table["path"].tolist() == [str(p) for p in (*paths, REAL)]
     scores = table["backlash_score"].tolist()
     assert scores[0] < scores[1] < scores[2] and np.isnan(scores[3])
+    page = write_results(results, tmp_path / "trend.html").read_text()
+    assert "<svg" in page and "t2.xml" in page
 
 
 def test_no_path_and_a_wrong_suffix_are_parameter_errors(tmp_path):
@@ -88,6 +103,12 @@ def test_no_path_and_a_wrong_suffix_are_parameter_errors(tmp_path):
         diagnose_backlash()
     with pytest.raises(ParameterError, match="json"):
         write_results([], tmp_path / "r.txt")
+
+
+def test_the_html_page_holds_the_trend(tmp_path):
+    result = diagnose_recording(read_trace(REAL).window(0.0, 20.0), "first-move")
+    page = write_results([result], tmp_path / "r.html").read_text()
+    assert "first-move" in page and "no direction change" in page and "model-based" in page
 
 
 def test_direction_changes_of_the_real_trace():

@@ -183,22 +183,28 @@ def test_counting_passes_find_ties_inside_a_large_band(monkeypatch, kind, limit)
         np.testing.assert_array_equal(result.to_dense(), expected)
 
 
-def test_narrow_meets_a_tied_order_statistic():
+@pytest.mark.parametrize("probes", [(), (0.0,), (0.5, 0.0)])
+def test_narrow_meets_a_tied_order_statistic(monkeypatch, probes):
+    monkeypatch.setattr(order_statistic, "_BAND_LIMIT", 100)
     xs = reference_embed(resting(400, 5), 2, 1)
     bt = np.ascontiguousarray(xs.T)
     keys = np.sort(((xs[:, None, :] - xs[None, :, :]) ** 2).sum(axis=2).ravel())
-    rank = int(0.2 * keys.size)
-    assert keys[rank - 1] == 0.0  # tied: the diagonal and the rest
-    n_hi = int((keys <= 1.0).sum())
+    rank = int(0.1 * keys.size)
+    assert keys[rank - 1] == 0.0  # tied: the diagonal and the resting states
+    bits = order_statistic._key_bits
     lo, hi, exact = order_statistic._narrow(
-        xs, bt, False, 0, 0, rank, -1, 0, order_statistic._key_bits(1.0), n_hi
+        xs, bt, False, 0, 0, rank, -1, 0, bits(1.0), int((keys <= 1.0).sum()), probes
     )
     assert exact and lo == hi == 0.0
-    rank = int(0.7 * keys.size)  # untied: a bracket, or the value itself
+    rank = int(0.7 * keys.size)  # untied: a band of at most 100 keys, or the value itself
     lo, hi, exact = order_statistic._narrow(
-        xs, bt, False, 0, 0, rank, -1, 0, order_statistic._key_bits(keys[-1]), keys.size
+        xs, bt, False, 0, 0, rank, -1, 0, bits(keys[-1]), keys.size, probes
     )
-    assert (exact and hi == keys[rank - 1]) or lo <= keys[rank - 1] <= hi
+    if exact:
+        assert lo == hi == keys[rank - 1]
+    else:
+        assert lo <= keys[rank - 1] <= hi
+        assert ((keys >= lo) & (keys <= hi)).sum() <= 100
 
 
 def test_packing_is_unchanged_by_the_blocked_path():

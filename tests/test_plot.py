@@ -148,9 +148,27 @@ def test_figure_pair_network_uses_the_clustering_difference():
     t = np.linspace(0, 8 * np.pi, 251)
     net = funcnet.functional_network(np.column_stack([np.sin(t), np.sin(1.5 * t)
                                                       + 0.3 * np.sin(t)]), names=["x", "y"],
-                                     normalize=None, measure="clustering")
+                                     normalize="minmax", measure="clustering")
     assert f"{float(net.pairs['c_diff'].iloc[0]):+.3f}" in ax.get_title()
     assert len(edge_patches(ax)) == len(plot.network_edges(net))
+    # normalized input, as the package does by default: the README's +0.11, arrow y -> x
+    assert ax.get_title().startswith("C_diff = +0.111")
+    assert net.pairs["kind"].iloc[0] == "y->x"
+
+
+def test_figure_isrn_says_when_the_cross_block_is_empty():
+    fig = figures.figure_isrn()
+    assert figures.isrn_cross_links() == 0
+    assert any("no cross link" in t.get_text() for t in fig.axes[2].texts)
+    fig = figures.figure_isrn(eps=((0.15, 0.15), 0.15))
+    assert not fig.axes[2].texts
+
+
+def test_figure_notes_are_sentences_naming_the_networks():
+    net = figures.pair_network(warn=False)
+    notes = figures.figure_notes({"Fig. 5": net})
+    assert notes and all(n.startswith("Flagged: ") and n.endswith("in Fig. 5.") for n in notes)
+    assert not any("Warning" in n for n in notes)
 
 
 def trial_frame(n=600):
@@ -264,8 +282,8 @@ def test_network_legend_explains_colours_and_width():
     legend = ax.get_legend()
     handles = dict(zip([t.get_text() for t in legend.get_texts()], legend.legend_handles,
                        strict=True))
-    assert to_rgba(handles["directed X → Y"].get_color()) == to_rgba("black")
-    assert to_rgba(handles["bidirectional"].get_color()) == to_rgba("red")
+    assert to_rgba(handles["directed (|diff| ≥ μ)"].get_color()) == to_rgba("black")
+    assert to_rgba(handles["bidirectional (|diff| < μ)"].get_color()) == to_rgba("red")
     (reference,) = [h for label, h in handles.items() if label.startswith("weight 0.2")]
     assert reference.get_linewidth() == pytest.approx(2.0)  # same scale as the edges
     assert plot.plot_network(pairs, legend=False).get_legend() is None
@@ -327,7 +345,7 @@ def test_plot_draws_and_computes_nothing():
             imported.add(node.module or "")
             imported |= {f"{node.module}.{alias.name}" for alias in node.names}
     funcnet_imports = {name for name in imported if name.split(".")[0] == "funcnet"}
-    allowed = ("funcnet.network.schema", "funcnet.network.rule", "funcnet.errors",
+    allowed = ("funcnet.network.schema", "funcnet.network.rule", "funcnet.errors", "funcnet._io",
                "funcnet.parameters")
     assert all(name.startswith(allowed) for name in funcnet_imports), funcnet_imports
     assert "funcnet" not in imported  # no `import funcnet` reaching the core at call time

@@ -505,3 +505,4 @@ def _cross_triangles_both(
                              (task - n_xy) * block_words, block_words, pairs_yx)
     return (_row_popcounts(cross_rows), 2 * pairs_xy, _row_popcounts(cross_columns),
             2 * pairs_yx)
+

@@ -1,9 +1,9 @@
 """The ``funcnet`` command line: a thin layer over the library.
 
 Commands: ``demo`` (simulate the paper's plan, analyse it, write the report), ``simulate``,
-``network`` (one functional network of one trace), ``study`` (a batch from a TOML file) and
-``report`` (HTML report of a study's results). ``funcnet COMMAND --help`` is each command's
-reference.
+``network`` (one functional network of one trace), ``backlash`` (diagnose backlash in traces),
+``study`` (a batch from a TOML file) and ``report`` (HTML report of a study's results).
+``funcnet COMMAND --help`` is each command's reference.
 
 Conventions:
 
@@ -235,7 +235,8 @@ def simulate(
         str,
         typer.Option(
             "--plan",
-            help="'paper' (the 36 trials of the paper's Table 1) or a plan TOML file.",
+            help="'paper' (the 36 trials of the paper's Table 1), 'backlash-sweep' (reversal "
+            "trials over backlash widths, speeds, TCPs and nuisances) or a plan TOML file.",
         ),
     ] = "paper",
     seed: Annotated[int, typer.Option("--seed", min=0, help="Seed of the noise.")] = 0,
@@ -248,9 +249,13 @@ def simulate(
     simulated again. The same seed gives the same bytes.
     """
     with _reported_errors():
-        from funcnet.robot import paper_plan, read_plan, write_plan
+        from funcnet.robot import named_plan, paper_plan, read_plan, write_plan
+        from funcnet.robot.sim import NAMED_PLANS
 
-        trials = paper_plan() if plan == "paper" else read_plan(plan)
+        if plan == "paper":
+            trials = paper_plan()
+        else:
+            trials = named_plan(plan) if plan in NAMED_PLANS else read_plan(plan)
         traces = [out / f"{trial.name}.xml" for trial in trials]
         before = [_file_identity(path) for path in traces]
         with _progress(quiet, "simulating") as progress:
@@ -651,6 +656,77 @@ def _print_pairs(net: Any) -> None:
     if console.measure(table, options=console.options.update_width(10_000)).maximum > console.width:
         table = _pairs_table(net, _shown_columns(narrow=True), ".3g")
     console.print(table)
+
+
+# --------------------------------------------------------------------------------------------
+# backlash
+
+_BACKLASH_SUFFIXES = (".json", ".html")
+
+
+@app.command()
+def backlash(
+    traces: Annotated[
+        list[Path],
+        typer.Argument(
+            help="Traces of one axis (SINUMERIK XML, CSV or Parquet), oldest first for a trend."
+        ),
+    ],
+    channels: Annotated[
+        Path | None,
+        typer.Option("--channels", help="Channel map TOML (controller signal names -> roles)."),
+    ] = None,
+    axis: Annotated[
+        int | None, typer.Option("--axis", help="Axis to read from a trace of several axes.")
+    ] = None,
+    output: Annotated[
+        Path | None,
+        typer.Option(
+            "--output",
+            "-o",
+            help="Write the results: .json (one entry per trace: path, backlash_score, "
+            "lost_motion, reversals, ...) or .html (the trend table and plot).",
+        ),
+    ] = None,
+    quiet: Quiet = False,
+) -> None:
+    """Diagnose backlash at the direction changes of each trace.
+
+    Prints one line per trace: what was found, the motor-side backlash score (higher = more
+    backlash) with its reading on the simulated sweep, and the two-encoder lost motion when the
+    trace has AP. Readings are model-based: the calibration comes from the simulated axis, not
+    from this machine. A trace without a direction change is a result, not an error.
+    """
+    with _reported_errors():
+        if output is not None and output.suffix.lower() not in _BACKLASH_SUFFIXES:
+            raise ParameterError(
+                f"-o {output}: unknown format, use one of {', '.join(_BACKLASH_SUFFIXES)}"
+            )
+        from funcnet.diagnosis import diagnose_backlash, write_results
+
+        with _progress(quiet, "backlash"):
+            results = diagnose_backlash(*traces, channels=channels, axis=axis)
+        if output is not None:
+            write_results(results, output)
+    for result in results:
+        typer.echo(f"{result.path}: {_one_line(result.message)}")
+        typer.echo(f"  {_backlash_numbers(result)}")
+    if output is not None:
+        typer.echo(f"wrote {output}")
+
+
+def _backlash_numbers(result: Any) -> str:
+    """Score and lost motion of one trace's diagnosis, on one line."""
+    if result.backlash_score is None:
+        score = f"backlash_score none ({result.score_indicator})"
+    else:
+        spread = "" if result.score_spread is None else f" ± {result.score_spread:.3g}"
+        score = f"backlash_score {result.backlash_score:.4g}{spread} deg ({result.score_indicator})"
+    if result.lost_motion is None:
+        return f"{score}; lost_motion none (no AP)"
+    # Backlash is read in arcmin (1/60 deg); the JSON keeps degrees, as the manifest does.
+    spread = "" if result.lost_motion_spread is None else f" ± {60 * result.lost_motion_spread:.2f}"
+    return f"{score}; lost_motion {60 * result.lost_motion:.2f}{spread} arcmin"
 
 
 # --------------------------------------------------------------------------------------------

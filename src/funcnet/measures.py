@@ -20,10 +20,13 @@ uncoupled".
 The triangle counts use bit-packed rows: ``tri_v = sum_{p in N(v)} popcount(A_Y[p] & CR_XY[v])``
 over the words between v's first and last cross-neighbour, each unordered pair once, in a
 compiled parallel kernel (about ``M_X * k * M_Y / 128`` word operations for mean cross-degree
-``k``). Thresholds follow the rule of :mod:`funcnet.recurrence` (exact k-th order statistic of
-the candidate distances, ``k = max(1, ceil(rate * P))`` for the rate as written in decimal,
-``d <= eps``; or ``rule="pyunicorn"``). Parameters come as a
-:class:`funcnet.parameters.NetworkParameters` (``parameters=``) and keyword overrides; the
+``k``). For long windows (auto matrices beyond ~16 MiB, M > ~11,500) a blocked kernel counts
+both directions in one pass, reading each auto row once per block of 256 cross rows; the
+integer counts, and so every value, are the same. Thresholds follow the rule of
+:mod:`funcnet.recurrence` (exact k-th order statistic of the candidate distances,
+``k = max(1, ceil(rate * P))`` for the rate as written in decimal, ``d <= eps``; or
+``rule="pyunicorn"``). Parameters come as a :class:`funcnet.parameters.NetworkParameters`
+(``parameters=``) and keyword overrides; the
 defaults are the paper's ``RR = CR = 0.05`` (section 3.4).
 
 A pair is **degenerate** when one of its blocks says nothing: a threshold of 0 or an achieved
@@ -50,7 +53,7 @@ from typing import Any
 import numba
 import numpy as np
 
-from funcnet._kernels import _cross_triangles_both, _transpose_packed
+from funcnet._kernels import _cross_triangles, _cross_triangles_both, _transpose_packed
 from funcnet.embedding import signal_states
 from funcnet.errors import (
     DegenerateWarning,
@@ -80,9 +83,11 @@ __all__ = [
 ]
 
 
-# Rows of CR_XY (and of CR_YX) per block of the triangle kernel, in 64-row words: 4 keeps a
-# block's rows (256 x M / 8 bytes) in L2 up to M ~ 25,000 and was fastest at M = 22,700
-# (benchmarks/bench_long.py).
+# The triangle kernel: row-wise while the auto matrices fit in the last-level cache, blocked
+# above (each auto row read once per block of 64 * _BLOCK_WORDS cross rows). Measured on the
+# real trace (benchmarks/bench_long.py): the blocked kernel is 0.7-0.9x the row-wise one up to
+# M = 10,000, 1.0-1.8x at 15,000 and 1.4-2.6x at 22,686; b = 4 was the fastest block.
+_BLOCKED_BYTES = 16 * 2**20
 _BLOCK_WORDS = 4
 
 
@@ -91,6 +96,8 @@ def _cross_counts(
 ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
     """``(k_v, tri_v)`` of every node of X towards Y, then of every node of Y towards X."""
     cr_yx = _transpose_packed(cr_xy.rows, cr_xy.n_cols)
+    if max(a_x.rows.nbytes, a_y.rows.nbytes) < _BLOCKED_BYTES:
+        return _cross_triangles(cr_xy.rows, a_y.rows), _cross_triangles(cr_yx, a_x.rows)
     k_xy, tri_xy, k_yx, tri_yx = _cross_triangles_both(
         cr_xy.rows, cr_yx, a_x.rows, a_y.rows, _BLOCK_WORDS, numba.get_num_threads()
     )
@@ -542,8 +549,11 @@ def pairwise_cross_measures(
     """Cross measures of every pair ``i < j`` of equally long signals (a functional network).
 
     Each signal is embedded and its recurrence adjacency computed once, then reused in all its
-    pairs; only ``CR`` is computed per pair. Thresholds follow the same rule as
-    :func:`cross_measures`.
+    pairs; only ``CR`` is computed per pair, reduced to counts and freed before the next, so
+    memory is ``n_signals + 2`` packed ``M x M`` bit matrices (about 64 MB each at
+    M = 22,700) plus one threshold's candidate band. Thresholds follow the same rule as
+    :func:`cross_measures`. :func:`funcnet.recurrence.estimate_cost` forecasts time and
+    memory from the length.
 
     Parameters
     ----------
@@ -643,6 +653,9 @@ def pairwise_cross_measures(
                 autos[i], autos[j], cr_ij, parameters=_pair_parameters(p, i, j),
                 names=(labels[i], labels[j]),
             )
+            # One pair's cross structure at a time (M^2 / 8 bytes each): free it before the
+            # next pair's is built.
+            del cr_ij
             results[(keys[i], keys[j])] = labelled[(labels[i], labels[j])] = result
     if warn:
         _warn(labelled)

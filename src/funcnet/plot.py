@@ -27,7 +27,9 @@ References
 
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -38,6 +40,8 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrowPatch
 
+from funcnet._io import atomic_path
+from funcnet.errors import ParameterError
 from funcnet.network.rule import edges_from_pairs
 from funcnet.network.schema import PAIR_KINDS
 
@@ -52,6 +56,7 @@ __all__ = [
     "signal_color",
     "phase_color",
     "network_edges",
+    "network_nodes",
     "network_legend_handles",
     "add_network_legend",
     "add_signal_legend",
@@ -61,6 +66,8 @@ __all__ = [
     "plot_graph",
     "plot_signals",
     "plot_edge_timeline",
+    "network_title",
+    "save_network",
 ]
 
 DIRECTED_COLOR = "black"
@@ -184,13 +191,14 @@ def network_legend_handles(width_scale: float = 10.0, weight: float = 0.2, *,
     Examples
     --------
     >>> [h.get_label() for h in network_legend_handles()]
-    ['directed X → Y', 'bidirectional', 'weight 0.2 (width ∝ weight)']
+    ['directed (|diff| ≥ μ)', 'bidirectional (|diff| < μ)', 'weight 0.2 (width ∝ weight)']
     >>> network_legend_handles(degenerate=True)[2].get_label()
     'degenerate pair (arrow meaningless)'
     """
     handles = [Line2D([], [], color=DIRECTED_COLOR, linewidth=1.5, marker=">",
-                      label="directed X → Y"),
-               Line2D([], [], color=BIDIRECTIONAL_COLOR, linewidth=1.5, label="bidirectional")]
+                      label="directed (|diff| ≥ μ)"),
+               Line2D([], [], color=BIDIRECTIONAL_COLOR, linewidth=1.5,
+                      label="bidirectional (|diff| < μ)")]
     if degenerate:
         handles.append(Line2D([], [], color=DEGENERATE_COLOR, linewidth=1.5, linestyle="--",
                               label="degenerate pair (arrow meaningless)"))
@@ -239,10 +247,20 @@ def network_edges(net: Any, *, degenerate: str = "drop") -> pd.DataFrame:
     return edges_from_pairs(net.assign(degenerate=flags.astype(bool)), degenerate=degenerate)
 
 
-def _network_nodes(net: Any) -> list[str]:
+def network_nodes(net: Any) -> list[str]:
+    """The nodes of a network, or of a pairs table (its signals in order of appearance).
+
+    Examples
+    --------
+    >>> network_nodes(pd.DataFrame({"x": ["A", "A"], "y": ["B", "C"]}))
+    ['A', 'B', 'C']
+    """
     if isinstance(net, pd.DataFrame):
         return list(dict.fromkeys([*net["x"], *net["y"]]))
     return list(net.nodes)
+
+
+_network_nodes = network_nodes
 
 
 def plot_network(
@@ -577,19 +595,35 @@ def plot_signals(
     ax.set_xlabel("time [s]")
     ax.set_ylabel("normalized" if normalize else "value")
     if legend:
-        ax.legend(fontsize=9, ncol=min(len(data.columns), 6), loc="upper left", frameon=False)
+        # beside the axes: a legend inside would hide the data (Fig. 9)
+        ax.legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False)
     return ax
+
+
+def _window_time(key: Any, net: Any) -> float:
+    """A network's time on a timeline: its key when a number, else its window's centre."""
+    try:
+        return float(key)
+    except (TypeError, ValueError):
+        window = getattr(net, "window", None)
+        if window and window.get("start") is not None and window.get("stop") is not None:
+            return (float(window["start"]) + float(window["stop"])) / 2
+        raise ParameterError.of(
+            "networks", f"key {key!r} is not a time and its network has no window to place it "
+            "by; key the networks by time (seconds), or pass window_networks' result"
+        ) from None
 
 
 def _pair_table(networks: Any, time: str) -> pd.DataFrame:
     if isinstance(networks, pd.DataFrame):
         return networks
     frames = []
-    for t, net in networks.items():
+    for key, net in networks.items():
+        t = _window_time(key, net)
         pairs = net if isinstance(net, pd.DataFrame) else net.pairs
         columns = ["x", "y", "kind", "weight", *(["degenerate"] if "degenerate" in pairs else [])]
         frame = pairs[columns].copy()
-        frame[time] = float(t)
+        frame[time] = t
         frames.append(frame)
     return pd.concat(frames, ignore_index=True)
 
@@ -613,9 +647,10 @@ def plot_edge_timeline(
     Parameters
     ----------
     networks : mapping of time -> FunctionalNetwork (or pairs table), or pandas.DataFrame
-        Networks keyed by the time of their window (e.g. its centre, seconds), or one pairs
-        table of all windows with columns ``x, y, kind, weight``, ``time`` and optionally
-        ``degenerate``.
+        Networks keyed by the time of their window (e.g. its centre, seconds) -- or keyed by
+        label, as :func:`funcnet.window_networks` returns them: each is then placed at its
+        window's centre -- or one pairs table of all windows with columns ``x, y, kind,
+        weight``, ``time`` and optionally ``degenerate``.
     time : str
         Name of the time column of a table.
     ax : matplotlib.axes.Axes, optional
@@ -757,3 +792,93 @@ def add_signal_legend(fig: Figure, names: Sequence[str]) -> Any:
                         fontsize=9, frameon=False)
     legend.set_gid("legend:signals")
     return legend
+
+
+def network_title(net: Any, source: str | None = None) -> str:
+    """A network's title: trace, window (label and span) and its parameters, on two lines.
+
+    Parameters
+    ----------
+    net : FunctionalNetwork
+    source : str, optional
+        The trace; default the file of the network's window.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from funcnet.network import functional_network
+    >>> x = np.random.default_rng(0).random((120, 2))
+    >>> print(network_title(functional_network(x, delay=1, warn=False, label="cruise 1")))
+    cruise 1 (120 samples)
+    m = 3, τ = 1, RR = 0.05, CR = 0.05, μ = 0.05, minmax
+    """
+    window = getattr(net, "window", None) or {}
+    source = source if source is not None else window.get("source")
+    where = [Path(str(source)).name] if source else []
+    label = net.label or window.get("label")
+    if label:
+        where.append(str(label))
+    if window.get("start") is not None:
+        where.append(f"{float(window['start']):.3f}–{float(window['stop']):.3f} s")
+    p = net.parameters
+    first = " · ".join(where) + f" ({net.n_samples} samples)"
+    second = (f"m = {p.dim}, τ = {p.delay}, RR = {p.rr}, CR = {p.cr}, μ = {p.mu}, "
+              f"{p.normalize or 'not normalized'}")
+    return f"{first.strip()}\n{second}"
+
+
+def save_network(net: Any, path: str | os.PathLike[str], *,
+                 size: tuple[float, float] = (7.0, 7.5), dpi: int = 100,
+                 title: str | None = None) -> Path:
+    """Draw a network into an image file (PNG, SVG or PDF), titled and with its legend.
+
+    Parameters
+    ----------
+    net : FunctionalNetwork
+    path : path-like
+        The file; its suffix (``.png``, ``.svg``, ``.pdf``) names the format. Written
+        atomically.
+    size : (float, float)
+        Width and height in inches (pixels = inches × ``dpi`` for PNG).
+    dpi : int
+        Resolution of a PNG.
+    title : str, optional
+        Default :func:`network_title`: trace, window, parameters.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    ParameterError
+        Another suffix, or a size that is not positive.
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, pathlib
+    >>> from funcnet.network import functional_network
+    >>> net = functional_network(np.random.default_rng(0).random((120, 3)), delay=1, warn=False)
+    >>> out = save_network(net, pathlib.Path(tempfile.mkdtemp()) / "net.png", size=(8, 6))
+    >>> from matplotlib.image import imread
+    >>> imread(out).shape[:2]
+    (600, 800)
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".png", ".svg", ".pdf"):
+        raise ParameterError.of("path", f"must end in .png, .svg or .pdf, got {path.name!r}")
+    if len(size) != 2 or not all(float(v) > 0 for v in size):
+        raise ParameterError.of("size", f"must be two positive sizes in inches, got {size!r}")
+    fig = Figure(figsize=(float(size[0]), float(size[1])), dpi=dpi, layout="constrained")
+    ax = fig.add_subplot()
+    plot_network(net, ax, legend=True)
+    ax.set_title(network_title(net) if title is None else title, fontsize=10)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format=suffix[1:], dpi=dpi)
+    return path

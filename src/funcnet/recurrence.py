@@ -60,7 +60,11 @@ make them several times slower (5 signals of 3000 samples on 2 shared cores: 1.8
 0.53 s with ``OMP_WAIT_POLICY=PASSIVE``). Set that variable in the environment before Python
 starts if it applies to you; the library never changes the environment.
 
-Length: over 600 lines because of the numpydoc of seven public names; the code is about 300.
+Cost of a long window: :func:`estimate_cost` forecasts time and memory of one functional network
+from the window's length before anything is computed (a rough model from measured constants),
+so that an application can warn or refuse; the functions here never refuse on their own.
+
+Length: over 600 lines because of the numpydoc of nine public names; the code is about 380.
 """
 
 from __future__ import annotations

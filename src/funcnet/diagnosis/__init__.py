@@ -31,6 +31,7 @@ _EXPORTS = {
     "score_indicators": "funcnet.diagnosis.sweep",
     "calibration": "funcnet.diagnosis.sweep",
     "SCORE": "funcnet.diagnosis.diagnose",
+    "MOTOR_LOOP_SCORE": "funcnet.diagnosis.diagnose",
     "BacklashResult": "funcnet.diagnosis.diagnose",
     "ReversalResult": "funcnet.diagnosis.diagnose",
     "diagnose_backlash": "funcnet.diagnosis.diagnose",

@@ -11,6 +11,7 @@ backlash widths gave such values on the simulated axis, not on this machine.
 
 from __future__ import annotations
 
+import html
 import json
 import math
 import os
@@ -38,6 +39,7 @@ from funcnet.robot.recording import Recording, read_trace
 
 __all__ = [
     "SCORE",
+    "MOTOR_LOOP_SCORE",
     "ReversalResult",
     "BacklashResult",
     "diagnose_backlash",
@@ -48,9 +50,13 @@ __all__ = [
     "MODEL_NOTE",
 ]
 
-#: The indicator reported as ``backlash_score``: the motor-side indicator with the best
+#: The indicator reported as ``backlash_score`` when the trace has the arm encoder AP (so the
+#: position loop can read it, as on the paper's robot): the motor-side indicator with the best
 #: detection on the simulated sweep (``docs/backlash.md``).
 SCORE = "motor_hysteresis"
+#: ``backlash_score`` of a trace without AP: its position loop must read the motor encoder,
+#: where ``motor_hysteresis`` sees nothing; the best motor-side indicator of that sweep.
+MOTOR_LOOP_SCORE = "motor_travel"
 
 #: What every reading says about itself.
 MODEL_NOTE = (
@@ -70,8 +76,8 @@ class ReversalResult:
         deg/min, the set-point's peak speed in the move after the change (the calibration is
         keyed by it).
     backlash_score : float or None
-        :data:`SCORE` (deg) at a reversal; None after a standstill (the calibration holds
-        reversals only).
+        The trace's score indicator (deg) at a reversal; None after a standstill (the
+        calibration holds reversals only).
     lost_motion : float or None
         Two-encoder lost motion (deg); None without AP or when the arm does not restart.
     indicators : dict
@@ -103,9 +109,11 @@ class BacklashResult:
     ----------
     path : str
         As given.
+    score_indicator : str
+        :data:`SCORE` when the trace has AP, :data:`MOTOR_LOOP_SCORE` without it.
     backlash_score : float or None
-        Mean of :data:`SCORE` over the trace's reversals (deg; higher = more backlash); None
-        without a reversal.
+        Mean of ``score_indicator`` over the trace's reversals (deg; higher = more backlash);
+        None without a reversal.
     score_spread : float or None
         Uncertainty of ``backlash_score``: the scatter (half the 10-90 % range) of the score
         on the simulated sweep at the backlash width read, with friction, stiffness, TCP and
@@ -126,6 +134,7 @@ class BacklashResult:
     """
 
     path: str
+    score_indicator: str
     backlash_score: float | None
     score_spread: float | None
     lost_motion: float | None
@@ -139,7 +148,7 @@ class BacklashResult:
         return {
             "path": self.path,
             "backlash_score": self.backlash_score,
-            "score_indicator": SCORE,
+            "score_indicator": self.score_indicator,
             "score_spread": self.score_spread,
             "lost_motion": self.lost_motion,
             "lost_motion_spread": self.lost_motion_spread,
@@ -158,6 +167,8 @@ def load_calibration() -> dict[str, Any]:
     >>> cal = load_calibration()
     >>> cal["indicator"] == SCORE, sorted(cal["levels"])  # the set-point's peak speeds
     (True, ['35', '70.6'])
+    >>> cal["motor_loop"]["indicator"] == MOTOR_LOOP_SCORE
+    True
     """
     text = resources.files("funcnet.diagnosis").joinpath("calibration.json").read_text("utf-8")
     data: dict[str, Any] = json.loads(text)
@@ -248,12 +259,13 @@ def diagnose_recording(
     rec = motor_side_recording(recording)
     changes = find_direction_changes(rec, max_dwell=max_dwell)
     has_ap = "AP" in rec.data.columns and bool(np.isfinite(rec.data["AP"]).any())
+    indicator, table = (SCORE, cal) if has_ap else (MOTOR_LOOP_SCORE, cal["motor_loop"])
     results = []
     for change in changes:
         speed = _move_speed(rec, change)
         if change.kind == "reversal":
             values = reversal_indicators(rec, change, networks=False)
-            score = _none(values[SCORE])
+            score = _none(values[indicator])
             lost = _none(values["lost_motion"]) if has_ap else None
             shown = {k: _none(v) for k, v in values.items() if k != "signature"}
         else:
@@ -268,8 +280,8 @@ def diagnose_recording(
     spread = None
     if score is not None:
         speed = float(np.mean([r.speed for r in results if r.backlash_score is not None]))
-        reading = _reading(score, speed, cal)
-        spread = _none(_spread(score, reading, cal))
+        reading = _reading(score, speed, table)
+        spread = _none(_spread(score, reading, table))
     n_rev = sum(r.change.kind == "reversal" for r in results)
     if not changes:
         message = "no direction change: the axis moves one way only; no backlash indicator"
@@ -283,6 +295,7 @@ def diagnose_recording(
         message = f"{n_rev} reversal(s); " + (reading["text"] if reading else "no score")
     return BacklashResult(
         path=str(where),
+        score_indicator=indicator,
         backlash_score=score,
         score_spread=spread,
         lost_motion=float(np.mean(losses)) if losses else None,
@@ -364,20 +377,23 @@ def trend_table(results: Sequence[BacklashResult]) -> pd.DataFrame:
     Returns
     -------
     DataFrame
-        ``path``, ``reversals`` (count), ``backlash_score``, ``score_spread``,
+        ``path``, ``reversals`` (count), ``score_indicator``, ``backlash_score``,
+        ``score_spread``,
         ``lost_motion``, ``arcmin_low``, ``arcmin_high``, ``message``.
 
     Examples
     --------
-    >>> trend_table([]).columns.tolist()[:3]
-    ['path', 'reversals', 'backlash_score']
+    >>> trend_table([]).columns.tolist()[:4]
+    ['path', 'reversals', 'score_indicator', 'backlash_score']
     """
-    columns = ["path", "reversals", "backlash_score", "score_spread", "lost_motion",
+    columns = ["path", "reversals", "score_indicator", "backlash_score", "score_spread",
+               "lost_motion",
                "arcmin_low", "arcmin_high", "message"]  # fmt: skip
     rows = [
         {
             "path": r.path,
             "reversals": sum(x.change.kind == "reversal" for x in r.reversals),
+            "score_indicator": r.score_indicator,
             "backlash_score": r.backlash_score,
             "score_spread": r.score_spread,
             "lost_motion": r.lost_motion,
@@ -391,13 +407,14 @@ def trend_table(results: Sequence[BacklashResult]) -> pd.DataFrame:
 
 
 def write_results(results: Sequence[BacklashResult], path: str | os.PathLike[str]) -> Path:
-    """Write ``{"traces": [...]}`` as JSON, atomically.
+    """Write ``{"traces": [...]}`` as JSON (or the trend table as HTML), atomically.
 
     Parameters
     ----------
     results : sequence of BacklashResult
     path : path-like
-        A ``.json`` file.
+        A ``.json`` file (one entry per trace: ``path`` as given, ``backlash_score``,
+        ``lost_motion``, ``reversals``, ...) or an ``.html`` page (the trend table).
 
     Returns
     -------
@@ -406,7 +423,7 @@ def write_results(results: Sequence[BacklashResult], path: str | os.PathLike[str
     Raises
     ------
     ParameterError
-        ``path`` does not end in ``.json``.
+        ``path`` does not end in ``.json`` or ``.html``.
 
     Examples
     --------
@@ -416,7 +433,56 @@ def write_results(results: Sequence[BacklashResult], path: str | os.PathLike[str
     []
     """
     target = Path(path)
-    if target.suffix.lower() != ".json":
-        raise ParameterError.of("output", f"must be a .json file, got {str(path)!r}")
+    suffix = target.suffix.lower()
+    if suffix not in (".json", ".html"):
+        raise ParameterError.of("output", f"must be a .json or .html file, got {str(path)!r}")
+    if suffix == ".html":
+        return write_text_atomic(target, _html(results))
     payload = {"traces": [r.to_dict() for r in results], "note": MODEL_NOTE}
     return write_text_atomic(target, json.dumps(payload, indent=2, allow_nan=False) + "\n")
+
+
+def _html(results: Sequence[BacklashResult]) -> str:
+    """A plain page: the trend table (one row per trace, in order) and what to read it as."""
+    table = trend_table(results).to_html(index=False, na_rep="", float_format="{:.5g}".format)
+    return (
+        "<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>funcnet backlash</title>"
+        "</head><body>\n<h1>Backlash diagnosis</h1>\n"
+        f"<p>backlash_score: {html.escape(SCORE)} with AP, {html.escape(MOTOR_LOOP_SCORE)} "
+        "without (deg; higher = more backlash). lost_motion: "
+        "two-encoder lost motion (deg). Readings are "
+        f"{html.escape(MODEL_NOTE)}. See docs/backlash.md for how far each can be trusted.</p>\n"
+        f"{table}\n{_trend_svg(results)}\n</body></html>\n"
+    )
+
+
+def _trend_svg(results: Sequence[BacklashResult]) -> str:
+    """The trend plot (score and lost motion per trace, in the given order) as inline SVG."""
+    trend = trend_table(results)
+    if len(trend) < 2:
+        return ""
+    import io
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(7, 3.2))
+    ax = fig.subplots()
+    x = np.arange(len(trend))
+    for column, label in (("backlash_score", "backlash_score"), ("lost_motion", "lost_motion")):
+        values = pd.to_numeric(trend[column], errors="coerce").to_numpy(dtype=float) * 60
+        if np.isfinite(values).any():
+            ax.plot(x, values, marker="o", label=f"{label} (arcmin)")
+    spread = pd.to_numeric(trend["score_spread"], errors="coerce").to_numpy(dtype=float) * 60
+    score = pd.to_numeric(trend["backlash_score"], errors="coerce").to_numpy(dtype=float) * 60
+    ax.fill_between(x, score - spread, score + spread, alpha=0.2)
+    ax.set_xticks(x, [Path(p).name for p in trend["path"]], rotation=20, fontsize=7)
+    ax.set_ylabel("arcmin")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    buffer = io.StringIO()
+    fig.savefig(buffer, format="svg")
+    text = buffer.getvalue()
+    return text[text.index("<svg") :]

@@ -10,9 +10,10 @@ Physical indicators
 ``lost_motion`` (deg, needs AP)
     The motor travel between the motor's turning point and the arm's restart: ``MP`` at its
     extreme minus ``MP`` when ``AP`` leaves its rest. The restart is placed between ticks by
-    fitting ``cbrt(|AP - AP_rest|)`` linearly in time over the first ticks that moved (the arm
-    leaves its rest as the gear's torque builds up: its distance grows as ``t**3``), and MP is
-    interpolated there. This is the manifest's ``lost_motion``: dead zone plus the gear's wind-up.
+    fitting ``cbrt(|AP - AP_rest|)`` linearly in time over the ticks that moved 1-20 encoder
+    steps (the arm leaves its rest as the gear's torque builds up: its distance grows as
+    ``t**3``), and MP is interpolated there. This is the manifest's ``lost_motion``: dead zone
+    plus the gear's wind-up.
 ``motor_hysteresis`` (deg, motor side: RP and MP)
     The motor's lead on the set-point ``MP - RP`` where the set-point runs at half its peak
     speed before the reversal, minus the same after it (sign: old direction). The position
@@ -99,6 +100,10 @@ _MOTOR_NODES = ("MP", "VM", "RC", "AC")
 _PAPER_NODES = ("RP", "AP", "MP", "V", "RC", "AC")
 _WINDOW = 0.6  # s, the paper's cruise and braking window length (section 4.2)
 _LEAD = 0.1  # s of the reversal window before the turning point
+# The arm's distance from its rest after the restart grows as (t - t0)**3 while the gear's
+# torque builds up with the motor's travel (a jerk-driven start); fitted over its first 1-20
+# encoder steps, before the acceleration settles into a parabola
+_RESTART_POWER = 3.0
 
 
 def _values(rec: Recording, name: str) -> np.ndarray:
@@ -171,16 +176,17 @@ def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None
     first = turn + int(moved[0])
 
     # the restart between ticks: the arm leaves its rest as the gear's torque builds up, the
-    # distance growing as (t - t0)**3, so its cube root grows linearly from the restart t0
+    # distance growing as (t - t0)**3, so its cube root grows linearly from the restart t0; the
+    # arm creeps below one encoder step for several ticks, so t0 may lie up to 8 ticks back
     fit = np.arange(first, min(first + 8, t.size))
     distance = new * (ap[fit] - rest) + quantum / 2  # the rest reading rounds half a step
-    near = (distance > quantum) & (distance < 60 * quantum)
+    near = (distance > quantum) & (distance < 20 * quantum)
     fit, distance = fit[near], distance[near]
     restart = t[first - 1]
     if fit.size >= 2:
-        slope, intercept = np.polyfit(t[fit], np.cbrt(distance), 1)
+        slope, intercept = np.polyfit(t[fit], distance ** (1 / _RESTART_POWER), 1)
         if slope > 0:
-            restart = float(np.clip(-intercept / slope, t[max(turn, first - 2)], t[first]))
+            restart = float(np.clip(-intercept / slope, t[max(turn, first - 8)], t[first]))
     return float(abs(mp[turn] - np.interp(restart, t, mp)))
 
 

@@ -37,7 +37,9 @@ from funcnet.evidence.interval import (
     AsymmetryInterval,
     asymmetry_interval,
     half_samples,
+    interval_from,
     interval_kind,
+    resampled_differences,
 )
 from funcnet.evidence.pairs import (
     EVIDENCE_LABELS,
@@ -62,8 +64,10 @@ __all__ = [
     "dependence_test",
     "evidence_label",
     "half_samples",
+    "interval_from",
     "interval_kind",
     "pairwise_evidence",
+    "resampled_differences",
     "shift_plan",
 ]
 

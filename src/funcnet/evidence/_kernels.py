@@ -1,4 +1,4 @@
-"""Compiled kernels of the evidence: windowed joint recurrences and sub-ISRN measures (private).
+"""Compiled kernels of the evidence: joint recurrences in shifted windows (private).
 
 Recurrence matrices arrive dense, as ``uint8`` arrays (a window holds at most a few thousand
 states, and every surrogate or resample reads them at arbitrary offsets, which dense rows make
@@ -96,53 +96,4 @@ def _windows(a_y: Array, pairs_x: Array, pairs_y: Array, starts_x: Array, starts
         out[k, 0] = phi
         out[k, 1] = xy
         out[k, 2] = yx
-    return out
-
-
-@njit(cache=True)
-def _direction(cross: Array, auto: Array, chosen: Array, buffer: Array) -> tuple[float, float]:
-    """``(C, T)`` of one direction of the sub-ISRN on the states ``chosen`` (Eq. 6-9).
-
-    ``cross`` rows are the nodes v (their states restricted to ``chosen``), columns the other
-    system's states; ``auto`` is the other system's recurrence matrix.
-    """
-    n = chosen.size
-    local_sum = 0.0
-    triangles = 0
-    triples = 0
-    for a in range(n):
-        v = chosen[a]
-        k = 0
-        for b in range(n):
-            q = chosen[b]
-            if cross[v, q]:
-                buffer[k] = q
-                k += 1
-        pairs = 0
-        for first in range(k):
-            p = buffer[first]
-            for second in range(first + 1, k):
-                pairs += auto[p, buffer[second]]
-        if k >= 2:
-            local_sum += 2.0 * pairs / (k * (k - 1))
-            triangles += 2 * pairs
-            triples += k * (k - 1)
-    c = local_sum / n if n else 0.0
-    t = triangles / triples if triples else 0.0
-    return c, t
-
-
-@njit(cache=True, parallel=True)
-def _sub_measures(a_x: Array, a_y: Array, cr_xy: Array, cr_yx: Array, chosen: Array) -> Array:
-    """``(C^XY, C^YX, T^XY, T^YX)`` of the sub-ISRN of every row of ``chosen``: (R, 4)."""
-    n_resamples = chosen.shape[0]
-    out = np.empty((n_resamples, 4), dtype=np.float64)
-    for r in prange(n_resamples):
-        buffer = np.empty(chosen.shape[1], dtype=np.int64)
-        c_xy, t_xy = _direction(cr_xy, a_y, chosen[r], buffer)
-        c_yx, t_yx = _direction(cr_yx, a_x, chosen[r], buffer)
-        out[r, 0] = c_xy
-        out[r, 1] = c_yx
-        out[r, 2] = t_xy
-        out[r, 3] = t_yx
     return out

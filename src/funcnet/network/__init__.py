@@ -9,6 +9,9 @@ module             what it holds
 ``readwrite``      JSON, GraphML, networkx
 =================  ==========================================================================
 
+``functional_network(..., evidence=True)`` adds the evidence columns of :mod:`funcnet.evidence`
+(dependence test, intervals, direction, each pair's reading; :data:`EVIDENCE_COLUMNS`).
+
 Examples
 --------
 >>> from funcnet.network import PAIR_KINDS, EDGE_KINDS
@@ -23,6 +26,8 @@ from funcnet.network.rule import combine_kinds, edge_kind, edges_from_pairs, kin
 from funcnet.network.schema import (
     EDGE_COLUMNS,
     EDGE_KINDS,
+    EVIDENCE_COLUMNS,
+    EVIDENCE_LABELS,
     MEASURE_KINDS,
     PAIR_COLUMNS,
     PAIR_KINDS,
@@ -36,6 +41,8 @@ __all__ = [
     "EDGE_KINDS",
     "PAIR_COLUMNS",
     "EDGE_COLUMNS",
+    "EVIDENCE_COLUMNS",
+    "EVIDENCE_LABELS",
     "FunctionalNetwork",
     "functional_network",
     "check_parameters",

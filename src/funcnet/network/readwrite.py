@@ -258,8 +258,12 @@ def _edge_evidence(network: FunctionalNetwork) -> dict[frozenset[str], dict[str,
 def _suffix(path: Path) -> str:
     suffix = path.suffix.lower()
     if suffix not in _SUFFIXES:
+        # funcnet.network sits below funcnet.plot: it names the drawing call, it cannot draw
+        drawing = (" (a picture is drawn by funcnet.plot.save_network(network, path), what "
+                   "`funcnet network -o net.png` does)" if suffix in (".png", ".svg", ".pdf")
+                   else "")
         raise ParameterError.of(
-            "path", f"must end in .json or .graphml, got {path.name!r}"
+            "path", f"must end in .json or .graphml, got {path.name!r}{drawing}"
         )
     return suffix
 

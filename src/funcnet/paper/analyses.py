@@ -44,6 +44,10 @@ __all__ = [
     "run_paper_analyses",
 ]
 
+#: Width (s) of the reversal windows, the same default as a study's ``reversal`` windows
+#: (``funcnet.study.spec.REVERSAL_WIDTH``; the two packages are siblings, a test keeps them equal).
+REVERSAL_WIDTH = 0.2
+
 #: Network parameters of :func:`run_paper_analyses`. The paper states RR = CR = μ = 0.05 and
 #: min-max normalization (sections 3.3-3.4) but not m and τ for the robot data; m = 3, τ = 10
 #: samples (20 ms at 500 Hz) are its illustration's values (section 2.1), kept here.
@@ -319,7 +323,7 @@ def run_paper_analyses(
     signals: Sequence[str] = PAPER_SIGNALS,
     max_phase_length: float = 4.0,
     fixed_lengths: Mapping[str, float] | None = None,
-    reversal_width: float | None = 0.2,
+    reversal_width: float | None = REVERSAL_WIDTH,
     timeline_width: float = 0.6,
     timeline_step: float = 0.2,
     **overrides: Any,

@@ -150,7 +150,7 @@ def figure_isrn(
     ax_a, ax_b, ax_c, ax_d = fig.subplots(1, 4)
     ax_a.plot(x, color="tab:blue", linewidth=1, label="x")
     ax_a.plot(y, color="tab:red", linewidth=1, label="y")
-    ax_a.legend(fontsize=7, frameon=False)
+    ax_a.legend(fontsize=9, frameon=False)
     ax_a.set_xlabel("$t_i$")
     ax_a.set_title(f"(a) x = sin t, y = sin 1.5t + {alpha}x", fontsize=9)
     for signal, color in ((x, "tab:blue"), (y, "tab:red")):
@@ -162,10 +162,35 @@ def figure_isrn(
     ax_c.imshow(adjacency.astype(bool), cmap="binary", origin="upper", interpolation="nearest")
     ax_c.axhline(m - 0.5, color="tab:green", linewidth=0.8)
     ax_c.axvline(m - 0.5, color="tab:green", linewidth=0.8)
+    cross = int(adjacency[:m, m:].sum())
     ax_c.set_title("(c) $A_X$ | $CR_{XY}$ / $CR_{YX}$ | $A_Y$", fontsize=9)
+    if cross == 0:  # an empty block looks like a plotting error: say that it is the data
+        ax_c.text(0.75, 0.25, "$CR_{XY}$ empty:\nno cross link\nat this $ε_{XY}$",
+                  transform=ax_c.transAxes, ha="center", va="center", fontsize=9,
+                  color="tab:green")
     plot.plot_graph(adjacency, ax_d, colors=["tab:blue"] * m + ["tab:red"] * m, seed=seed)
     ax_d.set_title("(d) ISRN", fontsize=9)
     return fig
+
+
+def isrn_cross_links(
+    *, n: int = 251, periods: float = 4, alpha: float = 0.3, dim: int = 3, delay: int = 10,
+    eps: tuple[Any, Any] = ((0.15, 0.15), 0.05),
+) -> int:
+    """The number of cross links (ones of ``CR_XY``) of :func:`figure_isrn`'s network.
+
+    Zero at the paper's ``ε_XY = 0.05``: no state of ``x`` lies that close to a state of
+    ``y``, and the figure's cross blocks are empty -- which its caption must say.
+
+    Examples
+    --------
+    >>> isrn_cross_links(), isrn_cross_links(eps=((0.15, 0.15), 0.15))
+    (0, 64)
+    """
+    x, y = _coupled_pair(n, periods, alpha)
+    adjacency = np.asarray(isrn_adjacency(x, y, dim=dim, delay=delay, eps=eps))
+    m = len(adjacency) // 2
+    return int(adjacency[:m, m:].sum())
 
 
 def pair_network(
@@ -175,7 +200,10 @@ def pair_network(
     """The functional network of Fig. 5: the coupled pair of Fig. 2, from ``C_diff`` alone.
 
     Computed by :func:`funcnet.network.functional_network` with ``measure="clustering"`` on the
-    signals as given (``normalize=None``) at the default rates (RR = CR = 0.05).
+    min-max normalized signals (the package's default, section 3.3) at the default rates (RR =
+    CR = 0.05): ``C_diff = +0.111``, the value the README quotes. The rule of section 2.4 puts
+    the arrow from ``y`` to ``x`` although ``x`` drives ``y``: the more complex signal looks
+    like the driver (README, "Direction").
 
     Parameters
     ----------
@@ -202,7 +230,7 @@ def pair_network(
     """
     x, y = _coupled_pair(n, periods, alpha)
     return functional_network(np.column_stack([x, y]), names=["x", "y"], dim=dim, delay=delay,
-                              mu=mu, normalize=None, measure="clustering", label="Fig. 5",
+                              mu=mu, normalize="minmax", measure="clustering", label="Fig. 5",
                               warn=warn)
 
 
@@ -257,7 +285,7 @@ def figure_notes(networks: Mapping[str, Any]) -> list[str]:
     Returns
     -------
     list of str
-        ``"WarningClass: message"``, sorted, without repeats.
+        One plain sentence per problem, naming the networks that have it.
 
     Examples
     --------
@@ -267,7 +295,19 @@ def figure_notes(networks: Mapping[str, Any]) -> list[str]:
     from funcnet.pipeline import window_warnings
 
     computed = {str(k): net for k, net in networks.items() if net is not None}
-    return sorted({f"{type(w).__name__}: {w}" for w in window_warnings(computed)})
+    where: dict[str, list[str]] = {}
+    for warning in window_warnings(computed):
+        where.setdefault(str(warning.problem), []).append(str(warning.window))
+    return [f"Flagged: {_NOTES.get(problem, problem)} in {', '.join(dict.fromkeys(labels))}."
+            for problem, labels in sorted(where.items())]
+
+
+#: A figure caption's words for each problem a pairs table flags.
+_NOTES = {
+    "eps_order": "ε_XY is not below ε_X and ε_Y (section 2.2 asks it for a modular ISRN)",
+    "rate_exceeded": "ties at a threshold pushed an achieved rate above its target",
+    "degenerate": "a degenerate pair (too few distinct states; its arrow is meaningless)",
+}
 
 
 def _network_row(fig: Figure, grid: Any, row: int, networks: Mapping[str, Any],
@@ -281,11 +321,24 @@ def _network_row(fig: Figure, grid: Any, row: int, networks: Mapping[str, Any],
             plot.plot_network(net, ax, nodes=nodes, title=str(label), legend=False)
 
 
-def _network_legend(fig: Figure, networks: Mapping[Any, Any]) -> None:
-    """The figure's edge legend; with the degenerate entry when a panel draws such an edge."""
-    degenerate = any(bool(plot.network_edges(net)["degenerate"].any())
-                     for net in networks.values() if net is not None)
-    plot.add_network_legend(fig, degenerate=degenerate)
+def _network_legend(fig: Figure, networks: Mapping[Any, Any],
+                    nodes: Sequence[str] = ()) -> None:
+    """The figure's edge legend; with the degenerate entry when a panel draws such an edge,
+    and the dashed-node entry when a panel lacks one of ``nodes`` (left out: constant)."""
+    from matplotlib.lines import Line2D
+
+    computed = [net for net in networks.values() if net is not None]
+    degenerate = any(bool(plot.network_edges(net)["degenerate"].any()) for net in computed)
+    dropped = any(set(nodes) - set(plot.network_nodes(net)) for net in computed)
+    legend = plot.add_network_legend(fig, degenerate=degenerate)
+    if dropped:
+        legend.remove()
+        handles = [*plot.network_legend_handles(degenerate=degenerate),
+                   Line2D([], [], color="0.2", linestyle="", marker="o", markersize=9,
+                          markerfacecolor="white", markeredgewidth=1,
+                          label="dashed node: left out of that window (constant there)")]
+        fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=9,
+                   frameon=False).set_gid("legend:network")
 
 
 def _raw_groups(data: pd.DataFrame) -> list[tuple[str, list[str]]]:
@@ -354,12 +407,12 @@ def figure_phases(
     for k, (ylabel, columns) in enumerate(groups):
         ax = fig.add_subplot(grid[1 + k, :], sharex=top)
         plot.plot_signals(data[columns], normalize=False, spans=phases, ax=ax)
-        ax.set_ylabel(ylabel, fontsize=7)
+        ax.set_ylabel(ylabel, fontsize=9)
         ax.set_xlabel("")
         if k == 0:
             ax.set_title("(b) raw", fontsize=9, loc="left", pad=plot.SPAN_TITLE_PAD)
     _network_row(fig, grid, -1, networks, list(data.columns))
-    _network_legend(fig, networks)
+    _network_legend(fig, networks, list(data.columns))
     if title:
         fig.suptitle(title, fontsize=10)
     return fig
@@ -410,10 +463,10 @@ def figure_velocity_grid(
         row, col = 2 * phases.index(phase), velocities.index(velocity)
         series = fig.add_subplot(grid[row, col])
         plot.plot_signals(window, normalize=True, ax=series, legend=False)
-        series.set_title(f"{velocity} · {phase}", fontsize=8)
-        series.tick_params(labelsize=6)
-        series.set_xlabel("time [s]", fontsize=6, labelpad=1)
-        series.set_ylabel("normalized" if col == 0 else "", fontsize=6)
+        series.set_title(f"{velocity} · {phase}", fontsize=9)
+        series.tick_params(labelsize=9)
+        series.set_xlabel("time [s]", fontsize=9, labelpad=1)
+        series.set_ylabel("normalized" if col == 0 else "", fontsize=9)
         graph = fig.add_subplot(grid[row + 1, col])
         if net is None:
             plot.plot_no_network(graph, None)
@@ -421,7 +474,8 @@ def figure_velocity_grid(
             plot.plot_network(net, graph, nodes=list(window.columns), legend=False)
     plot.add_signal_legend(fig, list(dict.fromkeys(c for window, _ in cells.values()
                                                   for c in window.columns)))
-    _network_legend(fig, {k: net for k, (_, net) in cells.items()})
+    _network_legend(fig, {k: net for k, (_, net) in cells.items()},
+                    list(dict.fromkeys(c for window, _ in cells.values() for c in window.columns)))
     if title:
         fig.suptitle(title, fontsize=10)
     return fig
@@ -491,13 +545,19 @@ def figure_reversal(
     part = data.loc[(data.index >= zoom[0]) & (data.index <= zoom[1])]
     ax_zoom = fig.add_subplot(grid[1, :])
     plot.plot_signals(part, normalize=True, ax=ax_zoom, legend=False)
+    bars = []
     for k, window in enumerate(windows):
         patch = ax_zoom.axvspan(float(window.start), float(window.stop), ymin=0.02 + 0.04 * k,
-                                ymax=0.06 + 0.04 * k, color=f"C{k}", alpha=0.8)
+                                ymax=0.06 + 0.04 * k, color=f"C{k}", alpha=0.8,
+                                label=str(window.label))
         patch.set_gid(f"window:{window.label}")
+        bars.append(patch)
+    # the bars are the windows: a key names each (their colours are not phases)
+    ax_zoom.legend(handles=bars, fontsize=9, frameon=False, loc="upper left",
+                   bbox_to_anchor=(1.0, 1.0), title="windows (bars)", title_fontsize=9)
     ax_zoom.set_title("(b) reversal, shifted windows", fontsize=9, loc="left")
     _network_row(fig, grid, 2, networks, list(data.columns))
-    _network_legend(fig, networks)
+    _network_legend(fig, networks, list(data.columns))
     if title:
         fig.suptitle(title, fontsize=10)
     return fig

@@ -27,6 +27,7 @@ from funcnet.paper import Finding, PaperAnalyses, TrialAnalysis, run_paper_analy
 from funcnet.report.html import (
     PACKAGES,
     Progress,
+    contents,
     escape,
     figure_html,
     mapping_table,
@@ -45,9 +46,43 @@ def _verdict_class(value: Any) -> str:
     return classes.get(str(value), "na")
 
 
-def _findings_html(findings: Sequence[Finding]) -> str:
+def readable_evidence(finding: Finding, shown: int = 4) -> str:
+    """A finding's evidence with its unevaluable claims grouped by reason, each counted.
+
+    The counts of :attr:`Finding.evidence` stay; the list of claims that could not be
+    evaluated (often the same reason many times) becomes one entry per reason with its count
+    and the first few places.
+
+    Examples
+    --------
+    >>> f = Finding("x", "4.1", "s", "partly", "0/1 networks show all claimed relations; 1/2 "
+    ...             "relations hold; 2 of 3 claims could not be evaluated: [V1 · a] X->Y: no "
+    ...             "network, [V1 · b] X->Y: no network", not_evaluable=(
+    ...             "[V1 · a] X->Y: no network", "[V1 · b] X->Y: no network"))
+    >>> for part in readable_evidence(f).split("; "):
+    ...     print(part)
+    0/1 networks show all claimed relations
+    1/2 relations hold
+    2 of 3 claims could not be evaluated — no network ×2: [V1 · a] X->Y, [V1 · b] X->Y
+    """
+    missing = finding.not_evaluable
+    if not missing:
+        return finding.evidence
+    head = finding.evidence.partition(" claims could not be evaluated")[0]
+    groups: dict[str, list[str]] = {}
+    for item in missing:
+        where, _, reason = item.partition(": ")
+        groups.setdefault(reason or "not evaluable", []).append(where)
+    parts = [f"{reason} ×{len(places)}: " + ", ".join(places[:shown])
+             + (f", … ({len(places) - shown} more)" if len(places) > shown else "")
+             for reason, places in groups.items()]
+    return f"{head} claims could not be evaluated — " + "; ".join(parts)
+
+
+def _findings_html(findings: Sequence[Finding]) -> tuple[str, str]:
+    """The findings' summary (counts of each verdict), and the table with the plain list."""
     frame = pd.DataFrame([{"finding": f.id, "section": f.section, "statement": f.statement,
-                           "reproduced": f.reproduced, "evidence": f.evidence}
+                           "reproduced": f.reproduced, "evidence": readable_evidence(f)}
                           for f in findings],
                          columns=["finding", "section", "statement", "reproduced", "evidence"])
     counts = frame["reproduced"].value_counts() if len(frame) else pd.Series(dtype=int)
@@ -76,10 +111,38 @@ def _findings_html(findings: Sequence[Finding]) -> str:
         f"{escape('; '.join(f.expected)) or '—'}</p><p><b>seen:</b> "
         f"{escape('; '.join(f.edges_seen)) or '—'}</p></details>" for f in findings)
     shown = frame.rename(columns={"statement": "the paper says"})
-    return (summary + table(shown, classes={"reproduced": _verdict_class})
+    return (summary, table(shown, classes={"reproduced": _verdict_class})
             + (f"<h3>Where the simulation does not (or cannot) reproduce the paper</h3>"
                f"<ul>{plain}</ul>"
                if plain else "") + details)
+
+
+def _problems_html(analyses: PaperAnalyses, shown: int = 8) -> str:
+    """The problems the networks' pairs tables flag, once each, with trial · window named."""
+    from funcnet.pipeline import window_warnings
+
+    places: dict[str, list[str]] = {}
+    for group in analyses.groups().values():
+        for trial in group.values():
+            if trial is None:
+                continue
+            computed = {key: net for key, net in trial.networks.items() if net is not None}
+            labels = {str(key): (trial.windows[key].label if key in trial.windows else str(key))
+                      for key in computed}
+            for warning in window_warnings({str(k): n for k, n in computed.items()}):
+                places.setdefault(str(warning.problem), []).append(
+                    f"{trial.trial} · {labels.get(str(warning.window), warning.window)}")
+    if not places:
+        return "<p>None.</p>"
+    meaning = {"eps_order": "ε_XY is not below ε_X and ε_Y (section 2.2 asks it)",
+               "rate_exceeded": "ties at a threshold pushed an achieved rate above its target",
+               "degenerate": "too few distinct states: the arrow is meaningless (no edge)"}
+    rows = [{"problem": problem, "meaning": meaning.get(problem, ""), "networks": len(where),
+             "where": ", ".join(dict.fromkeys(where[:shown]))
+             + (f", and {len(where) - shown} more" if len(where) > shown else "")}
+            for problem, where in places.items()]
+    return ("<p>Each problem once, with the networks (trial · window) whose pairs table flags "
+            "it.</p>" + table(pd.DataFrame(rows)))
 
 
 def _network_tables(title: str, analyses: Mapping[str, TrialAnalysis]) -> str:
@@ -127,13 +190,23 @@ def _demo_figures(analyses: PaperAnalyses, out_dir: Path, progress: Progress) ->
     add(0, "fig1-embedding-network", paper_figures.figure_embedding_network,
         "Fig. 1 — sine (N = 251), its embedding (m = 3, τ = 10), recurrence matrix (ε = 0.15) "
         "and recurrence network (spring layout).")
+    cross = paper_figures.isrn_cross_links()
     add(1, "fig2-isrn", paper_figures.figure_isrn,
         "Fig. 2 — inter-system recurrence network of x = sin t, y = sin 1.5t + 0.3x "
-        "(ε_X = ε_Y = 0.15, ε_XY = 0.05).")
+        "(ε_X = ε_Y = 0.15, ε_XY = 0.05)."
+        + (" The cross blocks CR_XY, CR_YX of panel (c) are empty and the network of panel (d) "
+           "falls into two parts: at ε_XY = 0.05 no state of x lies that close to a state of "
+           "y (0 cross links; 64 at ε_XY = 0.15). That is the data, not a drawing error."
+           if cross == 0 else f" {cross} cross links."))
     pair = paper_figures.pair_network(warn=False)
     add(2, "fig5-pair-network", lambda: paper_figures.figure_pair_network(network=pair),
-        "Fig. 5 — functional network of the Fig. 2 pair from C_diff alone (RR = CR = 0.05, "
-        "μ = 0.05).", {"Fig. 5": pair})
+        "Fig. 5 — functional network of the Fig. 2 pair from C_diff alone (min-max "
+        "normalized, RR = CR = 0.05, μ = 0.05). "
+        + (f"The arrow points y → x although x drives y (y = sin 1.5t + 0.3x): C_diff = "
+           f"{float(pair.pairs['c_diff'].iloc[0]):+.3f} puts it there by the rule of section "
+           "2.4. The more complex signal looks like the driver — an arrow is an asymmetry of "
+           "recurrence structure, not a cause (README, 'Direction')."
+           if str(pair.pairs['kind'].iloc[0]) == "y->x" else ""), {"Fig. 5": pair})
     base = analyses.baseline
     if base is not None and base.networks:
         add(3, "fig9-baseline-phases",
@@ -215,42 +288,54 @@ def build_demo_report(
                 for t in group.values() if t is not None for k, msg in t.errors.items()]
     provenance = {
         "date (UTC)": started.isoformat(timespec="seconds"),
-        "command": " ".join(sys.argv),
-        "plan folder": str(Path(plan_dir).resolve()),
+        "command": " ".join([Path(sys.argv[0]).name, *sys.argv[1:]]),
+        "plan folder (from the report)": os.path.relpath(Path(plan_dir).resolve(), out.resolve()),
         "analysis time [s]": f"{analyses.elapsed:.1f}",
         **{f"version of {k}": v for k, v in package_versions(PACKAGES).items()},
     }
+    rule = (
+        "<p class=\"verdict\"><b>How each finding is decided</b> (fixed before any result, "
+        "the same for every finding): a claimed relation is <i>not evaluable</i> when its "
+        "network is missing or lacks one of its signals (a signal constant in a window is left "
+        "out of that window's network), or when the pair of its signals has a degenerate "
+        "recurrence structure (a signal barely moves in the window, so the arrow is "
+        "meaningless). <i>yes</i> — every claimed relation was evaluated and holds; "
+        "<i>partly</i> — not <i>yes</i>, but at least one network (or trial) shows all its "
+        "claimed relations, or at least half of the evaluated relations hold (this includes "
+        "findings whose evaluated relations all hold while others could not be evaluated: the "
+        "evidence then says how many of the claims could not be evaluated); <i>no</i> — "
+        "relations were evaluated and neither holds; <i>not evaluable</i> — no claimed relation "
+        "could be evaluated, so nothing was measured; <i>n/a</i> — not reported by the paper, "
+        "measured here. Bidirectional edges (|diff| &lt; μ) mean mutual coupling <i>or no "
+        "coupling</i> (paper section 2.4).</p>")
+    toc = [("findings", "Findings: summary and rule"), ("figures", "Figures"),
+           ("findings-table", "Findings, one by one"), ("problems", "Problems flagged"),
+           ("parameters", "Parameters"), ("trials", "Trials"),
+           ("networks", "Networks (pairs tables)"), ("provenance", "Provenance")]
+    summary, details = _findings_html(analyses.findings)
     body = [
         "<h1>funcnet — the paper's analyses on the simulated axis</h1>",
+        "<section id=\"findings\"><h2>Findings of the paper's section 4: summary</h2>",
+        summary, rule,
         "<p class=\"note\">All data here are simulated (funcnet's two-mass axis model, the "
-        "paper's Table 1 plan), not the paper's robot recordings. Every verdict below is "
-        "measured on the networks computed from these traces with the parameters listed; "
-        "nothing was tuned towards the paper's results. Read an arrow with care: the asymmetry "
-        "of cross-clustering and cross-transitivity follows the relative complexity of two "
+        "paper's Table 1 plan), not the paper's robot recordings. Every verdict is measured on "
+        "the networks computed from these traces with the parameters listed; nothing was tuned "
+        "towards the paper's results. Read an arrow with care: the asymmetry of "
+        "cross-clustering and cross-transitivity follows the relative complexity of two "
         "signals as well as their coupling, and the positions here are smooth while the "
-        "currents are noisy (paper section 2.4; funcnet README, 'Direction').</p>",
-        "<h2>Findings of the paper's section 4</h2>",
-        _findings_html(analyses.findings),
-        "<p>Decision rule (fixed before any result, the same for every finding): a claimed "
-        "relation is <i>not evaluable</i> when its network is missing or lacks one of its "
-        "signals (a signal constant in a window is left out of that window's network), or when "
-        "the pair of its signals has a degenerate recurrence structure (a signal barely moves "
-        "in the window, so the arrow is meaningless). "
-        "<i>yes</i> — every claimed relation was evaluated and holds; <i>partly</i> — not "
-        "<i>yes</i>, but at least one network (or trial) shows all its claimed relations, or at "
-        "least half of the evaluated relations hold (this includes findings whose evaluated "
-        "relations all hold while others could not be evaluated: the evidence then says how "
-        "many of the claims could not be evaluated); <i>no</i> — relations were evaluated and "
-        "neither holds; <i>not evaluable</i> — no claimed relation could be evaluated, so "
-        "nothing was measured; <i>n/a</i> — not reported by the paper, measured here. "
-        "Bidirectional edges (|diff| &lt; μ) mean mutual coupling <i>or no coupling</i> (paper "
-        "section 2.4).</p>",
-        "<h2>Figures</h2>", *figures,
-        "<h2>Parameters</h2>", mapping_table(analyses.parameters.to_dict(), "parameter"),
-        mapping_table(analyses.settings, "choice"),
-        "<h2>Trials</h2>", table(analyses.trials),
-        "<h2>Networks (pairs tables)</h2>",
+        "currents are noisy (paper section 2.4; funcnet README, 'Direction').</p></section>",
+        contents(toc),
+        "<h2 id=\"figures\">Figures</h2>", *figures,
+        "<section id=\"findings-table\"><h2>Findings, one by one</h2>", details, "</section>",
+        "<section id=\"problems\"><h2>Problems flagged</h2>", _problems_html(analyses),
+        "</section>",
+        "<section id=\"parameters\"><h2>Parameters</h2>",
+        mapping_table(analyses.parameters.to_dict(), "parameter"),
+        mapping_table(analyses.settings, "choice"), "</section>",
+        "<section id=\"trials\"><h2>Trials</h2>", table(analyses.trials), "</section>",
+        "<section id=\"networks\"><h2>Networks (pairs tables)</h2>",
         *(_network_tables(title, group) for title, group in analyses.groups().items()),
+        "</section>",
     ]
     dropped = [(t.trial, t.windows[k].label if k in t.windows else k, ", ".join(signals))
                for group in analyses.groups().values() for t in group.values()
@@ -263,11 +348,9 @@ def build_demo_report(
                  "<p>Min–max normalization needs a range; claims about these signals in these "
                  "windows are counted as not evaluable.</p>",
                  table(pd.DataFrame(dropped, columns=["trial", "window", "signals"]))]
-    if analyses.warnings:
-        body += ["<h2>Warnings while computing the networks</h2>",
-                 mapping_table(analyses.warnings, "warning", "networks")]
-    body += ["<h2>Provenance</h2>", mapping_table(provenance, "item"),
-             "<h3>Inputs (SHA-256)</h3>", mapping_table(analyses.inputs, "file", "sha256")]
+    body += ["<section id=\"provenance\"><h2>Provenance</h2>", mapping_table(provenance, "item"),
+             "<details><summary>Inputs (SHA-256)</summary>",
+             mapping_table(analyses.inputs, "file", "sha256"), "</details></section>"]
     index = write_text_atomic(out / "index.html", page("funcnet demo report", body))
     step(progress, 1, 1, "report written")
     return index

@@ -44,7 +44,10 @@ _EXPORTS = {
     "simulate_trial": "funcnet.robot.sim.axis",
     "write_trace": "funcnet.robot.sim.writer",
     "Trial": "funcnet.robot.sim.trial",
+    "real_axis_parameters": "funcnet.robot.sim.axis",
     "paper_plan": "funcnet.robot.sim.plan",
+    "backlash_sweep_plan": "funcnet.robot.sim.plan",
+    "named_plan": "funcnet.robot.sim.plan",
     "read_plan": "funcnet.robot.sim.plan",
     "write_plan": "funcnet.robot.sim.plan",
 }

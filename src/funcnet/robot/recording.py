@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet._io import atomic_path
-from funcnet.errors import ChannelError, ParameterError, TraceFormatError, WindowError
+from funcnet.errors import ChannelError, ParameterError, TraceError, TraceFormatError, WindowError
 from funcnet.robot.channels import (
     ChannelMap,
     SignalInfo,
@@ -291,6 +291,10 @@ def _from_table(
         column = table[name]
         converted = pd.to_numeric(column, errors="coerce").to_numpy(dtype=np.float64)
         bad = ~np.isfinite(converted)
+        if name != time_name:  # empty before a signal's first value: not recorded yet (NaN),
+            # as the XML reader leaves it, so that a CSV written from rec.data reads back
+            empty = (column.isna() | column.astype(str).str.strip().eq("")).to_numpy()
+            bad &= ~np.cumprod(empty).astype(bool)
         if bad.any():
             row = int(np.argmax(bad))
             raise TraceFormatError(
@@ -373,7 +377,8 @@ def read_trace(
     path : path-like
         ``.xml``: SINUMERIK Solution Line trace (see :mod:`funcnet.robot.sinumerik`).
         ``.csv``: a header row, a ``time`` column in seconds and one column per signal; every
-        cell a finite number; rows on a uniform grid (the smallest time step), rows left out
+        cell a finite number (a signal's cells may be empty before its first value: NaN
+        there); rows on a uniform grid (the smallest time step), rows left out
         carry the previous row's values forward. ``.parquet``/``.pq``: a file written by
         :meth:`Recording.to_parquet` (returned as written), or a table like the CSV.
     channels : ChannelMap, dict, TOML path or None
@@ -388,6 +393,8 @@ def read_trace(
 
     Raises
     ------
+    TraceError
+        There is no such file (the message names it).
     TraceFormatError
         The file is not a readable trace of its kind; the message has the path, and the line or
         the signal where it helps.
@@ -421,6 +428,8 @@ def read_trace(
     cmap = channel_map(channels)
     if path.is_dir():
         raise TraceFormatError(path, "is a directory, not a trace file")
+    if not path.exists():  # a FuncnetError naming the file, as every other unreadable trace
+        raise TraceError(path, "no such file")
     suffix = path.suffix.lower()
     if suffix == ".xml":
         trace = read_sinumerik(path, axis=axis)

@@ -38,6 +38,11 @@ BUILDERS = {
     "reversal": "reversal_windows",
     "sliding": "sliding_windows",
 }
+#: Default width (s) of ``reversal`` windows, the demo's (:func:`funcnet.paper.run_paper_analyses`
+#: ``reversal_width``): the paper's Fig. 11b shows its five shifted windows inside a ~300 ms
+#: reversal, so each is at most ~220 ms; the whole detected reversal (~850 ms on the paper plan)
+#: would make the +-20/40 ms shifts say little. ``width = ...`` in the TOML overrides it.
+REVERSAL_WIDTH = 0.2
 #: Parameters whose single value is itself a list in TOML: a list of such lists spans a grid.
 _PAIR_VALUED = ("eps",)
 
@@ -456,6 +461,8 @@ def _window_spec(entry: Any, key: str, fail: _Fail) -> WindowSpec:
         if not options["start"] < options["stop"]:
             raise fail(f"{key}.stop", "must be greater than start")
         options = {k: float(v) for k, v in options.items()}
+    if kind == "reversal":
+        options.setdefault("width", REVERSAL_WIDTH)
     return WindowSpec(kind, tuple(sorted(options.items())))
 
 
