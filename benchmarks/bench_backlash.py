@@ -30,9 +30,11 @@ from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE, SCORE
 from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL
 from funcnet.diagnosis.sweep import (
     calibration,
+    contact_reference,
     run_sweep,
     score_indicators,
     simulated_recording,
+    with_contact_score,
 )
 from funcnet.robot import detect_phases, read_trace
 from funcnet.robot.sim.axis import simulate_trial
@@ -184,12 +186,56 @@ def _write_calibration(sweep: pd.DataFrame, motor: pd.DataFrame, source: str) ->
         f"benchmarks/bench_backlash.py --calibrate: {source}, {len(sweep)} trials, noise 1 and "
         "2 pooled, quantiles over TCP, friction, stiffness and seeds"
     )
-    cal["motor_loop"] = calibration(tables[1], MOTOR_LOOP_SCORE)
+    reference = contact_reference(tables[1])
+    cal["motor_loop"] = calibration(with_contact_score(tables[1], reference), MOTOR_LOOP_SCORE)
+    cal["motor_loop"]["reference"] = reference
     cal["motor_loop"]["source"] = (
         f"backlash_sweep_plan(position_feedback='motor', seeds=(1,)), {len(motor)} trials"
     )
     CALIBRATION.write_text(json.dumps(cal, indent=1) + "\n", encoding="utf-8")
     print(f"wrote {CALIBRATION}")
+
+
+def motor_contact_tables(folder: Path, resamples: int, out: list[str]) -> None:
+    """motor_contact on the motor-loop sweep and on the held-out plan (reference: the sweep)."""
+    sweep = pd.read_csv(folder / "sweep_motor.csv")
+    held = pd.read_csv(folder / "heldout_motor.csv")
+    for frame in (sweep, held):
+        if "peak_speed" not in frame:
+            frame["peak_speed"] = np.minimum(frame["speed"], round(60 / 0.85, 1))
+    reference = contact_reference(sweep)
+    names = [MOTOR_LOOP_SCORE, "motor_travel", "current_step"]
+    for label, frame in (("position loop on the motor encoder: motor_contact", sweep),
+                         ("held-out plan, motor-encoder loop: motor_contact (reference: the "
+                          "sweep's no-backlash trials)", held)):  # fmt: skip
+        scored = with_contact_score(frame, reference)
+        out.append(table(score_indicators(scored, names, resamples=resamples), label))
+
+
+def _fn_section(args: argparse.Namespace, out: list[str]) -> pd.DataFrame:
+    """The functional-network subset (with the coupling test): table and signature rates."""
+    start = time.perf_counter()
+    fn_plan = backlash_sweep_plan(seeds=(1,), noise_scales=(1.0,), stiffness_scales=(1.0,),
+                                  tcps=(1.2, 2.0), friction_scales=(0.7, 1.4))  # fmt: skip
+    if args.quick:
+        fn_plan = backlash_sweep_plan(seeds=(1,), noise_scales=(1.0,), tcps=(1.6,),
+                                      friction_scales=(1.0,), stiffness_scales=(1.0,))  # fmt: skip
+    fn = run_sweep(fn_plan, networks=True, workers=args.workers, evidence=True)
+    elapsed = time.perf_counter() - start
+    out.append(f"functional-network subset (with the coupling test of funcnet.evidence): "
+               f"{len(fn_plan)} trials in {elapsed:.0f} s\n")  # fmt: skip
+    out.append(table(score_indicators(fn, [SCORE, "vibration", *FN_FEATURES, "signature"],
+                                      resamples=args.resamples),
+                     "Functional-network features (seed 1, noise 1, stiffness 1, TCP 1.2/2.0, "
+                     "friction 0.7/1.4)"))  # fmt: skip
+    rate = fn.groupby(["speed", "backlash_arcmin"])["signature"].mean().unstack()
+    lines = ["| speed | " + " | ".join(f"{b:g} arcmin" for b in rate.columns) + " |",
+             "|---" * (len(rate.columns) + 1) + "|"]  # fmt: skip
+    lines += [f"| {v:g} | " + " | ".join(f"{x:.2f}" for x in row) + " |"
+              for v, row in zip(rate.index, rate.to_numpy(), strict=True)]  # fmt: skip
+    out.append("paper's signature (V drives all, MP -> AP -> RP), share of trials:\n\n"
+               + "\n".join(lines) + "\n")  # fmt: skip
+    return fn
 
 
 def main() -> None:
@@ -212,6 +258,14 @@ def main() -> None:
         help="draw docs/backlash.png (scatter and ROC) "
         "from a sweep table saved with --save (sweep.csv)",
     )
+    parser.add_argument(
+        "--motor-contact",
+        type=Path,
+        default=None,
+        help="score motor_contact on the tables "
+        "saved with --save (a folder): the motor-loop sweep and the held-out plan",
+    )
+    parser.add_argument("--fn-only", action="store_true", help="only the FN-feature subset")
     parser.add_argument("--compare", action="store_true", help="only the real-vs-sim table")
     parser.add_argument("--save", type=Path, default=None, help="folder for the tables (CSV)")
     args = parser.parse_args()
@@ -220,6 +274,12 @@ def main() -> None:
         return
     if args.figure:
         figure(pd.read_csv(args.figure), ROOT / "docs" / "backlash.png")
+        return
+    if args.motor_contact:
+        motor_contact_tables(args.motor_contact, args.resamples, _Printer())
+        return
+    if args.fn_only:
+        _fn_section(args, _Printer())
         return
     if args.calibrate_from:
         folder = args.calibrate_from
@@ -251,26 +311,7 @@ def main() -> None:
         f"{(zero_err <= 2).mean():.1%} of {len(zero)} (median {zero_err.median():.1f} steps)\n"
     )
 
-    start = time.perf_counter()
-    fn_plan = backlash_sweep_plan(seeds=(1,), noise_scales=(1.0,), stiffness_scales=(1.0,),
-                                  tcps=(1.2, 2.0), friction_scales=(0.7, 1.4))  # fmt: skip
-    if args.quick:
-        fn_plan = backlash_sweep_plan(seeds=(1,), noise_scales=(1.0,), tcps=(1.6,),
-                                      friction_scales=(1.0,), stiffness_scales=(1.0,))  # fmt: skip
-    fn = run_sweep(fn_plan, networks=True, workers=args.workers)
-    elapsed = time.perf_counter() - start
-    out.append(f"functional-network subset: {len(fn_plan)} trials in {elapsed:.0f} s\n")
-    out.append(table(score_indicators(fn, [SCORE, "vibration", *FN_FEATURES, "signature"],
-                                      resamples=args.resamples),
-                     "Functional-network features (seed 1, noise 1, stiffness 1, TCP 1.2/2.0, "
-                     "friction 0.7/1.4)"))  # fmt: skip
-    rate = fn.groupby(["speed", "backlash_arcmin"])["signature"].mean().unstack()
-    lines = ["| speed | " + " | ".join(f"{b:g} arcmin" for b in rate.columns) + " |",
-             "|---" * (len(rate.columns) + 1) + "|"]  # fmt: skip
-    lines += [f"| {v:g} | " + " | ".join(f"{x:.2f}" for x in row) + " |"
-              for v, row in zip(rate.index, rate.to_numpy(), strict=True)]  # fmt: skip
-    out.append("paper's signature (V drives all, MP -> AP -> RP), share of trials:\n\n"
-               + "\n".join(lines) + "\n")  # fmt: skip
+    fn = _fn_section(args, out)
 
     extras: tuple[tuple[str, dict[str, Any]], ...] = (
         ("position loop on the motor encoder", {"position_feedback": "motor"}),
@@ -296,6 +337,7 @@ def main() -> None:
     held_motor = [dataclasses.replace(t, name=t.name + "-m", position_feedback="motor")
                   for t in held]  # fmt: skip
     part_motor = run_sweep(held_motor, networks=False, workers=args.workers)
+    part_motor = with_contact_score(part_motor, contact_reference(parts["motor"]))
     out.append(table(score_indicators(part_motor, [SCORE, MOTOR_LOOP_SCORE, "vibration"],
                                       resamples=args.resamples),
                      "held-out plan, position loop on the motor encoder"))  # fmt: skip

@@ -15,7 +15,7 @@ import pandas as pd
 import pytest
 from typer.testing import CliRunner
 
-from funcnet import cli
+from funcnet import _cli_network, cli
 from funcnet.cli import app
 
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
@@ -60,7 +60,8 @@ def _assert_one_error_line(result, *needles: str) -> None:
 @pytest.mark.parametrize(
     ("command", "words"),
     [
-        ([], ["demo", "simulate", "network", "backlash", "study", "report"]),
+        ([], ["demo", "simulate", "network", "inspect", "backlash", "study", "report"]),
+        (["inspect"], ["TRACE", "--out", "--no-evidence", "--verbose"]),
         (["demo"], ["--out", "report"]),
         (["simulate"], ["--plan", "--seed", "manifest"]),
         (["network"], ["--signals", "--phase", "--window", "--mu", "--theiler", "--channels"]),
@@ -159,7 +160,8 @@ def test_network_of_the_whole_recording(trial: Path, tmp_path: Path) -> None:
     from funcnet.robot import read_recording
 
     out = tmp_path / "whole.json"
-    result = runner.invoke(app, ["network", str(trial), "--signals", "RP,MP", "-o", str(out)])
+    result = runner.invoke(app, ["network", str(trial), "--signals", "RP,MP", "--window", "all",
+                                 "-o", str(out)])
     assert result.exit_code == 0, result.output
     written = FunctionalNetwork.from_json(out.read_text())
     data = read_recording(trial).data[["RP", "MP"]]  # every sample, none left out
@@ -190,7 +192,7 @@ def test_network_phase_and_drawings(trial: Path, tmp_path: Path) -> None:
 
 
 def test_network_rich_table_on_a_terminal(trial: Path, monkeypatch) -> None:
-    monkeypatch.setattr(cli, "_is_terminal", lambda stream: True)
+    monkeypatch.setattr(_cli_network, "_is_terminal", lambda stream: True)
     result = runner.invoke(
         app, ["network", str(trial), "--window", "0.5:1.1"], env={"COLUMNS": "200"}
     )
@@ -203,7 +205,7 @@ def test_network_rich_table_on_a_terminal(trial: Path, monkeypatch) -> None:
 
 
 def test_network_table_says_what_became_of_degenerate_pairs(trial: Path, monkeypatch) -> None:
-    monkeypatch.setattr(cli, "_is_terminal", lambda stream: True)
+    monkeypatch.setattr(_cli_network, "_is_terminal", lambda stream: True)
     arguments = ["network", str(trial), "--window", "0.5:0.8", "--signals", "RP,AP"]
     for options, words in (([], "degenerate pairs are no edges"),
                            (["--keep-degenerate"], "degenerate pairs are flagged edges")):
@@ -213,7 +215,7 @@ def test_network_table_says_what_became_of_degenerate_pairs(trial: Path, monkeyp
 
 
 def test_network_table_on_a_narrow_terminal(trial: Path, monkeypatch) -> None:
-    monkeypatch.setattr(cli, "_is_terminal", lambda stream: True)
+    monkeypatch.setattr(_cli_network, "_is_terminal", lambda stream: True)
     result = runner.invoke(
         app, ["network", str(trial), "--window", "0.5:1.1"], env={"COLUMNS": "80"}
     )
@@ -261,9 +263,9 @@ def test_network_help_shows_the_defaults_of_network_parameters() -> None:
     shown = ["dim", "delay", "rr", "cr", "mu", "metric", "normalize", "measure", "rule", "theiler"]
     for name in shown:
         value = "none" if defaults[name] is None else defaults[name]
-        assert helps[name].endswith(f"\\[default: {value}]"), (name, helps[name])
-    assert helps["mu_c"].endswith("\\[default: --mu]")
-    assert helps["mu_t"].endswith("\\[default: --mu]")
+        assert helps[name].endswith(f"[default: {value}]"), (name, helps[name])
+    assert helps["mu_c"].endswith("[default: --mu]")
+    assert helps["mu_t"].endswith("[default: --mu]")
     assert "chebyshev" in helps["metric"] and "cityblock" in helps["metric"]
 
 
@@ -286,14 +288,14 @@ def test_study_help_shows_the_default_workers() -> None:
 
     command = typer.main.get_command(app).commands["study"]  # type: ignore[attr-defined]
     (workers,) = [param for param in command.params if param.name == "workers"]
-    assert (workers.help or "").endswith(f"\\[default: {DEFAULT_WORKERS}]")
+    assert (workers.help or "").endswith(f"[default: {DEFAULT_WORKERS}]")
 
 
 def test_terminal_columns_are_pairs_columns() -> None:
     from funcnet.network.schema import PAIR_COLUMNS
 
     for narrow in (False, True):
-        columns = cli._shown_columns(narrow)
+        columns = _cli_network._shown_columns(narrow)
         assert set(columns) <= set(PAIR_COLUMNS) and "degenerate" in columns
 
 
@@ -347,7 +349,7 @@ def test_a_degenerate_pair_through_the_command_line(tmp_path: Path) -> None:
     ).to_csv(trace, index=False)
     from funcnet import FunctionalNetwork
 
-    arguments = ["network", str(trace), "--signals", "RP,AC,Q"]
+    arguments = ["network", str(trace), "--signals", "RP,AC,Q", "--window", "all"]
     dropped = runner.invoke(app, [*arguments, "-o", str(tmp_path / "net.json")])
     assert dropped.exit_code == 0, dropped.output
     assert "funcnet: warning: " in dropped.stderr and "degenerate" in dropped.stderr
@@ -375,7 +377,9 @@ def test_a_degenerate_pair_through_the_command_line(tmp_path: Path) -> None:
 
 def test_network_normalize_none(trial: Path, tmp_path: Path) -> None:
     help_text = runner.invoke(app, ["network", "--help"], env={"COLUMNS": "200"}).stdout
-    assert "none" in help_text and "normalize=None" in help_text
+    # the flag's own words, not the Python spelling (normalize=None)
+    help_text = " ".join(help_text.split())
+    assert "none (signals as recorded)" in help_text and "normalize=None" not in help_text
     out = tmp_path / "net.json"
     arguments = ["network", str(trial), "--window", "0.5:1.1", "--signals", "RP,AP,AC"]
     result = runner.invoke(app, [*arguments, "--normalize", "none", "-o", str(out)])
@@ -389,9 +393,11 @@ def test_network_normalize_none(trial: Path, tmp_path: Path) -> None:
 
 
 def test_network_phases_of_a_trace_with_several_moves(real_trace) -> None:
-    from funcnet.robot import detect_phases, phase_windows, read_recording
+    from funcnet.robot import PHASES, detect_phases, phase_windows, read_recording
 
-    windows = phase_windows(detect_phases(read_recording(real_trace)))
+    # every phase detect_phases returns, standstill included, in --list-phases and --phase
+    windows = phase_windows(detect_phases(read_recording(real_trace)), include=PHASES)
+    assert sum(w.phase == "standstill" for w in windows) == 4
     cruises = [w for w in windows if w.phase == "cruise"]
     assert len(cruises) == 3
     result = runner.invoke(app, ["network", str(real_trace), "--phase", "cruise"])
@@ -404,6 +410,8 @@ def test_network_phases_of_a_trace_with_several_moves(real_trace) -> None:
     lines = [" ".join(line.split()) for line in listed.stdout.splitlines()]
     assert lines[0] == "label phase start stop"
     assert lines[1:] == [f"{w.label} {w.phase} {w.start:.6g} {w.stop:.6g}" for w in windows]
+    standstill = runner.invoke(app, ["network", str(real_trace), "--phase", "standstill"])
+    _assert_one_error_line(standstill, "occurs 4 times")
 
 
 @pytest.mark.parametrize("method", ["decimate", "interpolate"])
@@ -505,7 +513,8 @@ def test_errors_in_a_real_subprocess(tmp_path: Path) -> None:
         timeout=120,
     )
     assert usage.returncode == 2 and usage.stdout == ""
-    assert usage.stderr == "funcnet: error: No such option: --bogus\n"
+    assert usage.stderr.startswith("funcnet: error: No such option: --bogus")
+    assert usage.stderr.count("\n") == 1
 
 
 # --------------------------------------------------------------------------------------------
@@ -537,8 +546,10 @@ def test_simulate_knows_the_named_plans() -> None:
     from funcnet.robot.sim import NAMED_PLANS
 
     result = runner.invoke(app, ["simulate", "--help"], env={"COLUMNS": "200"})
+    # the help is wrapped to the terminal, possibly after a hyphen
+    text = " ".join(result.stdout.replace("-\n", "-").split()).replace("- ", "-")
     for name in NAMED_PLANS:
-        assert f"'{name}'" in result.stdout
+        assert f"'{name}'" in text
 
 
 def test_study_and_report_commands(trial: Path, tmp_path: Path) -> None:
@@ -555,7 +566,9 @@ def test_study_and_report_commands(trial: Path, tmp_path: Path) -> None:
     # The window before the motion has constant positions: reported, exit status 1.
     assert first.exit_code == 1, first.output
     assert "4 tasks: 4 computed, 0 already done, 2 failed" in first.stdout
-    assert first.stderr.count("funcnet: failed: ") == 2
+    # one line per cause, its tasks counted
+    assert first.stderr.count("funcnet: failed: ") == 1, first.stderr
+    assert "funcnet: failed: 2 task(s)" in first.stderr
     # Warnings once per problem, counted over the tasks (not once more per task in-process).
     warned = [line for line in first.stderr.splitlines() if line.startswith("funcnet: warning")]
     assert all(" networks computed, e.g. " in line for line in warned), warned
@@ -662,8 +675,93 @@ def test_whole_recording_starts_where_every_signal_has_a_value(real_trace, tmp_p
     dataclasses.replace(moving, data=data).to_parquet(piece)
     out = tmp_path / "net.json"
     nodes = "RP,AP,MP,AC"
-    result = runner.invoke(app, ["network", str(piece), "--signals", nodes, "-o", str(out)])
+    result = runner.invoke(app, ["network", str(piece), "--signals", nodes, "--window", "all",
+                                 "-o", str(out)])
     assert result.exit_code == 0, result.output
     net = FunctionalNetwork.from_json(out.read_text())
     expected = _library_network(piece, 7.002, 7.6, signals=nodes.split(","))
     pd.testing.assert_frame_equal(net.pairs, expected.pairs)
+
+
+# --------------------------------------------------------------------------------------------
+# issue 12: a quiet, consistent command line
+
+
+def test_warnings_are_one_counted_line_and_verbose_lists_them(real_trace) -> None:
+    arguments = ["network", str(real_trace), "--window", "7:7.5", "--signals", "RP,AP,AC"]
+    quiet = runner.invoke(app, arguments)
+    assert quiet.exit_code == 0, quiet.output
+    warned = [line for line in quiet.stderr.splitlines() if line.startswith("funcnet: warning")]
+    assert len(warned) == 1 and "staircase ×1" in warned[0] and "--verbose" in warned[0]
+    loud = runner.invoke(app, [*arguments, "--verbose"])
+    listed = [line for line in loud.stderr.splitlines() if line.startswith("funcnet: warning")]
+    assert len(listed) >= 2
+    # the library's Python spelling is re-spelled as the flag
+    assert "--resample" in loud.stderr and "funcnet.robot.resample" not in loud.stderr
+
+
+def test_unknown_and_repeated_signals_name_the_flag_and_what_can_be_derived(real_trace) -> None:
+    result = runner.invoke(app, ["network", str(real_trace), "--signals", "RP,RC,AC"])
+    _assert_one_error_line(result, "--signals: RC not in axis7-braking-trace.xml",
+                           "derivable:", "FE (RP - AP)", "TORSION (MP - AP)")
+    twice = runner.invoke(app, ["network", str(real_trace), "--signals", "RP,AC,RP"])
+    _assert_one_error_line(twice, "--signals names RP more than once")
+
+
+def test_drop_constant_and_a_sized_titled_drawing(trial: Path, tmp_path: Path) -> None:
+    from matplotlib.image import imread
+
+    arguments = ["network", str(trial), "--window", "2.5:3.3", "--signals", "RP,AP,RC,AC"]
+    refused = runner.invoke(app, arguments)
+    assert refused.exit_code == 2 and "constant" in refused.stderr
+    out = tmp_path / "net.png"
+    done = runner.invoke(app, [*arguments, "--drop-constant", "-o", str(out), "--size", "800x600"])
+    assert done.exit_code == 0, done.output
+    assert imread(out).shape[:2] == (600, 800)
+    bad = runner.invoke(app, [*arguments, "-o", str(out), "--size", "big"])
+    _assert_one_error_line(bad, "--size must be WIDTHxHEIGHT")
+
+
+def test_omp_wait_policy_is_the_applications_choice() -> None:
+    code = ("import os; before = dict(os.environ); import funcnet, funcnet.cli; "
+            "assert dict(os.environ) == before; print('ok')")
+    env = {k: v for k, v in __import__("os").environ.items() if k != "OMP_WAIT_POLICY"}
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            env=env, check=True)
+    assert result.stdout.strip() == "ok"
+    source = Path(cli.__file__).read_text(encoding="utf-8")
+    main_body = source[source.index("def main() -> None:"):]
+    assert 'os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")' in main_body
+
+
+def test_network_without_a_window_is_one_network_per_phase_of_a_move(trial: Path,
+                                                                     tmp_path: Path) -> None:
+    from funcnet import FunctionalNetwork
+    from funcnet.robot import detect_phases, phase_windows, read_recording
+
+    expected = [w.label for w in phase_windows(detect_phases(read_recording(trial)))]
+    result = runner.invoke(app, ["network", str(trial), "-o", str(tmp_path / "net.json")])
+    assert result.exit_code == 0, result.output
+    files = sorted(tmp_path.glob("net-*.json"))
+    assert len(files) == len(expected) >= 3
+    labels = {FunctionalNetwork.read(f).label for f in files}
+    assert labels == set(expected)
+    assert (tmp_path / "net-cruise.json").is_file()
+
+
+def test_network_without_phases_says_how_to_give_a_window(tmp_path: Path) -> None:
+    trace = tmp_path / "no-rp.csv"
+    t = np.arange(0, 1, 0.002)
+    pd.DataFrame({"time": t, "AP": np.sin(t), "AC": np.cos(3 * t)}).to_csv(trace, index=False)
+    result = runner.invoke(app, ["network", str(trace), "--signals", "AP,AC"])
+    _assert_one_error_line(result, "no phases can be detected", "--window START:STOP")
+
+
+def test_network_refuses_a_forecast_over_the_limit_unless_forced(trial: Path, tmp_path: Path,
+                                                                 monkeypatch) -> None:
+    monkeypatch.setattr(_cli_network, "COST_LIMIT_SECONDS", 1e-6)
+    arguments = ["network", str(trial), "--window", "0.5:1.1", "--signals", "RP,AP,AC"]
+    refused = runner.invoke(app, arguments)
+    _assert_one_error_line(refused, "over a minute or 4 GiB", "--force", "states")
+    forced = runner.invoke(app, [*arguments, "--force", "-o", str(tmp_path / "net.json")])
+    assert forced.exit_code == 0, forced.output

@@ -83,6 +83,7 @@ def test_without_the_arm_encoder_the_motor_loop_indicator_is_read(tmp_path):
     path = write_trace(tmp_path / "noap.xml", data, intervals={"MP": 0.004})
     (result,) = diagnose_backlash(path)
     assert result.score_indicator == MOTOR_LOOP_SCORE and result.lost_motion is None
+    assert result.score_unit == "1" and result.to_dict()["score_unit"] == "1"
     assert result.backlash_score == result.reversals[0].indicators[MOTOR_LOOP_SCORE]
     assert result.reading is not None and result.reading["indicator"] == MOTOR_LOOP_SCORE
 

@@ -24,6 +24,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import funcnet._order_statistic as order_statistic
+import funcnet.measures as measures
 from funcnet._kernels import (
     _cross_triangles,
     _cross_triangles_both,
@@ -126,8 +127,12 @@ def reference_values(xs, ys, rate):
     return values
 
 
+@pytest.mark.parametrize("blocked", [True, False])
 @pytest.mark.parametrize("kinds", [("sine", "walk"), ("quantized", "noise")])
-def test_measures_through_the_blocked_kernel_equal_brute_force(kinds):
+def test_measures_through_the_blocked_kernel_equal_brute_force(monkeypatch, kinds, blocked):
+    # The blocked kernel serves long windows only: force it here, on a size brute force affords.
+    if blocked:
+        monkeypatch.setattr(measures, "_BLOCKED_BYTES", 0)
     x, y = make_signal(kinds[0], 700, 1), make_signal(kinds[1], 700, 2)
     xs, ys = reference_embed(x, 3, 4), reference_embed(y, 3, 4)
     result = cross_measures(x, y, dim=3, delay=4, warn=False)
@@ -207,8 +212,9 @@ def test_narrow_meets_a_tied_order_statistic(monkeypatch, probes):
         assert ((keys >= lo) & (keys <= hi)).sum() <= 100
 
 
-def test_packing_is_unchanged_by_the_blocked_path():
-    # isrn_measures on precomputed blocks equals the row-wise counts of the same blocks.
+def test_packing_is_unchanged_by_the_blocked_path(monkeypatch):
+    # isrn_measures on precomputed blocks, blocked kernel forced, equals the row-wise counts.
+    monkeypatch.setattr(measures, "_BLOCKED_BYTES", 0)
     x, y = make_signal("sine", 900, 7), make_signal("quantized", 900, 8)
     xs, ys = reference_embed(x, 3, 5), reference_embed(y, 3, 5)
     a_x, a_y = auto_recurrence(xs, rr=0.05), auto_recurrence(ys, rr=0.05)

@@ -121,7 +121,7 @@ normalize = "none"
     assert study.base_dir == tmp_path.resolve()
     assert study.windows == (
         WindowSpec("sliding", (("step", 0.3), ("width", 0.6))),
-        WindowSpec("reversal", (("shifts", [-0.02, 0.0, 0.02]),)),
+        WindowSpec("reversal", (("shifts", [-0.02, 0.0, 0.02]), ("width", 0.2))),  # default width
     )
     grid = parameter_grid(study)
     expected = [
@@ -662,3 +662,52 @@ def test_row_columns_are_identity_parameters_then_the_pairs_schema(baseline) -> 
     rows = load_results(out)
     assert rows["eps"].isna().all() and rows["mu_c"].isna().all()
     assert rows["achieved_cr"].between(0, 1).all()
+
+
+# --------------------------------------------------------------------------------------------
+# issue 12: studies checked before they start; one reversal width
+
+
+def test_a_signal_the_simulated_plan_cannot_have_stops_the_study_before_simulating(
+        tmp_path: Path) -> None:
+    from funcnet.errors import StudyError
+    from funcnet.study import run_study
+    from funcnet.study.spec import Study
+
+    study = Study(simulated="paper", signals=("RP", "AP", "QQ", "V"))
+    with pytest.raises(StudyError, match="QQ cannot be in the simulated plan's traces"):
+        run_study(study, tmp_path / "out", workers=0)
+    assert not (tmp_path / "out" / "plan").exists()  # nothing was simulated
+
+
+def test_reversal_windows_have_one_documented_width_in_demo_and_study(tmp_path: Path) -> None:
+    import inspect
+
+    from funcnet.paper import analyses
+    from funcnet.study import load_study
+    from funcnet.study.spec import REVERSAL_WIDTH
+
+    assert REVERSAL_WIDTH == analyses.REVERSAL_WIDTH == 0.2
+    default = inspect.signature(analyses.run_paper_analyses).parameters["reversal_width"]
+    assert default.default == REVERSAL_WIDTH
+    toml = tmp_path / "s.toml"
+    toml.write_text('[recordings]\nsimulated = "paper"\n[[windows]]\nkind = "reversal"\n',
+                    encoding="utf-8")
+    (spec,) = load_study(toml).windows
+    assert dict(spec.options)["width"] == REVERSAL_WIDTH
+
+
+def test_fixed_windows_mostly_outside_their_phase_are_flagged(plan_dir: Path,
+                                                              tmp_path: Path) -> None:
+    from funcnet.study import run_study
+    from funcnet.study.spec import Study, WindowSpec
+
+    # V350 trials: the cruise lasts ~140 ms, so its 600 ms fixed window is mostly braking
+    study = Study(recordings=tuple(sorted(plan_dir.glob("*.xml")))[:1],
+                  windows=(WindowSpec("fixed"),), signals=("RP", "AP", "AC"),
+                  parameters=(("delay", (5,)),), constant="drop")
+    result = run_study(study, tmp_path / "out", workers=0)
+    count, example = result.warnings["window_overrun"]
+    assert count >= 1 and "'cruise'" in example and "% outside" in example
+    document = json.loads((tmp_path / "out" / "study.json").read_text())
+    assert "window_overrun" in document["run"]["warnings"]

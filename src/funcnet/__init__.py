@@ -40,6 +40,7 @@ _EXPORTS = {
     "edges_from_pairs": "funcnet.network",
     "check_parameters": "funcnet.network",
     "window_networks": "funcnet.pipeline",
+    "inspect_trace": "funcnet.report.inspect",
     "Study": "funcnet.study",
     "load_study": "funcnet.study",
     "run_study": "funcnet.study",

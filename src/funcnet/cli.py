@@ -1,7 +1,8 @@
 """The ``funcnet`` command line: a thin layer over the library.
 
 Commands: ``demo`` (simulate the paper's plan, analyse it, write the report), ``simulate``,
-``network`` (one functional network of one trace), ``backlash`` (diagnose backlash in traces),
+``network`` (the functional networks of one trace: one per phase, or of one window),
+``inspect`` (the engineer's HTML report of traces), ``backlash`` (diagnose backlash in traces),
 ``study`` (a batch from a TOML file) and ``report`` (HTML report of a study's results).
 ``funcnet COMMAND --help`` is each command's reference.
 
@@ -11,9 +12,10 @@ Conventions:
   on a file, and a usage error: unknown option or command, missing argument, bad value) prints
   exactly one plain-text line, ``funcnet: error: MESSAGE``, on stderr and exits with status 2.
   Nothing is left half-written: outputs are written to a temporary file and renamed.
-* Warnings of the library print as one line each, ``funcnet: warning: MESSAGE``, once per
-  distinct message, after the command succeeded (an error prints its one line only); ``demo``
-  and ``study`` count them per problem instead (in the report, in the summary lines).
+* Warnings of the library print as one line counting them per problem after the command
+  succeeded (``--verbose``: one line each, ``funcnet: warning: MESSAGE``, once per distinct
+  message); an error prints its one line only; ``demo`` and ``study`` count them per problem
+  (in the report, in the summary lines).
 * Progress bars go to stderr, only when stderr is a terminal and ``--quiet`` is not given.
 * ``funcnet study`` exits with status 1 when it finished but some tasks could not be analysed
   (listed in ``study.json``), so that scripts notice.
@@ -25,6 +27,7 @@ line's reference; every rule they apply lives in the library.
 from __future__ import annotations
 
 import contextlib
+import os
 import sys
 import warnings
 from collections.abc import Callable, Iterator, Sequence
@@ -35,10 +38,24 @@ import typer
 
 # typer vendors click: these are the classes it raises (not the separate ``click`` package's).
 from typer._click.exceptions import ClickException, NoArgsIsHelpError
-from typer.core import TyperGroup
+from typer.core import TyperCommand, TyperGroup
 
 from funcnet import __version__
-from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError, WindowError
+from funcnet._cli_network import (
+    _check_cost,
+    _check_signals,
+    _is_terminal,
+    _moving_phases,
+    _network_files,
+    _parse_size,
+    _parse_window,
+    _print_pairs,
+    _print_phases,
+    _select_window,
+    _signal_list,
+    _write_network,
+)
+from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError
 from funcnet.parameters import NetworkParameters
 
 __all__ = ["app", "main"]
@@ -67,7 +84,8 @@ class _PlainErrorsGroup(TyperGroup):
             # the command's value (None) when it ends normally.
             status = super().main(args, prog_name, complete_var, False, **forwarded)
         except NoArgsIsHelpError as exc:
-            sys.exit(exc.exit_code)  # bare `funcnet`: the help is already printed
+            sys.stdout.write(exc.ctx.get_help() + "\n")  # bare `funcnet`: the help
+            sys.exit(exc.exit_code)
         except ClickException as exc:
             sys.stderr.write(f"funcnet: error: {_one_line(exc.format_message())}\n")
             sys.exit(exc.exit_code)
@@ -75,6 +93,15 @@ class _PlainErrorsGroup(TyperGroup):
             sys.stderr.write("funcnet: error: aborted\n")
             sys.exit(1)
         sys.exit(status if isinstance(status, int) else 0)
+
+
+class _PlainUsageCommand(TyperCommand):
+    """A command whose usage line names its arguments in capitals (``TRACE...``), not in
+    braces (typer writes a required argument as ``{trace}``)."""
+
+    def collect_usage_pieces(self, ctx: Any) -> list[str]:
+        return [piece.replace("{", "").replace("}", "").upper() if "{" in piece else piece
+                for piece in super().collect_usage_pieces(ctx)]
 
 
 app = typer.Typer(
@@ -87,7 +114,7 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
-    rich_markup_mode="rich",
+    rich_markup_mode=None,  # plain click help: wrapped cleanly, no "<bool>" on flags
 )
 
 _EXIT_INPUT_ERROR = 2
@@ -109,18 +136,39 @@ def _os_error_message(exc: OSError) -> str:
     return str(exc)
 
 
+# Python spellings in library messages, and the command line's own for the same thing.
+_RESPELLED = {
+    "funcnet.robot.resample decimates or interpolates them":
+        "--resample decimate or --resample interpolate brings them onto one grid",
+    "normalize=None": "--normalize none",
+}
+
+
+def _respelled(text: str) -> str:
+    for python, flag in _RESPELLED.items():
+        text = text.replace(python, flag)
+    return text
+
+
 @contextlib.contextmanager
-def _reported_errors(*, summarized: bool = False) -> Iterator[None]:
+def _reported_errors(*, summarized: bool = False, verbose: bool = False) -> Iterator[None]:
     """Turn input errors into one plain line on stderr and exit status 2.
 
-    Warnings are collected (each distinct message once) and printed as plain lines when the
-    command succeeds; a failed command prints its error line only. ``summarized``: the command
-    reports the library's warnings itself (counted per problem), so they are not printed too.
+    Warnings are collected and reported when the command succeeds; a failed command prints its
+    error line only. The library's warnings (:class:`FuncnetWarning`) are summarized in one
+    line, counted per problem; ``verbose`` prints each distinct one instead. ``summarized``: the
+    command reports the library's warnings itself (counted per problem), so they are not
+    printed too.
     """
     messages: list[str] = []
+    problems: dict[str, int] = {}
 
     def collect(message: Any, *_: Any, **__: Any) -> None:
-        text = _one_line(str(message))
+        if isinstance(message, FuncnetWarning) and not verbose:
+            problem = message.problem or type(message).__name__
+            problems[problem] = problems.get(problem, 0) + 1
+            return
+        text = _respelled(_one_line(str(message)))
         if text not in messages:
             messages.append(text)
 
@@ -137,6 +185,11 @@ def _reported_errors(*, summarized: bool = False) -> Iterator[None]:
         except OSError as exc:
             sys.stderr.write(f"funcnet: error: {_one_line(_os_error_message(exc))}\n")
             raise typer.Exit(_EXIT_INPUT_ERROR) from None
+    if problems:
+        total = sum(problems.values())
+        counted = ", ".join(f"{name} ×{n}" for name, n in problems.items())
+        sys.stderr.write(f"funcnet: warning: {total} warning(s) from the library ({counted}); "
+                         "the pairs tables flag the pairs concerned; --verbose prints each\n")
     for text in messages:
         sys.stderr.write(f"funcnet: warning: {text}\n")
 
@@ -189,6 +242,12 @@ def _main_options(
     """Functional networks of robot-axis controller traces."""
 
 
+Verbose = Annotated[
+    bool,
+    typer.Option("--verbose", "-v", metavar="",
+                 help="Print every warning in full (by default: one line counting them)."),
+]
+
 # metavar="": a flag takes no value, so the help shows none (typer's default is "<bool>").
 Quiet = Annotated[
     bool,
@@ -202,7 +261,7 @@ Quiet = Annotated[
 # demo, simulate
 
 
-@app.command()
+@app.command(cls=_PlainUsageCommand)
 def demo(
     out: Annotated[
         Path, typer.Option("--out", help="Folder of the report (and of the simulated plan).")
@@ -228,7 +287,7 @@ def demo(
     typer.echo(f"report: {report}")
 
 
-@app.command()
+@app.command(cls=_PlainUsageCommand)
 def simulate(
     out: Annotated[Path, typer.Option("--out", help="Folder of the traces (may exist).")],
     plan: Annotated[
@@ -290,7 +349,7 @@ _DEFAULTS = NetworkParameters.defaults()
 
 def _default(name: str) -> str:
     value = _DEFAULTS[name]
-    return f"\\[default: {'none' if value is None else value}]"
+    return f"[default: {'none' if value is None else value}]"
 
 
 # How the command spells the parameters it takes, for the messages of a bad value.
@@ -315,80 +374,7 @@ def _spelled_as_options() -> Iterator[None]:
         raise ParameterError(exc.spelled(flag), parameter=flag, detail=exc.detail) from None
 
 
-def _parse_window(text: str) -> tuple[float, float]:
-    start_text, sep, stop_text = text.partition(":")
-    try:
-        if not sep:
-            raise ValueError
-        start, stop = float(start_text), float(stop_text)
-    except ValueError:
-        raise ParameterError(
-            f"--window must be START:STOP in seconds (e.g. 1.0:5.0), got {text!r}"
-        ) from None
-    if not start < stop:
-        raise ParameterError(f"--window: START must be less than STOP, got {text!r}")
-    return start, stop
-
-
-def _select_window(
-    recording: Any, phase: str | None, bounds: tuple[float, float] | None, trace: Path
-) -> Any:
-    """The analysis window the options ask for (default: the whole recording)."""
-    from funcnet.robot import span_window
-
-    if bounds is not None:
-        return span_window(*bounds)
-    if phase is None:
-        return _whole_recording(recording, trace)
-    windows = _phase_windows(recording)
-    by_label = [w for w in windows if w.label == phase]
-    by_phase = by_label or [w for w in windows if w.phase == phase]
-    if len(by_phase) == 1:
-        return by_phase[0]
-    if not by_phase:
-        labels = ", ".join(repr(w.label) for w in windows) or "none"
-        raise WindowError(
-            f"{trace}: no phase {phase!r} detected (phases: {labels}; --list-phases shows them)"
-        )
-    choices = ", ".join(f"{w.label!r} ({w.start:g}-{w.stop:g} s)" for w in by_phase)
-    raise WindowError(
-        f"{trace}: phase {phase!r} occurs {len(by_phase)} times; give one of {choices}"
-    )
-
-
-def _whole_recording(recording: Any, trace: Path) -> Any:
-    """The span where every signal has a recorded value, as one window.
-
-    Signals logged on a coarser grid (IPO, 4 ms) have no value at the first tick.
-    """
-    # TODO(robot): a domain rule; to move into funcnet.robot.windows.
-    from funcnet.robot import Window
-
-    recorded = recording.data.index[recording.data.notna().all(axis=1).to_numpy()]
-    if recorded.empty:
-        raise WindowError(f"{trace}: no tick where every signal has a recorded value")
-    start, stop = float(recorded[0]), float(recorded[-1]) + recording.sample_period
-    return Window(label="whole recording", start=start, stop=stop)
-
-
-def _phase_windows(recording: Any) -> list[Any]:
-    from funcnet.robot import detect_phases, phase_windows
-
-    return list(phase_windows(detect_phases(recording)))
-
-
-def _print_phases(recording: Any) -> None:
-    """The detected phases as plain text: label, phase, start, stop (seconds)."""
-    import pandas as pd
-
-    table = pd.DataFrame(
-        [(w.label, w.phase, w.start, w.stop) for w in _phase_windows(recording)],
-        columns=["label", "phase", "start", "stop"],
-    )
-    typer.echo(table.to_string(index=False, float_format=lambda value: f"{value:.6g}"))
-
-
-@app.command()
+@app.command(cls=_PlainUsageCommand)
 def network(
     trace: Annotated[Path, typer.Argument(help="Trace file: SINUMERIK XML, CSV or Parquet.")],
     signals: Annotated[
@@ -410,7 +396,8 @@ def network(
     ] = None,
     window: Annotated[
         str | None,
-        typer.Option("--window", help="Analyse START:STOP seconds, e.g. 1.0:5.0."),
+        typer.Option("--window", help="Analyse START:STOP seconds, e.g. 1.0:5.0; 'all': the "
+                     "whole recording (where every signal has a value) as one window."),
     ] = None,
     list_phases: Annotated[
         bool,
@@ -453,11 +440,11 @@ def network(
     ] = None,
     mu_c: Annotated[
         float | None,
-        typer.Option("--mu-c", help="Edge threshold on C_diff alone. \\[default: --mu]"),
+        typer.Option("--mu-c", help="Edge threshold on C_diff alone. [default: --mu]"),
     ] = None,
     mu_t: Annotated[
         float | None,
-        typer.Option("--mu-t", help="Edge threshold on T_diff alone. \\[default: --mu]"),
+        typer.Option("--mu-t", help="Edge threshold on T_diff alone. [default: --mu]"),
     ] = None,
     metric: Annotated[
         str | None,
@@ -469,8 +456,8 @@ def network(
     normalize: Annotated[
         str | None,
         typer.Option(
-            help="Per-window normalization: minmax, zscore or none (signals as recorded; the "
-            f"library's normalize=None). {_default('normalize')}"
+            help="Per-window normalization: minmax, zscore or none (signals as recorded). "
+            f"{_default('normalize')}"
         ),
     ] = None,
     measure: Annotated[
@@ -504,18 +491,39 @@ def network(
     axis: Annotated[
         int | None, typer.Option("--axis", help="Axis to read from a trace of several axes.")
     ] = None,
+    drop_constant: Annotated[
+        bool,
+        typer.Option(
+            "--drop-constant",
+            metavar="",
+            help="Leave a signal constant in the window out of the network (min-max needs a "
+            "range); by default it is an error.",
+        ),
+    ] = False,
     output: Annotated[
         Path | None,
         typer.Option(
             "--output",
             "-o",
             help="Write the network: .json (exact, reloadable), .graphml, or a drawing (.png, "
-            ".svg). Without it the pairs table is printed.",
+            ".svg) titled with the trace, window and parameters. Without it the pairs table "
+            "is printed.",
         ),
     ] = None,
+    size: Annotated[
+        str,
+        typer.Option("--size", metavar="WxH",
+                     help="Size of a drawing in pixels (at 100 dpi), e.g. 900x900."),
+    ] = "700x750",
+    force: Annotated[
+        bool,
+        typer.Option("--force", metavar="",
+                     help="Compute even when the forecast is over a minute or 4 GiB."),
+    ] = False,
+    verbose: Verbose = False,
     quiet: Quiet = False,
 ) -> None:
-    """Compute the functional network of one trace, or of one window of it.
+    """Compute the functional networks of one trace: per phase, or of one window of it.
 
     Every pair of signals gets cross-clustering and cross-transitivity in both directions
     (Eq. 6-9), their differences (Eq. 10) and an edge by the mu rule with the weight of Eq. 13.
@@ -525,10 +533,14 @@ def network(
     text when piped. Degenerate pairs (too few distinct states) are flagged and are no edges
     unless --keep-degenerate.
 
-    Without --phase or --window the whole recording is one window: slow for long traces (the
-    cost grows with the cube of the window's length).
+    Without --phase or --window: one network per detected phase of every move (standstill
+    left out: the set-point is constant there), printed one after the other; with -o one file
+    per phase, named after it (net-cruise-1.json). A network whose forecast cost is over a
+    minute or 4 GiB (a long --window: the cost grows with the cube of its length) is refused
+    unless --force.
     """
-    with _reported_errors():
+    with _reported_errors(verbose=verbose):
+        inches = _parse_size(size)
         if output is not None and output.suffix.lower() not in _NETWORK_SUFFIXES:
             raise ParameterError(
                 f"-o {output}: unknown format, use one of {', '.join(_NETWORK_SUFFIXES)}"
@@ -557,105 +569,41 @@ def network(
             parameters = NetworkParameters(**overrides)
         if phase is not None and window is not None:
             raise ParameterError("give --phase or --window, not both")
-        bounds = None if window is None else _parse_window(window)
-        names = None if signals is None else [s.strip() for s in signals.split(",") if s.strip()]
+        whole = window is not None and window.strip().lower() == "all"
+        bounds = None if window is None or whole else _parse_window(window)
+        names = _signal_list(signals)
         from funcnet.pipeline import window_networks
         from funcnet.robot import read_recording
 
-        # One network has no steps to count: the bar only shows that work is going on.
-        with _progress(quiet, "network"):
+        with _progress(quiet, "network") as progress:
             with _spelled_as_options():
                 recording = read_recording(
                     trace, signals=names, channels=channels, axis=axis, resample=resample
                 )
-            if not list_phases:
-                chosen = _select_window(recording, phase, bounds, trace)
-                (net,) = window_networks(
-                    recording, [chosen], signals=names, parameters=parameters
-                ).values()
-        if list_phases:
-            _print_phases(recording)
-            return
+            _check_signals(names, recording, trace)
+            if list_phases:
+                _print_phases(recording)
+                return
+            if whole or phase is None and bounds is None:
+                # --window all: one window where every signal has a value; else one per phase
+                chosen = ([_select_window(recording, None, None, trace)] if whole
+                          else _moving_phases(recording, trace))
+            else:
+                chosen = [_select_window(recording, phase, bounds, trace)]
+            _check_cost(recording, chosen, names, parameters, force)
+            nets = window_networks(
+                recording, chosen, signals=names, parameters=parameters,
+                constant="drop" if drop_constant else "error", progress=progress,
+            )
         if output is None:
-            _print_pairs(net)
+            for net in nets.values():
+                _print_pairs(net)
             return
-        _write_network(net, output)
-    typer.echo(f"wrote {output}")
-
-
-def _write_network(net: Any, output: Path) -> None:
-    suffix = output.suffix.lower()
-    if suffix in (".json", ".graphml"):
-        net.write(output)
-        return
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from matplotlib.figure import Figure
-
-    from funcnet._io import atomic_path
-    from funcnet.plot import plot_network
-
-    figure = Figure(figsize=(4.5, 4.5))
-    plot_network(net, ax=figure.add_subplot(), title=net.label)
-    with atomic_path(output) as tmp:
-        figure.savefig(tmp, format=suffix[1:], bbox_inches="tight")
-
-
-# The pairs-table columns shown on a terminal; piped output and -o .json hold them all.
-_MAIN_COLUMNS = ("x", "y", "kind", "weight", "c_diff", "t_diff")
-_WIDE_COLUMNS = ("c_xy", "c_yx", "t_xy", "t_yx", "eps_ordered", "rate_exceeded")
-_FLAG_COLUMN = "degenerate"
-_PAIRS_CAPTION = (
-    "negative diff reads as x->y (an asymmetry, not proof of a driver); degenerate pairs are "
-    "{degenerate}; -o net.json keeps every column"
-)
-_DEGENERATE_CAPTION = {"drop": "no edges", "keep": "flagged edges"}
-
-
-def _is_terminal(stream: Any) -> bool:
-    return bool(getattr(stream, "isatty", lambda: False)())
-
-
-def _shown_columns(narrow: bool) -> list[str]:
-    """The columns of a terminal's table (all names of funcnet.network.schema's pairs)."""
-    groups = (_MAIN_COLUMNS, () if narrow else _WIDE_COLUMNS, (_FLAG_COLUMN,))
-    return [name for group in groups for name in group]
-
-
-def _pairs_table(net: Any, columns: Sequence[str], number_format: str) -> Any:
-    from rich.table import Table
-
-    pairs = net.pairs
-    caption = _PAIRS_CAPTION.format(degenerate=_DEGENERATE_CAPTION[net.parameters.degenerate])
-    table = Table(title=net.label, caption=caption)
-    for column in columns:
-        numeric = pairs[column].dtype.kind == "f"
-        table.add_column(column, justify="right" if numeric else "left", no_wrap=True)
-    for row in pairs[list(columns)].itertuples(index=False):
-        table.add_row(*(format(v, number_format) if isinstance(v, float) else str(v) for v in row))
-    return table
-
-
-def _print_pairs(net: Any) -> None:
-    """The pairs table: a rich table on a terminal, every column as plain text otherwise.
-
-    A terminal too narrow for the main columns gets fewer of them, at 3 significant digits,
-    rather than every number cut short. The ``degenerate`` flag is always shown.
-    """
-    from funcnet.network.schema import PAIR_COLUMNS
-
-    if not _is_terminal(sys.stdout):
-        typer.echo(net.pairs.loc[:, list(PAIR_COLUMNS)].to_string(index=False))
-        return
-    from rich.console import Console
-
-    console = Console()
-    table = _pairs_table(net, _shown_columns(narrow=False), ".4f")
-    # Measured without the terminal's limit: the width the table needs to show every number.
-    if console.measure(table, options=console.options.update_width(10_000)).maximum > console.width:
-        table = _pairs_table(net, _shown_columns(narrow=True), ".3g")
-    console.print(table)
+        written = _network_files(output, list(nets))
+        for net, path in zip(nets.values(), written, strict=True):
+            _write_network(net, path, inches, trace)
+    for path in written:
+        typer.echo(f"wrote {path}")
 
 
 # --------------------------------------------------------------------------------------------
@@ -664,7 +612,7 @@ def _print_pairs(net: Any) -> None:
 _BACKLASH_SUFFIXES = (".json", ".html")
 
 
-@app.command()
+@app.command(cls=_PlainUsageCommand)
 def backlash(
     traces: Annotated[
         list[Path],
@@ -730,16 +678,74 @@ def _backlash_numbers(result: Any) -> str:
 
 
 # --------------------------------------------------------------------------------------------
+# inspect
+
+
+@app.command(cls=_PlainUsageCommand)
+def inspect(
+    traces: Annotated[
+        list[Path], typer.Argument(metavar="TRACE", help="Trace files: SINUMERIK XML, CSV or "
+                                   "Parquet.")
+    ],
+    out: Annotated[
+        Path, typer.Option("--out", "-o", help="Report folder (one sub-folder per trace when "
+                           "there are several, and an index).")
+    ] = Path("inspect"),
+    signals: Annotated[
+        str | None,
+        typer.Option(
+            "--signals",
+            help="Comma-separated nodes. Default: the paper's nodes the trace has (RP, AP, MP, "
+            "RC, AC) plus V derived from AP.",
+        ),
+    ] = None,
+    evidence: Annotated[
+        bool,
+        typer.Option(
+            "--evidence/--no-evidence",
+            help="Test each pair's coupling and direction (surrogates; about half the run "
+            "time).",
+        ),
+    ] = True,
+    channels: Annotated[
+        Path | None,
+        typer.Option("--channels", help="Channel map TOML (controller signal names -> roles)."),
+    ] = None,
+    axis: Annotated[
+        int | None, typer.Option("--axis", help="Axis to read from a trace of several axes.")
+    ] = None,
+    verbose: Verbose = False,
+    quiet: Quiet = False,
+) -> None:
+    """Write a readable HTML report of what an axis does in each trace.
+
+    First a plain summary of the motion (moves, phases with their times, speeds, peak currents,
+    following error, lost motion at direction changes when both encoders are recorded), then
+    one functional network per phase of every move with its evidence, the edge timeline, the
+    backlash diagnosis, and what an arrow does and does not say. The path of the page to open
+    is printed.
+    """
+    with _reported_errors(verbose=verbose):
+        names = _signal_list(signals)
+        from funcnet.report.inspect import inspect_trace
+
+        with _progress(quiet, "inspect") as progress:
+            page = inspect_trace(*traces, out_dir=out, signals=names, evidence=evidence,
+                                 channels=channels, axis=axis, progress=progress)
+    typer.echo(f"report: {page}")
+
+
+# --------------------------------------------------------------------------------------------
 # study, report
 
 
-@app.command()
+@app.command(cls=_PlainUsageCommand)
 def study(
     study_file: Annotated[Path, typer.Argument(help="Study description (TOML).")],
     out: Annotated[
         Path | None,
         typer.Option(
-            "--out", help="Results folder. \\[default: out/<STUDY_FILE's name without .toml>]"
+            "--out", help="Results folder. [default: out/<STUDY_FILE's name without .toml>]"
         ),
     ] = None,
     scheduler: Annotated[
@@ -756,7 +762,7 @@ def study(
             "--workers",
             min=0,
             help="Worker processes of the local run or local cluster; 0 runs the tasks in this "
-            "process. \\[default: 2]",
+            "process. [default: 2]",
         ),
     ] = None,
     quiet: Quiet = False,
@@ -788,23 +794,28 @@ def study(
             f"e.g. {_one_line(example)}\n"
         )
     varied = [name for name, values in described.parameters if len(values) > 1]
+    # One line per cause, its tasks counted and the first few named (not one line per task).
+    causes: dict[str, list[str]] = {}
     for failure in result.failures:
         setting = "".join(
             f" {k}={failure.parameters[k]}" for k in varied if k in failure.parameters
         )
-        sys.stderr.write(
-            f"funcnet: failed: {failure.recording} [{failure.window}]{setting}: "
-            f"{_one_line(failure.message)}\n"
-        )
+        message = _one_line(failure.message)
+        # the same cause in another file or window: the message without its location
+        cause = message.split(": ", 1)[-1] if message.startswith(failure.recording) else message
+        causes.setdefault(cause, []).append(f"{failure.recording} [{failure.window}]{setting}")
+    for cause, where in causes.items():
+        shown = ", ".join(where[:3]) + (f" and {len(where) - 3} more" if len(where) > 3 else "")
+        sys.stderr.write(f"funcnet: failed: {len(where)} task(s) ({shown}): {cause}\n")
     if result.failures:
         raise typer.Exit(_EXIT_TASKS_FAILED)
 
 
-@app.command()
+@app.command(cls=_PlainUsageCommand)
 def report(
     results_dir: Annotated[Path, typer.Argument(help="Folder written by `funcnet study`.")],
     out: Annotated[
-        Path | None, typer.Option("--out", help="Report folder. \\[default: RESULTS_DIR/report]")
+        Path | None, typer.Option("--out", help="Report folder. [default: RESULTS_DIR/report]")
     ] = None,
     quiet: Quiet = False,
 ) -> None:
@@ -824,6 +835,9 @@ def report(
 
 def main() -> None:
     """Entry point of the ``funcnet`` command."""
+    # An application's choice, not the library's: idle OpenMP threads that spin instead of
+    # sleeping made the kernels ~3x slower on a loaded 2-core machine.
+    os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
     app(prog_name="funcnet")
 
 

@@ -20,7 +20,7 @@ uncoupled".
 The triangle counts use bit-packed rows: ``tri_v = sum_{p in N(v)} popcount(A_Y[p] & CR_XY[v])``
 over the words between v's first and last cross-neighbour, each unordered pair once, in a
 compiled parallel kernel (about ``M_X * k * M_Y / 128`` word operations for mean cross-degree
-``k``). For long windows (auto matrices beyond ~16 MiB, M > ~11,500) a blocked kernel counts
+``k``). For long windows (auto matrices beyond 32 MiB, M > ~16,400) a blocked kernel counts
 both directions in one pass, reading each auto row once per block of 256 cross rows; the
 integer counts, and so every value, are the same. Thresholds follow the rule of
 :mod:`funcnet.recurrence` (exact k-th order statistic of the candidate distances,
@@ -83,11 +83,12 @@ __all__ = [
 ]
 
 
-# The triangle kernel: row-wise while the auto matrices fit in the last-level cache, blocked
-# above (each auto row read once per block of 64 * _BLOCK_WORDS cross rows). Measured on the
-# real trace (benchmarks/bench_long.py): the blocked kernel is 0.7-0.9x the row-wise one up to
-# M = 10,000, 1.0-1.8x at 15,000 and 1.4-2.6x at 22,686; b = 4 was the fastest block.
-_BLOCKED_BYTES = 16 * 2**20
+# The triangle kernel: row-wise while the auto matrices fit in the last-level cache (32 MiB
+# here), blocked above (each auto row read once per block of 64 * _BLOCK_WORDS cross rows).
+# Measured on the real trace (benchmarks/bench_long.py, CPU time): the blocked kernel is
+# 0.5-0.9x the row-wise one up to M = 10,000, 0.93-1.17x at 15,000 and 1.4-2.6x at 22,686;
+# b = 4 was the fastest block.
+_BLOCKED_BYTES = 32 * 2**20
 _BLOCK_WORDS = 4
 
 

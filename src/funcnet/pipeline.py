@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from funcnet import batch
 from funcnet.errors import (
     ChannelError,
     FuncnetError,
@@ -29,8 +30,8 @@ from funcnet.errors import (
     WindowError,
 )
 from funcnet.measures import CrossMeasures, threshold_warnings
-from funcnet.network import FunctionalNetwork, functional_network
-from funcnet.network.schema import RESULT_COLUMNS
+from funcnet.network import FunctionalNetwork, edges_from_pairs, functional_network, pair_kinds
+from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import NetworkParameters, resolve
 from funcnet.robot.preprocess import staircase_signals
 from funcnet.robot.recording import Recording
@@ -207,11 +208,16 @@ def window_networks(
         )
     drop = constant == "drop" and p.normalize is not None
     networks: dict[str, FunctionalNetwork] = {}
+    batched = _batched_networks(recording, windows, signals, p)
     for done, window in enumerate(windows, start=1):
-        networks[window.label] = _window_network(recording, window, signals, p, drop, where)
+        networks[window.label] = (
+            batched[0][done - 1] if batched is not None
+            else _window_network(recording, window, signals, p, drop, where)
+        )
         if progress is not None:
             progress(done, len(windows), window.label)
-    for warning in _summarized(window_warnings(networks), where, len(windows)):
+    found = batched[1] if batched is not None else window_warnings(networks)
+    for warning in _summarized(found, where, len(windows)):
         warnings.warn(warning, stacklevel=_caller_stacklevel())
     return networks
 
@@ -256,6 +262,64 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
             "dropped": dropped,
         },
     )
+
+
+def _batched_networks(
+    recording: Recording, windows: Sequence[Window], signals: Sequence[str], p: NetworkParameters
+) -> tuple[list[FunctionalNetwork], list[FuncnetWarning]] | None:
+    """The windows' networks through the batched engine (:func:`funcnet.batch.batch_pairs`),
+    equal (``==``) to :func:`_window_network`'s, and their :func:`window_warnings`; None where
+    it does not apply (windows of different lengths or long, explicit ``eps``, NaN or a constant
+    signal in a window, any error): the per-window path then computes them, and raises its
+    located errors."""
+    values = recording.data[list(signals)].to_numpy(np.float64)
+    times = recording.data.index.to_numpy()
+    try:  # the rows Recording.window selects (and its errors: then the per-window path's)
+        spans = [recording.window(w.start, w.stop).data.index[[0, -1]] for w in windows]
+    except FuncnetError:
+        return None
+    firsts = np.searchsorted(times, [span[0] for span in spans])
+    parts = [values[first : int(np.searchsorted(times, span[1])) + 1]
+             for first, span in zip(firsts.tolist(), spans, strict=True)]
+    if (not parts or len({part.shape[0] for part in parts}) != 1
+            or not batch.applies(parts[0].shape[0], p)):
+        return None
+    stack = np.stack(parts)
+    if not np.isfinite(stack).all() or (p.normalize and (np.ptp(stack, axis=1) == 0).any()):
+        return None
+    try:
+        result = batch.batch_pairs(stack, names=[str(s) for s in signals], parameters=p)
+    except FuncnetError:
+        return None
+    n_pairs, n_rows = len(result.pairs), len(windows) * len(result.pairs)
+    columns: dict[str, list[Any]] = {"x": [x for x, _ in result.pairs] * len(windows),
+                                     "y": [y for _, y in result.pairs] * len(windows)}
+    columns.update({name: result[name].ravel().tolist() for name in RESULT_COLUMNS})
+    columns.update({**dict.fromkeys(RULE_COLUMNS, [""] * n_rows), "weight": [0.0] * n_rows})
+    table = pair_kinds(pairs_frame(columns), p)  # every window's rows, then sliced
+    # Edges of every window at once (the rule is row by row); rows named by their position
+    # tell which rows became edges, hence where each window's edges start.
+    edges = edges_from_pairs(table, degenerate=p.degenerate)
+    rows = np.arange(n_rows).astype(str)
+    kept = edges_from_pairs(table.assign(x=rows, y=rows), degenerate=p.degenerate)
+    ends = np.searchsorted(kept["source"].to_numpy(dtype=np.int64),
+                           np.arange(len(windows) + 1) * n_pairs)
+    networks, found = [], []
+    for w, window in enumerate(windows):
+        pairs = table.iloc[w * n_pairs : (w + 1) * n_pairs].reset_index(drop=True)
+        flags = ~result["eps_ordered"][w] | result["rate_exceeded"][w] | result["degenerate"][w]
+        if flags.any():  # else no warning: spare building the results
+            found += [warning.located(str(window.label))
+                      for warning in threshold_warnings(result.measures(w))]
+        networks.append(FunctionalNetwork(
+            nodes=result.names, pairs=pairs,
+            edges=edges.iloc[ends[w] : ends[w + 1]].reset_index(drop=True), parameters=p,
+            n_samples=int(stack.shape[1]), label=window.label,
+            window={"label": window.label, "start": window.start, "stop": window.stop,
+                    "phase": window.phase, "offset": window.offset,
+                    "source": recording.source, "dropped": ()},
+        ))
+    return networks, found
 
 
 def _without(p: NetworkParameters, kept: Sequence[bool]) -> NetworkParameters:

@@ -799,7 +799,8 @@ def estimate_cost(
     n_samples : int
         Samples per signal (the window's length).
     n_signals : int
-        Number of signals (nodes), at least 2.
+        Number of signals (nodes), at least 2; a multichannel node counts as one (its longer
+        states make the threshold passes somewhat slower than forecast).
     parameters : NetworkParameters, optional
         Uses ``dim``, ``delay``, ``rr`` and ``cr`` (the largest when given per signal).
     threads : int, optional

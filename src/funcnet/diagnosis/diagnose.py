@@ -32,6 +32,7 @@ from funcnet.diagnosis.reversals import (
     find_direction_changes,
     motor_side_recording,
 )
+from funcnet.diagnosis.sweep import with_contact_score
 from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import velocity
@@ -55,8 +56,10 @@ __all__ = [
 #: detection on the simulated sweep (``docs/backlash.md``).
 SCORE = "motor_hysteresis"
 #: ``backlash_score`` of a trace without AP: its position loop must read the motor encoder,
-#: where ``motor_hysteresis`` sees nothing; the best motor-side indicator of that sweep.
-MOTOR_LOOP_SCORE = "motor_travel"
+#: where ``motor_hysteresis`` sees nothing; the best motor-side indicator of that sweep
+#: (:func:`funcnet.diagnosis.sweep.with_contact_score`: motor travel to the gear's contact and
+#: the current's step there, each against the sweep's no-backlash trials).
+MOTOR_LOOP_SCORE = "motor_contact"
 
 #: What every reading says about itself.
 MODEL_NOTE = (
@@ -112,8 +115,9 @@ class BacklashResult:
     score_indicator : str
         :data:`SCORE` when the trace has AP, :data:`MOTOR_LOOP_SCORE` without it.
     backlash_score : float or None
-        Mean of ``score_indicator`` over the trace's reversals (deg; higher = more backlash);
-        None without a reversal.
+        Mean of ``score_indicator`` over the trace's reversals (higher = more backlash; in
+        :attr:`score_unit`: deg for ``motor_hysteresis``, dimensionless for
+        ``motor_contact``); None without a reversal.
     score_spread : float or None
         Uncertainty of ``backlash_score``: the scatter (half the 10-90 % range) of the score
         on the simulated sweep at the backlash width read, with friction, stiffness, TCP and
@@ -143,12 +147,18 @@ class BacklashResult:
     reading: dict[str, Any] | None
     message: str
 
+    @property
+    def score_unit(self) -> str:
+        """``"deg"`` for ``motor_hysteresis``; ``"1"`` (a sum of robust z-scores) otherwise."""
+        return "deg" if self.score_indicator == SCORE else "1"
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready (the names other tools read: path, backlash_score, lost_motion, ...)."""
         return {
             "path": self.path,
             "backlash_score": self.backlash_score,
             "score_indicator": self.score_indicator,
+            "score_unit": self.score_unit,
             "score_spread": self.score_spread,
             "lost_motion": self.lost_motion,
             "lost_motion_spread": self.lost_motion_spread,
@@ -265,6 +275,10 @@ def diagnose_recording(
         speed = _move_speed(rec, change)
         if change.kind == "reversal":
             values = reversal_indicators(rec, change, networks=False)
+            if not has_ap:
+                row = pd.DataFrame([{**values, "peak_speed": speed}])
+                contact = with_contact_score(row, table["reference"])["motor_contact"]
+                values["motor_contact"] = float(contact.iloc[0])
             score = _none(values[indicator])
             lost = _none(values["lost_motion"]) if has_ap else None
             shown = {k: _none(v) for k, v in values.items() if k != "signature"}
@@ -448,8 +462,9 @@ def _html(results: Sequence[BacklashResult]) -> str:
     return (
         "<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>funcnet backlash</title>"
         "</head><body>\n<h1>Backlash diagnosis</h1>\n"
-        f"<p>backlash_score: {html.escape(SCORE)} with AP, {html.escape(MOTOR_LOOP_SCORE)} "
-        "without (deg; higher = more backlash). lost_motion: "
+        f"<p>backlash_score: {html.escape(SCORE)} (deg) with AP, "
+        f"{html.escape(MOTOR_LOOP_SCORE)} (dimensionless) without; higher = more backlash. "
+        "lost_motion: "
         "two-encoder lost motion (deg). Readings are "
         f"{html.escape(MODEL_NOTE)}. See docs/backlash.md for how far each can be trusted.</p>\n"
         f"{table}\n{_trend_svg(results)}\n</body></html>\n"
@@ -471,15 +486,22 @@ def _trend_svg(results: Sequence[BacklashResult]) -> str:
     fig = Figure(figsize=(7, 3.2))
     ax = fig.subplots()
     x = np.arange(len(trend))
-    for column, label in (("backlash_score", "backlash_score"), ("lost_motion", "lost_motion")):
-        values = pd.to_numeric(trend[column], errors="coerce").to_numpy(dtype=float) * 60
-        if np.isfinite(values).any():
-            ax.plot(x, values, marker="o", label=f"{label} (arcmin)")
-    spread = pd.to_numeric(trend["score_spread"], errors="coerce").to_numpy(dtype=float) * 60
-    score = pd.to_numeric(trend["backlash_score"], errors="coerce").to_numpy(dtype=float) * 60
-    ax.fill_between(x, score - spread, score + spread, alpha=0.2)
+
+    def column(name: str, scale: float = 60.0) -> np.ndarray:
+        return pd.to_numeric(trend[name], errors="coerce").to_numpy(dtype=float) * scale
+
+    lost = column("lost_motion")
+    if np.isfinite(lost).any():
+        ax.plot(x, lost, marker="o", label="lost_motion (arcmin)")
+    for indicator, unit, scale in ((SCORE, "arcmin", 60.0), (MOTOR_LOOP_SCORE, "z", 1.0)):
+        mine = (trend["score_indicator"] == indicator).to_numpy()
+        score = np.where(mine, column("backlash_score", scale), np.nan)
+        if np.isfinite(score).any():  # one line per score (their units differ)
+            spread = column("score_spread", scale)
+            ax.plot(x, score, marker="s", label=f"backlash_score: {indicator} ({unit})")
+            ax.fill_between(x, score - spread, score + spread, alpha=0.2)
     ax.set_xticks(x, [Path(p).name for p in trend["path"]], rotation=20, fontsize=7)
-    ax.set_ylabel("arcmin")
+    ax.set_ylabel("arcmin (or z)")
     ax.legend(fontsize=7)
     fig.tight_layout()
     buffer = io.StringIO()

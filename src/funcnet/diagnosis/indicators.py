@@ -38,7 +38,8 @@ Networks (:func:`funcnet.network.functional_network`, default parameters) in a 0
 from 0.1 s before the turn (the dead-zone crossing) and in the 0.6 s before that (the braking
 of the first move), and the differences reversal - braking of: ``fn_asymmetry`` (mean of
 ``|c_diff| + |t_diff|`` over pairs), ``fn_edges`` (number of edges) and ``fn_vm_out`` (sum of
-the weights of VM's out-edges).
+the weights of VM's out-edges) and, with ``evidence=True``, ``fn_coupled`` (the pairs the
+coupling test of :mod:`funcnet.evidence` finds coupled, against time-shift surrogates).
 
 The paper's signature (section 5.1; needs AP)
 ---------------------------------------------
@@ -84,7 +85,7 @@ PHYSICAL = (
     "vibration",
 )
 #: Functional-network indicators on motor-side nodes.
-FN_FEATURES = ("fn_asymmetry", "fn_edges", "fn_vm_out")
+FN_FEATURES = ("fn_asymmetry", "fn_edges", "fn_vm_out", "fn_coupled")
 #: Every indicator :func:`reversal_indicators` returns, the paper's signature last.
 INDICATORS = PHYSICAL + FN_FEATURES + ("signature",)
 #: Indicators that need only motor-side signals (RP, MP, RC, AC).
@@ -186,7 +187,10 @@ def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None
     if fit.size >= 2:
         slope, intercept = np.polyfit(t[fit], distance ** (1 / _RESTART_POWER), 1)
         if slope > 0:
-            restart = float(np.clip(-intercept / slope, t[max(turn, first - 8)], t[first]))
+            # after a standstill the rest reading jitters by a step or two and a creep cannot
+            # be told from it: the restart is placed at most two ticks before the first move
+            back = 8 if change.kind == "reversal" else 2
+            restart = float(np.clip(-intercept / slope, t[max(turn, first - back)], t[first]))
     return float(abs(mp[turn] - np.interp(restart, t, mp)))
 
 
@@ -252,8 +256,8 @@ def _physical(rec: Recording, change: DirectionChange, turn: int) -> dict[str, f
     return result
 
 
-def _network(rec: Recording, start: float, nodes: Sequence[str],
-             parameters: NetworkParameters) -> FunctionalNetwork | None:  # fmt: skip
+def _network(rec: Recording, start: float, nodes: Sequence[str], parameters: NetworkParameters,
+             evidence: bool = False) -> FunctionalNetwork | None:  # fmt: skip
     from funcnet.network import functional_network  # the physical indicators do without
 
     part = rec.window(start, start + _WINDOW).data[list(nodes)]
@@ -263,19 +267,24 @@ def _network(rec: Recording, start: float, nodes: Sequence[str],
     try:
         with warnings.catch_warnings():  # flags stay in the pairs table; nothing to say here
             warnings.simplefilter("ignore", FuncnetWarning)
+            if evidence:  # the coupling test; one half-sample (intervals are not used here)
+                return functional_network(
+                    part, parameters=parameters, warn=False, evidence=True, resamples=1
+                )
             return functional_network(part, parameters=parameters, warn=False)
     except FuncnetError:
         return None
 
 
-def _fn_summary(net: FunctionalNetwork | None) -> tuple[float, float, float]:
+def _fn_summary(net: FunctionalNetwork | None) -> tuple[float, float, float, float]:
     if net is None:
-        return math.nan, math.nan, math.nan
+        return math.nan, math.nan, math.nan, math.nan
     pairs = net.pairs
     asym = float(np.mean(np.abs(pairs["c_diff"]) + np.abs(pairs["t_diff"])))
     edges = net.edges
     vm_out = float(edges.loc[edges["source"] == "VM", "weight"].abs().sum())
-    return asym, float(len(edges)), vm_out
+    coupled = float(pairs["coupled"].sum()) if "coupled" in pairs else math.nan
+    return asym, float(len(edges)), vm_out, coupled
 
 
 def _signature(net: FunctionalNetwork | None) -> float:
@@ -294,6 +303,7 @@ def reversal_indicators(
     *,
     parameters: NetworkParameters | None = None,
     networks: bool = True,
+    evidence: bool = False,
 ) -> dict[str, Any]:
     """Every indicator of :data:`INDICATORS` at one direction change.
 
@@ -306,6 +316,9 @@ def reversal_indicators(
         For the functional networks (default :class:`~funcnet.NetworkParameters`).
     networks : bool
         Compute the functional-network features and the signature (NaN when False).
+    evidence : bool
+        Build the motor-side networks with the coupling test of :mod:`funcnet.evidence`
+        (``fn_coupled``; NaN without it).
 
     Returns
     -------
@@ -326,11 +339,11 @@ def reversal_indicators(
     t_turn = float(rec.data.index[turn])
     result: dict[str, Any] = {"turn_time": t_turn}
     result.update(_physical(rec, change, turn))
-    names = ("fn_asymmetry", "fn_edges", "fn_vm_out")
+    names = FN_FEATURES
     if networks and all(n in rec.data.columns for n in _MOTOR_NODES):
         start = t_turn - _LEAD
-        after = _fn_summary(_network(rec, start, _MOTOR_NODES, p))
-        before = _fn_summary(_network(rec, start - _WINDOW, _MOTOR_NODES, p))
+        after = _fn_summary(_network(rec, start, _MOTOR_NODES, p, evidence))
+        before = _fn_summary(_network(rec, start - _WINDOW, _MOTOR_NODES, p, evidence))
         result.update({n: a - b for n, a, b in zip(names, after, before, strict=True)})
     else:
         result.update(dict.fromkeys(names, math.nan))

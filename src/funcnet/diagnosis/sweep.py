@@ -31,6 +31,9 @@ from funcnet.robot.sim.plan import ARCMIN
 from funcnet.robot.sim.trial import Trial
 
 __all__ = [
+    "CONTACT_FEATURES",
+    "contact_reference",
+    "with_contact_score",
     "simulated_recording",
     "trial_indicators",
     "run_sweep",
@@ -46,6 +49,10 @@ CONTRASTS = {
     "auc_1_vs_0": (lambda b: b >= 1 - 1e-9, lambda b: b <= 1e-9),
     "auc_2_vs_0.5": (lambda b: b >= 2 - 1e-9, lambda b: b <= 0.5 + 1e-9),
 }
+
+#: The motor-side features ``motor_contact`` adds up (:func:`with_contact_score`): where the gear
+#: closes and how much load the motor takes up there.
+CONTACT_FEATURES = ("motor_travel", "current_step")
 
 _UNITS = {"RP": "posn", "AP": "posn", "MP": "posn", "RC": "current", "AC": "current"}
 
@@ -75,7 +82,9 @@ def simulated_recording(sim: SimulatedTrial) -> Recording:
     return Recording(data, {}, info, source=f"{sim.trial.name}.xml", sample_period=p.log_period)
 
 
-def trial_indicators(trial: Trial, networks: bool = True, seed: int = 0) -> dict[str, Any]:
+def trial_indicators(
+    trial: Trial, networks: bool = True, seed: int = 0, evidence: bool = False
+) -> dict[str, Any]:
     """Simulate one trial and compute its indicators at its first reversal, with its truth.
 
     Parameters
@@ -86,6 +95,8 @@ def trial_indicators(trial: Trial, networks: bool = True, seed: int = 0) -> dict
         Compute the functional-network features too.
     seed : int
         Noise seed when the trial has none of its own.
+    evidence : bool
+        Build the motor-side networks with the coupling test (``fn_coupled``).
 
     Returns
     -------
@@ -118,14 +129,16 @@ def trial_indicators(trial: Trial, networks: bool = True, seed: int = 0) -> dict
     # trace shows, and what the calibration is keyed by
     row["peak_speed"] = round(float(np.abs(sim.data["RP"].diff()).max() / p.log_period * 60), 1)
     if changes:
-        row.update(reversal_indicators(rec, changes[0], networks=networks))
+        row.update(reversal_indicators(rec, changes[0], networks=networks, evidence=evidence))
     else:
         row.update(dict.fromkeys(("turn_time", *INDICATORS), math.nan))
     return row
 
 
-def _rows(chunk: Sequence[Trial], networks: bool, seed: int) -> list[dict[str, Any]]:
-    return [trial_indicators(t, networks, seed) for t in chunk]
+def _rows(
+    chunk: Sequence[Trial], networks: bool, seed: int, evidence: bool
+) -> list[dict[str, Any]]:
+    return [trial_indicators(t, networks, seed, evidence) for t in chunk]
 
 
 def run_sweep(
@@ -134,6 +147,7 @@ def run_sweep(
     networks: bool = True,
     workers: int = 1,
     seed: int = 0,
+    evidence: bool = False,
     progress: Callable[[int, int, str], None] | None = None,
 ) -> pd.DataFrame:
     """Every trial's indicators and truth, one row per trial (see :func:`trial_indicators`).
@@ -147,6 +161,8 @@ def run_sweep(
         Processes (spawned); 1 runs here.
     seed : int
         Noise seed for trials without their own.
+    evidence : bool
+        With ``networks``: the coupling test too (``fn_coupled``).
     progress : callable, optional
         ``progress(done, total, name)`` after each chunk.
 
@@ -173,14 +189,14 @@ def run_sweep(
     if workers > 1 and len(chunks) > 1:
         spawn = multiprocessing.get_context("spawn")
         with ProcessPoolExecutor(max_workers=workers, mp_context=spawn) as pool:
-            futures = [pool.submit(_rows, chunk, networks, seed) for chunk in chunks]
+            futures = [pool.submit(_rows, chunk, networks, seed, evidence) for chunk in chunks]
             for chunk, future in zip(chunks, futures, strict=True):
                 rows += future.result()
                 if progress:
                     progress(len(rows), len(trials), chunk[-1].name)
     else:
         for chunk in chunks:
-            rows += _rows(chunk, networks, seed)
+            rows += _rows(chunk, networks, seed, evidence)
             if progress:
                 progress(len(rows), len(trials), chunk[-1].name)
     return pd.DataFrame(rows)
@@ -330,3 +346,66 @@ def calibration(
             for b, g in group.groupby("backlash_arcmin", sort=True)
         }
     return {"indicator": indicator, "quantiles": list(quantiles), "by": by, "levels": levels}
+
+
+def contact_reference(table: pd.DataFrame, *, by: str = "peak_speed") -> dict[str, Any]:
+    """Median and interquartile range of :data:`CONTACT_FEATURES` without backlash, per speed.
+
+    Parameters
+    ----------
+    table : DataFrame
+        A sweep (:func:`run_sweep`) with trials of backlash 0.
+    by : str
+        The speed column.
+
+    Returns
+    -------
+    dict
+        ``{speed: {feature: [median, iqr]}}`` (speeds as ``f"{speed:g}"``), JSON-ready.
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"peak_speed": 35.0, "backlash_arcmin": [0, 0, 0, 1],
+    ...                   "motor_travel": [1.0, 2.0, 3.0, 9.0], "current_step": 0.5})
+    >>> contact_reference(t)["35"]["motor_travel"]
+    [2.0, 1.0]
+    """
+    reference: dict[str, Any] = {}
+    healthy = table[table["backlash_arcmin"] == 0]
+    for speed, group in healthy.groupby(by, sort=True):
+        reference[f"{speed:g}"] = {
+            name: [
+                float(group[name].median()),
+                float(group[name].quantile(0.75) - group[name].quantile(0.25)),
+            ]
+            for name in CONTACT_FEATURES
+        }
+    return reference
+
+
+def with_contact_score(
+    table: pd.DataFrame, reference: dict[str, Any], *, by: str = "peak_speed"
+) -> pd.DataFrame:
+    """``table`` with ``motor_contact``: the features' robust z-scores against no backlash, summed.
+
+    Each of :data:`CONTACT_FEATURES` is centred on its median without backlash at the nearest
+    reference speed and divided by its interquartile range there; the two are added (higher =
+    more backlash). It is the motor-side score of an axis whose position loop reads the motor
+    encoder (``docs/backlash.md``).
+
+    Examples
+    --------
+    >>> ref = {"35": {"motor_travel": [2.0, 1.0], "current_step": [0.5, 0.25]}}
+    >>> t = pd.DataFrame({"peak_speed": [35.0], "motor_travel": [4.0], "current_step": [1.0]})
+    >>> float(with_contact_score(t, ref)["motor_contact"].iloc[0])
+    4.0
+    """
+    speeds = sorted(float(s) for s in reference)
+    score = np.zeros(len(table))
+    for i, speed in enumerate(table[by].to_numpy(dtype=float)):
+        key = f"{min(speeds, key=lambda s: abs(math.log(s / speed))):g}"
+        score[i] = sum(
+            (float(table[name].iloc[i]) - reference[key][name][0]) / reference[key][name][1]
+            for name in CONTACT_FEATURES
+        )
+    return table.assign(motor_contact=score)

@@ -7,6 +7,9 @@ funcnet's own core (:mod:`funcnet.embedding`, :mod:`funcnet.recurrence`,
 already computed (:func:`funcnet.paper.analyses.run_paper_analyses`); nothing is re-derived in
 :mod:`funcnet.plot`, which only draws.
 
+Length: over 600 lines because six figures and the captions' helpers (cross links, flags) share
+their layout conventions here.
+
 References
 ----------
 .. [1] El Dabett, Hansen & Geier, "Functional network analysis of robot dynamics", sections 2-4

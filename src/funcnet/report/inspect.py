@@ -645,10 +645,10 @@ def inspect_trace(
     >>> inspect_trace(out_dir="x")
     Traceback (most recent call last):
         ...
-    funcnet.errors.ParameterError: paths: give at least one trace file
+    funcnet.errors.ParameterError: paths must name at least one trace file
     """
     if not paths:
-        raise ParameterError.of("paths", "give at least one trace file")
+        raise ParameterError.of("paths", "must name at least one trace file")
     p = resolve(parameters, overrides)
     out = Path(out_dir)
     if len(paths) == 1:

@@ -354,7 +354,15 @@ def write_report(
     body += ['<section id="problems"><h2>Problems flagged</h2>',
              "<p>Each problem once: the networks whose pairs table flags it (trial · window; "
              "the flags are columns of the rows).</p>" + table(problems)
-             if len(problems) else "<p>None.</p>", "</section>"]
+             if len(problems) else "<p>None in the pairs tables.</p>"]
+    # what the run flagged beyond the pairs tables (windows, staircases), counted by the run
+    others = {k: v for k, v in (run.get("warnings") or {}).items() if k not in PROBLEMS}
+    if others:
+        body += ["<p>Flagged by the run (counted over the networks it computed):</p>",
+                 table(pd.DataFrame([{"problem": k, "networks": v.get("tasks"),
+                                      "example": v.get("example", "")}
+                                     for k, v in others.items()]))]
+    body.append("</section>")
     details = []
     for (name, *rest), group in rows.groupby(["name", *parameters], sort=False, dropna=False):
         values_shown = ", ".join(f"{n}={v}" for n, v in zip(parameters, rest, strict=True)

@@ -64,7 +64,7 @@ from funcnet.study.tasks import (
     parameters_record,
 )
 
-__all__ = ["TaskFailure", "StudyResult", "run_study"]
+__all__ = ["TaskFailure", "StudyResult", "run_study", "check_simulated_signals"]
 
 Progress = Callable[[int, int, str], None]
 
@@ -193,6 +193,7 @@ def run_study(
     0
     """
     grid = parameter_grid(study)  # a bad value stops the run before anything is written
+    check_simulated_signals(study)  # ... and a signal the simulated plan cannot have
     check_execution(scheduler, workers)
     if scheduler is not None:
         require_dask(scheduler)
@@ -200,6 +201,45 @@ def run_study(
     out.mkdir(parents=True, exist_ok=True)
     with store.exclusive(out):
         return _run_locked(study, grid, out, scheduler, workers, progress)
+
+
+def check_simulated_signals(study: Study) -> None:
+    """Refuse, before simulating anything, signals the simulated traces cannot provide.
+
+    A simulated trace holds the roles of :data:`funcnet.robot.sim.writer.SIGNALS`; the derived
+    signals (V, FE, TORSION, VM) are computed from them. Any other name would fail every task
+    of every trial, one identical error each, after the whole plan was simulated.
+
+    Parameters
+    ----------
+    study : Study
+
+    Raises
+    ------
+    StudyError
+        One error naming every such signal, what the traces have and what can be derived.
+
+    Examples
+    --------
+    >>> check_simulated_signals(Study(simulated="paper", signals=("RP", "V", "AC")))
+    >>> check_simulated_signals(Study(simulated="paper", signals=("RP", "XX")))
+    Traceback (most recent call last):
+        ...
+    funcnet.errors.StudyError: signals: XX cannot be in the simulated plan's traces; they ...
+    """
+    if study.simulated is None or study.signals is None:
+        return
+    from funcnet.robot.preprocess import DERIVED_SIGNALS
+    from funcnet.robot.sim.writer import SIGNALS
+
+    unknown = [name for name in study.signals
+               if name not in SIGNALS and name not in DERIVED_SIGNALS]
+    if unknown and not study.recordings:
+        where = f"{study.source}: " if study.source is not None else ""
+        raise StudyError(
+            f"{where}signals: {', '.join(unknown)} cannot be in the simulated plan's traces; "
+            f"they have {', '.join(SIGNALS)} and derive {', '.join(DERIVED_SIGNALS)}"
+        )
 
 
 def _run_locked(
@@ -239,6 +279,13 @@ def _run_locked(
     for task in todo:
         for problem, _, message in problems.get(task.key, ()):
             counts[problem] = counts.get(problem, 0) + 1
+            examples.setdefault(problem, message)
+    # Windows flagged when they were expanded (fixed windows mostly outside their phase), once
+    # per flagged window and parameter set: the networks concerned.
+    for wt in window_tasks:
+        record = json.loads((dirs["windows"] / f"{wt.key}.json").read_text())
+        for problem, n, message in record.get("warnings", []):
+            counts[problem] = counts.get(problem, 0) + int(n) * len(grid)
             examples.setdefault(problem, message)
     failures.extend(_failures(dirs, tasks))
     result = StudyResult(
@@ -293,7 +340,8 @@ def _expand_missing_windows(
     todo = [t for t in tasks if not (folder / f"{t.key}.json").exists()]
     for outcome in backend.map_unordered(expand_windows, todo):
         _check_fatal(outcome, study)
-        record = {"windows": outcome.value, "error": outcome.error}
+        record = {"windows": outcome.value, "error": outcome.error,
+                  "warnings": [list(w) for w in outcome.warnings]}
         write_text_atomic(folder / f"{outcome.key}.json", json.dumps(record))
 
 

@@ -187,11 +187,66 @@ def expand_windows(task: WindowTask) -> Outcome:
                 windows = []  # a trial without a reversal has no reversal windows
             else:
                 windows = builder(phases, **{k: v for k, v in options.items() if k not in detect})
+            if task.spec.kind == "fixed":
+                overrun = overrunning_windows(windows, phases)
+                if overrun:
+                    listed = ", ".join(f"{label!r} ({share:.0%} outside)"
+                                       for label, share in overrun)
+                    message = (f"{task.source.name}: fixed windows mostly outside their phase "
+                               f"(a short phase; the window runs into the next): {listed}")
+                    return Outcome(task.key, value=[window_record(w) for w in windows],
+                                   warnings=(("window_overrun", len(overrun), message),))
         return Outcome(task.key, value=[window_record(w) for w in windows])
     except ParameterError as exc:
         return Outcome(task.key, fatal=str(exc))
     except FuncnetError as exc:
         return Outcome(task.key, error=str(exc))
+
+
+#: A fixed window is flagged when more than this share of it lies outside its phase.
+OVERRUN_SHARE = 0.5
+
+
+def overrunning_windows(windows: Sequence[Any], phases: Any) -> list[tuple[str, float]]:
+    """Fixed windows that lie mostly outside the phase they are anchored at.
+
+    A fixed window (paper section 4.2: 280 / 600 / 600 ms) starts at its phase and keeps its
+    length whatever the phase's, so that windows compare across speeds; in a short trial a
+    "cruise" window can be mostly braking. Such windows are flagged, not cut.
+
+    Parameters
+    ----------
+    windows : sequence of funcnet.robot.Window
+        From :func:`funcnet.robot.fixed_windows` (``phase`` is the anchor: ``spin-up``,
+        ``cruise``, ``braking``).
+    phases : pandas.DataFrame
+        The phase table they were built from.
+
+    Returns
+    -------
+    list of (str, float)
+        Label and the share of the window outside phases of its kind, for those above
+        :data:`OVERRUN_SHARE`.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from funcnet.robot import fixed_windows
+    >>> phases = pd.DataFrame({"phase": ["cruise", "braking"], "start": [1.0, 1.2],
+    ...                        "stop": [1.2, 2.0]})
+    >>> overrunning_windows(fixed_windows(phases), phases)
+    [('cruise', 0.6666666666666667)]
+    """
+    flagged = []
+    for window in windows:
+        kinds = ({"early spin-up", "late spin-up"} if window.phase == "spin-up"
+                 else {window.phase})
+        inside = sum(max(0.0, min(window.stop, row.stop) - max(window.start, row.start))
+                     for row in phases.itertuples(index=False) if row.phase in kinds)
+        share = 1.0 - inside / (window.stop - window.start)
+        if share > OVERRUN_SHARE:
+            flagged.append((str(window.label), float(share)))
+    return flagged
 
 
 def network_rows(task: NetworkTask) -> Outcome:

@@ -1,0 +1,265 @@
+"""Helpers of ``funcnet network``: windows, signal checks, the printed pairs table, drawings.
+
+Private to :mod:`funcnet.cli` (the command line's layer); kept apart so that each module stays
+readable. Errors are raised as :class:`~funcnet.errors.FuncnetError` naming the command's flags;
+the command turns them into its one-line messages.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import typer
+
+from funcnet.errors import ParameterError, WindowError
+
+
+def _parse_window(text: str) -> tuple[float, float]:
+    start_text, sep, stop_text = text.partition(":")
+    try:
+        if not sep:
+            raise ValueError
+        start, stop = float(start_text), float(stop_text)
+    except ValueError:
+        raise ParameterError(
+            f"--window must be START:STOP in seconds (e.g. 1.0:5.0), got {text!r}"
+        ) from None
+    if not start < stop:
+        raise ParameterError(f"--window: START must be less than STOP, got {text!r}")
+    return start, stop
+
+
+def _select_window(
+    recording: Any, phase: str | None, bounds: tuple[float, float] | None, trace: Path
+) -> Any:
+    """The analysis window the options ask for (default: the whole recording)."""
+    from funcnet.robot import span_window
+
+    if bounds is not None:
+        return span_window(*bounds)
+    if phase is None:
+        return _whole_recording(recording, trace)
+    windows = _phase_windows(recording)
+    by_label = [w for w in windows if w.label == phase]
+    by_phase = by_label or [w for w in windows if w.phase == phase]
+    if len(by_phase) == 1:
+        return by_phase[0]
+    if not by_phase:
+        labels = ", ".join(repr(w.label) for w in windows) or "none"
+        raise WindowError(
+            f"{trace}: no phase {phase!r} detected (phases: {labels}; --list-phases shows them)"
+        )
+    choices = ", ".join(f"{w.label!r} ({w.start:g}-{w.stop:g} s)" for w in by_phase)
+    raise WindowError(
+        f"{trace}: phase {phase!r} occurs {len(by_phase)} times; give one of {choices}"
+    )
+
+
+def _whole_recording(recording: Any, trace: Path) -> Any:
+    """The span where every signal has a recorded value, as one window.
+
+    Signals logged on a coarser grid (IPO, 4 ms) have no value at the first tick.
+    """
+    # TODO(robot): a domain rule; to move into funcnet.robot.windows.
+    from funcnet.robot import Window
+
+    recorded = recording.data.index[recording.data.notna().all(axis=1).to_numpy()]
+    if recorded.empty:
+        raise WindowError(f"{trace}: no tick where every signal has a recorded value")
+    start, stop = float(recorded[0]), float(recorded[-1]) + recording.sample_period
+    return Window(label="whole recording", start=start, stop=stop)
+
+
+def _phase_windows(recording: Any) -> list[Any]:
+    """Every detected phase as a window, standstill included (as detect_phases returns it)."""
+    from funcnet.robot import PHASES, detect_phases, phase_windows
+
+    return list(phase_windows(detect_phases(recording), include=PHASES))
+
+
+def _print_phases(recording: Any) -> None:
+    """The detected phases as plain text: label, phase, start, stop (seconds)."""
+    import pandas as pd
+
+    table = pd.DataFrame(
+        [(w.label, w.phase, w.start, w.stop) for w in _phase_windows(recording)],
+        columns=["label", "phase", "start", "stop"],
+    )
+    typer.echo(table.to_string(index=False, float_format=lambda value: f"{value:.6g}"))
+
+
+
+def _write_network(net: Any, output: Path, inches: tuple[float, float], trace: Path) -> None:
+    suffix = output.suffix.lower()
+    if suffix in (".json", ".graphml"):
+        net.write(output)
+        return
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from funcnet.plot import network_title, save_network
+
+    save_network(net, output, size=inches, title=network_title(net, source=str(trace)))
+
+
+def _parse_size(text: str) -> tuple[float, float]:
+    """``--size WxH`` in pixels -> inches at 100 dpi."""
+    width, sep, height = text.lower().partition("x")
+    try:
+        if not sep:
+            raise ValueError
+        w, h = int(width), int(height)
+    except ValueError:
+        raise ParameterError(f"--size must be WIDTHxHEIGHT in pixels (e.g. 900x900), got "
+                             f"{text!r}") from None
+    if not (100 <= w <= 10_000 and 100 <= h <= 10_000):
+        raise ParameterError(f"--size: each side must be 100 to 10000 pixels, got {text!r}")
+    return w / 100, h / 100
+
+
+def _signal_list(text: str | None) -> list[str] | None:
+    """``--signals A,B,C`` as a list; a name given twice is an error naming the flag."""
+    if text is None:
+        return None
+    names = [s.strip() for s in text.split(",") if s.strip()]
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if twice:
+        raise ParameterError(f"--signals names {', '.join(twice)} more than once")
+    if not names:
+        raise ParameterError("--signals is empty")
+    return names
+
+
+def _check_signals(names: list[str] | None, recording: Any, trace: Path) -> None:
+    """Every --signals name is a column; else one line naming what the trace has and what
+    can be derived from it."""
+    if names is None:
+        return
+    from funcnet.robot.preprocess import DERIVED_SIGNALS
+
+    columns = list(recording.data.columns)
+    missing = [n for n in names if n not in columns]
+    if not missing:
+        return
+    derivable = [f"{name} ({description})" for name, (inputs, description)
+                 in DERIVED_SIGNALS.items() if name not in columns]
+    raise ParameterError(
+        f"--signals: {', '.join(missing)} not in {trace.name}; it has {', '.join(columns)}"
+        + (f"; derivable: {', '.join(derivable)}" if derivable else "")
+    )
+
+
+# The pairs-table columns shown on a terminal; piped output and -o .json hold them all.
+_MAIN_COLUMNS = ("x", "y", "kind", "weight", "c_diff", "t_diff")
+_WIDE_COLUMNS = ("c_xy", "c_yx", "t_xy", "t_yx", "eps_ordered", "rate_exceeded")
+_FLAG_COLUMN = "degenerate"
+_PAIRS_CAPTION = (
+    "negative diff reads as x->y (an asymmetry, not proof of a driver); degenerate pairs are "
+    "{degenerate}; -o net.json keeps every column"
+)
+_DEGENERATE_CAPTION = {"drop": "no edges", "keep": "flagged edges"}
+
+
+def _is_terminal(stream: Any) -> bool:
+    return bool(getattr(stream, "isatty", lambda: False)())
+
+
+def _shown_columns(narrow: bool) -> list[str]:
+    """The columns of a terminal's table (all names of funcnet.network.schema's pairs)."""
+    groups = (_MAIN_COLUMNS, () if narrow else _WIDE_COLUMNS, (_FLAG_COLUMN,))
+    return [name for group in groups for name in group]
+
+
+def _pairs_table(net: Any, columns: Sequence[str], number_format: str) -> Any:
+    from rich.table import Table
+
+    pairs = net.pairs
+    caption = _PAIRS_CAPTION.format(degenerate=_DEGENERATE_CAPTION[net.parameters.degenerate])
+    table = Table(title=net.label, caption=caption)
+    for column in columns:
+        numeric = pairs[column].dtype.kind == "f"
+        table.add_column(column, justify="right" if numeric else "left", no_wrap=True)
+    for row in pairs[list(columns)].itertuples(index=False):
+        table.add_row(*(format(v, number_format) if isinstance(v, float) else str(v) for v in row))
+    return table
+
+
+def _print_pairs(net: Any) -> None:
+    """The pairs table: a rich table on a terminal, every column as plain text otherwise.
+
+    A terminal too narrow for the main columns gets fewer of them, at 3 significant digits,
+    rather than every number cut short. The ``degenerate`` flag is always shown.
+    """
+    from funcnet.network.schema import PAIR_COLUMNS
+
+    if not _is_terminal(sys.stdout):
+        typer.echo(net.pairs.loc[:, list(PAIR_COLUMNS)].to_string(index=False))
+        return
+    from rich.console import Console
+
+    console = Console()
+    table = _pairs_table(net, _shown_columns(narrow=False), ".4f")
+    # Measured without the terminal's limit: the width the table needs to show every number.
+    if console.measure(table, options=console.options.update_width(10_000)).maximum > console.width:
+        table = _pairs_table(net, _shown_columns(narrow=True), ".3g")
+    console.print(table)
+
+
+#: Above either, one network is refused unless --force (issue 9: a forecast, not a promise).
+COST_LIMIT_SECONDS = 60.0
+COST_LIMIT_BYTES = 4 * 2**30
+
+
+def _moving_phases(recording: Any, trace: Path) -> list[Any]:
+    """The windows of ``funcnet network TRACE`` without --window/--phase: every phase of a
+    move; one line saying how to give a window when none can be detected."""
+    from funcnet.errors import FuncnetError
+    from funcnet.robot import detect_phases, phase_windows
+
+    try:
+        windows = list(phase_windows(detect_phases(recording)))
+    except FuncnetError as exc:
+        raise WindowError(f"{trace}: no phases can be detected ({exc}); give --window "
+                          "START:STOP in seconds") from None
+    if not windows:
+        raise WindowError(f"{trace}: the set-point never moves, so there is no phase of a "
+                          "move; give --window START:STOP in seconds")
+    return windows
+
+
+def _check_cost(recording: Any, windows: Sequence[Any], names: Sequence[str] | None,
+                parameters: Any, force: bool) -> None:
+    """Refuse, before computing, a network forecast over a minute or 4 GiB (unless --force)."""
+    from funcnet.recurrence import estimate_cost
+    from funcnet.robot import PAPER_NODES
+
+    if force:
+        return
+    columns = list(recording.data.columns)
+    nodes = len(names) if names is not None else sum(n in columns for n in PAPER_NODES)
+    dt = recording.sample_period
+    for window in windows:
+        n_samples = int(round((window.stop - window.start) / dt))
+        if nodes < 2 or n_samples < 2:
+            continue
+        try:
+            cost = estimate_cost(n_samples, nodes, parameters)
+        except ParameterError:
+            continue  # too short for the embedding: window_networks says so, naming it
+        if cost.seconds > COST_LIMIT_SECONDS or cost.bytes > COST_LIMIT_BYTES:
+            raise ParameterError(
+                f"window {window.label!r} ({n_samples} samples, {nodes} signals): {cost}; "
+                "over a minute or 4 GiB: choose a shorter --window or --phase, or add --force"
+            )
+
+
+def _network_files(output: Path, labels: Sequence[str]) -> list[Path]:
+    """-o for one network is the file; for several, one file per window named after it."""
+    if len(labels) == 1:
+        return [output]
+    slugs = ["-".join("".join(c if c.isalnum() else " " for c in str(label)).split())
+             for label in labels]
+    return [output.with_name(f"{output.stem}-{slug}{output.suffix}") for slug in slugs]
