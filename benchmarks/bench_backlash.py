@@ -4,6 +4,7 @@
     .venv/bin/python benchmarks/bench_backlash.py --calibrate  # also rewrite calibration.json
     .venv/bin/python benchmarks/bench_backlash.py --quick    # a small sweep (a minute)
     .venv/bin/python benchmarks/bench_backlash.py --compare  # real trace vs simulated
+    .venv/bin/python benchmarks/bench_backlash.py --lost-motion  # the lost motion vs its truth
 
 Simulates :func:`funcnet.robot.sim.plan.backlash_sweep_plan` (1944 reversal trials: backlash x
 speed x TCP x friction x stiffness x 3 seeds x noise 1 and 2, sensors and logging of the real
@@ -238,6 +239,46 @@ def _fn_section(args: argparse.Namespace, out: list[str]) -> pd.DataFrame:
     return fn
 
 
+def lost_motion_summary(sweep: pd.DataFrame) -> str:
+    """The two-encoder lost motion against the manifest's truth: the issue's target, per width.
+
+    Parameters
+    ----------
+    sweep : DataFrame
+        From :func:`run_sweep` (``lost_motion``, ``true_lost_motion``, ``backlash_arcmin``).
+
+    Returns
+    -------
+    str
+        One line for the target, then one markdown row per backlash width.
+    """
+    step = 360 / 2**22  # the arm encoder's step (real sensors), deg
+    rel = (sweep["lost_motion"] / sweep["true_lost_motion"] - 1).abs()
+    steps = (sweep["lost_motion"] - sweep["true_lost_motion"]).abs() / step
+    signed = (sweep["lost_motion"] - sweep["true_lost_motion"]) / step
+    with_b = sweep["backlash_arcmin"] > 0
+    lines = [
+        f"two-encoder lost motion, backlash > 0: within 5 % on {(rel[with_b] <= 0.05).mean():.1%} "
+        f"of {int(with_b.sum())} trials (median |error| {rel[with_b].median():.1%}, 90th "
+        f"percentile {rel[with_b].quantile(0.9):.1%}); backlash 0: within two encoder steps on "
+        f"{(steps[~with_b] <= 2).mean():.1%} of {int((~with_b).sum())} (median "
+        f"{steps[~with_b].median():.1f} steps)",
+        "",
+        "| backlash (arcmin) | n | within 5 % | within 2 steps | median error (%) "
+        "| median error (steps) | 90th pct. abs error (%) |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for width, part in sweep.groupby("backlash_arcmin"):
+        idx = part.index
+        signed_rel = part["lost_motion"] / part["true_lost_motion"] - 1
+        lines.append(
+            f"| {width:g} | {len(part)} | {(rel[idx] <= 0.05).mean():.1%} | "
+            f"{(steps[idx] <= 2).mean():.1%} | {100 * signed_rel.median():+.2f} | "
+            f"{signed[idx].median():+.2f} | {100 * rel[idx].quantile(0.9):.1f} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="a small sweep")
@@ -266,6 +307,11 @@ def main() -> None:
         "saved with --save (a folder): the motor-loop sweep and the held-out plan",
     )
     parser.add_argument("--fn-only", action="store_true", help="only the FN-feature subset")
+    parser.add_argument(
+        "--lost-motion",
+        action="store_true",
+        help="only the main sweep's two-encoder lost motion against the truth (and its scores)",
+    )
     parser.add_argument("--compare", action="store_true", help="only the real-vs-sim table")
     parser.add_argument("--save", type=Path, default=None, help="folder for the tables (CSV)")
     args = parser.parse_args()
@@ -300,16 +346,14 @@ def main() -> None:
                f"indicators) in {elapsed:.0f} s with {args.workers} workers\n")  # fmt: skip
     out.append(table(score_indicators(sweep, physical, resamples=args.resamples),
                      "Main sweep (arm-encoder position loop, rigid arm)"))  # fmt: skip
-    lm = sweep[sweep["backlash_arcmin"] > 0]
-    err = (lm["lost_motion"] / lm["true_lost_motion"] - 1).abs()
-    zero = sweep[sweep["backlash_arcmin"] == 0]
-    zero_err = (zero["lost_motion"] - zero["true_lost_motion"]).abs() / (360 / 2**22)
-    out.append(
-        f"two-encoder lost motion, backlash > 0: within 5 % on {(err <= 0.05).mean():.1%} of "
-        f"{len(lm)} trials (median |error| {err.median():.1%}, 90th percentile "
-        f"{err.quantile(0.9):.1%}); backlash 0: within two encoder steps on "
-        f"{(zero_err <= 2).mean():.1%} of {len(zero)} (median {zero_err.median():.1f} steps)\n"
-    )
+    out.append(lost_motion_summary(sweep))
+    if args.lost_motion:
+        out.append(table(score_indicators(sweep, ["lost_motion"], resamples=args.resamples),
+                         "Main sweep: lost_motion"))  # fmt: skip
+        if args.save:
+            args.save.mkdir(parents=True, exist_ok=True)
+            sweep.to_csv(args.save / "sweep_lost_motion.csv", index=False)
+        return
 
     fn = _fn_section(args, out)
 

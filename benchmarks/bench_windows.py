@@ -184,7 +184,8 @@ def timeline(skip_pyunicorn: bool, n_sample: int) -> None:
           f"{len(windows)} windows of 0.3 s every 2 ms, {len(NODES)} signals = 10 pairs per "
           "window), `window_networks`\n")
     print(f"| rule, metric | batched, all windows [s] (CPU) | batched [ms/window] | per-window "
-          f"path [ms/window] ({n_sample} windows) | pyunicorn [ms/window] ({n_sample} windows) | "
+          f"path [ms/window] ({n_sample} windows) | pyunicorn [ms/window] "
+          f"({min(30, n_sample)} windows) | "
           "per-window / batched | pyunicorn / batched |")
     print("|---|---|---|---|---|---|---|")
     for options in ({}, {"rule": "pyunicorn", "metric": "supremum"}):

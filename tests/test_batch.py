@@ -271,7 +271,7 @@ def test_window_networks_falls_back_where_the_batch_does_not_apply(
     windows = [Window("still", 0.1, 0.4), Window("moving", 1.0, 1.3)]
     for args, kwargs in (
         ((still, windows), {"constant": "drop"}),
-        ((rec, [Window("short", 0.1, 0.4), Window("long", 1.0, 1.5)]), {}),
+        ((rec, [Window("long", 0.1, 2.0)]), {}),
         ((rec, windows), {"eps": (0.2, 0.1)}),
     ):
         single, single_warnings = _networks(False, monkeypatch, *args, **kwargs)
@@ -283,3 +283,16 @@ def test_window_networks_falls_back_where_the_batch_does_not_apply(
         assert again == single
         _same_warnings([w.message for w in caught  # type: ignore[misc]
                         if isinstance(w.message, FuncnetWarning)], single_warnings)
+
+
+def test_window_networks_of_different_lengths_and_a_long_window(
+    monkeypatch: pytest.MonkeyPatch
+) -> None:
+    rec = _recording()
+    windows = [Window("a", 0.1, 0.4), Window("b", 0.5, 1.1), Window("long", 0.9, 2.8),
+               Window("c", 2.0, 2.25)]
+    p = NetworkParameters(rule="pyunicorn", metric="supremum")
+    batched, batch_warnings = _networks(True, monkeypatch, rec, windows, parameters=p)
+    single, single_warnings = _networks(False, monkeypatch, rec, windows, parameters=p)
+    assert batched == single
+    _same_warnings(batch_warnings, single_warnings)

@@ -6,8 +6,7 @@ cross-transitivity between each pair of signals (El Dabett, Hansen & Geier, sect
 
 from __future__ import annotations
 
-from importlib import import_module
-from typing import Any
+from funcnet._lazy import attach
 
 __version__ = "0.1.0"
 
@@ -55,17 +54,8 @@ _EXPORTS = {
     "StaircaseWarning": "funcnet.errors",
 }
 
-__all__ = ["__version__", *_EXPORTS]
-
-
-def __getattr__(name: str) -> Any:
-    try:
-        module = _EXPORTS[name]
-    except KeyError:
-        raise AttributeError(f"module 'funcnet' has no attribute {name!r}") from None
-    value = getattr(import_module(module), name)
-    globals()[name] = value
-    return value
+__getattr__, _dir, _names = attach(__name__, _EXPORTS)
+__all__ = ["__version__", *_names]
 
 
 def __dir__() -> list[str]:

@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 from numba import njit, prange
 
-from funcnet._kernels import _lowest_bit, _popcount
+from funcnet._kernels import Int, _lowest_bit, _popcount
 
 Array = np.ndarray
 
@@ -207,7 +207,7 @@ def _partition(a: Array, lo: int, hi: int, pivot: float, or_equal: bool) -> int:
         smaller = value <= pivot if or_equal else value < pivot
         a[i] = a[store]
         a[store] = value
-        store += np.int64(smaller)
+        store += int(smaller)
     return store
 
 
@@ -301,7 +301,7 @@ def _key_distance(key: float, metric: int) -> float:
 
 
 @njit(cache=True)
-def _pair_key(x: Array, i: int, y: Array, j: int, dim: int, delay: int, metric: int) -> float:
+def _pair_key(x: Array, i: Int, y: Array, j: Int, dim: int, delay: int, metric: int) -> float:
     """Key of state i of x and state j of y (the sample of the bracket)."""
     acc = 0.0
     for c in range(dim):
@@ -389,7 +389,7 @@ def _scan(
                 below_word |= np.uint64(block[b] < lo) << np.uint64(b)
                 upto_word |= np.uint64(block[b] <= hi) << np.uint64(b)
             rows[i, w] = below_word
-            below += np.int64(_popcount(below_word))
+            below += int(_popcount(below_word))
             band = upto_word & ~below_word
             while band:
                 j = w * 64 + np.int64(_lowest_bit(band))
@@ -449,7 +449,7 @@ def _threshold(
                     i = band_index[t] >> 32
                     j = band_index[t] & 0xFFFFFFFF
                     rows[i, j >> 6] |= np.uint64(within) << np.uint64(j & 63)
-                    count += np.int64(within)
+                    count += int(within)
                 return eps, count
     cand = np.empty(n_candidates, dtype=np.float64)
     n = 0
@@ -558,7 +558,7 @@ def _clustering_transitivity(
     for v in range(m):
         degree = 0
         for w in range(n_words):
-            degree += np.int64(_popcount(cross_rows[v, w]))
+            degree += int(_popcount(cross_rows[v, w]))
         triangles = 0
         for w in range(n_words):
             word = cross_rows[v, w]
@@ -566,7 +566,7 @@ def _clustering_transitivity(
                 p = w * 64 + np.int64(_lowest_bit(word))
                 word &= word - np.uint64(1)
                 for u in range(n_words):
-                    triangles += np.int64(_popcount(auto_rows[p, u] & cross_rows[v, u]))
+                    triangles += int(_popcount(auto_rows[p, u] & cross_rows[v, u]))
         triples = degree * (degree - 1)
         local[v] = triangles / triples if triples > 0 else 0.0
         total_triangles += triangles

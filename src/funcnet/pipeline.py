@@ -269,9 +269,8 @@ def _batched_networks(
 ) -> tuple[list[FunctionalNetwork], list[FuncnetWarning]] | None:
     """The windows' networks through the batched engine (:func:`funcnet.batch.batch_pairs`),
     equal (``==``) to :func:`_window_network`'s, and their :func:`window_warnings`; None where
-    it does not apply (windows of different lengths or long, explicit ``eps``, NaN or a constant
-    signal in a window, any error): the per-window path then computes them, and raises its
-    located errors."""
+    it does not apply (no short window, explicit ``eps``, NaN or a constant signal in a window,
+    any error): the per-window path then computes them, and raises its located errors."""
     values = recording.data[list(signals)].to_numpy(np.float64)
     times = recording.data.index.to_numpy()
     try:  # the rows Recording.window selects (and its errors: then the per-window path's)
@@ -281,14 +280,14 @@ def _batched_networks(
     firsts = np.searchsorted(times, [span[0] for span in spans])
     parts = [values[first : int(np.searchsorted(times, span[1])) + 1]
              for first, span in zip(firsts.tolist(), spans, strict=True)]
-    if (not parts or len({part.shape[0] for part in parts}) != 1
-            or not batch.applies(parts[0].shape[0], p)):
-        return None
-    stack = np.stack(parts)
-    if not np.isfinite(stack).all() or (p.normalize and (np.ptp(stack, axis=1) == 0).any()):
+    # Long windows inside the batch go through the per-window path; none short: no batch.
+    if not any(batch.applies(part.shape[0], p) for part in parts) or any(
+        not np.isfinite(part).all() or (p.normalize and (np.ptp(part, axis=0) == 0).any())
+        for part in parts
+    ):
         return None
     try:
-        result = batch.batch_pairs(stack, names=[str(s) for s in signals], parameters=p)
+        result = batch.batch_pairs(parts, names=[str(s) for s in signals], parameters=p)
     except FuncnetError:
         return None
     n_pairs, n_rows = len(result.pairs), len(windows) * len(result.pairs)
@@ -314,7 +313,7 @@ def _batched_networks(
         networks.append(FunctionalNetwork(
             nodes=result.names, pairs=pairs,
             edges=edges.iloc[ends[w] : ends[w + 1]].reset_index(drop=True), parameters=p,
-            n_samples=int(stack.shape[1]), label=window.label,
+            n_samples=int(parts[w].shape[0]), label=window.label,
             window={"label": window.label, "start": window.start, "stop": window.stop,
                     "phase": window.phase, "offset": window.offset,
                     "source": recording.source, "dropped": ()},

@@ -165,22 +165,30 @@ def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None
     new = change.direction
     steps = np.abs(np.diff(ap))
     quantum = float(steps[steps > 0].min()) if np.any(steps > 0) else 1e-9
-    rest = ap[turn]
     threshold = 1.5 * quantum
-    if change.kind != "reversal":  # a resting arm's reading jitters by an encoder step or two
+    if change.kind == "reversal":
+        # the arm's own turning point: it may still coast (or bounce) after the motor's turn
+        b = _index(t, change.start + min(change.dwell, 1.0) + 0.5)
+        rest_at = turn + int(np.argmax(-new * ap[turn : b + 1]))
+        rest = float(ap[rest_at])
+    else:  # a resting arm's reading jitters by an encoder step or two
+        rest_at = turn
         before = ap[_index(t, change.start - 0.2) : _index(t, change.start) + 1]
         rest = float(np.median(before))
         threshold = max(threshold, 4 * float(np.std(before)), float(np.ptp(before)))
-    moved = np.flatnonzero(new * (ap[turn:] - rest) > threshold)
+    moved = np.flatnonzero(new * (ap[rest_at:] - rest) > threshold)
     if moved.size == 0:
         return math.nan
-    first = turn + int(moved[0])
+    first = rest_at + int(moved[0])
 
     # the restart between ticks: the arm leaves its rest as the gear's torque builds up, the
     # distance growing as (t - t0)**3, so its cube root grows linearly from the restart t0; the
-    # arm creeps below one encoder step for several ticks, so t0 may lie up to 8 ticks back
+    # arm creeps below one encoder step for several ticks, so t0 may lie up to 8 ticks back.
+    # The reading's difference from the rest reading is the distance itself: both readings round
+    # to the nearest step, errors symmetric about zero (no half-step offset, which would bias
+    # the distance up and place t0 early)
     fit = np.arange(first, min(first + 8, t.size))
-    distance = new * (ap[fit] - rest) + quantum / 2  # the rest reading rounds half a step
+    distance = new * (ap[fit] - rest)
     near = (distance > quantum) & (distance < 20 * quantum)
     fit, distance = fit[near], distance[near]
     restart = t[first - 1]
@@ -190,8 +198,14 @@ def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None
             # after a standstill the rest reading jitters by a step or two and a creep cannot
             # be told from it: the restart is placed at most two ticks before the first move
             back = 8 if change.kind == "reversal" else 2
-            restart = float(np.clip(-intercept / slope, t[max(turn, first - back)], t[first]))
-    return float(abs(mp[turn] - np.interp(restart, t, mp)))
+            restart = float(np.clip(-intercept / slope, t[max(rest_at, first - back)], t[first]))
+    if change.kind != "reversal":  # the arm rested since long before the motor turned
+        return float(abs(mp[turn] - np.interp(restart, t, mp)))
+    # MP - AP across the reversal (old direction's sign): at the motor's turning point minus at
+    # the restart, where the arm still reads its rest; the motor's travel when the arm rests at
+    # the turn, and what the arm still coasts forward after it counts too
+    old = -new
+    return float(old * (mp[turn] - ap[turn]) - old * (np.interp(restart, t, mp) - rest))
 
 
 def _smooth(x: np.ndarray, n: int) -> np.ndarray:

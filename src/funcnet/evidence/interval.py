@@ -45,6 +45,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from funcnet.errors import ParameterError
@@ -186,6 +187,21 @@ def resampled_differences(states: Sequence[np.ndarray], pairs: Sequence[tuple[in
     p = parameters if parameters is not None else NetworkParameters()
     thresholds, (cr, cross_eps) = _signal_thresholds(p, len(states))
     out = np.empty((len(pairs), chosen.shape[0], 2), dtype=np.float64)
+    # Thousands of small blocks: a parallel region per call costs more than it saves (17 s
+    # instead of 1.4 s for 6 signals x 200 resamples on 2 busy cores). numba's thread count
+    # is per calling thread, and restored below.
+    threads = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        _fill(out, states, pairs, chosen, p, thresholds, cr, cross_eps)
+    finally:
+        numba.set_num_threads(threads)
+    return out
+
+
+def _fill(out: np.ndarray, states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
+          chosen: np.ndarray, p: NetworkParameters, thresholds: list[tuple[float, float | None]],
+          cr: float, cross_eps: float | None) -> None:
     for r, kept in enumerate(chosen):
         subsets = [_renormalized(s[kept], p.normalize, p.dim) for s in states]
         autos = {
@@ -198,7 +214,6 @@ def resampled_differences(states: Sequence[np.ndarray], pairs: Sequence[tuple[in
             measures = isrn_measures(autos[i], autos[j], cross)
             out[k, r, 0] = measures.c_diff
             out[k, r, 1] = measures.t_diff
-    return out
 
 
 def _bounds(observed: float, values: np.ndarray, level: float) -> tuple[float, float, float]:

@@ -24,8 +24,7 @@ References
 
 from __future__ import annotations
 
-from importlib import import_module
-from typing import Any
+from funcnet._lazy import attach
 
 _EXPORTS = {
     "build_demo_report": "funcnet.report.demo",
@@ -37,18 +36,4 @@ _EXPORTS = {
     "TraceInspection": "funcnet.report.inspect",
 }
 
-__all__ = list(_EXPORTS)
-
-
-def __getattr__(name: str) -> Any:
-    try:
-        module = _EXPORTS[name]
-    except KeyError:
-        raise AttributeError(f"module 'funcnet.report' has no attribute {name!r}") from None
-    value = getattr(import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

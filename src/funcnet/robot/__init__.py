@@ -15,8 +15,7 @@ Examples
 
 from __future__ import annotations
 
-from importlib import import_module
-from typing import Any
+from funcnet._lazy import attach
 
 _EXPORTS = {
     "Recording": "funcnet.robot.recording",
@@ -52,27 +51,9 @@ _EXPORTS = {
     "write_plan": "funcnet.robot.sim.plan",
 }
 
-#: Names that left this package, and where they went.
-_MOVED = {"phase_networks": "funcnet.window_networks"}
-
-__all__ = list(_EXPORTS)
-
-
-def __getattr__(name: str) -> Any:
-    try:
-        module = _EXPORTS[name]
-    except KeyError:
-        if name in _MOVED:
-            # Not an alias: reaching the pipeline from here would import against the flow.
-            raise AttributeError(
-                f"funcnet.robot.{name} moved to {_MOVED[name]} (funcnet.pipeline), which takes "
-                "the same recording and windows"
-            ) from None
-        raise AttributeError(f"module 'funcnet.robot' has no attribute {name!r}") from None
-    value = getattr(import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+# Not an alias for phase_networks: reaching the pipeline from here would import against the flow.
+__getattr__, __dir__, __all__ = attach(
+    __name__, _EXPORTS,
+    moved={"phase_networks": "funcnet.window_networks (funcnet.pipeline), which takes the same "
+           "recording and windows"},
+)

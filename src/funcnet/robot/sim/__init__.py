@@ -16,8 +16,7 @@ Examples
 
 from __future__ import annotations
 
-from importlib import import_module
-from typing import Any
+from funcnet._lazy import attach
 
 _EXPORTS = {
     "Trial": "funcnet.robot.sim.trial",
@@ -42,18 +41,4 @@ _EXPORTS = {
     "role_names": "funcnet.robot.sim.writer",
 }
 
-__all__ = list(_EXPORTS)
-
-
-def __getattr__(name: str) -> Any:
-    try:
-        module = _EXPORTS[name]
-    except KeyError:
-        raise AttributeError(f"module 'funcnet.robot.sim' has no attribute {name!r}") from None
-    value = getattr(import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

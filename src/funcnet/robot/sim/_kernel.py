@@ -78,6 +78,10 @@ def axis_kernel(
     enc_m_prev = enc_m = enc_a = 0.0
     decay = math.exp(-dt * r / l_ind)
     t_speed = dt * per_speed
+    # the lost motion is the change of the torsion theta_m / N - theta_a (MP - AP) from the
+    # motor's turning point (its last forward step) to the arm's restart: the motor's travel
+    # when the arm rests there, plus what the arm still coasts (or bounces) forward in the dead
+    # zone after the motor has turned (a heavy arm, a soft gear, the arm-encoder loop's overshoot)
     d_max = -np.inf
     t_d_max = np.nan
     for n in range(n_steps):
@@ -130,21 +134,17 @@ def axis_kernel(
             th_t += w_t * dt
         else:
             w_a_new = _friction_step(w_a, tau, j_a, dt, a_coul, a_stat, a_visc, a_strib)
-        if w_a == 0.0:
-            if w_a_new == 0.0:
-                if delta > d_max:  # the arm rests: follow the motor's forward extreme
-                    d_max, t_d_max = delta, n * dt
-            else:
-                if n >= n_start and np.isnan(events[0]):
-                    events[0] = (n + 1) * dt
-                if n_reverse >= 0 and n >= n_reverse and w_a_new < 0.0 and np.isnan(events[2]):
-                    events[1] = t_d_max
-                    events[2] = (n + 1) * dt
-                    events[3] = d_max - delta
-                    events[4] = d_max - half_b
-                    events[5] = -delta - half_b
-        elif w_a_new == 0.0:
+        if w_m > 0.0 and np.isnan(events[2]):  # still moving forward: not yet the turning point
             d_max, t_d_max = delta, n * dt
+        if w_a == 0.0 and w_a_new != 0.0:
+            if n >= n_start and np.isnan(events[0]):
+                events[0] = (n + 1) * dt
+            if n_reverse >= 0 and n >= n_reverse and w_a_new < 0.0 and np.isnan(events[2]):
+                events[1] = t_d_max
+                events[2] = (n + 1) * dt
+                events[3] = d_max - delta
+                events[4] = d_max - half_b
+                events[5] = -delta - half_b
         w_m, w_a = w_m_new, w_a_new
         th_m += w_m * dt
         th_a += w_a * dt

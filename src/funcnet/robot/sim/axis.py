@@ -470,10 +470,14 @@ class SimulatedTrial:
         ``backlash`` (deg), ``breakaway_time`` (s, when the arm first leaves static friction
         after the set-point starts; NaN if it never does), ``motion_start`` (s), ``motion_end``
         (s, the set-point arrives), and for a forward-then-reverse trial ``reversal_time`` (s,
-        the motor's turning point while the arm rests), ``restart_time`` (s, the arm starts
-        back), ``lost_motion`` (deg, the motor travel between the two: dead zone plus the gear's
-        torsional wind-up on both flanks), ``windup_forward`` and ``windup_reverse`` (deg); NaN
-        for a forward-only trial.
+        the motor's turning point: its last step forward before the arm's restart),
+        ``restart_time`` (s, the arm starts back), ``lost_motion`` (deg, the change of the
+        torsion ``theta_m / N - theta_a`` between the two, i.e. of MP - AP across the reversal:
+        the motor's travel while the arm rests -- dead zone plus the gear's wind-up on both
+        flanks -- plus what the arm still coasts forward in the dead zone after the motor has
+        turned), ``windup_forward`` (deg, the torsion at the turning point minus half the dead
+        zone; negative when the arm has already left the forward flank) and ``windup_reverse``
+        (deg, the torsion beyond the other half at the restart); NaN for a forward-only trial.
     """
 
     trial: Trial
