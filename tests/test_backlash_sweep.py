@@ -83,7 +83,9 @@ def small_sweep() -> pd.DataFrame:
 def test_two_encoder_lost_motion_follows_the_truth(small_sweep):
     some = small_sweep[small_sweep["backlash_arcmin"] > 0]
     error = some["lost_motion"] / some["true_lost_motion"] - 1
-    assert error.abs().max() < 0.12  # measured: docs/backlash.md gives the sweep's figures
+    # measured max 3.1 % (the restart fitted from the reading's own difference, MP - AP from the
+    # motor's turn); docs/backlash.md gives the sweep's figures
+    assert error.abs().max() < 0.05
 
 
 def test_motor_hysteresis_separates_backlash_on_the_small_sweep(small_sweep):

@@ -115,18 +115,15 @@ class BatchPairs:
         states = int(self.n_samples[window]) - (p.dim - 1) * p.delay
         position = {name: i for i, name in enumerate(self.names)}
         found = {}
+        # Python values (as the per-window path stores them), one column at a time.
+        columns = {name: self.values[name][window].tolist() for name in RESULT_FIELDS}
         for q, (x, y) in enumerate(self.pairs):
-            fields = {name: _plain(self.values[name][window, q]) for name in RESULT_FIELDS}
+            fields = {name: columns[name][q] for name in RESULT_FIELDS}
             found[(x, y)] = CrossMeasures(
                 **fields, m_x=states, m_y=states,
                 parameters=_pair_parameters(p, position[x], position[y]),
             )
         return found
-
-
-def _plain(value: Any) -> Any:
-    """A NumPy scalar as the Python value the per-window path stores (str stays str)."""
-    return value.item() if isinstance(value, np.generic) else value
 
 
 def applies(n_samples: int, parameters: NetworkParameters) -> bool:

@@ -305,14 +305,18 @@ def _batched_networks(
                            np.arange(len(windows) + 1) * n_pairs)
     networks, found = [], []
     for w, window in enumerate(windows):
-        pairs = table.iloc[w * n_pairs : (w + 1) * n_pairs].reset_index(drop=True)
+        # Slices with a fresh index, not reset_index: that copies every block of every slice.
+        pairs = table.iloc[w * n_pairs : (w + 1) * n_pairs]
+        pairs.index = pd.RangeIndex(n_pairs)
+        window_edges = edges.iloc[ends[w] : ends[w + 1]]
+        window_edges.index = pd.RangeIndex(ends[w + 1] - ends[w])
         flags = ~result["eps_ordered"][w] | result["rate_exceeded"][w] | result["degenerate"][w]
         if flags.any():  # else no warning: spare building the results
             found += [warning.located(str(window.label))
                       for warning in threshold_warnings(result.measures(w))]
         networks.append(FunctionalNetwork(
             nodes=result.names, pairs=pairs,
-            edges=edges.iloc[ends[w] : ends[w + 1]].reset_index(drop=True), parameters=p,
+            edges=window_edges, parameters=p,
             n_samples=int(parts[w].shape[0]), label=window.label,
             window={"label": window.label, "start": window.start, "stop": window.stop,
                     "phase": window.phase, "offset": window.offset,

@@ -8,12 +8,16 @@ two-encoder lost motion and the paper's signature need AP too.
 Physical indicators
 -------------------
 ``lost_motion`` (deg, needs AP)
-    The motor travel between the motor's turning point and the arm's restart: ``MP`` at its
-    extreme minus ``MP`` when ``AP`` leaves its rest. The restart is placed between ticks by
-    fitting ``cbrt(|AP - AP_rest|)`` linearly in time over the ticks that moved 1-20 encoder
-    steps (the arm leaves its rest as the gear's torque builds up: its distance grows as
-    ``t**3``), and MP is interpolated there. This is the manifest's ``lost_motion``: dead zone
-    plus the gear's wind-up.
+    The change of ``MP - AP`` across the reversal: at the motor's turning point (MP's extreme)
+    minus at the arm's restart, where ``AP`` leaves its own turning point's reading (the arm
+    may still coast forward into the dead zone after the motor has turned: that counts). The
+    restart is placed between ticks by fitting ``cbrt(|AP - AP_rest|)`` linearly in time over
+    the ticks that moved 2-20 encoder steps (the arm leaves its rest as the gear's torque
+    builds up: its distance grows as ``t**3``; the reading's difference from the rest reading
+    is taken as the distance, both roundings being symmetric), and MP is interpolated there.
+    This is the manifest's ``lost_motion`` (:class:`funcnet.robot.sim.axis.SimulatedTrial`):
+    dead zone plus the gear's wind-up on both flanks, plus the arm's coast. After a
+    standstill: the motor's travel from its rest to the arm's restart.
 ``motor_hysteresis`` (deg, motor side: RP and MP)
     The motor's lead on the set-point ``MP - RP`` where the set-point runs at half its peak
     speed before the reversal, minus the same after it (sign: old direction). The position
@@ -143,7 +147,8 @@ def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None
     Returns
     -------
     float
-        ``|MP(turn) - MP(restart)|`` (see the module's notes).
+        ``MP - AP`` at the motor's turn minus at the arm's restart, in the old direction's sign
+        (``|MP(turn) - MP(restart)|`` after a standstill; see the module's notes).
 
     Examples
     --------
