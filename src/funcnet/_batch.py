@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 from numba import njit, prange
 
-from funcnet._kernels import Int, _lowest_bit, _popcount
+from funcnet._kernels import Int, _lowest_bit, _popcount, add_coordinate_keys
 
 Array = np.ndarray
 
@@ -264,31 +264,8 @@ def _row_keys(
     embedding read in place); accumulated coordinate by coordinate as the per-window path does.
     """
     for c in range(dim):
-        value = x[i + c * delay]
         column = y[start + c * delay : start + c * delay + n]
-        if metric == 0:
-            if c == 0:
-                for t in range(n):
-                    diff = value - column[t]
-                    keys[t] = diff * diff
-            else:
-                for t in range(n):
-                    diff = value - column[t]
-                    keys[t] += diff * diff
-        elif metric == 1:
-            if c == 0:
-                for t in range(n):
-                    keys[t] = abs(value - column[t])
-            else:
-                for t in range(n):
-                    keys[t] = max(keys[t], abs(value - column[t]))
-        else:
-            if c == 0:
-                for t in range(n):
-                    keys[t] = abs(value - column[t])
-            else:
-                for t in range(n):
-                    keys[t] += abs(value - column[t])
+        add_coordinate_keys(x[i + c * delay], column, n, c == 0, metric, keys)
 
 
 @njit(cache=True)

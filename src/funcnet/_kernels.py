@@ -57,6 +57,37 @@ else:
         return signature, codegen
 
 
+@njit(cache=True, inline="always")
+def add_coordinate_keys(value: float, column: Array, n: int, first: bool, metric: int,
+                        keys: Array) -> None:
+    """Fold one coordinate into ``keys[:n]``: the keys of one state against ``n`` others, built
+    coordinate by coordinate (squared sum, maximum or sum); shared by the per-window and the
+    batched kernels, so that both give the same bits."""
+    if metric == 0:
+        if first:
+            for t in range(n):
+                diff = value - column[t]
+                keys[t] = diff * diff
+        else:
+            for t in range(n):
+                diff = value - column[t]
+                keys[t] += diff * diff
+    elif metric == 1:
+        if first:
+            for t in range(n):
+                keys[t] = abs(value - column[t])
+        else:
+            for t in range(n):
+                keys[t] = max(keys[t], abs(value - column[t]))
+    else:
+        if first:
+            for t in range(n):
+                keys[t] = abs(value - column[t])
+        else:
+            for t in range(n):
+                keys[t] += abs(value - column[t])
+
+
 @njit(cache=True)
 def _row_keys(a: Array, i: Int, bt: Array, start: int, metric: int, keys: Array) -> int:
     """keys[j - start] = key of (a[i], b[j]) for j >= start; ``bt`` is b transposed, (dim, n)."""
@@ -64,31 +95,7 @@ def _row_keys(a: Array, i: Int, bt: Array, start: int, metric: int, keys: Array)
     # vectorizes (a runtime start index costs a wrap-around check per element).
     n = bt.shape[1] - start
     for c in range(bt.shape[0]):
-        value = a[i, c]
-        column = bt[c, start:]
-        if metric == 0:
-            if c == 0:
-                for t in range(n):
-                    diff = value - column[t]
-                    keys[t] = diff * diff
-            else:
-                for t in range(n):
-                    diff = value - column[t]
-                    keys[t] += diff * diff
-        elif metric == 1:
-            if c == 0:
-                for t in range(n):
-                    keys[t] = abs(value - column[t])
-            else:
-                for t in range(n):
-                    keys[t] = max(keys[t], abs(value - column[t]))
-        else:
-            if c == 0:
-                for t in range(n):
-                    keys[t] = abs(value - column[t])
-            else:
-                for t in range(n):
-                    keys[t] += abs(value - column[t])
+        add_coordinate_keys(a[i, c], bt[c, start:], n, c == 0, metric, keys)
     return n
 
 
