@@ -5,11 +5,14 @@
     .venv/bin/python benchmarks/bench_backlash.py --quick    # a small sweep (a minute)
     .venv/bin/python benchmarks/bench_backlash.py --compare  # real trace vs simulated
     .venv/bin/python benchmarks/bench_backlash.py --lost-motion  # the lost motion vs its truth
+    .venv/bin/python benchmarks/bench_backlash.py --with-fn      # the whole sweep with FN features
+    .venv/bin/python benchmarks/bench_backlash.py --with-fn --trials 500 --report /tmp/s.html
 
 Simulates :func:`funcnet.robot.sim.plan.backlash_sweep_plan` (1944 reversal trials: backlash x
 speed x TCP x friction x stiffness x 3 seeds x noise 1 and 2, sensors and logging of the real
 trace) and computes every physical indicator per trial; the functional-network features on a
-subset (they cost most of the time); the same for the position loop closed on the motor
+subset (``--with-fn``: on the whole sweep, with the coupling test, about two minutes on two
+workers); the same for the position loop closed on the motor
 encoder, the elastic arm, and a held-out plan whose values the sweep does not contain. Prints
 markdown tables: AUCs and Spearman's rho with 95 % bootstrap intervals per speed and noise.
 """
@@ -239,6 +242,40 @@ def _fn_section(args: argparse.Namespace, out: list[str]) -> pd.DataFrame:
     return fn
 
 
+def with_fn(args: argparse.Namespace, out: list[str]) -> pd.DataFrame:
+    """The main sweep (or ``--trials`` of it) simulated and analysed with every indicator: the
+    FN features with the coupling test (no resampling intervals), timed; their tables."""
+    plan = backlash_sweep_plan()
+    if args.trials is not None and args.trials < len(plan):
+        # a random subset (seed 0) keeps every part of the grid; the plan's order would not
+        keep = np.sort(np.random.default_rng(0).choice(len(plan), args.trials, replace=False))
+        plan = [plan[i] for i in keep]
+    start = time.perf_counter()
+    sweep = run_sweep(plan, networks=True, evidence=True, workers=args.workers,
+                      intervals=args.intervals)  # fmt: skip
+    elapsed = time.perf_counter() - start
+    extra = f" and resampling intervals ({args.intervals} half-samples)" if args.intervals else ""
+    out.append(f"sweep with FN features and the coupling test{extra}: {len(plan)} trials "
+               f"simulated and analysed in {elapsed:.0f} s with {args.workers} workers\n")
+    names = [SCORE, "vibration", *FN_FEATURES, "signature"]
+    out.append(table(score_indicators(sweep, names, resamples=args.resamples),
+                     f"Functional-network features on {len(plan)} trials of the main sweep"))
+    rate = sweep.groupby(["speed", "backlash_arcmin"])["signature"].agg(["sum", "size"])
+    out.append("paper's signature (V drives all, MP -> AP -> RP), trials with it: "
+               + ", ".join(f"{v:g} deg/min {b:g} arcmin {int(r['sum'])}/{int(r['size'])}"
+                           for (v, b), r in rate.iterrows()) + "\n")  # fmt: skip
+    if args.save:
+        args.save.mkdir(parents=True, exist_ok=True)
+        sweep.to_csv(args.save / "sweep_with_fn.csv", index=False)
+    if args.report:
+        from funcnet.report.sweep import write_sweep_report
+
+        report = write_sweep_report(sweep, args.report, resamples=args.resamples,
+                                    source=f"backlash_sweep_plan(), {len(plan)} trials")
+        out.append(f"wrote {report.path}")
+    return sweep
+
+
 def lost_motion_summary(sweep: pd.DataFrame) -> str:
     """The two-encoder lost motion against the manifest's truth: the issue's target, per width.
 
@@ -279,6 +316,27 @@ def lost_motion_summary(sweep: pd.DataFrame) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _lost_motion_other_sweeps(args: argparse.Namespace, out: list[str]) -> None:
+    """The lost motion against its truth on the other sweeps of ``--save`` (one seed each)."""
+    held = backlash_sweep_plan(backlash_arcmin=(0.0, 0.75, 1.5, 3.0), tcps=(1.4, 1.8),
+                               friction_scales=(0.85, 1.2), stiffness_scales=(0.85, 1.2),
+                               seeds=(7,), noise_scales=(1.5,), group="held-out")  # fmt: skip
+    plans = {
+        "motor": backlash_sweep_plan(seeds=(1,), position_feedback="motor"),
+        "elastic": backlash_sweep_plan(seeds=(1,), arm_model="elastic"),
+        "heldout": held,
+        "heldout_motor": [
+            dataclasses.replace(t, name=t.name + "-m", position_feedback="motor") for t in held
+        ],
+    }
+    for key, plan in plans.items():
+        part = run_sweep(plan, networks=False, workers=args.workers)
+        out.append(f"lost motion, {key} sweep ({len(plan)} trials):\n")
+        out.append(lost_motion_summary(part))
+        if args.save:
+            part.to_csv(args.save / f"lost_motion_{key}.csv", index=False)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="a small sweep")
@@ -310,9 +368,25 @@ def main() -> None:
     parser.add_argument(
         "--lost-motion",
         action="store_true",
-        help="only the main sweep's two-encoder lost motion against the truth (and its scores)",
+        help="only the two-encoder lost motion against the truth: the main sweep (and its "
+        "scores), then the motor-loop, elastic-arm and held-out sweeps",
     )
     parser.add_argument("--compare", action="store_true", help="only the real-vs-sim table")
+    parser.add_argument(
+        "--with-fn",
+        action="store_true",
+        help="only the main sweep with every indicator (FN features, coupling test), timed",
+    )
+    parser.add_argument(
+        "--trials", type=int, default=None, help="with --with-fn: a random subset of N trials"
+    )
+    parser.add_argument(
+        "--report", type=Path, default=None, help="with --with-fn: write the HTML report here"
+    )
+    parser.add_argument(
+        "--intervals", type=int, default=0,
+        help="with --with-fn: also the resampling intervals (N half-samples; timing only)",
+    )
     parser.add_argument("--save", type=Path, default=None, help="folder for the tables (CSV)")
     args = parser.parse_args()
     if args.compare:
@@ -326,6 +400,9 @@ def main() -> None:
         return
     if args.fn_only:
         _fn_section(args, _Printer())
+        return
+    if args.with_fn:
+        with_fn(args, _Printer())
         return
     if args.calibrate_from:
         folder = args.calibrate_from
@@ -353,6 +430,7 @@ def main() -> None:
         if args.save:
             args.save.mkdir(parents=True, exist_ok=True)
             sweep.to_csv(args.save / "sweep_lost_motion.csv", index=False)
+        _lost_motion_other_sweeps(args, out)
         return
 
     fn = _fn_section(args, out)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -34,5 +35,89 @@ def test_the_real_trace_is_a_result_not_an_error(tmp_path):
 def test_bad_input_is_one_line_and_exit_2(tmp_path, args):
     args = [a.replace("{real}", str(REAL)) for a in args]
     result = runner.invoke(app, ["backlash", *args])
+    assert result.exit_code == 2
+    assert result.output.strip().count("\n") == 0 and "error" in result.output
+
+
+# --------------------------------------------------------------------------------------------
+# funcnet backlash-report: the sweep's report from a folder funcnet simulate wrote
+
+
+@pytest.fixture(scope="module")
+def sweep_report(tmp_path_factory):
+    """A fixed small sweep (12 trials) written, then reported through the command line."""
+    from funcnet.robot.sim.plan import backlash_sweep_plan, write_plan
+
+    root = tmp_path_factory.mktemp("sweep")
+    plan = backlash_sweep_plan(backlash_arcmin=(0, 0.5, 2), speeds=(35, 175), tcps=(1.6,),
+                               friction_scales=(1.0,), stiffness_scales=(0.7, 1.4), seeds=(1,),
+                               noise_scales=(1.0,))  # fmt: skip
+    write_plan(plan, root / "traces")
+    out = root / "report" / "sweep.html"
+    result = runner.invoke(app, ["backlash-report", str(root / "traces"), "-o", str(out),
+                                 "--resamples", "200", "-q"])  # fmt: skip
+    assert result.exit_code == 0, result.output
+    return out, result.output
+
+
+def _brute_force_auc(positive, negative):
+    """Mann-Whitney AUC by counting every (positive, negative) pair, ties one half."""
+    wins = sum(1.0 if p > n else 0.5 if p == n else 0.0 for p in positive for n in negative)
+    return wins / (len(positive) * len(negative))
+
+
+def _rows(html_text):
+    """The cells of every table row of the page, as text."""
+    return [[re.sub(r"<[^>]+>", "", cell) for cell in re.findall(r"<td[^>]*>(.*?)</td>", row)]
+            for row in re.findall(r"<tr>(.*?)</tr>", html_text)]  # fmt: skip
+
+
+def test_the_sweep_report_has_its_figures_tables_and_the_right_auc(sweep_report):
+    import pandas as pd
+
+    from funcnet.diagnosis import SCORE
+
+    out, printed = sweep_report
+    assert f"report: {out}" in printed and f"backlash_score {SCORE}" in printed
+    page = out.read_text()
+    for name in ("sweep-roc", "sweep-scatter"):
+        figure = out.parent / "figures" / f"{name}.png"
+        assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        assert f'src="figures/{name}.png"' in page
+    indicators = pd.read_csv(out.parent / "sweep-indicators.csv")
+    scores = pd.read_csv(out.parent / "sweep-scores.csv")
+    assert len(indicators) == 12
+    rows = _rows(page)
+    for indicator in (SCORE, "vibration", "fn_asymmetry"):
+        for speed, part in indicators.groupby("speed"):
+            truth, values = part["backlash_arcmin"], part[indicator]
+            auc = _brute_force_auc(values[truth >= 0.5].tolist(), values[truth == 0].tolist())
+            row = scores[(scores["indicator"] == indicator) & (scores["speed"] == speed)]
+            assert row["auc_0.5_vs_0"].item() == pytest.approx(auc, abs=1e-12)
+            rho = part[[indicator, "backlash_arcmin"]].rank().corr().iloc[0, 1]
+            assert row["rho"].item() == pytest.approx(rho, abs=1e-12)
+            # the page's table shows the same number (two decimals, then its interval)
+            cells = [r for r in rows if indicator in r and f"{speed:g}" == r[0]]
+            assert cells and cells[0][4].startswith(f"{auc:.2f} [")
+    # the reading counts the reversal windows with the paper's signature
+    shown = int(indicators["signature"].sum())
+    assert f"appeared in {shown} of 12 reversal windows" in page
+
+
+def test_the_sweep_report_reads_its_own_indicator_table(sweep_report, tmp_path):
+    out, _ = sweep_report
+    again = tmp_path / "again.html"
+    result = runner.invoke(app, ["backlash-report", str(out.parent / "sweep-indicators.csv"),
+                                 "-o", str(again), "--resamples", "200", "-q"])  # fmt: skip
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "again-scores.csv").read_text() == (
+        out.parent / "sweep-scores.csv").read_text()
+
+
+@pytest.mark.parametrize("args", [["{missing}"], ["{folder}", "-o", "r.txt"]])
+def test_the_sweep_report_on_bad_input_is_one_line_and_exit_2(tmp_path, args):
+    args = [a.replace("{missing}", str(tmp_path / "none")).replace("{folder}", str(tmp_path))
+            for a in args]  # fmt: skip
+    result = runner.invoke(app, ["backlash-report", *args])
     assert result.exit_code == 2
     assert result.output.strip().count("\n") == 0 and "error" in result.output

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -103,3 +105,86 @@ def test_auc_and_rho_with_intervals_on_known_data():
     assert row["auc_2_vs_0.5"] == 1.0
     assert row["auc_0.5_vs_0_low"] <= row["auc_0.5_vs_0"] <= row["auc_0.5_vs_0_high"]
     assert row["rho_low"] <= row["rho"] <= row["rho_high"]
+
+
+# --------------------------------------------------------------------------------------------
+# the functional-network features: batched windows, the coupling test alone; traces on disk
+
+
+def test_fn_features_equal_the_per_window_networks_with_evidence():
+    """The batched windows and the coupling test alone give what one network per window with
+    evidence gave (the features' definition, module notes of funcnet.diagnosis.indicators)."""
+    from funcnet.diagnosis.indicators import reversal_indicators
+    from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
+    from funcnet.diagnosis.sweep import simulated_recording
+    from funcnet.network import functional_network
+    from funcnet.robot.sim.axis import simulate_trial
+
+    trial = backlash_sweep_plan(backlash_arcmin=(2,), speeds=(35,), tcps=(1.6,),
+                                friction_scales=(1.0,), stiffness_scales=(1.0,), seeds=(2,),
+                                noise_scales=(1.0,))[0]  # fmt: skip
+    rec = motor_side_recording(simulated_recording(simulate_trial(trial, seed=2)))
+    change = next(c for c in find_direction_changes(rec) if c.kind == "reversal")
+    found = reversal_indicators(rec, change, evidence=True)
+
+    def summary(start, nodes):
+        part = rec.window(start, start + 0.6).data[list(nodes)]
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            net = functional_network(part, warn=False, evidence=True, resamples=1)
+        pairs, edges = net.pairs, net.edges
+        return (float(np.mean(np.abs(pairs["c_diff"]) + np.abs(pairs["t_diff"]))),
+                float(len(edges)), float(edges.loc[edges["source"] == "VM", "weight"].abs().sum()),
+                float(pairs["coupled"].sum()), edges)  # fmt: skip
+
+    start = found["turn_time"] - 0.1
+    after, before = summary(start, ("MP", "VM", "RC", "AC")), summary(start - 0.6,
+                                                                      ("MP", "VM", "RC", "AC"))
+    for k, name in enumerate(("fn_asymmetry", "fn_edges", "fn_vm_out", "fn_coupled")):
+        assert found[name] == after[k] - before[k], name
+    # the resampling intervals cost time and change no indicator
+    with_intervals = reversal_indicators(rec, change, evidence=True, intervals=3)
+    assert with_intervals == pytest.approx(found, nan_ok=True)
+    edges = summary(start, ("RP", "AP", "MP", "V", "RC", "AC"))[4]
+    directed = set(zip(edges["source"], edges["target"], strict=True))
+    expected = all(("V", n) in directed for n in ("RP", "AP", "MP", "RC", "AC")) and {
+        ("MP", "AP"), ("AP", "RP")} <= directed
+    assert found["signature"] == float(expected)
+
+
+@pytest.fixture(scope="module")
+def written_sweep(tmp_path_factory):
+    """A handful of reversal trials written as `funcnet simulate` writes them."""
+    folder = tmp_path_factory.mktemp("sweep")
+    plan = backlash_sweep_plan(backlash_arcmin=(0, 0.5, 2), speeds=(35, 175), tcps=(1.6,),
+                               friction_scales=(1.0,), stiffness_scales=(0.7, 1.4), seeds=(1,),
+                               noise_scales=(1.0,))  # fmt: skip
+    write_plan(plan, folder)
+    return folder, plan
+
+
+def test_folder_indicators_read_the_traces_and_the_manifest_truth(written_sweep):
+    from funcnet.diagnosis.sweep import folder_indicators
+
+    folder, plan = written_sweep
+    table = folder_indicators(folder)
+    manifest = pd.read_csv(folder / "manifest.csv")
+    assert table["name"].tolist() == manifest["name"].tolist() == [t.name for t in plan]
+    assert np.allclose(table["backlash_arcmin"], manifest["backlash"] * 60)
+    assert table["true_lost_motion"].tolist() == manifest["lost_motion"].tolist()
+    assert set(table["peak_speed"]) == {35.0, 70.6}
+    # the traces on disk give the in-memory sweep's indicators (its recordings hold what the
+    # files hold)
+    memory = run_sweep(plan, evidence=True)
+    for name in ("lost_motion", "motor_hysteresis", "fn_asymmetry", "fn_edges", "fn_coupled"):
+        assert np.allclose(table[name], memory[name], rtol=1e-9, equal_nan=True), name
+    some = table[table["backlash_arcmin"] > 0]
+    assert (np.abs(some["lost_motion"] / some["true_lost_motion"] - 1) < 0.05).all()
+
+
+def test_folder_indicators_without_a_manifest_name_the_file(tmp_path):
+    from funcnet.diagnosis.sweep import folder_indicators
+    from funcnet.errors import TraceError
+
+    with pytest.raises(TraceError, match="manifest.csv"):
+        folder_indicators(tmp_path)

@@ -765,3 +765,93 @@ def test_network_refuses_a_forecast_over_the_limit_unless_forced(trial: Path, tm
     _assert_one_error_line(refused, "over a minute or 4 GiB", "--force", "states")
     forced = runner.invoke(app, [*arguments, "--force", "-o", str(tmp_path / "net.json")])
     assert forced.exit_code == 0, forced.output
+
+
+# --------------------------------------------------------------------------------------------
+# evidence
+
+
+@pytest.fixture(scope="module")
+def henon_trace(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A CSV trace of two coupled Hénon maps (C = 0.6) and independent noise."""
+    from funcnet.systems import henon_pair
+
+    x = henon_pair(800, 0.6, seed=1)
+    trace = tmp_path_factory.mktemp("henon") / "henon.csv"
+    pd.DataFrame({"time": np.arange(len(x)) / 500.0, "X": x[:, 0], "Y": x[:, 1],
+                  "N": np.random.default_rng(7).normal(size=len(x))}).to_csv(trace, index=False)
+    return trace
+
+
+def test_network_evidence_writes_the_columns_and_finds_the_coupled_pair(henon_trace, tmp_path):
+    from funcnet.network.schema import EVIDENCE_COLUMNS
+
+    out = tmp_path / "pairs.csv"
+    arguments = ["network", str(henon_trace), "--signals", "X,Y,N", "--window", "all",
+                 "--dim", "2", "--delay", "1", "--evidence", "--resamples", "0", "--seed", "3"]
+    result = runner.invoke(app, [*arguments, "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    pairs = pd.read_csv(out)
+    assert set(EVIDENCE_COLUMNS) <= set(pairs.columns)
+    by_pair = {frozenset(p): row for p, row in zip(zip(pairs["x"], pairs["y"], strict=True),
+                                                    pairs.itertuples(), strict=True)}
+    henon = by_pair[frozenset(("X", "Y"))]
+    assert bool(henon.coupled) and henon.evidence in ("coupled", "coupled-directed")
+    assert henon.coupling_p <= 0.05
+    # the same numbers as the library's (K chosen from the number of pairs), same seed
+    from funcnet import functional_network
+
+    data = pd.read_csv(henon_trace)[["X", "Y", "N"]]
+    library = functional_network(data, dim=2, delay=1, evidence=True, resamples=0, seed=3,
+                                 warn=False)
+    assert np.allclose(pairs["coupling_p"], library.pairs["coupling_p"])
+    assert pairs["surrogates"].tolist() == library.pairs["surrogates"].tolist()
+    # printed (piped): the evidence columns too; without --evidence: none
+    printed = runner.invoke(app, arguments)
+    assert "coupling_p" in printed.stdout.splitlines()[0]
+    plain = runner.invoke(app, arguments[:-5])
+    assert "coupling_p" not in plain.stdout
+
+
+def test_network_interval_rule_needs_evidence(henon_trace) -> None:
+    base = ["network", str(henon_trace), "--window", "all"]
+    _assert_one_error_line(runner.invoke(app, [*base, "--edge-rule", "interval"]),
+                           "--edge-rule interval needs --evidence")
+    _assert_one_error_line(runner.invoke(app, [*base, "--edge-rule", "mu"]), "--edge-rule")
+    _assert_one_error_line(runner.invoke(app, [*base, "--evidence", "--alpha", "1.5"]),
+                           "--alpha")
+    _assert_one_error_line(
+        runner.invoke(app, [*base, "--evidence", "--surrogate-method", "phase"]),
+        "--surrogate-method")
+
+
+def test_network_interval_rule_through_the_command_line(henon_trace, tmp_path) -> None:
+    out = tmp_path / "net.json"
+    result = runner.invoke(app, ["network", str(henon_trace), "--signals", "X,Y", "--window",
+                                 "all", "--dim", "2", "--delay", "1", "--evidence",
+                                 "--resamples", "20", "--surrogates", "19", "--edge-rule",
+                                 "interval", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    from funcnet import FunctionalNetwork
+
+    net = FunctionalNetwork.from_json(out.read_text())
+    assert net.evidence["edge_rule"] == "interval" and net.evidence["resamples"] == 20
+    assert net.evidence["surrogates"] == 19
+
+
+def test_network_help_lists_the_evidence_options() -> None:
+    result = runner.invoke(app, ["network", "--help"])
+    for option in ("--evidence", "--surrogates", "--alpha", "--seed", "--resamples",
+                   "--edge-rule", "--surrogate-method"):
+        assert option in result.stdout, option
+
+
+
+@pytest.mark.parametrize("command", ["backlash", "inspect", "network", "study", "report", "demo",
+                                     "simulate"])
+def test_help_shows_no_python_types(command: str) -> None:
+    result = runner.invoke(app, [command, "--help"])
+    assert result.exit_code == 0
+    assert "list[" not in result.stdout and "Path]" not in result.stdout
+    if command in ("backlash", "inspect"):
+        assert "TRACE <path>..." in result.stdout

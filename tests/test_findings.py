@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import random
 import re
@@ -492,3 +493,46 @@ def test_degenerate_pairs_do_not_count_in_the_mean_edge_weight():
     assert mean_edge_weight(pairs) == pytest.approx(0.65)
     assert mean_edge_weight(flag_degenerate(pairs, "RP->MP")) == pytest.approx(0.4)
     assert mean_edge_weight(pairs.assign(degenerate=[None] * len(pairs))) == pytest.approx(0.65)
+
+
+
+# --------------------------------------------------------------------------------------------
+# coupling evidence of the claimed relations (issue 10)
+
+
+def test_pair_reading_tells_coupled_from_untestable_on_real_networks():
+    from funcnet import functional_network
+    from funcnet.paper.coupling import pair_reading, untestable
+    from funcnet.systems import henon_pair
+
+    x = henon_pair(800, 0.6, seed=1)
+    data = pd.DataFrame({"X": x[:, 0], "Y": x[:, 1]})
+    long = functional_network(data, dim=2, delay=1, evidence=True, resamples=0, warn=False)
+    assert pair_reading(long.pairs, "Y", "X", 0.05) == ("coupled", int(long.pairs["surrogates"][0]))
+    # the same coupled pair with 9 surrogates asked: p >= 1/11 > 0.05, whatever the data
+    short = functional_network(data, dim=2, delay=1, evidence=True, resamples=0, surrogates=9,
+                               warn=False)
+    row = short.pairs.iloc[0]
+    assert untestable(row["surrogates"], row["coupling_p"], 0.05)
+    assert pair_reading(short.pairs, "X", "Y", 0.05)[0] == "untestable"
+    assert pair_reading(short.pairs, "X", "Z", 0.05)[0] == "untested"
+
+
+def test_claims_coupling_counts_every_claimed_relation_once():
+    from funcnet.paper import PaperAnalyses, TrialAnalysis
+    from funcnet.paper.claims import REVERSAL_SEQUENCE
+    from funcnet.paper.coupling import claimed_windows, claims_coupling
+
+    empty = PaperAnalyses("plan", None, {}, pd.DataFrame(), None, {}, {}, {}, None, (), {}, {},
+                          0.0)
+    found = claims_coupling(empty)
+    # nothing computed: every claimed relation is counted, as untested, none as "not coupled"
+    assert found["4.1-early-rp-drives"].relations == 2
+    assert found["4.1-early-rp-drives"].untested == 2
+    assert "not shown coupled" not in found["4.1-early-rp-drives"].text
+    assert found["4.3-sequence"].relations == 0  # no backlash trial, no claimed window
+    trial = TrialAnalysis("B1", "b.xml", pd.DataFrame(), pd.DataFrame(), {}, {}, {})
+    with_trial = dataclasses.replace(empty, reversal={"B1": trial})
+    sites = claimed_windows(with_trial)
+    assert len(sites["4.3-sequence"]) == sum(len(c) for c in REVERSAL_SEQUENCE.values())
+    assert claims_coupling(with_trial)["4.3-sequence"].untested == len(sites["4.3-sequence"])

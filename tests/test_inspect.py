@@ -108,3 +108,49 @@ def test_inspect_trace_needs_a_path_and_checks_parameters_first(tmp_path):
 
     with pytest.raises(ParameterError, match="rr"):
         inspect_trace(tmp_path / "missing.xml", out_dir=tmp_path, rr=2.0)
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_inspect_recording_takes_detrended_nodes():
+    from funcnet.report.inspect import inspect_recording
+
+    rec = _synthetic()
+    ins = inspect_recording(rec, signals=["FE", "V", "AC"], evidence=False, backlash=False)
+    assert ins.signals == ("FE", "V", "AC")
+    # FE is derived (RP - AP), not read: the same values as the difference
+    fe = ins.recording.data["FE"].to_numpy()
+    assert np.allclose(fe, rec.data["RP"].to_numpy() - rec.data["AP"].to_numpy())
+    assert ins.networks and all(set(n.nodes) <= {"FE", "V", "AC"}
+                                for n in ins.networks.values())
+
+
+def test_inspect_command_detrended_option(tmp_path):
+    from typer.testing import CliRunner
+
+    from funcnet.cli import app
+    from funcnet.report.inspect import DETRENDED_NODES
+
+    runner = CliRunner()
+    assert "--detrended" in runner.invoke(app, ["inspect", "--help"]).stdout
+    both = runner.invoke(app, ["inspect", str(tmp_path / "t.csv"), "--detrended", "--signals",
+                               "RP,AP"])
+    assert both.exit_code == 2 and "--signals or --detrended" in both.stderr
+    assert len(both.stderr.splitlines()) == 1
+    assert DETRENDED_NODES[:2] == ("FE", "TORSION")
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_inspect_takes_the_evidence_options_of_funcnet_network(tmp_path):
+    from typer.testing import CliRunner
+
+    from funcnet.cli import app
+    from funcnet.report.inspect import inspect_recording
+
+    ins = inspect_recording(_synthetic(), evidence=True, backlash=False,
+                            evidence_options={"surrogates": 9, "resamples": 0, "seed": 2})
+    assert ins.networks
+    for net in ins.networks.values():
+        assert net.evidence["surrogates"] == 9 and net.evidence["resamples"] == 0
+        assert net.pairs["c_diff_low"].isna().all()  # no intervals asked
+    bad = CliRunner().invoke(app, ["inspect", str(tmp_path / "t.csv"), "--alpha", "1.5"])
+    assert bad.exit_code == 2 and len(bad.stderr.splitlines()) == 1 and "--alpha" in bad.stderr

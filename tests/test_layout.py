@@ -512,7 +512,7 @@ def test_the_checks_themselves() -> None:
         "from . import _io\n"
         "from .errors import ParameterError\n"
     )
-    found = {e.imported for e in _imports_of(ast.parse(source), "funcnet.plot")}
+    found = {e.imported for e in _imports_of(ast.parse(source), "funcnet.pipeline")}
     network = lazy_table("funcnet")["functional_network"]  # type: ignore[index]
     assert {network, "funcnet.recurrence", "funcnet._io", "funcnet.errors"} <= found
     assert "funcnet.measures" not in found

@@ -99,3 +99,24 @@ def test_bad_evidence_arguments_are_named(data):
         functional_network(data, evidence=True, edge_rule="strict")
     with pytest.raises(ParameterError, match="alpha"):
         functional_network(data, delay=1, evidence=True, alpha=1.5, warn=False)
+
+
+def test_twin_surrogates_and_no_intervals_pass_through(data, networks):
+    _, full = networks
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        twin = functional_network(data, names=list("abcd"), delay=1, evidence=True,
+                                  resamples=0, surrogate_method="twin")
+    assert twin.evidence["surrogate_method"] == "twin" and twin.evidence["resamples"] == 0
+    assert full.evidence["surrogate_method"] == "shift"
+    # Twins need no shortened window: K is what was asked (119 for 6 pairs).
+    assert (twin.pairs["surrogates"] == 119).all()
+    for column in ("c_diff_low", "c_diff_high", "t_diff_low", "t_diff_high",
+                   "c_sign_fraction", "t_sign_fraction"):
+        assert twin.pairs[column].isna().all(), column
+    pairs = twin.pairs.set_index(["x", "y"])
+    assert pairs.loc[("a", "b"), "coupled"] and not pairs.loc[("c", "d"), "coupled"]
+    assert FunctionalNetwork.from_json(twin.to_json()) == twin
+    with pytest.raises(ParameterError, match="surrogate_method"):
+        functional_network(data, delay=1, evidence=True, surrogate_method="circular",
+                           warn=False)

@@ -332,13 +332,15 @@ def test_edge_timeline_legends_name_the_direction_and_the_weight_scale(network):
 
 
 def test_plot_draws_and_computes_nothing():
-    """plot.py imports nothing that computes (recurrence, measures, networks, pipeline)."""
+    """The plot package imports nothing that computes (recurrence, measures, networks, ...)."""
     import ast
     from pathlib import Path
 
-    tree = ast.parse(Path(plot.__file__).read_text(encoding="utf-8"))
+    files = sorted(Path(plot.__file__).parent.glob("*.py"))
+    assert len(files) > 1  # the package, not one module
+    trees = [ast.parse(f.read_text(encoding="utf-8")) for f in files]
     imported = set()
-    for node in ast.walk(tree):
+    for node in (n for tree in trees for n in ast.walk(tree)):
         if isinstance(node, ast.Import):
             imported |= {alias.name for alias in node.names}
         elif isinstance(node, ast.ImportFrom):
@@ -346,11 +348,11 @@ def test_plot_draws_and_computes_nothing():
             imported |= {f"{node.module}.{alias.name}" for alias in node.names}
     funcnet_imports = {name for name in imported if name.split(".")[0] == "funcnet"}
     allowed = ("funcnet.network.schema", "funcnet.network.rule", "funcnet.errors", "funcnet._io",
-               "funcnet.parameters")
+               "funcnet.parameters", "funcnet.plot")
     assert all(name.startswith(allowed) for name in funcnet_imports), funcnet_imports
     assert "funcnet" not in imported  # no `import funcnet` reaching the core at call time
     called = {node.func.attr if isinstance(node.func, ast.Attribute) else
-              getattr(node.func, "id", "") for node in ast.walk(tree)
+              getattr(node.func, "id", "") for tree in trees for node in ast.walk(tree)
               if isinstance(node, ast.Call)}
     assert not called & {"functional_network", "recurrence_matrix", "cross_recurrence_matrix",
                          "isrn_adjacency", "window_networks", "cross_measures"}
@@ -443,3 +445,67 @@ def test_pair_network_notes_come_from_the_flags():
     assert bool(notes) == bool(flagged.any())
     ax = figures.figure_pair_network(network=net)
     assert f"{float(net.pairs['c_diff'].iloc[0]):+.3f}" in ax.get_title()
+
+
+# --------------------------------------------------------------------------------------------
+# evidence: edges without coupling evidence look different, and the legend says so
+
+
+def evidence_pairs():
+    return pd.DataFrame({"x": ["RP", "RP", "AP"], "y": ["AP", "MP", "MP"],
+                         "kind": ["x->y", "y->x", "bidirectional"],
+                         "weight": [0.2, 0.4, 0.05],
+                         "evidence": ["coupled-directed", "asymmetry-only", "not-coupled"]})
+
+
+def test_edges_without_coupling_evidence_are_dotted_and_pale():
+    ax = plot.plot_network(evidence_pairs())
+    arrows = {p.get_gid(): p for p in edge_patches(ax)}
+    assert set(arrows) == {"edge:RP->AP:directed:coupled-directed",
+                           "edge:MP->RP:directed:asymmetry-only",
+                           "edge:AP->MP:bidirectional:not-coupled"}
+    coupled = arrows["edge:RP->AP:directed:coupled-directed"]
+    assert coupled.get_linestyle() == "-"
+    assert coupled.get_edgecolor() == to_rgba(plot.DIRECTED_COLOR)
+    for gid in ("edge:MP->RP:directed:asymmetry-only", "edge:AP->MP:bidirectional:not-coupled"):
+        assert arrows[gid].get_linestyle() == ":"
+        assert arrows[gid].get_edgecolor() not in (to_rgba(plot.DIRECTED_COLOR),
+                                                   to_rgba(plot.BIDIRECTIONAL_COLOR))
+    # the legend explains both styles
+    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    handles = dict(zip(texts, ax.get_legend().legend_handles, strict=True))
+    (solid,) = [t for t in texts if t.startswith("coupled")]
+    (dotted,) = [t for t in texts if t.startswith("not shown coupled")]
+    assert handles[solid].get_linestyle() == "-" and handles[dotted].get_linestyle() == ":"
+
+
+def test_without_evidence_columns_the_drawing_is_unchanged():
+    with_evidence = plot.plot_network(evidence_pairs())
+    plain = plot.plot_network(evidence_pairs().drop(columns="evidence"))
+    assert all(p.get_linestyle() == "-" for p in edge_patches(plain))
+    assert all(g.count(":") == 2 for g in (p.get_gid() for p in edge_patches(plain)))
+    texts = [t.get_text() for t in plain.get_legend().get_texts()]
+    assert not any("coupl" in t for t in texts)
+    assert len(with_evidence.get_legend().get_texts()) == len(texts) + 2
+    # rows of a study run without evidence (NaN) count as no evidence at all
+    gaps = evidence_pairs().assign(evidence=[None, None, None])
+    assert all(p.get_linestyle() == "-" for p in edge_patches(plot.plot_network(gaps)))
+
+
+def test_a_network_with_evidence_draws_its_readings():
+    from funcnet.systems import henon_pair
+
+    x = henon_pair(600, 0.6, seed=1)
+    noise = np.random.default_rng(3).normal(size=len(x))
+    data = pd.DataFrame({"X": x[:, 0], "Y": x[:, 1], "N": noise})
+    net = funcnet.functional_network(data, dim=2, delay=1, evidence=True, resamples=0,
+                                     warn=False)
+    readings = dict(zip(zip(net.pairs["x"], net.pairs["y"], strict=True), net.pairs["evidence"],
+                        strict=True))
+    arrows = {p.get_gid(): p for p in edge_patches(plot.plot_network(net))}
+    assert arrows
+    for gid, arrow in arrows.items():
+        source, target = gid.split(":")[1].split("->")
+        reading = readings.get((source, target), readings.get((target, source)))
+        assert gid.endswith(f":{reading}")
+        assert arrow.get_linestyle() == (":" if reading in plot.NO_COUPLING_EVIDENCE else "-")

@@ -181,6 +181,16 @@ def test_demo_report_findings_tables_and_provenance(demo_report, tiny_plan):
     assert numpy.__version__ in text and numba.__version__ in text
     for trace in [*tiny_plan.glob("*.xml"), tiny_plan / "manifest.csv"]:
         assert hashlib.sha256(trace.read_bytes()).hexdigest() in text
+    # coupling evidence per finding with claimed relations; "untestable" is said, never hidden
+    assert "coupling evidence" in findings.columns
+    coupling = by_id["coupling evidence"]
+    pattern = re.compile(r"coupled in (\d+)/(\d+) claimed relations")
+    for finding_id in ("4.1-early-rp-drives", "4.3-v-drives", "4.3-sequence"):
+        assert pattern.match(coupling[finding_id]), coupling[finding_id]
+    assert coupling["3.1-tcp"] == "—" and coupling["4.2-edges-thin"] == "—"
+    # the reversal windows (0.2 s = 100 samples) hold a few shifts only: untestable
+    assert re.search(r"untestable in \d+ \(≤ \d+ surrogates\)", coupling["4.3-v-drives"])
+    assert "Untestable</i> is not <i>uncoupled" in text
     # every computed network has its pairs table (15 pairs of 6 signals, or fewer if dropped)
     pair_tables = [t for t in tables if {"x", "y", "kind", "c_diff", "t_diff"} <= set(t.columns)]
     assert len(pair_tables) >= 10
@@ -214,6 +224,32 @@ def test_study_report_networks_timeline_and_chromium(tiny_study, tmp_path):
     pair_tables = [t for t in tables if {"x", "y", "kind"} <= set(t.columns)]
     assert len(pair_tables) == rows.groupby(["window", "start"]).ngroups
     assert sum(len(t) for t in pair_tables) == len(rows)
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_study_report_shows_the_evidence(tiny_plan, tmp_path):
+    from funcnet.report.study import evidence_counts
+    from funcnet.study import load_results, load_study, run_study
+
+    trace = (tiny_plan / "main-v35-p16-s3.xml").as_posix()
+    toml = tmp_path / "study.toml"
+    toml.write_text(f'[recordings]\npaths = ["{trace}"]\n'
+                    '[[windows]]\nkind = "sliding"\nwidth = 0.6\nstep = 1.0\nstart = 0.5\n'
+                    'stop = 2.2\n[evidence]\nenabled = true\nresamples = 0\nalpha = 0.1\n',
+                    encoding="utf-8")
+    run_study(load_study(toml), tmp_path / "results", workers=0)
+    rows = load_results(tmp_path / "results")
+    page = write_report(tmp_path / "results", tmp_path / "report")
+    text = page.read_text(encoding="utf-8")
+    assert "Coupling evidence" in text and "α = 0.1" in text and "Dotted, pale" in text
+    tables = pd.read_html(page, keep_default_na=False)
+    (counts,) = [t for t in tables if "untestable" in t.columns]
+    expected = evidence_counts(rows, 0.1)
+    assert counts["pairs"].tolist() == expected["pairs"].tolist()
+    assert counts["coupled"].sum() == rows["evidence"].isin(["coupled", "coupled-directed"]).sum()
+    assert counts["asymmetry-only"].sum() == (rows["evidence"] == "asymmetry-only").sum()
+    pair_tables = [t for t in tables if {"x", "y", "kind"} <= set(t.columns)]
+    assert pair_tables and all({"coupling_p", "evidence"} <= set(t.columns) for t in pair_tables)
 
 
 @pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")

@@ -169,6 +169,17 @@ def test_documented_example_study_loads() -> None:
         ('[recordings]\npaths = ["*.xml"]\nchannels = "none.toml"', "recordings.channels"),
         ('constant = "ignore"\n[recordings]\npaths = ["*.xml"]', "constant"),
         ('[recordings]\npaths = ["*.xml"]\nresample = "spline"', "recordings.resample"),
+        ('[recordings]\npaths = ["*.xml"]\n[evidence]\nalpha = 2.0', "[evidence] alpha"),
+        ('[recordings]\npaths = ["*.xml"]\n[evidence]\nsurrogates = 0', "[evidence] surrogates"),
+        ('[recordings]\npaths = ["*.xml"]\n[evidence]\nedge_rule = "mu"', "[evidence] edge_rule"),
+        ('[recordings]\npaths = ["*.xml"]\n[evidence]\nlevel = 0.9', "[evidence] level"),
+        ('[recordings]\npaths = ["*.xml"]\n[evidence]\nenabled = "yes"', "[evidence] enabled"),
+        ('[recordings]\npaths = ["*.xml"]\n[evidence]\nsurrogate_method = "phase"',
+         "[evidence] surrogate_method"),
+        ('[recordings]\npaths = ["*.xml"]\n[stability]\ngrid = {radius = [1]}',
+         "[stability] grid"),
+        ('[recordings]\npaths = ["*.xml"]\n[stability]\ngrid = {rr = [2.0]}',
+         "[stability] grid"),
     ],
 )
 def test_load_study_errors_name_file_and_key(tmp_path: Path, text: str, key: str) -> None:
@@ -711,3 +722,101 @@ def test_fixed_windows_mostly_outside_their_phase_are_flagged(plan_dir: Path,
     assert count >= 1 and "'cruise'" in example and "% outside" in example
     document = json.loads((tmp_path / "out" / "study.json").read_text())
     assert "window_overrun" in document["run"]["warnings"]
+
+
+
+# --------------------------------------------------------------------------------------------
+# evidence and stability in a study (issue 10)
+
+EVIDENCE_STUDY = """
+[recordings]
+paths = ["trace.csv"]
+[[windows]]
+kind = "range"
+start = 0.2
+stop = 0.8
+[network]
+delay = 5
+[evidence]
+enabled = true
+surrogates = 19
+alpha = 0.05
+seed = 1
+resamples = 0
+"""
+
+
+def test_evidence_rows_carry_the_columns_and_are_not_reused_across_settings(
+        tmp_path: Path) -> None:
+    from funcnet import functional_network
+    from funcnet.network.schema import EVIDENCE_COLUMNS
+    from funcnet.robot import read_recording
+
+    trace = _small_trace(tmp_path)
+    plain_file = _write(tmp_path, EVIDENCE_STUDY.split("[evidence]")[0], "plain.toml")
+    out = tmp_path / "out"
+    plain = run_study(load_study(plain_file), out, workers=0)
+    assert not set(EVIDENCE_COLUMNS) & set(load_results(out).columns)
+
+    study = load_study(_write(tmp_path, EVIDENCE_STUDY))
+    assert dict(study.evidence)["surrogates"] == 19 and study.to_dict()["evidence"]["seed"] == 1
+    first = run_study(study, out, workers=0)
+    assert (first.computed, first.cached) == (plain.tasks, 0)  # not the cached plain rows
+    rows = load_results(out)
+    assert set(EVIDENCE_COLUMNS) <= set(rows.columns)
+    # the library's evidence on the same window, same settings
+    recording = read_recording(trace)
+    part = recording.window(0.2, 0.8).data[rows["signals"].iloc[0].split(",")]
+    expected = functional_network(part, delay=5, evidence=True, surrogates=19, seed=1,
+                                  resamples=0, warn=False).pairs
+    assert rows["coupling_p"].tolist() == pytest.approx(expected["coupling_p"].tolist())
+    assert rows["evidence"].tolist() == expected["evidence"].tolist()
+    # unchanged settings: cached; another alpha: computed again
+    again = run_study(load_study(_write(tmp_path, EVIDENCE_STUDY)), out, workers=0)
+    assert (again.computed, again.cached) == (0, first.tasks)
+    other = run_study(load_study(_write(tmp_path, EVIDENCE_STUDY.replace("0.05", "0.1"),
+                                        "alpha.toml")), out, workers=0)
+    assert other.computed == first.tasks
+    # the plain study's rows come back from the cache, without evidence
+    back = run_study(load_study(plain_file), out, workers=0)
+    assert back.computed == 0 and "coupling_p" not in load_results(out).columns
+
+
+def test_disabled_evidence_keeps_the_plain_keys(tmp_path: Path) -> None:
+    _small_trace(tmp_path)
+    plain = load_study(_write(tmp_path, EVIDENCE_STUDY.split("[evidence]")[0], "plain.toml"))
+    off = load_study(_write(tmp_path, EVIDENCE_STUDY.replace("enabled = true",
+                                                             "enabled = false")))
+    assert off.evidence == () and plain.evidence == ()
+    out = tmp_path / "out"
+    first = run_study(plain, out, workers=0)
+    assert run_study(off, out, workers=0).cached == first.tasks
+
+
+def test_stability_columns_in_the_rows(tmp_path: Path) -> None:
+    from funcnet.network.stability import edge_stability
+    from funcnet.robot import read_recording
+
+    trace = _small_trace(tmp_path)
+    text = (EVIDENCE_STUDY.split("[evidence]")[0]
+            + "[stability]\nenabled = true\ngrid = {mu = [0.02, 0.1], dim = [2]}\n")
+    out = tmp_path / "out"
+    result = run_study(load_study(_write(tmp_path, text)), out, workers=0)
+    assert result.computed == 1
+    rows = load_results(out)
+    assert {"stability", "stability_mu", "stability_dim", "stability_settings"} <= set(rows)
+    part = read_recording(trace).window(0.2, 0.8).data[rows["signals"].iloc[0].split(",")]
+    expected = edge_stability(part, delay=5, grid={"mu": [0.02, 0.1], "dim": [2]}).table
+    assert rows["stability"].tolist() == pytest.approx(expected["stability"].tolist())
+    # another grid: computed again
+    other = run_study(load_study(_write(tmp_path, text.replace("0.02", "0.03"), "o.toml")), out,
+                      workers=0)
+    assert other.computed == 1
+
+
+def test_example_evidence_study_loads() -> None:
+    example = Path(__file__).parents[1] / "examples" / "evidence_study.toml"
+    study = load_study(example)
+    settings = dict(study.evidence)
+    assert settings["resamples"] == 0 and settings["edge_rule"] == "paper"
+    assert study.stability == ()

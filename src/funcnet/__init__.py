@@ -38,6 +38,7 @@ _EXPORTS = {
     "combine_kinds": "funcnet.network",
     "edges_from_pairs": "funcnet.network",
     "check_parameters": "funcnet.network",
+    "edge_stability": "funcnet.network",
     "window_networks": "funcnet.pipeline",
     "inspect_trace": "funcnet.report.inspect",
     "Study": "funcnet.study",

@@ -7,14 +7,105 @@ the command turns them into its one-line messages.
 
 from __future__ import annotations
 
+import contextlib
+import dataclasses
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
 
 import typer
 
 from funcnet.errors import ParameterError, WindowError
+from funcnet.parameters import NetworkParameters
+
+# Every network parameter's default, for the help texts: NetworkParameters owns them.
+_DEFAULTS = NetworkParameters.defaults()
+
+
+def _default(name: str) -> str:
+    value = _DEFAULTS[name]
+    return f"[default: {'none' if value is None else value}]"
+
+
+# How the command spells the parameters it takes, for the messages of a bad value.
+_FLAGS = {
+    **{name: "--" + name.replace("_", "-") for name in NetworkParameters.names()},
+    "degenerate": "--keep-degenerate",
+    "resample": "--resample",
+}
+# Parameters the network command has no option for: explicit thresholds replace the rates.
+_NO_OPTION = ("eps",)
+
+
+@contextlib.contextmanager
+def _spelled_as_options() -> Iterator[None]:
+    """Re-spell a :class:`ParameterError` with the option's name (``--rr must be ...``)."""
+    try:
+        yield
+    except ParameterError as exc:
+        flag = _FLAGS.get(exc.parameter or "")
+        if flag is None:
+            raise
+        raise ParameterError(exc.spelled(flag), parameter=flag, detail=exc.detail) from None
+
+
+# --------------------------------------------------------------------------------------------
+# options shared by the commands (one definition, one help text)
+
+Channels = Annotated[
+    Path | None,
+    typer.Option("--channels", help="Channel map TOML (controller signal names -> roles)."),
+]
+Axis = Annotated[
+    int | None, typer.Option("--axis", help="Axis to read from a trace of several axes.")
+]
+Evidence = Annotated[
+    bool,
+    typer.Option(
+        "--evidence", metavar="",
+        help="Add each pair's evidence (funcnet.evidence): a coupling test on joint "
+        "recurrences against time-shift surrogates (coupling_p, Benjamini-Hochberg adjusted; "
+        "coupled), intervals of C_diff and T_diff, a direction index, and the reading "
+        "'evidence' (coupled-directed, coupled, not-coupled, asymmetry-only = an arrow "
+        "without coupling evidence). Off: the paper's network only.",
+    ),
+]
+Surrogates = Annotated[
+    int | None,
+    typer.Option(
+        "--surrogates", min=1, metavar="K",
+        help="Surrogates of the coupling test (with --evidence). [default: 99, or more so "
+        "that one discovery among the pairs can pass: m/alpha - 1 for m pairs]",
+    ),
+]
+Alpha = Annotated[
+    float,
+    typer.Option("--alpha", help="Level of the coupling test (FDR over a network's pairs, "
+                 "with --evidence)."),
+]
+EvidenceSeed = Annotated[
+    int, typer.Option("--seed", min=0, help="Seed of the surrogates and resamples.")
+]
+Resamples = Annotated[
+    int,
+    typer.Option("--resamples", min=0, help="Resamples of the C_diff/T_diff intervals (with "
+                 "--evidence; 0: no intervals, faster)."),
+]
+EdgeRule = Annotated[
+    str,
+    typer.Option(
+        "--edge-rule", metavar="RULE",
+        help="paper (the mu rule, as published) or interval (directed only when the "
+        "difference's interval excludes 0 and |diff| >= mu; needs --evidence).",
+    ),
+]
+SurrogateMethod = Annotated[
+    str,
+    typer.Option("--surrogate-method", metavar="METHOD",
+                 help="Surrogates of the coupling test: shift (circular time shifts) or twin "
+                 "(twin surrogates); with --evidence."),
+]
 
 
 def _parse_window(text: str) -> tuple[float, float]:
@@ -59,18 +150,13 @@ def _select_window(
 
 
 def _whole_recording(recording: Any, trace: Path) -> Any:
-    """The span where every signal has a recorded value, as one window.
+    """The span where every signal has a recorded value (funcnet.robot.complete_span)."""
+    from funcnet.robot import complete_span
 
-    Signals logged on a coarser grid (IPO, 4 ms) have no value at the first tick.
-    """
-    # TODO(robot): a domain rule; to move into funcnet.robot.windows.
-    from funcnet.robot import Window
-
-    recorded = recording.data.index[recording.data.notna().all(axis=1).to_numpy()]
-    if recorded.empty:
-        raise WindowError(f"{trace}: no tick where every signal has a recorded value")
-    start, stop = float(recorded[0]), float(recorded[-1]) + recording.sample_period
-    return Window(label="whole recording", start=start, stop=stop)
+    try:
+        return complete_span(recording)
+    except WindowError:
+        raise WindowError(f"{trace}: no tick where every signal has a recorded value") from None
 
 
 def _phase_windows(recording: Any) -> list[Any]:
@@ -96,6 +182,11 @@ def _write_network(net: Any, output: Path, inches: tuple[float, float], trace: P
     suffix = output.suffix.lower()
     if suffix in (".json", ".graphml"):
         net.write(output)
+        return
+    if suffix == ".csv":  # the pairs table, every column (the evidence's too)
+        from funcnet._io import write_text_atomic
+
+        write_text_atomic(output, net.pairs.to_csv(index=False))
         return
     import matplotlib
 
@@ -156,20 +247,29 @@ def _check_signals(names: list[str] | None, recording: Any, trace: Path) -> None
 _MAIN_COLUMNS = ("x", "y", "kind", "weight", "c_diff", "t_diff")
 _WIDE_COLUMNS = ("c_xy", "c_yx", "t_xy", "t_yx", "eps_ordered", "rate_exceeded")
 _FLAG_COLUMN = "degenerate"
+# With --evidence, the terminal also shows the coupling test's p-value and each pair's reading.
+_EVIDENCE_SHOWN = ("coupling_p", "evidence")
 _PAIRS_CAPTION = (
     "negative diff reads as x->y (an asymmetry, not proof of a driver); degenerate pairs are "
     "{degenerate}; -o net.json keeps every column"
 )
 _DEGENERATE_CAPTION = {"drop": "no edges", "keep": "flagged edges"}
+_EVIDENCE_CAPTION = (
+    "coupling_p: the coupling test's adjusted p-value (it cannot be below 1/(surrogates+1): "
+    "with few surrogates a pair is untestable, not uncoupled); asymmetry-only = an arrow "
+    "without coupling evidence"
+)
 
 
 def _is_terminal(stream: Any) -> bool:
     return bool(getattr(stream, "isatty", lambda: False)())
 
 
-def _shown_columns(narrow: bool) -> list[str]:
-    """The columns of a terminal's table (all names of funcnet.network.schema's pairs)."""
-    groups = (_MAIN_COLUMNS, () if narrow else _WIDE_COLUMNS, (_FLAG_COLUMN,))
+def _shown_columns(narrow: bool, evidence: bool = False) -> list[str]:
+    """The columns of a terminal's table (all names of funcnet.network.schema's pairs, and
+    with ``evidence`` two of its evidence columns)."""
+    groups = (_MAIN_COLUMNS, () if narrow else _WIDE_COLUMNS, (_FLAG_COLUMN,),
+              _EVIDENCE_SHOWN if evidence else ())
     return [name for group in groups for name in group]
 
 
@@ -178,6 +278,8 @@ def _pairs_table(net: Any, columns: Sequence[str], number_format: str) -> Any:
 
     pairs = net.pairs
     caption = _PAIRS_CAPTION.format(degenerate=_DEGENERATE_CAPTION[net.parameters.degenerate])
+    if "evidence" in pairs.columns:
+        caption += "; " + _EVIDENCE_CAPTION
     table = Table(title=net.label, caption=caption)
     for column in columns:
         numeric = pairs[column].dtype.kind == "f"
@@ -193,18 +295,20 @@ def _print_pairs(net: Any) -> None:
     A terminal too narrow for the main columns gets fewer of them, at 3 significant digits,
     rather than every number cut short. The ``degenerate`` flag is always shown.
     """
-    from funcnet.network.schema import PAIR_COLUMNS
+    from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS
 
+    evidence = "evidence" in net.pairs.columns
     if not _is_terminal(sys.stdout):
-        typer.echo(net.pairs.loc[:, list(PAIR_COLUMNS)].to_string(index=False))
+        columns = [*PAIR_COLUMNS, *(EVIDENCE_COLUMNS if evidence else ())]
+        typer.echo(net.pairs.loc[:, columns].to_string(index=False))
         return
     from rich.console import Console
 
     console = Console()
-    table = _pairs_table(net, _shown_columns(narrow=False), ".4f")
+    table = _pairs_table(net, _shown_columns(narrow=False, evidence=evidence), ".4f")
     # Measured without the terminal's limit: the width the table needs to show every number.
     if console.measure(table, options=console.options.update_width(10_000)).maximum > console.width:
-        table = _pairs_table(net, _shown_columns(narrow=True), ".3g")
+        table = _pairs_table(net, _shown_columns(narrow=True, evidence=evidence), ".3g")
     console.print(table)
 
 
@@ -263,3 +367,46 @@ def _network_files(output: Path, labels: Sequence[str]) -> list[Path]:
     slugs = ["-".join("".join(c if c.isalnum() else " " for c in str(label)).split())
              for label in labels]
     return [output.with_name(f"{output.stem}-{slug}{output.suffix}") for slug in slugs]
+
+
+def _evidence_settings(evidence: bool, surrogates: int | None, alpha: float, seed: int,
+                       resamples: int, edge_rule: str,
+                       surrogate_method: str) -> dict[str, Any] | None:
+    """The evidence keywords of :func:`funcnet.functional_network`, checked and spelled as the
+    command's flags; ``None`` without ``--evidence``."""
+    from funcnet.evidence import EDGE_RULES, check_evidence_arguments
+
+    if edge_rule not in EDGE_RULES:
+        raise ParameterError(f"--edge-rule must be one of {', '.join(EDGE_RULES)}, got "
+                             f"{edge_rule!r}")
+    if not evidence:
+        if edge_rule == "interval":
+            raise ParameterError("--edge-rule interval needs --evidence (it reads the "
+                                 "intervals of the evidence)")
+        return None
+    if edge_rule == "interval" and resamples == 0:
+        raise ParameterError("--edge-rule interval needs intervals: --resamples must be >= 1")
+    try:
+        check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
+    except ParameterError as exc:
+        flag = "--" + str(exc.parameter or "evidence").replace("_", "-")
+        raise ParameterError(exc.spelled(flag), parameter=flag, detail=exc.detail) from None
+    return {"surrogates": surrogates, "alpha": alpha, "seed": seed, "resamples": resamples,
+            "edge_rule": edge_rule, "surrogate_method": surrogate_method}
+
+
+def _with_evidence(recording: Any, nets: Mapping[str, Any], windows: Sequence[Any],
+                   settings: Mapping[str, Any]) -> dict[str, Any]:
+    """Each window's network again, with the evidence columns (same nodes and parameters;
+    the window's record kept)."""
+    from funcnet.network import functional_network
+
+    spans = {w.label: w for w in windows}
+    found = {}
+    for label, net in nets.items():
+        span = spans[label]
+        part = recording.window(span.start, span.stop).data[list(net.nodes)]
+        full = functional_network(part, parameters=net.parameters, label=label, warn=False,
+                                  evidence=True, **settings)
+        found[label] = dataclasses.replace(full, window=net.window)
+    return found

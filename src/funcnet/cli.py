@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import sys
 import warnings
 from collections.abc import Callable, Iterator, Sequence
@@ -42,8 +43,21 @@ from typer.core import TyperCommand, TyperGroup
 
 from funcnet import __version__
 from funcnet._cli_network import (
+    _FLAGS,  # noqa: F401  (the command's spelling of each parameter; tests read it here)
+    _NO_OPTION,  # noqa: F401
+    Alpha,
+    Axis,
+    Channels,
+    EdgeRule,
+    Evidence,
+    EvidenceSeed,
+    Resamples,
+    SurrogateMethod,
+    Surrogates,
     _check_cost,
     _check_signals,
+    _default,
+    _evidence_settings,
     _is_terminal,
     _moving_phases,
     _network_files,
@@ -53,8 +67,12 @@ from funcnet._cli_network import (
     _print_phases,
     _select_window,
     _signal_list,
+    _spelled_as_options,
+    _with_evidence,
     _write_network,
 )
+from funcnet._cli_stability import register as _register_stability
+from funcnet._cli_sweep import register as _register_sweep_report
 from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError
 from funcnet.parameters import NetworkParameters
 
@@ -103,6 +121,13 @@ class _PlainUsageCommand(TyperCommand):
         return [piece.replace("{", "").replace("}", "").upper() if "{" in piece else piece
                 for piece in super().collect_usage_pieces(ctx)]
 
+    def get_help(self, ctx: Any) -> str:
+        # typer shows a list argument's type as Python's "<list[Path]>"; say "<path>..."
+        return _LIST_TYPE.sub(lambda m: f"<{m.group(1).lower()}>...", super().get_help(ctx))
+
+
+_LIST_TYPE = re.compile(r"<list\[(\w+)\]>")
+
 
 app = typer.Typer(
     cls=_PlainErrorsGroup,
@@ -119,7 +144,7 @@ app = typer.Typer(
 
 _EXIT_INPUT_ERROR = 2
 _EXIT_TASKS_FAILED = 1
-_NETWORK_SUFFIXES = (".json", ".graphml", ".png", ".svg")
+_NETWORK_SUFFIXES = (".json", ".graphml", ".csv", ".png", ".svg")
 
 
 # --------------------------------------------------------------------------------------------
@@ -343,37 +368,6 @@ def _file_identity(path: Path) -> tuple[int, int, int] | None:
 # --------------------------------------------------------------------------------------------
 # network
 
-# Every network parameter's default, for the help texts: NetworkParameters owns them.
-_DEFAULTS = NetworkParameters.defaults()
-
-
-def _default(name: str) -> str:
-    value = _DEFAULTS[name]
-    return f"[default: {'none' if value is None else value}]"
-
-
-# How the command spells the parameters it takes, for the messages of a bad value.
-_FLAGS = {
-    **{name: "--" + name.replace("_", "-") for name in NetworkParameters.names()},
-    "degenerate": "--keep-degenerate",
-    "resample": "--resample",
-}
-# Parameters the network command has no option for: explicit thresholds replace the rates.
-_NO_OPTION = ("eps",)
-
-
-@contextlib.contextmanager
-def _spelled_as_options() -> Iterator[None]:
-    """Re-spell a :class:`ParameterError` with the option's name (``--rr must be ...``)."""
-    try:
-        yield
-    except ParameterError as exc:
-        flag = _FLAGS.get(exc.parameter or "")
-        if flag is None:
-            raise
-        raise ParameterError(exc.spelled(flag), parameter=flag, detail=exc.detail) from None
-
-
 @app.command(cls=_PlainUsageCommand)
 def network(
     trace: Annotated[Path, typer.Argument(help="Trace file: SINUMERIK XML, CSV or Parquet.")],
@@ -484,13 +478,8 @@ def network(
             "as edges, flagged degenerate; by default they are in the pairs table only.",
         ),
     ] = False,
-    channels: Annotated[
-        Path | None,
-        typer.Option("--channels", help="Channel map TOML (controller signal names -> roles)."),
-    ] = None,
-    axis: Annotated[
-        int | None, typer.Option("--axis", help="Axis to read from a trace of several axes.")
-    ] = None,
+    channels: Channels = None,
+    axis: Axis = None,
     drop_constant: Annotated[
         bool,
         typer.Option(
@@ -505,9 +494,9 @@ def network(
         typer.Option(
             "--output",
             "-o",
-            help="Write the network: .json (exact, reloadable), .graphml, or a drawing (.png, "
-            ".svg) titled with the trace, window and parameters. Without it the pairs table "
-            "is printed.",
+            help="Write the network: .json (exact, reloadable), .graphml, .csv (the pairs "
+            "table), or a drawing (.png, .svg) titled with the trace, window and parameters. "
+            "Without it the pairs table is printed.",
         ),
     ] = None,
     size: Annotated[
@@ -520,6 +509,13 @@ def network(
         typer.Option("--force", metavar="",
                      help="Compute even when the forecast is over a minute or 4 GiB."),
     ] = False,
+    evidence: Evidence = False,
+    surrogates: Surrogates = None,
+    alpha: Alpha = 0.05,
+    seed: EvidenceSeed = 0,
+    resamples: Resamples = 200,
+    edge_rule: EdgeRule = "paper",
+    surrogate_method: SurrogateMethod = "shift",
     verbose: Verbose = False,
     quiet: Quiet = False,
 ) -> None:
@@ -538,9 +534,17 @@ def network(
     per phase, named after it (net-cruise-1.json). A network whose forecast cost is over a
     minute or 4 GiB (a long --window: the cost grows with the cube of its length) is refused
     unless --force.
+
+    --evidence adds the evidence columns to every pairs table, file and drawing: whether the
+    pair is coupled at all (a joint-recurrence test against time-shift surrogates; on short
+    windows few shifts fit, and a pair that cannot reach the level is untestable, not
+    uncoupled), intervals of C_diff and T_diff, and the reading 'evidence'. It multiplies the
+    cost (about 10x on a 300-sample window with 6 signals).
     """
     with _reported_errors(verbose=verbose):
         inches = _parse_size(size)
+        evidence_settings = _evidence_settings(evidence, surrogates, alpha, seed, resamples,
+                                               edge_rule, surrogate_method)
         if output is not None and output.suffix.lower() not in _NETWORK_SUFFIXES:
             raise ParameterError(
                 f"-o {output}: unknown format, use one of {', '.join(_NETWORK_SUFFIXES)}"
@@ -595,6 +599,8 @@ def network(
                 recording, chosen, signals=names, parameters=parameters,
                 constant="drop" if drop_constant else "error", progress=progress,
             )
+            if evidence_settings is not None:
+                nets = _with_evidence(recording, nets, chosen, evidence_settings)
         if output is None:
             for net in nets.values():
                 _print_pairs(net)
@@ -617,16 +623,12 @@ def backlash(
     traces: Annotated[
         list[Path],
         typer.Argument(
-            help="Traces of one axis (SINUMERIK XML, CSV or Parquet), oldest first for a trend."
+            metavar="TRACE",
+            help="Traces of one axis (SINUMERIK XML, CSV or Parquet), oldest first for a trend.",
         ),
     ],
-    channels: Annotated[
-        Path | None,
-        typer.Option("--channels", help="Channel map TOML (controller signal names -> roles)."),
-    ] = None,
-    axis: Annotated[
-        int | None, typer.Option("--axis", help="Axis to read from a trace of several axes.")
-    ] = None,
+    channels: Channels = None,
+    axis: Axis = None,
     output: Annotated[
         Path | None,
         typer.Option(
@@ -699,6 +701,15 @@ def inspect(
             "RC, AC) plus V derived from AP.",
         ),
     ] = None,
+    detrended: Annotated[
+        bool,
+        typer.Option(
+            "--detrended", metavar="",
+            help="Detrended nodes instead: FE (following error RP-AP), TORSION (MP-AP), V, RC, "
+            "AC. Positions are ramps in cruise; their differences are not, which the coupling "
+            "test's time-shift surrogates need. Not with --signals.",
+        ),
+    ] = False,
     evidence: Annotated[
         bool,
         typer.Option(
@@ -707,13 +718,13 @@ def inspect(
             "time).",
         ),
     ] = True,
-    channels: Annotated[
-        Path | None,
-        typer.Option("--channels", help="Channel map TOML (controller signal names -> roles)."),
-    ] = None,
-    axis: Annotated[
-        int | None, typer.Option("--axis", help="Axis to read from a trace of several axes.")
-    ] = None,
+    surrogates: Surrogates = None,
+    alpha: Alpha = 0.05,
+    seed: EvidenceSeed = 0,
+    resamples: Resamples = 200,
+    surrogate_method: SurrogateMethod = "shift",
+    channels: Channels = None,
+    axis: Axis = None,
     verbose: Verbose = False,
     quiet: Quiet = False,
 ) -> None:
@@ -727,11 +738,20 @@ def inspect(
     """
     with _reported_errors(verbose=verbose):
         names = _signal_list(signals)
-        from funcnet.report.inspect import inspect_trace
+        from funcnet.report.inspect import DETRENDED_NODES, inspect_trace
+
+        if detrended:
+            if names is not None:
+                raise ParameterError("give --signals or --detrended, not both")
+            names = list(DETRENDED_NODES)
+        # the same evidence options, checks and messages as funcnet network's
+        options = _evidence_settings(evidence, surrogates, alpha, seed, resamples, "paper",
+                                     surrogate_method)
 
         with _progress(quiet, "inspect") as progress:
             page = inspect_trace(*traces, out_dir=out, signals=names, evidence=evidence,
-                                 channels=channels, axis=axis, progress=progress)
+                                 channels=channels, axis=axis, progress=progress,
+                                 evidence_options=options)
     typer.echo(f"report: {page}")
 
 
@@ -831,6 +851,11 @@ def report(
         with _progress(quiet, "report") as progress:
             written = write_report(results_dir, out, progress=progress)
     typer.echo(f"report: {written}")
+
+
+_register_stability(app, command_class=_PlainUsageCommand, reported_errors=_reported_errors)
+_register_sweep_report(app, command_class=_PlainUsageCommand, reported_errors=_reported_errors,
+                       progress=_progress)
 
 
 def main() -> None:

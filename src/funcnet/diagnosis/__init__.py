@@ -27,6 +27,7 @@ _EXPORTS = {
     "reversal_indicators": "funcnet.diagnosis.indicators",
     "lost_motion": "funcnet.diagnosis.indicators",
     "run_sweep": "funcnet.diagnosis.sweep",
+    "folder_indicators": "funcnet.diagnosis.sweep",
     "score_indicators": "funcnet.diagnosis.sweep",
     "calibration": "funcnet.diagnosis.sweep",
     "SCORE": "funcnet.diagnosis.diagnose",

@@ -8,16 +8,18 @@ two-encoder lost motion and the paper's signature need AP too.
 Physical indicators
 -------------------
 ``lost_motion`` (deg, needs AP)
-    The change of ``MP - AP`` across the reversal: at the motor's turning point (MP's extreme)
-    minus at the arm's restart, where ``AP`` leaves its own turning point's reading (the arm
-    may still coast forward into the dead zone after the motor has turned: that counts). The
-    restart is placed between ticks by fitting ``cbrt(|AP - AP_rest|)`` linearly in time over
-    the ticks that moved 2-20 encoder steps (the arm leaves its rest as the gear's torque
-    builds up: its distance grows as ``t**3``; the reading's difference from the rest reading
-    is taken as the distance, both roundings being symmetric), and MP is interpolated there.
-    This is the manifest's ``lost_motion`` (:class:`funcnet.robot.sim.axis.SimulatedTrial`):
-    dead zone plus the gear's wind-up on both flanks, plus the arm's coast. After a
-    standstill: the motor's travel from its rest to the arm's restart.
+    The change of ``MP - AP`` across the reversal, from the motor's turning point to the arm's
+    restart -- the simulator's truth (:class:`funcnet.robot.sim.axis.SimulatedTrial`): dead
+    zone plus the gear's wind-up on both flanks, plus what the arm still coasts forward after
+    the motor has turned. The restart is the first after the set-point's turn with which the
+    arm moves the new way from a rest (a reading it reached moving the old way, or two equal
+    readings: a loop hunting across the dead zone stops the arm in it); the turn is the
+    motor's last move the old way before it (between ticks, AP interpolated there, when the
+    arm still coasts). The restart is placed between ticks by a least-squares fit of the
+    arm's start to the readings' distances from the rest reading: a jerk-driven cube law (the
+    gear's torque builds up with the motor's travel) bent by the gear-arm resonance, which is
+    fitted over the first 100 encoder steps (see :func:`_restart_time`); MP is interpolated
+    there. After a standstill: the motor's travel from its rest to the arm's restart.
 ``motor_hysteresis`` (deg, motor side: RP and MP)
     The motor's lead on the set-point ``MP - RP`` where the set-point runs at half its peak
     speed before the reversal, minus the same after it (sign: old direction). The position
@@ -43,7 +45,10 @@ from 0.1 s before the turn (the dead-zone crossing) and in the 0.6 s before that
 of the first move), and the differences reversal - braking of: ``fn_asymmetry`` (mean of
 ``|c_diff| + |t_diff|`` over pairs), ``fn_edges`` (number of edges) and ``fn_vm_out`` (sum of
 the weights of VM's out-edges) and, with ``evidence=True``, ``fn_coupled`` (the pairs the
-coupling test of :mod:`funcnet.evidence` finds coupled, against time-shift surrogates).
+coupling test of :mod:`funcnet.evidence` finds coupled, against time-shift surrogates). The two
+windows' networks come from one batched call (:func:`funcnet.pipeline.window_networks`: the
+numbers of ``functional_network`` per window); the coupling test runs alone, without the
+half-sampling intervals (``resamples=0``), which ``fn_coupled`` does not use.
 
 The paper's signature (section 5.1; needs AP)
 ---------------------------------------------
@@ -54,6 +59,7 @@ when V has a directed edge to every other node and the positions are ordered MP 
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from collections.abc import Sequence
@@ -63,7 +69,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet.diagnosis.reversals import DirectionChange
-from funcnet.errors import FuncnetError, FuncnetWarning
+from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError
 from funcnet.parameters import NetworkParameters
 from funcnet.robot.recording import Recording
 
@@ -105,10 +111,15 @@ _MOTOR_NODES = ("MP", "VM", "RC", "AC")
 _PAPER_NODES = ("RP", "AP", "MP", "V", "RC", "AC")
 _WINDOW = 0.6  # s, the paper's cruise and braking window length (section 4.2)
 _LEAD = 0.1  # s of the reversal window before the turning point
-# The arm's distance from its rest after the restart grows as (t - t0)**3 while the gear's
-# torque builds up with the motor's travel (a jerk-driven start); fitted over its first 1-20
-# encoder steps, before the acceleration settles into a parabola
-_RESTART_POWER = 3.0
+# The arm's start after its restart (:func:`_restart_time`): a jerk-driven cube law bent by the
+# gear's spring; the spans were chosen on every third trial of the sweep, confirmed on the rest
+_RESTART_SPAN = 40  # encoder steps of the arm's distance from its rest fitted for the restart
+_SHAPE_SPAN = 100  # ... and for the gear-arm resonance that bends the start
+_OMEGAS = tuple(np.arange(0.0, 401.0, 10.0))  # rad/s: the resonance's candidates
+# the spring's bend is offset in part by the friction's Stribeck drop early on: the restart is
+# fitted with this share of the fitted resonance (chosen on every third trial of the sweep,
+# confirmed on the rest and on the other sweeps; docs/backlash.md section 3.1)
+_STRIBECK = 0.7
 
 
 def _values(rec: Recording, name: str) -> np.ndarray:
@@ -133,6 +144,111 @@ def _turn(rec: Recording, change: DirectionChange) -> int:
     return a + int(np.argmax(old * mp[a : b + 1]))
 
 
+def _arm_restart(
+    t: np.ndarray, mp: np.ndarray, ap: np.ndarray, change: DirectionChange, quantum: float
+) -> int | None:
+    """Index of the first reading with which the arm moves back from a rest after the turn.
+
+    The set-point's turn (``change.stop``) starts the search, as the simulator's truth counts
+    the first restart after it. A rest is a reading the arm stays on after moving the old way
+    (the arm coasted, bounced or rested there), or a run of at least two equal readings (the
+    arm came to a stick while moving back: the loop hunts across the dead zone); a single
+    repeated reading within a move back is the encoder's resolution, not a stop. The gear
+    drives the arm back only once the motor has turned and moved back itself (by more than an
+    arm-encoder step): an elastic arm's hub dragged back by its ringing tip while the motor
+    still moves forward is no restart across the dead zone.
+    """
+    new = change.direction
+    a = max(_index(t, change.stop), 2)
+    b = _index(t, change.start + min(change.dwell, 1.0) + 1.0)
+    for k in range(a, b + 1):
+        if new * (ap[k] - ap[k - 1]) > 0 and new * (ap[k - 1] - ap[k - 2]) <= 0:
+            r0 = k - 1
+            while r0 > 0 and ap[r0 - 1] == ap[k - 1]:
+                r0 -= 1
+            came_old_way = r0 == 0 or new * (ap[r0] - ap[r0 - 1]) < 0
+            motor_back = new * (mp[k - 1] - _motor_turn(t, mp, k - 1, -new)[2]) > quantum
+            if (came_old_way or k - 1 - r0 >= 2) and motor_back:
+                return k
+    return None
+
+
+def _start_shape(tau: np.ndarray, omega: float) -> np.ndarray:
+    """The arm's distance after its restart per unit gain, ``tau`` s after it: ``tau**3`` bent
+    by the gear's spring, ``6 (w tau - sin(w tau)) / w**3`` (``tau**3`` when ``w`` is 0)."""
+    if omega == 0:
+        return tau**3
+    return 6 * (omega * tau - np.sin(omega * tau)) / omega**3
+
+
+def _fit_start(
+    times: np.ndarray, distance: np.ndarray, candidates: np.ndarray, omegas: Sequence[float]
+) -> tuple[float, float]:
+    """Least-squares restart time and spring frequency over the candidates and ``omegas``."""
+    tau = np.clip(times[None, :] - candidates[:, None], 0.0, None)
+    best = (math.inf, float(candidates[-1]), 0.0)
+    for omega in omegas:
+        shape = _start_shape(tau, omega)
+        norm = (shape * shape).sum(axis=1)
+        gain = np.maximum((shape * distance).sum(axis=1), 0.0) / np.where(norm > 0, norm, 1.0)
+        error = ((distance - gain[:, None] * shape) ** 2).sum(axis=1)
+        j = int(np.argmin(error))
+        if error[j] < best[0]:
+            best = (float(error[j]), float(candidates[j]), float(omega))
+    return best[1], best[2]
+
+
+def _restart_time(
+    t: np.ndarray, ap: np.ndarray, rest: float, first: int, earliest: int, new: int,
+    quantum: float, back: int,
+) -> float:  # fmt: skip
+    """The arm's restart between ticks, from its distance to the rest reading after it.
+
+    The arm leaves its rest as the gear's torque builds up with the motor's travel: a
+    jerk-driven start, ``u = A tau**3`` at first, which the gear's spring bends within 10-20 ms
+    (the arm catching up with the motor: ``u = 6 A (w tau - sin(w tau)) / w**3`` for a motor at
+    constant speed, ``w = sqrt(k / J)`` the gear-arm resonance). ``w`` is fitted with the
+    restart over the readings up to ``_SHAPE_SPAN`` encoder steps (10 ticks), where the bend
+    shows above the rounding; the restart is then fitted over the readings up to
+    ``_RESTART_SPAN`` steps with ``_STRIBECK * w``: the sliding friction falls from its static
+    to its Coulomb level as the arm speeds up, an acceleration that offsets part of the spring's
+    bend early on. Both least squares are in the distance itself, the rounding's errors being
+    uniform there (within half a step), on a 50 us grid of restart times. The arm creeps below
+    one step for several ticks, so the restart may lie up to ``back`` ticks before ``first``,
+    never before the rest began (``earliest``).
+    """
+    ticks = np.arange(first, min(first + 10, t.size))
+    distance = new * (ap[ticks] - rest)
+    candidates = np.arange(t[max(earliest, first - back)], t[first] + 2.5e-5, 5e-5)
+    near = distance < _SHAPE_SPAN * quantum
+    if near.sum() < 2:
+        return float(t[first - 1])
+    _, omega = _fit_start(t[ticks[near]], distance[near], candidates, _OMEGAS)
+    near = distance < _RESTART_SPAN * quantum
+    if near.sum() < 2:
+        return float(t[first - 1])
+    restart, _ = _fit_start(t[ticks[near]], distance[near], candidates, [_STRIBECK * omega])
+    return restart
+
+
+def _motor_turn(t: np.ndarray, mp: np.ndarray, end: int, old: int) -> tuple[int, float, float]:
+    """The motor's turning point before index ``end``: its last move the old way.
+
+    Returns the tick after that move, the time the motor came to rest within it (a constant
+    deceleration to zero over the last two moves: ``x`` of the last tick interval with
+    ``x**2 / (2 x + 1)`` the ratio of the last move to the one before) and MP there.
+    """
+    forward = np.flatnonzero(old * np.diff(mp[: end + 1]) > 0)
+    j = int(forward[-1]) + 1 if forward.size else end
+    x = 1.0
+    if j >= 2:
+        last, before = old * (mp[j] - mp[j - 1]), old * (mp[j - 1] - mp[j - 2])
+        if before > 0:
+            ratio = last / before
+            x = min(1.0, ratio + math.sqrt(ratio * ratio + ratio))
+    return j, float(t[j - 1] + x * (t[j] - t[j - 1])) if j >= 1 else float(t[j]), float(mp[j])
+
+
 def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None) -> float:
     """Two-encoder lost motion at a direction change, in deg (NaN if the arm never restarts).
 
@@ -142,7 +258,9 @@ def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None
         With MP and AP on the positions' own grid (:func:`.motor_side_recording`).
     change : DirectionChange
     turn : int, optional
-        Index of the motor's turning point (found from MP when omitted).
+        Index of the motor's turning point, used after a standstill only (found from MP when
+        omitted); at a reversal the turn is the motor's last move the old way before the
+        arm's restart (see the module's notes).
 
     Returns
     -------
@@ -166,51 +284,43 @@ def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None
     """
     t = rec.data.index.to_numpy()
     mp, ap = _values(rec, "MP"), _values(rec, "AP")
-    turn = _turn(rec, change) if turn is None else turn
     new = change.direction
+    old = -new
     steps = np.abs(np.diff(ap))
     quantum = float(steps[steps > 0].min()) if np.any(steps > 0) else 1e-9
-    threshold = 1.5 * quantum
     if change.kind == "reversal":
-        # the arm's own turning point: it may still coast (or bounce) after the motor's turn
-        b = _index(t, change.start + min(change.dwell, 1.0) + 0.5)
-        rest_at = turn + int(np.argmax(-new * ap[turn : b + 1]))
-        rest = float(ap[rest_at])
-    else:  # a resting arm's reading jitters by an encoder step or two
-        rest_at = turn
-        before = ap[_index(t, change.start - 0.2) : _index(t, change.start) + 1]
-        rest = float(np.median(before))
-        threshold = max(threshold, 4 * float(np.std(before)), float(np.ptp(before)))
-    moved = np.flatnonzero(new * (ap[rest_at:] - rest) > threshold)
+        k = _arm_restart(t, mp, ap, change, quantum)
+        if k is None:
+            return math.nan
+        rest = float(ap[k - 1])
+        earliest = k - 1
+        while earliest > 0 and ap[earliest - 1] == rest:
+            earliest -= 1
+        # the first tick a step and a half beyond the rest (a creep of one step is resolution)
+        moved = np.flatnonzero(new * (ap[k:] - rest) > 1.5 * quantum)
+        if moved.size == 0:
+            return math.nan
+        first = k + int(moved[0])
+        restart = _restart_time(t, ap, rest, first, earliest, new, quantum, back=8)
+        # MP - AP across the reversal (old direction's sign): at the motor's turning point (the
+        # arm may still coast forward there: AP between ticks) minus at the restart, where the
+        # arm still reads its rest
+        j, t_turn, _ = _motor_turn(t, mp, _index(t, restart), old)
+        at_turn = old * (mp[j] - float(np.interp(t_turn, t, ap)))
+        return float(at_turn - old * (np.interp(restart, t, mp) - rest))
+    # after a standstill: the arm rested since long before the motor turned; its reading
+    # jitters by an encoder step or two
+    turn = _turn(rec, change) if turn is None else turn
+    before = ap[_index(t, change.start - 0.2) : _index(t, change.start) + 1]
+    rest = float(np.median(before))
+    threshold = max(1.5 * quantum, 4 * float(np.std(before)), float(np.ptp(before)))
+    moved = np.flatnonzero(new * (ap[turn:] - rest) > threshold)
     if moved.size == 0:
         return math.nan
-    first = rest_at + int(moved[0])
-
-    # the restart between ticks: the arm leaves its rest as the gear's torque builds up, the
-    # distance growing as (t - t0)**3, so its cube root grows linearly from the restart t0; the
-    # arm creeps below one encoder step for several ticks, so t0 may lie up to 8 ticks back.
-    # The reading's difference from the rest reading is the distance itself: both readings round
-    # to the nearest step, errors symmetric about zero (no half-step offset, which would bias
-    # the distance up and place t0 early)
-    fit = np.arange(first, min(first + 8, t.size))
-    distance = new * (ap[fit] - rest)
-    near = (distance > quantum) & (distance < 20 * quantum)
-    fit, distance = fit[near], distance[near]
-    restart = t[first - 1]
-    if fit.size >= 2:
-        slope, intercept = np.polyfit(t[fit], distance ** (1 / _RESTART_POWER), 1)
-        if slope > 0:
-            # after a standstill the rest reading jitters by a step or two and a creep cannot
-            # be told from it: the restart is placed at most two ticks before the first move
-            back = 8 if change.kind == "reversal" else 2
-            restart = float(np.clip(-intercept / slope, t[max(rest_at, first - back)], t[first]))
-    if change.kind != "reversal":  # the arm rested since long before the motor turned
-        return float(abs(mp[turn] - np.interp(restart, t, mp)))
-    # MP - AP across the reversal (old direction's sign): at the motor's turning point minus at
-    # the restart, where the arm still reads its rest; the motor's travel when the arm rests at
-    # the turn, and what the arm still coasts forward after it counts too
-    old = -new
-    return float(old * (mp[turn] - ap[turn]) - old * (np.interp(restart, t, mp) - rest))
+    first = turn + int(moved[0])
+    # a creep cannot be told from the rest's jitter: at most two ticks before the first move
+    restart = _restart_time(t, ap, rest, first, turn, new, quantum, back=2)
+    return float(abs(mp[turn] - np.interp(restart, t, mp)))
 
 
 def _smooth(x: np.ndarray, n: int) -> np.ndarray:
@@ -275,34 +385,96 @@ def _physical(rec: Recording, change: DirectionChange, turn: int) -> dict[str, f
     return result
 
 
-def _network(rec: Recording, start: float, nodes: Sequence[str], parameters: NetworkParameters,
-             evidence: bool = False) -> FunctionalNetwork | None:  # fmt: skip
-    from funcnet.network import functional_network  # the physical indicators do without
-
-    part = rec.window(start, start + _WINDOW).data[list(nodes)]
-    values = part.to_numpy(dtype=np.float64)
+def _part(rec: Recording, start: float, nodes: Sequence[str]) -> np.ndarray | None:
+    """The window's values of ``nodes``; None where no network can be built (too short, NaN,
+    a constant node)."""
+    values = rec.window(start, start + _WINDOW).data[list(nodes)].to_numpy(dtype=np.float64)
     if values.shape[0] < 50 or np.isnan(values).any() or np.any(np.ptp(values, axis=0) == 0):
         return None
+    return values
+
+
+def _networks(rec: Recording, starts: Sequence[float], nodes: Sequence[str],
+              parameters: NetworkParameters, parts: Sequence[np.ndarray | None] | None = None
+              ) -> list[FunctionalNetwork | None]:  # fmt: skip
+    """The networks of 0.6 s windows from ``starts``, in one batched call.
+
+    :func:`funcnet.pipeline.window_networks` computes the windows' pairs numbers together (the
+    batched engine, numbers equal to :func:`funcnet.network.functional_network`'s per window);
+    a window that cannot give a network is None, and any error there falls back to one
+    network per window (each None on its own error). ``parts``: the windows' :func:`_part`,
+    when the caller has them.
+    """
+    from funcnet.network import functional_network  # the physical indicators do without
+    from funcnet.pipeline import window_networks
+    from funcnet.robot.windows import Window
+
+    if parts is None:
+        parts = [_part(rec, start, nodes) for start in starts]
+    usable = [k for k, part in enumerate(parts) if part is not None]
+    found: list[FunctionalNetwork | None] = [None] * len(starts)
+    with warnings.catch_warnings():  # flags stay in the pairs table; nothing to say here
+        warnings.simplefilter("ignore", FuncnetWarning)
+        try:
+            windows = [Window(str(k), starts[k], starts[k] + _WINDOW) for k in usable]
+            nets = window_networks(rec, windows, signals=list(nodes), parameters=parameters)
+            for k in usable:
+                found[k] = nets[str(k)]
+        except FuncnetError:
+            for k in usable:
+                part = rec.window(starts[k], starts[k] + _WINDOW).data[list(nodes)]
+                try:
+                    found[k] = functional_network(part, parameters=parameters, warn=False)
+                except FuncnetError:
+                    found[k] = None
+    return found
+
+
+def _coupled(values: np.ndarray, nodes: Sequence[str], parameters: NetworkParameters,
+             intervals: int = 0) -> float:
+    """The pairs the coupling test of :mod:`funcnet.evidence` finds coupled in one window's
+    ``values`` (from :func:`_part`).
+
+    The test alone (time-shift surrogates, BH across the pairs at alpha 0.05), on the values
+    ``functional_network(..., evidence=True)`` tests (min-max per window): its ``coupled``
+    column does not depend on the half-sampling intervals, which are not computed
+    (``resamples=0``) where :func:`funcnet.evidence.pairwise_evidence` allows it (else the
+    smallest number, 1) unless ``intervals`` half-samples are asked for (to time them).
+    """
+    from funcnet.evidence import pairwise_evidence
+    from funcnet.preprocess import normalize
+
     try:
-        with warnings.catch_warnings():  # flags stay in the pairs table; nothing to say here
-            warnings.simplefilter("ignore", FuncnetWarning)
-            if evidence:  # the coupling test; one half-sample (intervals are not used here)
-                return functional_network(
-                    part, parameters=parameters, warn=False, evidence=True, resamples=1
-                )
-            return functional_network(part, parameters=parameters, warn=False)
+        values = normalize(values, parameters.normalize, names=list(nodes))
+        found = pairwise_evidence([values[:, k] for k in range(values.shape[1])],
+                                  names=list(nodes), parameters=parameters,
+                                  resamples=intervals or _resamples())  # fmt: skip
     except FuncnetError:
-        return None
+        return math.nan
+    return float(sum(e.coupled for e in found.values()))
 
 
-def _fn_summary(net: FunctionalNetwork | None) -> tuple[float, float, float, float]:
+@functools.cache
+def _resamples() -> int:
+    """Half-samples to ask of :func:`~funcnet.evidence.pairwise_evidence`: 0 (the intervals are
+    not used here) where the evidence module takes it, else its smallest, 1."""
+    from funcnet.evidence.pairs import check_evidence_arguments
+
+    try:
+        check_evidence_arguments(None, 0.05, 0)
+    except ParameterError:
+        return 1
+    return 0
+
+
+def _fn_summary(net: FunctionalNetwork | None, coupled: float = math.nan
+                ) -> tuple[float, float, float, float]:  # fmt: skip
     if net is None:
         return math.nan, math.nan, math.nan, math.nan
     pairs = net.pairs
     asym = float(np.mean(np.abs(pairs["c_diff"]) + np.abs(pairs["t_diff"])))
     edges = net.edges
     vm_out = float(edges.loc[edges["source"] == "VM", "weight"].abs().sum())
-    coupled = float(pairs["coupled"].sum()) if "coupled" in pairs else math.nan
     return asym, float(len(edges)), vm_out, coupled
 
 
@@ -323,6 +495,7 @@ def reversal_indicators(
     parameters: NetworkParameters | None = None,
     networks: bool = True,
     evidence: bool = False,
+    intervals: int = 0,
 ) -> dict[str, Any]:
     """Every indicator of :data:`INDICATORS` at one direction change.
 
@@ -338,6 +511,10 @@ def reversal_indicators(
     evidence : bool
         Build the motor-side networks with the coupling test of :mod:`funcnet.evidence`
         (``fn_coupled``; NaN without it).
+    intervals : int
+        With ``evidence``: half-samples of the resampling intervals (0: none; they do not
+        change ``fn_coupled``; a number > 0 only costs their time, for the timing of the sweep
+        with intervals).
 
     Returns
     -------
@@ -360,14 +537,21 @@ def reversal_indicators(
     result.update(_physical(rec, change, turn))
     names = FN_FEATURES
     if networks and all(n in rec.data.columns for n in _MOTOR_NODES):
-        start = t_turn - _LEAD
-        after = _fn_summary(_network(rec, start, _MOTOR_NODES, p, evidence))
-        before = _fn_summary(_network(rec, start - _WINDOW, _MOTOR_NODES, p, evidence))
+        # the reversal window (the dead-zone crossing) and the braking before it, batched
+        starts = (t_turn - _LEAD, t_turn - _LEAD - _WINDOW)
+        parts = [_part(rec, start, _MOTOR_NODES) for start in starts]
+        nets = _networks(rec, starts, _MOTOR_NODES, p, parts)
+        coupled = [
+            _coupled(part, _MOTOR_NODES, p, intervals)
+            if evidence and net is not None and part is not None else math.nan
+            for part, net in zip(parts, nets, strict=True)
+        ]
+        after, before = (_fn_summary(n, c) for n, c in zip(nets, coupled, strict=True))
         result.update({n: a - b for n, a, b in zip(names, after, before, strict=True)})
     else:
         result.update(dict.fromkeys(names, math.nan))
     if networks and all(n in rec.data.columns for n in _PAPER_NODES):
-        result["signature"] = _signature(_network(rec, t_turn - _LEAD, _PAPER_NODES, p))
+        result["signature"] = _signature(_networks(rec, [t_turn - _LEAD], _PAPER_NODES, p)[0])
     else:
         result["signature"] = math.nan
     return result

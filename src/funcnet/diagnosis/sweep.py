@@ -3,9 +3,13 @@
 :func:`run_sweep` simulates a plan (:func:`funcnet.robot.sim.plan.backlash_sweep_plan`) in
 memory -- each trial's signals exactly as its trace file would hold them (six decimals, AP and
 MP on their own logging grid) -- and computes the indicators of
-:mod:`funcnet.diagnosis.indicators` at its reversal, next to the trial's ground truth.
-:func:`score_indicators` gives, per speed and noise level, detection AUCs and Spearman's rho
-with bootstrap intervals; :func:`calibration` the per-backlash quantiles that
+:mod:`funcnet.diagnosis.indicators` at its reversal, next to the trial's ground truth;
+:func:`folder_indicators` does the same from the traces and ``manifest.csv`` that ``funcnet
+simulate`` wrote (the file's time stamps differ from the simulator's by 1e-15 s, which can move
+an indicator's window edge by one tick: ``vibration`` then differs slightly, the FN features
+not). Trials are spread over spawned worker processes in chunks; each worker loads the compiled
+kernels once. :func:`score_indicators` gives, per speed and noise level, detection AUCs and
+Spearman's rho with bootstrap intervals; :func:`calibration` the per-backlash quantiles that
 :func:`funcnet.diagnosis.diagnose_backlash` reads a score on.
 """
 
@@ -13,8 +17,10 @@ from __future__ import annotations
 
 import math
 import multiprocessing
-from collections.abc import Callable, Sequence
+import os
+from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -23,9 +29,9 @@ from scipy.stats import rankdata
 
 from funcnet.diagnosis.indicators import INDICATORS, reversal_indicators
 from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
-from funcnet.errors import ParameterError
+from funcnet.errors import ParameterError, TraceError
 from funcnet.robot.channels import SignalInfo
-from funcnet.robot.recording import Recording
+from funcnet.robot.recording import Recording, read_trace
 from funcnet.robot.sim.axis import SimulatedTrial, simulate_trial
 from funcnet.robot.sim.plan import ARCMIN
 from funcnet.robot.sim.trial import Trial
@@ -36,6 +42,8 @@ __all__ = [
     "with_contact_score",
     "simulated_recording",
     "trial_indicators",
+    "trace_indicators",
+    "folder_indicators",
     "run_sweep",
     "score_indicators",
     "calibration",
@@ -83,7 +91,8 @@ def simulated_recording(sim: SimulatedTrial) -> Recording:
 
 
 def trial_indicators(
-    trial: Trial, networks: bool = True, seed: int = 0, evidence: bool = False
+    trial: Trial, networks: bool = True, seed: int = 0, evidence: bool = False,
+    intervals: int = 0,
 ) -> dict[str, Any]:
     """Simulate one trial and compute its indicators at its first reversal, with its truth.
 
@@ -97,6 +106,9 @@ def trial_indicators(
         Noise seed when the trial has none of its own.
     evidence : bool
         Build the motor-side networks with the coupling test (``fn_coupled``).
+    intervals : int
+        With ``evidence``: half-samples of the resampling intervals (0: none; see
+        :func:`~funcnet.diagnosis.indicators.reversal_indicators`).
 
     Returns
     -------
@@ -123,22 +135,156 @@ def trial_indicators(
         "position_feedback": p.position_feedback,
         "true_lost_motion": sim.truth["lost_motion"],
     }
-    rec = motor_side_recording(simulated_recording(sim))
-    changes = [c for c in find_direction_changes(rec) if c.kind == "reversal"]
     # the speed the set-point reaches (a short step at a high speed never cruises): what a
     # trace shows, and what the calibration is keyed by
     row["peak_speed"] = round(float(np.abs(sim.data["RP"].diff()).max() / p.log_period * 60), 1)
-    if changes:
-        row.update(reversal_indicators(rec, changes[0], networks=networks, evidence=evidence))
-    else:
-        row.update(dict.fromkeys(("turn_time", *INDICATORS), math.nan))
+    row.update(_first_reversal(simulated_recording(sim), networks, evidence, intervals))
     return row
 
 
-def _rows(
-    chunk: Sequence[Trial], networks: bool, seed: int, evidence: bool
+def _first_reversal(recording: Recording, networks: bool, evidence: bool, intervals: int = 0
+                    ) -> dict[str, Any]:  # fmt: skip
+    """The indicators at a recording's first reversal (NaN without one)."""
+    rec = motor_side_recording(recording)
+    changes = [c for c in find_direction_changes(rec) if c.kind == "reversal"]
+    if changes:
+        return reversal_indicators(rec, changes[0], networks=networks, evidence=evidence,
+                                   intervals=intervals)  # fmt: skip
+    return dict.fromkeys(("turn_time", *INDICATORS), math.nan)
+
+
+def trace_indicators(
+    path: str | os.PathLike[str], truth: Mapping[str, Any], networks: bool = True,
+    evidence: bool = False,
+) -> dict[str, Any]:  # fmt: skip
+    """One written trial's indicators at its first reversal, beside its manifest row's truth.
+
+    Parameters
+    ----------
+    path : path-like
+        The trace (as ``funcnet simulate`` writes it).
+    truth : mapping
+        Its ``manifest.csv`` row (:data:`~funcnet.robot.sim.plan.MANIFEST_COLUMNS`).
+    networks, evidence : bool
+        As :func:`trial_indicators`.
+
+    Returns
+    -------
+    dict
+        The columns of :func:`trial_indicators`; ``backlash_arcmin`` from the manifest's
+        ``backlash`` (deg), ``true_lost_motion`` its ``lost_motion``, ``peak_speed`` from the
+        trace's RP.
+    """
+    row: dict[str, Any] = {name: truth[name] for name in _TRUTH if name in truth}
+    row["backlash_arcmin"] = round(float(truth["backlash"]) / ARCMIN, 9)
+    row["true_lost_motion"] = float(truth["lost_motion"])
+    for name in ("arm_model", "position_feedback", "sensors"):
+        row.setdefault(name, truth.get(name, ""))
+    rec = read_trace(path)
+    rp = rec.data["RP"].to_numpy(dtype=np.float64)
+    row["peak_speed"] = round(float(np.nanmax(np.abs(np.diff(rp))) / rec.sample_period * 60), 1)
+    row.update(_first_reversal(rec, networks, evidence))
+    return row
+
+
+#: The manifest's columns a row of :func:`folder_indicators` keeps (its order of
+#: :func:`trial_indicators`' columns).
+_TRUTH = ("name", "speed", "tcp", "backlash", "friction_scale", "stiffness_scale", "noise_scale",
+          "seed", "sensors", "arm_model", "position_feedback")
+
+
+def folder_indicators(
+    folder: str | os.PathLike[str],
+    *,
+    networks: bool = True,
+    evidence: bool = True,
+    workers: int = 1,
+    progress: Callable[[int, int, str], None] | None = None,
+) -> pd.DataFrame:
+    """Every trial's indicators and truth from a folder ``funcnet simulate`` wrote.
+
+    Parameters
+    ----------
+    folder : path-like
+        Traces and their ``manifest.csv`` (e.g. ``funcnet simulate --plan backlash-sweep``).
+    networks, evidence : bool
+        The functional-network features, and the coupling test in them (on by default: the
+        sweep's analysis without the resampling intervals).
+    workers : int
+        Processes (spawned); 1 runs here.
+    progress : callable, optional
+        ``progress(done, total, name)`` after each chunk of trials.
+
+    Returns
+    -------
+    DataFrame
+        One row per manifest row (:func:`trace_indicators`), in the manifest's order.
+
+    Raises
+    ------
+    TraceError
+        No ``manifest.csv``, a manifest without the truth's columns, or a trace that cannot be
+        read (the message names the file).
+    ParameterError
+        ``workers`` not a positive integer.
+    """
+    folder = Path(folder)
+    path = folder / "manifest.csv"
+    if not path.is_file():
+        raise TraceError(path, "no manifest.csv (write the traces with funcnet simulate)")
+    manifest = pd.read_csv(path, keep_default_na=False)
+    missing = [c for c in ("name", "file", "speed", "backlash", "lost_motion")
+               if c not in manifest.columns]  # fmt: skip
+    if missing:
+        raise TraceError(path, f"has no column(s) {missing}")
+    tasks = [(folder / str(r["file"]), r) for r in manifest.to_dict(orient="records")]
+    return pd.DataFrame(
+        _map_chunks(_trace_rows, tasks, workers, progress, (networks, evidence),
+                    [str(r["name"]) for _, r in tasks])  # fmt: skip
+    )
+
+
+def _trace_rows(
+    chunk: Sequence[tuple[Path, dict[str, Any]]], networks: bool, evidence: bool
 ) -> list[dict[str, Any]]:
-    return [trial_indicators(t, networks, seed, evidence) for t in chunk]
+    return [trace_indicators(path, truth, networks, evidence) for path, truth in chunk]
+
+
+def _map_chunks(
+    function: Callable[..., list[dict[str, Any]]],
+    items: Sequence[Any],
+    workers: int,
+    progress: Callable[[int, int, str], None] | None,
+    arguments: tuple[Any, ...],
+    names: Sequence[str],
+) -> list[dict[str, Any]]:
+    """``function(chunk, *arguments)`` over chunks of ``items``, in ``workers`` spawned
+    processes (each compiles or loads the kernels once and keeps them for its chunks)."""
+    if not isinstance(workers, int) or workers < 1:
+        raise ParameterError.of("workers", f"must be a positive integer, got {workers!r}")
+    size = max(1, min(25, len(items) // (4 * workers) or 1))
+    chunks = [items[i : i + size] for i in range(0, len(items), size)]
+    rows: list[dict[str, Any]] = []
+    if workers > 1 and len(chunks) > 1:
+        spawn = multiprocessing.get_context("spawn")
+        with ProcessPoolExecutor(max_workers=workers, mp_context=spawn) as pool:
+            futures = [pool.submit(function, chunk, *arguments) for chunk in chunks]
+            for future in futures:
+                rows += future.result()
+                if progress:
+                    progress(len(rows), len(items), names[len(rows) - 1])
+    else:
+        for chunk in chunks:
+            rows += function(chunk, *arguments)
+            if progress:
+                progress(len(rows), len(items), names[len(rows) - 1])
+    return rows
+
+
+def _rows(
+    chunk: Sequence[Trial], networks: bool, seed: int, evidence: bool, intervals: int
+) -> list[dict[str, Any]]:
+    return [trial_indicators(t, networks, seed, evidence, intervals) for t in chunk]
 
 
 def run_sweep(
@@ -148,6 +294,7 @@ def run_sweep(
     workers: int = 1,
     seed: int = 0,
     evidence: bool = False,
+    intervals: int = 0,
     progress: Callable[[int, int, str], None] | None = None,
 ) -> pd.DataFrame:
     """Every trial's indicators and truth, one row per trial (see :func:`trial_indicators`).
@@ -163,6 +310,9 @@ def run_sweep(
         Noise seed for trials without their own.
     evidence : bool
         With ``networks``: the coupling test too (``fn_coupled``).
+    intervals : int
+        With ``evidence``: half-samples of the resampling intervals too (0: none; they cost
+        time and change no indicator).
     progress : callable, optional
         ``progress(done, total, name)`` after each chunk.
 
@@ -181,25 +331,10 @@ def run_sweep(
     True
     """
     trials = list(trials)
-    if not isinstance(workers, int) or workers < 1:
-        raise ParameterError.of("workers", f"must be a positive integer, got {workers!r}")
-    size = max(1, min(25, len(trials) // (4 * workers) or 1))
-    chunks = [trials[i : i + size] for i in range(0, len(trials), size)]
-    rows: list[dict[str, Any]] = []
-    if workers > 1 and len(chunks) > 1:
-        spawn = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(max_workers=workers, mp_context=spawn) as pool:
-            futures = [pool.submit(_rows, chunk, networks, seed, evidence) for chunk in chunks]
-            for chunk, future in zip(chunks, futures, strict=True):
-                rows += future.result()
-                if progress:
-                    progress(len(rows), len(trials), chunk[-1].name)
-    else:
-        for chunk in chunks:
-            rows += _rows(chunk, networks, seed, evidence)
-            if progress:
-                progress(len(rows), len(trials), chunk[-1].name)
-    return pd.DataFrame(rows)
+    return pd.DataFrame(
+        _map_chunks(_rows, trials, workers, progress, (networks, seed, evidence, intervals),
+                    [t.name for t in trials])  # fmt: skip
+    )
 
 
 def _auc(scores: np.ndarray, positive: np.ndarray, negative: np.ndarray) -> np.ndarray:

@@ -4,8 +4,10 @@
 module             what it holds
 =================  ==========================================================================
 ``dependence``     the joint-recurrence dependence test with non-circular time-shift
-                   surrogates, the direction index of conditional recurrence probabilities,
-                   Benjamini-Hochberg, the default number of surrogates
+                   surrogates (or twin surrogates), the direction index of conditional
+                   recurrence probabilities, Benjamini-Hochberg, the default number of
+                   surrogates
+``surrogates``     twin surrogates (Thiel et al. 2006), an option of the dependence test
 ``interval``       half-sampling (blocks without replacement) intervals of ``C_diff`` and
                    ``T_diff``, and the interval edge rule
 ``pairs``          :func:`pairwise_evidence` over a set of signals, and the reading of a pair
@@ -25,6 +27,7 @@ Examples
 from __future__ import annotations
 
 from funcnet.evidence.dependence import (
+    SURROGATE_METHODS,
     DependenceResult,
     ShiftPlan,
     benjamini_hochberg,
@@ -32,6 +35,7 @@ from funcnet.evidence.dependence import (
     default_surrogates,
     dependence_test,
     shift_plan,
+    surrogate_plan,
 )
 from funcnet.evidence.interval import (
     AsymmetryInterval,
@@ -48,14 +52,17 @@ from funcnet.evidence.pairs import (
     evidence_label,
     pairwise_evidence,
 )
+from funcnet.evidence.surrogates import TwinPlan, twin_groups, twin_plan
 
 __all__ = [
     "EVIDENCE_LABELS",
     "EDGE_RULES",
+    "SURROGATE_METHODS",
     "AsymmetryInterval",
     "DependenceResult",
     "PairEvidence",
     "ShiftPlan",
+    "TwinPlan",
     "asymmetry_interval",
     "benjamini_hochberg",
     "check_evidence_arguments",
@@ -69,6 +76,9 @@ __all__ = [
     "pairwise_evidence",
     "resampled_differences",
     "shift_plan",
+    "surrogate_plan",
+    "twin_groups",
+    "twin_plan",
 ]
 
 #: Edge rules: the paper's (``mu`` only, the default) and ``mu`` with the interval.

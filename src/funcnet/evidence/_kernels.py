@@ -97,3 +97,102 @@ def _windows(a_y: Array, pairs_x: Array, pairs_y: Array, starts_x: Array, starts
         out[k, 1] = xy
         out[k, 2] = yx
     return out
+
+
+@njit(cache=True)
+def _twin_walks(labels: Array, counts: Array, order: Array, first: Array, starts: Array,
+                choices: Array, restarts: Array) -> Array:
+    """Twin-surrogate index sequences, shape (K, M), from pre-drawn random numbers.
+
+    Surrogate ``s`` starts at ``starts[s]``; at step ``t`` from state ``k`` it moves on from a
+    member of ``k``'s twin class drawn by ``choices[s, t]`` (uniform in [0, 1): the class's
+    ``counts`` members listed at ``order[first[label]:]``, ``k`` itself among them) to that
+    member's successor, restarting at ``restarts[s, t]`` past the end (Thiel et al. 2006).
+    """
+    n_sur = starts.size
+    m = labels.size
+    out = np.empty((n_sur, m), dtype=np.int64)
+    for s in range(n_sur):
+        k = starts[s]
+        for t in range(m):
+            out[s, t] = k
+            label = labels[k]
+            size = counts[label]
+            if size > 1:
+                k = order[first[label] + min(int(choices[s, t] * size), size - 1)]
+            k += 1
+            if k >= m:
+                k = restarts[s, t]
+    return out
+
+
+@njit(cache=True)
+def _index_counts(a_x: Array, a_y: Array, index: Array, theiler: Int) -> tuple[float, float, float]:
+    """``(phi, mcr(x|y), mcr(y|x))`` of X's whole matrix against Y read at ``index``.
+
+    As :func:`_window_counts`, over every pair ``u < v``, ``v - u > theiler``: X's states
+    ``u, v`` and Y's states ``index[u], index[v]``; a Y-state paired with itself
+    (``index[u] == index[v]``, a surrogate revisiting a state) is recurrent. Dense: a twin
+    surrogate's recurrences are not a shift of Y's, so there is no sparse list to visit.
+    """
+    length = index.size
+    row_x = np.zeros(length, dtype=np.int64)
+    row_y = np.zeros(length, dtype=np.int64)
+    row_xy = np.zeros(length, dtype=np.int64)
+    n_x = 0
+    n_y = 0
+    n_xy = 0
+    for u in range(length):
+        iu = index[u]
+        for v in range(u + theiler + 1, length):
+            iv = index[v]
+            rx = a_x[u, v] != 0
+            ry = iu == iv or a_y[iu, iv] != 0
+            if rx:
+                n_x += 1
+                row_x[u] += 1
+                row_x[v] += 1
+            if ry:
+                n_y += 1
+                row_y[u] += 1
+                row_y[v] += 1
+                if rx:
+                    n_xy += 1
+                    row_xy[u] += 1
+                    row_xy[v] += 1
+    sum_x_given_y = 0.0
+    sum_y_given_x = 0.0
+    rows_x = 0
+    rows_y = 0
+    for u in range(length):
+        if row_y[u] > 0:
+            sum_x_given_y += row_xy[u] / row_y[u]
+            rows_y += 1
+        if row_x[u] > 0:
+            sum_y_given_x += row_xy[u] / row_x[u]
+            rows_x += 1
+    gap = min(theiler + 1, length)
+    n_pairs = (length - gap) * (length - gap + 1) // 2
+    phi = 0.0
+    if n_pairs > 0:
+        px = n_x / n_pairs
+        py = n_y / n_pairs
+        var = px * (1.0 - px) * py * (1.0 - py)
+        if var > 0.0:
+            phi = (n_xy / n_pairs - px * py) / np.sqrt(var)
+    x_given_y = sum_x_given_y / rows_y if rows_y else 0.0
+    y_given_x = sum_y_given_x / rows_x if rows_x else 0.0
+    return phi, x_given_y, y_given_x
+
+
+@njit(cache=True, parallel=True)
+def _index_windows(a_x: Array, a_y: Array, indices: Array, theiler: Int) -> Array:
+    """:func:`_index_counts` of every row of ``indices``: shape (K, 3)."""
+    n = indices.shape[0]
+    out = np.empty((n, 3), dtype=np.float64)
+    for k in prange(n):
+        phi, xy, yx = _index_counts(a_x, a_y, indices[k], theiler)
+        out[k, 0] = phi
+        out[k, 1] = xy
+        out[k, 2] = yx
+    return out

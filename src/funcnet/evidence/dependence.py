@@ -46,6 +46,12 @@ Direction (tested, kept as a secondary reading; see docs/evidence.md for its err
     ``MCR(X|Y) - MCR(Y|X)`` minus its mean over the surrogates (which keep each signal's
     character and lose the coupling), with a two-sided surrogate p-value.
 
+Twin surrogates (``method="twin"``, :mod:`funcnet.evidence.surrogates`)
+    An option: Y is replaced by twin surrogates (Thiel et al. 2006), index sequences that jump
+    between states with identical neighbourhoods; the observed window and every surrogate hold
+    all ``M`` states, so ``K`` is never limited by the window. Where they are valid and where
+    not is measured in docs/evidence.md.
+
 Validity needs stationarity inside the window: a ramp or a spin-up makes every time offset a
 different part of the trend (docs/evidence.md, "Robot windows").
 
@@ -59,6 +65,8 @@ N. Marwan, M. C. Romano, M. Thiel, J. Kurths, "Recurrence plots for the analysis
 systems", Phys. Rep. 438, 237-329 (2007), section 3.7 (surrogates).
 Y. Benjamini, Y. Hochberg, "Controlling the false discovery rate", J. R. Stat. Soc. B 57,
 289-300 (1995).
+M. Thiel, M. C. Romano, J. Kurths, M. Rolfs, R. Kliegl, "Twin surrogates to test for complex
+synchronisation", Europhys. Lett. 75, 535-541 (2006).
 """
 
 from __future__ import annotations
@@ -70,13 +78,17 @@ from typing import Any
 import numpy as np
 
 from funcnet.errors import ParameterError
-from funcnet.evidence._kernels import _windows
+from funcnet.evidence._kernels import _index_windows, _windows
+from funcnet.evidence.surrogates import TwinPlan, twin_plan
 
 __all__ = [
+    "SURROGATE_METHODS",
     "ShiftPlan",
     "DependenceResult",
     "decorrelation_time",
     "shift_plan",
+    "surrogate_plan",
+    "check_surrogate_method",
     "dependence_test",
     "default_surrogates",
     "benjamini_hochberg",
@@ -84,6 +96,9 @@ __all__ = [
 
 #: The fewest states a test window may hold.
 MIN_WINDOW = 20
+
+#: Surrogates of the dependence test: the non-circular shift lattice (default) or twins.
+SURROGATE_METHODS: tuple[str, ...] = ("shift", "twin")
 
 
 def decorrelation_time(x: Any) -> int:
@@ -216,6 +231,64 @@ def shift_plan(n_states: int, surrogates: int, *, min_shift: int = 1,
     )
 
 
+def check_surrogate_method(method: Any) -> str:
+    """``method`` if it is one of :data:`SURROGATE_METHODS`, else a :class:`ParameterError`.
+
+    Examples
+    --------
+    >>> check_surrogate_method("twin")
+    'twin'
+    """
+    if method not in SURROGATE_METHODS:
+        raise ParameterError.of("surrogate_method",
+                                f"must be one of {list(SURROGATE_METHODS)}, got {method!r}")
+    return str(method)
+
+
+def surrogate_plan(method: str, a_y: np.ndarray, surrogates: int, *, min_shift: int = 1,
+                   seed: Any = 0) -> ShiftPlan | TwinPlan:
+    """The surrogates of one test: the shift lattice or twins (:mod:`~funcnet.evidence.surrogates`).
+
+    Parameters
+    ----------
+    method : {"shift", "twin"}
+    a_y : ndarray, shape (M, M)
+        Y's recurrence matrix (its shape gives ``M``; the twins are read from it).
+    surrogates : int
+        ``K`` asked.
+    min_shift : int
+        ``s0`` of the shift lattice (ignored by twins).
+    seed : int or sequence of int
+        Seeds the twin surrogates (the shift lattice is deterministic).
+
+    Returns
+    -------
+    ShiftPlan or TwinPlan
+
+    Raises
+    ------
+    ParameterError
+        Unknown ``method``; see :func:`shift_plan` and
+        :func:`~funcnet.evidence.surrogates.twin_plan`.
+
+    Examples
+    --------
+    >>> a = np.zeros((140, 140), dtype=np.uint8)
+    >>> surrogate_plan("shift", a, 99, min_shift=20).surrogates  # the lattice is short
+    6
+    >>> surrogate_plan("twin", a, 99).surrogates
+    99
+    """
+    method = check_surrogate_method(method)
+    m = int(np.shape(a_y)[0])
+    if method == "twin":
+        if m < MIN_WINDOW:
+            raise ParameterError.of("surrogates", f"{m} states are fewer than {MIN_WINDOW}: "
+                                    "the signals are too short to test")
+        return twin_plan(a_y, surrogates, seed=seed)
+    return shift_plan(m, surrogates, min_shift=min_shift)
+
+
 @dataclass(frozen=True)
 class DependenceResult:
     """The dependence test of one pair, and the direction reading of the same surrogates.
@@ -244,7 +317,7 @@ class DependenceResult:
     null_statistics: np.ndarray
 
 
-def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan, *,
+def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan | TwinPlan, *,
                     theiler: int = 0) -> DependenceResult:
     """Joint-recurrence dependence test of X and Y on precomputed recurrence matrices.
 
@@ -252,8 +325,9 @@ def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan, *,
     ----------
     a_x, a_y : ndarray of uint8, shape (M, M)
         Dense recurrence matrices (no self-loops), e.g. ``PackedRecurrence.to_dense()``.
-    plan : ShiftPlan
-        From :func:`shift_plan` for this ``M``.
+    plan : ShiftPlan or TwinPlan
+        From :func:`shift_plan` for this ``M``, or twin surrogates of Y
+        (:func:`surrogate_plan`).
     theiler : int
         Pairs of times with ``|i - j| <= theiler`` are not counted.
 
@@ -268,7 +342,7 @@ def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan, *,
 
     References
     ----------
-    Romano et al. (2004, 2007); module notes.
+    Romano et al. (2004, 2007); Thiel et al. (2006) for twin surrogates; module notes.
 
     Examples
     --------
@@ -281,6 +355,9 @@ def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan, *,
     >>> result = dependence_test(a_x, a_y, shift_plan(299, 99, min_shift=2))
     >>> round(result.p_value, 4), result.surrogates  # the smallest p-value 1 / (K + 1)
     (0.0099, 100)
+    >>> twins = dependence_test(a_x, a_y, surrogate_plan("twin", a_y, 99, seed=0))
+    >>> round(twins.p_value, 4), twins.surrogates
+    (0.01, 99)
     """
     m = plan.n_states
     for name, matrix in (("a_x", a_x), ("a_y", a_y)):
@@ -288,14 +365,23 @@ def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan, *,
             raise ParameterError.of(name, f"must have shape ({m}, {m}), got {np.shape(matrix)}")
     a_x = np.ascontiguousarray(a_x, dtype=np.uint8)
     a_y = np.ascontiguousarray(a_y, dtype=np.uint8)
+    if isinstance(plan, TwinPlan):
+        # The observed window is the identity sequence of Y's states, on the same kernel.
+        indices = np.vstack([np.arange(m, dtype=np.int64)[None, :], plan.indices])
+        return _result(_index_windows(a_x, a_y, indices, int(theiler)), plan.surrogates)
     starts_x = np.concatenate([[plan.observed], plan.starts_x]).astype(np.int64)
     starts_y = np.concatenate([[plan.observed], plan.starts_y]).astype(np.int64)
     pairs_x = np.argwhere(np.triu(a_x, 1)).astype(np.int64)
     pairs_y = np.argwhere(np.triu(a_y, 1)).astype(np.int64)
     values = _windows(a_y, pairs_x, pairs_y, starts_x, starts_y, plan.length, int(theiler))
+    return _result(values, plan.surrogates)
+
+
+def _result(values: np.ndarray, k: int) -> DependenceResult:
+    """p-values and direction index from the statistics of the observed window (row 0) and
+    the ``k`` surrogates."""
     phi = values[:, 0]
     index = values[:, 1] - values[:, 2]
-    k = plan.surrogates
     observed, null = float(phi[0]), phi[1:]
     p_value = (1 + int(np.count_nonzero(null >= observed))) / (k + 1)
     centre = float(index[1:].mean())

@@ -1,42 +1,57 @@
-"""How sure the asymmetry is: half-sampling intervals for ``C_diff`` and ``T_diff``.
+"""How sure the asymmetry is: subsampling intervals, estimated rate, for ``C_diff``, ``T_diff``.
 
-A resample keeps half of the window's states, chosen as whole blocks of consecutive states
-without replacement, and repeats on them every data-dependent step of the network: it
+A resample keeps a fraction of the window's states, chosen as whole blocks of consecutive
+states without replacement, and repeats on them every data-dependent step of the network: it
 normalizes the kept states again (``parameters.normalize``: min-max or z-score of the kept
 samples), recomputes the thresholds by rate (``A_X``, ``A_Y``, ``CR_XY``) and the measures
-``C^XY``, ``C^YX``, ``T^XY``, ``T^YX`` (Eq. 6-10). Why this design:
+``C^XY``, ``C^YX``, ``T^XY``, ``T^YX`` (Eq. 6-10). Resamples are drawn at two sizes, about a
+half and about three quarters of the states (``fractions``), and the spread of the full-window
+value is extrapolated from them with an **estimated convergence rate** (Bertail, Politis and
+Romano 1999). Why this design:
 
 * **no duplicates**: a bootstrap with replacement repeats states, and a repeated state is
   recurrent with its copy and cross-recurrent with the same states, which inflates the
-  clustering of exactly the repeated nodes; subsampling without replacement has no copies;
+  clustering of exactly the repeated nodes; subsampling without replacement has no copies (a
+  full-size block bootstrap that never links copies was measured too: it was too narrow for
+  white noise and Lorenz copies, docs/evidence.md section 2);
 * **blocks** keep the serial dependence inside each block (block length ``ceil(sqrt(M))`` by
   default);
-* **half of the blocks**: for a smooth statistic, the spread of a half-sample's value around
-  the full-sample value estimates the spread of the full-sample value around the truth without
-  a rate factor (the finite-population factor ``(1 - f) / f`` is 1 at ``f = 1/2``: the
-  delete-half jackknife);
-* **normalization and thresholds again**: a first version kept the whole window's recurrence
-  matrices and only dropped states. For white noise under min-max normalization its 95 %
-  intervals covered 0 in 17 % of independent pairs at N = 1000: most of the scatter of
-  ``C_diff`` there comes from the samples' extremes, which set the relative scale of X and Y in
-  the common cross threshold (under z-score the same pairs' ``C_diff`` scatters 8 times less).
-  A resample that keeps the whole window's normalization cannot see that.
+* **an estimated rate**: the spread of ``C_diff`` over independent realizations does not
+  shrink like ``N**-0.5``: measured over 200 realizations it falls like ``N**-0.3`` for white
+  noise (min-max normalization: the extremes set the relative scale of X and Y) and like
+  ``N**-1`` for Henon and Rossler maps/flows between 140 and 600 samples. A fixed half-sample
+  (the delete-half jackknife, exact for rate 1/2) was therefore too narrow for noise and too
+  wide for maps. For a kept fraction ``f``, the spread of the resampled values around their
+  centre is modelled as ``v(f) = s**2 ((1/f)**(2 beta) - 1)`` (the finite-population form of
+  ``var(theta_b) - var(theta_N)`` with ``var(theta_n) ~ n**(-2 beta)``); two fractions give
+  ``beta`` (clipped to ``[BETA_MIN, BETA_MAX]`` = ``[0.1, 0.75]``, a calibration choice made
+  on other seeds than the benchmark's) and the full window's spread ``s``;
+* **normalization and thresholds again**: under min-max most of the scatter of ``C_diff`` for
+  noise comes from the samples' extremes; a resample that kept the window's normalization
+  could not see that (a first version covered 0 in 17 % of noise pairs at N = 1000).
 
-The interval is ``[d - (q_hi - med), d + (med - q_lo)]`` for the observed difference ``d`` and
-the quantiles ``q_lo``, ``q_hi`` (levels ``(1 - level) / 2``, ``(1 + level) / 2``) and median
-``med`` of the resampled differences: their spread around their own median, placed at ``d``.
-Centring on the resamples' median and not on ``d`` removes the shift a half-sized network has
-(fewer neighbours per node change the clustering of every node alike), and it makes the interval
-contain ``d`` always. The fraction of resamples with the sign of ``d`` is a stability figure,
-not a probability.
+The interval is ``d +- k q`` for the observed difference ``d``, the ``level``-quantile ``q`` of
+the absolute deviations of the smaller resamples from their median, and the rate factor
+``k = 1 / sqrt((1/f)**(2 beta) - 1)`` (``k = 1`` for an exact half and ``beta = 1/2``). Measuring
+deviations from the resamples' median and not from ``d`` removes the shift a smaller network
+has; the interval contains ``d`` always. It is symmetric (Hall 1988): the reflected interval
+``[d - k (q_hi - med), d + k (med - q_lo)]`` of the previous version covered 0 in 85 % of 100
+noise pairs (seeds 5000-5099, N = 140 and 300) where the symmetric one covered 90-93 %: under
+min-max half of a noise window's resamples lose an extreme sample and fall back towards 0, and
+the reflection turns that tail away from 0. The fraction of the smaller resamples with the
+sign of ``d`` is a stability figure, not a probability. Calibration: docs/evidence.md, section
+3 (``benchmarks/bench_interval.py``).
 
 References
 ----------
-D. N. Politis, J. P. Romano, M. Wolf, *Subsampling*, Springer (1999), chapters 2-3.
+P. Bertail, D. N. Politis, J. P. Romano, "On subsampling estimators with unknown rate of
+convergence", J. Am. Stat. Assoc. 94, 569-579 (1999).
+D. N. Politis, J. P. Romano, M. Wolf, *Subsampling*, Springer (1999), chapters 2-3, 8.
 J. Shao, C. F. J. Wu, "A general theory for jackknife variance estimation", Ann. Stat. 17,
 1176-1197 (1989) (delete-d jackknife, d = n/2).
 H. R. Kuensch, "The jackknife and the bootstrap for general stationary observations", Ann.
 Stat. 17, 1217-1241 (1989) (blocks).
+P. Hall, "On symmetric bootstrap confidence intervals", J. R. Stat. Soc. B 50, 35-45 (1988).
 """
 
 from __future__ import annotations
@@ -53,8 +68,23 @@ from funcnet.measures import isrn_measures
 from funcnet.parameters import NetworkParameters
 from funcnet.recurrence import _signal_thresholds, auto_recurrence, cross_recurrence
 
-__all__ = ["AsymmetryInterval", "half_samples", "resampled_differences", "interval_from",
-           "asymmetry_interval", "interval_kind"]
+__all__ = ["AsymmetryInterval", "half_samples", "subsamples", "resampled_differences",
+           "rate_factor", "interval_from", "asymmetry_interval", "asymmetry_intervals",
+           "interval_kind", "FRACTIONS", "BETA_MIN", "BETA_MAX"]
+
+#: Kept fractions of the two resample sizes (of the blocks; the exact fraction of states is
+#: used in the formulas).
+FRACTIONS: tuple[float, float] = (0.5, 0.75)
+#: Smallest convergence exponent accepted: at ``beta -> 0`` the extrapolated spread diverges;
+#: 0.1 caps the widening at 2.6 times the half-sample spread (white noise under min-max
+#: measured about 0.3 over 140-2000 samples).
+BETA_MIN = 0.1
+#: Largest exponent accepted. One pair's estimate is noisy (two spreads of 100 resamples);
+#: an estimate of 1 where the truth is 0.3 (noise) halves the interval and misses. Chosen on
+#: seeds 5000-5099 (100 pairs per process at 140 and 300 samples) over 0.65, 0.75, 0.85, 1:
+#: with 1 noise covered 0.89-0.93 and Lorenz 0.80-0.94, with 0.75 0.91-0.95 and 0.83-0.94;
+#: validated on seeds 1000-1199 (benchmarks/bench_interval.py, docs/evidence.md section 3).
+BETA_MAX = 0.75
 
 
 @dataclass(frozen=True)
@@ -72,6 +102,10 @@ class AsymmetryInterval:
     level : float
         Nominal coverage.
     resamples : int
+        Resamples drawn in all (both sizes).
+    c_rate, t_rate : float
+        Estimated convergence exponents ``beta`` of the two differences (module notes); 0.5
+        when no second resample size was given.
     """
 
     c_diff: float
@@ -84,6 +118,8 @@ class AsymmetryInterval:
     t_sign_fraction: float
     level: float
     resamples: int
+    c_rate: float = 0.5
+    t_rate: float = 0.5
 
 
 def half_samples(n_states: int, resamples: int, *, block: int | None = None,
@@ -116,23 +152,62 @@ def half_samples(n_states: int, resamples: int, *, block: int | None = None,
     >>> half_samples(20, 2, block=5, seed=0).shape
     (2, 10)
     """
+    return subsamples(n_states, resamples, 0.5, block=block, seed=seed)
+
+
+def subsamples(n_states: int, resamples: int, fraction: float, *, block: int | None = None,
+               seed: int | Sequence[int] = 0) -> np.ndarray:
+    """States kept by each resample: ``floor(fraction * n_blocks)`` blocks, without replacement.
+
+    ``fraction=0.5`` with an integer seed gives exactly :func:`half_samples`.
+
+    Parameters
+    ----------
+    n_states : int
+        ``M``.
+    resamples : int
+        Number of resamples ``R``.
+    fraction : float in (0, 1)
+        Fraction of the blocks kept.
+    block : int, optional
+        Block length (default ``ceil(sqrt(M))``).
+    seed : int or sequence of int
+        Seed of :func:`numpy.random.default_rng`.
+
+    Returns
+    -------
+    ndarray of int64, shape (R, n_kept)
+
+    Raises
+    ------
+    ParameterError
+        ``resamples < 1``, ``fraction`` outside (0, 1), or a fraction that keeps no block or
+        every block.
+
+    Examples
+    --------
+    >>> subsamples(40, 3, 0.75, block=5, seed=0).shape
+    (3, 30)
+    """
     if isinstance(resamples, bool) or not isinstance(resamples, (int, np.integer)) or \
             resamples < 1:
         raise ParameterError.of("resamples", f"must be an integer >= 1, got {resamples!r}")
+    if not 0.0 < fraction < 1.0:
+        raise ParameterError.of("fraction", f"must be in (0, 1), got {fraction}")
     length = math.ceil(math.sqrt(n_states)) if block is None else int(block)
     n_blocks = n_states // max(1, length)
-    if n_blocks < 2:
+    keep = int(fraction * n_blocks)
+    if n_blocks < 2 or not 1 <= keep < n_blocks:
         raise ParameterError.of(
-            "block", f"gives {n_blocks} block(s) of {length} states in {n_states}; need 2"
+            "block", f"gives {n_blocks} block(s) of {length} states in {n_states}; a fraction "
+            f"{fraction} of them must keep at least one block and leave one out"
         )
     rng = np.random.default_rng(seed)
-    keep = n_blocks // 2
     # Blocks start at a random phase, so the remainder is not always the same tail.
     phase = rng.integers(0, n_states - n_blocks * length + 1, size=resamples)
     blocks = np.sort(np.argsort(rng.random((resamples, n_blocks)), axis=1)[:, :keep], axis=1)
     starts = phase[:, None] + blocks * length
-    chosen = (starts[:, :, None] + np.arange(length)).reshape(resamples, keep * length)
-    return chosen
+    return (starts[:, :, None] + np.arange(length)).reshape(resamples, keep * length)
 
 
 def _renormalized(states: np.ndarray, method: str | None, dim: int) -> np.ndarray:
@@ -216,15 +291,96 @@ def _fill(out: np.ndarray, states: Sequence[np.ndarray], pairs: Sequence[tuple[i
             out[k, r, 1] = measures.t_diff
 
 
-def _bounds(observed: float, values: np.ndarray, level: float) -> tuple[float, float, float]:
-    lo, med, hi = np.quantile(values, [(1 - level) / 2, 0.5, (1 + level) / 2])
+def _spread(values: np.ndarray) -> float:
+    """Half the central 68 % range: a standard deviation that ignores a few wild resamples."""
+    lo, hi = np.quantile(values, [0.16, 0.84])
+    return float(hi - lo) / 2.0
+
+
+def rate_factor(small: np.ndarray, large: np.ndarray,
+                fractions: tuple[float, float]) -> tuple[float, float]:
+    """The rate exponent ``beta`` and the factor ``k`` that scales the smaller resamples'
+    spread to the full window's (module notes).
+
+    With ``a_i = 1 / f_i`` and robust spreads ``s_i`` of the resampled values at the kept
+    fractions ``f_1 < f_2``, ``beta`` solves
+    ``(s_1 / s_2)**2 = (a_1**(2 beta) - 1) / (a_2**(2 beta) - 1)`` (clipped to
+    ``[BETA_MIN, BETA_MAX]``) and ``k = 1 / sqrt(a_1**(2 beta) - 1)``.
+
+    Parameters
+    ----------
+    small, large : ndarray, shape (R,)
+        Resampled values at the smaller and the larger fraction.
+    fractions : (float, float)
+        The exact kept fractions of states, smaller first.
+
+    Returns
+    -------
+    (float, float)
+        ``beta`` and ``k``.
+
+    Raises
+    ------
+    ParameterError
+        Fractions not in ``0 < f_1 < f_2 < 1``.
+
+    References
+    ----------
+    Bertail, Politis and Romano (1999), section 2 (rate from the spreads at two subsample
+    sizes), with the finite-population form of the spread of subsamples without replacement.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> beta, k = rate_factor(rng.normal(0, 1.0, 4000), rng.normal(0, 1 / 3 ** 0.5, 4000),
+    ...                       (0.5, 0.75))
+    >>> round(beta, 1), round(k, 1)
+    (0.5, 1.0)
+    """
+    f1, f2 = fractions
+    if not 0.0 < f1 < f2 < 1.0:
+        raise ParameterError.of("fractions", f"must satisfy 0 < f1 < f2 < 1, got {fractions}")
+    a1, a2 = 1.0 / f1, 1.0 / f2
+    s1, s2 = _spread(small), _spread(large)
+    if s1 <= 0.0:
+        # No spread at the smaller size: nothing to extrapolate, keep the standard rate.
+        beta = 0.5
+    elif s2 <= 0.0:
+        beta = BETA_MAX
+    else:
+        ratio = (s1 / s2) ** 2
+
+        def g(b: float) -> float:  # increasing in b
+            return float((a1 ** (2 * b) - 1) / (a2 ** (2 * b) - 1))
+
+        if ratio <= g(BETA_MIN):
+            beta = BETA_MIN
+        elif ratio >= g(BETA_MAX):
+            beta = BETA_MAX
+        else:
+            low, high = BETA_MIN, BETA_MAX
+            for _ in range(50):
+                mid = 0.5 * (low + high)
+                low, high = (mid, high) if g(mid) < ratio else (low, mid)
+            beta = 0.5 * (low + high)
+    return beta, 1.0 / math.sqrt(a1 ** (2 * beta) - 1.0)
+
+
+def _bounds(observed: float, values: np.ndarray, level: float,
+            k: float) -> tuple[float, float, float]:
+    # Symmetric: the level-quantile of the resamples' absolute deviation from their median.
+    # Under min-max the resamples of noise are often bimodal (half of them lose an extreme
+    # sample and fall back towards 0); a reflected interval then barely extends towards 0.
+    med = np.median(values)
+    half = k * float(np.quantile(np.abs(values - med), level))
     sign = np.sign(observed)
     same = float(np.mean(np.sign(values) == sign)) if sign != 0 else float(np.mean(values == 0))
-    return observed - (hi - med), observed + (med - lo), same
+    return observed - half, observed + half, same
 
 
 def interval_from(c_diff: float, t_diff: float, values: np.ndarray, *,
-                  level: float = 0.95) -> AsymmetryInterval:
+                  level: float = 0.95, rate_values: np.ndarray | None = None,
+                  fractions: tuple[float, float] | None = None) -> AsymmetryInterval:
     """The intervals of one pair from its resampled differences (module notes).
 
     Parameters
@@ -232,8 +388,15 @@ def interval_from(c_diff: float, t_diff: float, values: np.ndarray, *,
     c_diff, t_diff : float
         Observed differences.
     values : ndarray, shape (R, 2)
-        Resampled ``(C_diff, T_diff)`` (a row of :func:`resampled_differences`).
+        Resampled ``(C_diff, T_diff)`` at the smaller fraction (a row of
+        :func:`resampled_differences`).
     level : float in (0, 1)
+    rate_values : ndarray, shape (R2, 2), optional
+        The same at the larger fraction. Without it the spread of ``values`` is used as it is
+        (``k = 1``: the plain half-sample interval, rate 1/2).
+    fractions : (float, float), optional
+        The exact kept fractions of states of ``values`` and ``rate_values``; needed with
+        ``rate_values``.
 
     Returns
     -------
@@ -242,7 +405,7 @@ def interval_from(c_diff: float, t_diff: float, values: np.ndarray, *,
     Raises
     ------
     ParameterError
-        ``level`` outside (0, 1).
+        ``level`` outside (0, 1), or ``rate_values`` without valid ``fractions``.
 
     Examples
     --------
@@ -253,22 +416,102 @@ def interval_from(c_diff: float, t_diff: float, values: np.ndarray, *,
     """
     if not 0.0 < level < 1.0:
         raise ParameterError.of("level", f"must be in (0, 1), got {level}")
-    c_low, c_high, c_same = _bounds(c_diff, values[:, 0], level)
-    t_low, t_high, t_same = _bounds(t_diff, values[:, 1], level)
+    c_rate = t_rate = 0.5
+    c_k = t_k = 1.0
+    total = int(values.shape[0])
+    if rate_values is not None:
+        if fractions is None:
+            raise ParameterError.of("fractions", "must be given with rate_values")
+        c_rate, c_k = rate_factor(values[:, 0], rate_values[:, 0], fractions)
+        t_rate, t_k = rate_factor(values[:, 1], rate_values[:, 1], fractions)
+        total += int(rate_values.shape[0])
+    c_low, c_high, c_same = _bounds(c_diff, values[:, 0], level, c_k)
+    t_low, t_high, t_same = _bounds(t_diff, values[:, 1], level, t_k)
     return AsymmetryInterval(
         c_diff=float(c_diff), t_diff=float(t_diff),
         c_diff_low=float(c_low), c_diff_high=float(c_high),
         t_diff_low=float(t_low), t_diff_high=float(t_high),
         c_sign_fraction=c_same, t_sign_fraction=t_same,
-        level=float(level), resamples=int(values.shape[0]),
+        level=float(level), resamples=total, c_rate=float(c_rate), t_rate=float(t_rate),
     )
+
+
+def asymmetry_intervals(states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
+                        observed: Sequence[tuple[float, float]], *,
+                        parameters: NetworkParameters | None = None, resamples: int = 200,
+                        level: float = 0.95, block: int | None = None,
+                        seed: int = 0) -> list[AsymmetryInterval]:
+    """Intervals of every pair of a network from one set of resamples (module notes).
+
+    ``resamples - resamples // 2`` resamples keep half of the blocks (:func:`half_samples`
+    with ``seed``) and ``resamples // 2`` keep three quarters (a separate stream);
+    each signal is normalized and thresholded again once per resample, for all its pairs.
+
+    Parameters
+    ----------
+    states : sequence of ndarray (M, c * dim)
+        Embedded states of every signal.
+    pairs : sequence of (i, j)
+        Positions in ``states``.
+    observed : sequence of (c_diff, t_diff)
+        The observed differences of each pair.
+    parameters : NetworkParameters, optional
+    resamples : int
+        In all; with 1 the plain half-sample interval (no rate).
+    level : float in (0, 1)
+    block : int, optional
+        Block length, default ``ceil(sqrt(M))``.
+    seed : int
+
+    Returns
+    -------
+    list of AsymmetryInterval
+        One per pair, in order.
+
+    Raises
+    ------
+    ParameterError
+        Bad ``resamples``, ``level`` or ``block``; a window too short for the two sizes.
+
+    Examples
+    --------
+    >>> from funcnet.embedding import embed
+    >>> from funcnet.systems import white_noise
+    >>> data = white_noise(200, seed=0)
+    >>> states = [embed(data[:, k], 3, 1) for k in (0, 1)]
+    >>> [iv] = asymmetry_intervals(states, [(0, 1)], [(0.0, 0.0)], resamples=10)
+    >>> iv.c_diff_low <= 0.0 <= iv.c_diff_high, iv.resamples
+    (True, 10)
+    """
+    if isinstance(resamples, bool) or not isinstance(resamples, (int, np.integer)) or \
+            resamples < 1:
+        raise ParameterError.of("resamples", f"must be an integer >= 1, got {resamples!r}")
+    if not 0.0 < level < 1.0:
+        raise ParameterError.of("level", f"must be in (0, 1), got {level}")
+    n_states = int(np.shape(states[0])[0])
+    small = half_samples(n_states, resamples - resamples // 2, block=block, seed=seed)
+    values = resampled_differences(states, pairs, small, parameters=parameters)
+    if resamples < 2:
+        # One resample cannot give a rate: the plain half-sample interval (k = 1).
+        return [interval_from(c, t, values[k], level=level) for k, (c, t) in enumerate(observed)]
+    # A separate stream for the larger size: the half-samples do not depend on it.
+    large = subsamples(n_states, resamples // 2, FRACTIONS[1], block=block, seed=(seed, 1))
+    fractions = (small.shape[1] / n_states, large.shape[1] / n_states)
+    larger = resampled_differences(states, pairs, large, parameters=parameters)
+    return [
+        interval_from(c_diff, t_diff, values[k], level=level, rate_values=larger[k],
+                      fractions=fractions)
+        for k, (c_diff, t_diff) in enumerate(observed)
+    ]
 
 
 def asymmetry_interval(x_states: np.ndarray, y_states: np.ndarray, *, c_diff: float,
                        t_diff: float, parameters: NetworkParameters | None = None,
                        resamples: int = 200, level: float = 0.95, block: int | None = None,
                        seed: int = 0) -> AsymmetryInterval:
-    """Half-sampling intervals of ``C_diff`` and ``T_diff`` of one pair (module notes).
+    """Subsampling interval with an estimated rate of ``C_diff`` and ``T_diff`` of one pair.
+
+    :func:`asymmetry_intervals` for a single pair (module notes).
 
     Parameters
     ----------
@@ -279,6 +522,7 @@ def asymmetry_interval(x_states: np.ndarray, y_states: np.ndarray, *, c_diff: fl
     parameters : NetworkParameters, optional
         Normalization, embedding dimension (for the channels), thresholds, metric.
     resamples : int
+        In all (both sizes).
     level : float in (0, 1)
     block : int, optional
         Block length, default ``ceil(sqrt(M))``.
@@ -295,7 +539,7 @@ def asymmetry_interval(x_states: np.ndarray, y_states: np.ndarray, *, c_diff: fl
 
     References
     ----------
-    Politis, Romano and Wolf (1999); Shao and Wu (1989); Kuensch (1989).
+    Bertail, Politis and Romano (1999); Politis, Romano and Wolf (1999); Kuensch (1989).
 
     Examples
     --------
@@ -312,16 +556,13 @@ def asymmetry_interval(x_states: np.ndarray, y_states: np.ndarray, *, c_diff: fl
     >>> bool(0 < iv.c_diff_low <= m.c_diff <= iv.c_diff_high), iv.c_sign_fraction
     (True, 1.0)
     """
-    if not 0.0 < level < 1.0:
-        raise ParameterError.of("level", f"must be in (0, 1), got {level}")
     if np.shape(x_states)[0] != np.shape(y_states)[0]:
         raise ParameterError.of("y_states", "must have as many states as x_states")
-    chosen = half_samples(np.shape(x_states)[0], resamples, block=block, seed=seed)
-    values = resampled_differences(
+    return asymmetry_intervals(
         [np.asarray(x_states, dtype=np.float64), np.asarray(y_states, dtype=np.float64)],
-        [(0, 1)], chosen, parameters=parameters,
+        [(0, 1)], [(c_diff, t_diff)], parameters=parameters, resamples=resamples, level=level,
+        block=block, seed=seed,
     )[0]
-    return interval_from(c_diff, t_diff, values, level=level)
 
 
 def interval_kind(diff: float, low: float, high: float, mu: float) -> str:

@@ -36,12 +36,13 @@ from funcnet.embedding import signal_states
 from funcnet.errors import ParameterError, SignalError
 from funcnet.evidence.dependence import (
     benjamini_hochberg,
+    check_surrogate_method,
     decorrelation_time,
     default_surrogates,
     dependence_test,
-    shift_plan,
+    surrogate_plan,
 )
-from funcnet.evidence.interval import half_samples, interval_from, resampled_differences
+from funcnet.evidence.interval import asymmetry_intervals
 from funcnet.measures import _pair_parameters, isrn_measures
 from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
 from funcnet.recurrence import (
@@ -75,9 +76,9 @@ class PairEvidence:
     c_diff, t_diff : float
         The network's differences (Eq. 10).
     c_diff_low, c_diff_high, t_diff_low, t_diff_high : float
-        Half-sampling intervals (always containing the difference).
+        Half-sampling intervals (always containing the difference); NaN with ``resamples=0``.
     c_sign_fraction, t_sign_fraction : float
-        Fraction of resamples with the observed sign.
+        Fraction of resamples with the observed sign; NaN with ``resamples=0``.
     direction_index : float
         ``MCR(X|Y) - MCR(Y|X)`` minus its surrogate mean; positive reads X -> Y.
     direction_p : float
@@ -139,12 +140,17 @@ def _check_alpha(alpha: Any) -> float:
     return float(alpha)
 
 
-def check_evidence_arguments(surrogates: Any, alpha: Any, resamples: Any) -> None:
+def check_evidence_arguments(surrogates: Any, alpha: Any, resamples: Any,
+                             surrogate_method: Any = "shift") -> None:
     """Raise a :class:`ParameterError` naming the first bad evidence argument.
+
+    ``resamples=0`` is allowed (no intervals); ``surrogate_method`` is ``"shift"`` or
+    ``"twin"``.
 
     Examples
     --------
     >>> check_evidence_arguments(None, 0.05, 200)
+    >>> check_evidence_arguments(None, 0.05, 0, "twin")
     >>> check_evidence_arguments(0, 0.05, 200)
     Traceback (most recent call last):
         ...
@@ -156,8 +162,27 @@ def check_evidence_arguments(surrogates: Any, alpha: Any, resamples: Any) -> Non
                                 f"{surrogates!r}")
     _check_alpha(alpha)
     if isinstance(resamples, bool) or not isinstance(resamples, (int, np.integer)) or \
-            resamples < 1:
-        raise ParameterError.of("resamples", f"must be an integer >= 1, got {resamples!r}")
+            resamples < 0:
+        raise ParameterError.of("resamples", f"must be an integer >= 0, got {resamples!r}")
+    check_surrogate_method(surrogate_method)
+
+
+@dataclass(frozen=True)
+class _NoInterval:
+    """The interval fields of a pair when ``resamples=0``: the differences, the rest NaN."""
+
+    c_diff: float
+    t_diff: float
+    c_diff_low: float = np.nan
+    c_diff_high: float = np.nan
+    t_diff_low: float = np.nan
+    t_diff_high: float = np.nan
+    c_sign_fraction: float = np.nan
+    t_sign_fraction: float = np.nan
+
+
+def _no_interval(c_diff: float, t_diff: float) -> _NoInterval:
+    return _NoInterval(c_diff=float(c_diff), t_diff=float(t_diff))
 
 
 def pairwise_evidence(
@@ -170,6 +195,7 @@ def pairwise_evidence(
     seed: int = 0,
     resamples: int = 200,
     level: float = 0.95,
+    surrogate_method: str = "shift",
     **overrides: Any,
 ) -> dict[tuple[Any, Any], PairEvidence]:
     """Coupling test, intervals and direction of every pair ``i < j`` of equally long signals.
@@ -189,11 +215,17 @@ def pairwise_evidence(
     alpha : float
         Level of the coupling and direction decisions (after Benjamini-Hochberg).
     seed : int
-        Seeds the half-samples (the shift surrogates are a fixed lattice).
+        Seeds the half-samples and the twin surrogates (the shift surrogates are a fixed
+        lattice).
     resamples : int
-        Half-samples per pair.
+        Half-samples per pair; 0 skips the intervals (their columns and the sign fractions
+        are NaN) for callers that want only the coupling test.
     level : float
         Nominal coverage of the intervals.
+    surrogate_method : {"shift", "twin"}
+        Surrogates of the dependence test: the non-circular time-shift lattice (default) or
+        twin surrogates of the second signal of each pair (Thiel et al. 2006;
+        :mod:`funcnet.evidence.surrogates`; where each is valid: docs/evidence.md).
     **overrides
         Fields of ``parameters`` (pair fields only).
 
@@ -224,8 +256,12 @@ def pairwise_evidence(
     >>> pair = result[("x", "y")]
     >>> pair.coupled, pair.surrogates, pair.c_diff_low <= pair.c_diff <= pair.c_diff_high
     (True, 100, True)
+    >>> twin = pairwise_evidence([data[:, 0], data[:, 1]], names=["x", "y"], delay=1,
+    ...                          resamples=0, surrogate_method="twin")[("x", "y")]
+    >>> twin.coupled, twin.surrogates, bool(np.isnan(twin.c_diff_low))
+    (True, 99, True)
     """
-    check_evidence_arguments(surrogates, alpha, resamples)
+    check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
     alpha = float(alpha)
     p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
     signals = list(signals)
@@ -257,9 +293,12 @@ def pairwise_evidence(
                                      names=(called[i], called[j]))
             measures = isrn_measures(autos[i], autos[j], cr_ij,
                                      parameters=_pair_parameters(p, i, j))
-            m = dense[i].shape[0]
             try:
-                plan = shift_plan(m, k, min_shift=max(decorrelation[i], decorrelation[j], span))
+                plan = surrogate_plan(
+                    surrogate_method, dense[j], k,
+                    min_shift=max(decorrelation[i], decorrelation[j], span),
+                    seed=[int(seed), i, j],
+                )
             except ParameterError:
                 plan = None
             entry: dict[str, Any] = {"key": (keys[i], keys[j])}
@@ -272,12 +311,17 @@ def pairwise_evidence(
             entry["observed"] = (measures.c_diff, measures.t_diff)
             entry["pair"] = (i, j)
             raw.append(entry)
-    # One set of half-samples for the network: each signal is re-thresholded once per resample.
-    chosen = half_samples(states[0].shape[0], resamples, seed=seed)
-    values = resampled_differences(states, [e["pair"] for e in raw], chosen, parameters=p)
-    for e, resampled in zip(raw, values, strict=True):
-        c_diff, t_diff = e["observed"]
-        e["interval"] = interval_from(c_diff, t_diff, resampled, level=level)
+    if resamples:
+        # One set of half-samples for the network: each signal is re-thresholded once per
+        # resample.
+        intervals = asymmetry_intervals(states, [e["pair"] for e in raw],
+                                        [e["observed"] for e in raw], parameters=p,
+                                        resamples=resamples, level=level, seed=seed)
+        for e, interval in zip(raw, intervals, strict=True):
+            e["interval"] = interval
+    else:
+        for e in raw:
+            e["interval"] = _no_interval(*e["observed"])
     coupling_p = benjamini_hochberg([e["p"] for e in raw])
     direction_p = benjamini_hochberg([e["index_p"] for e in raw])
     out: dict[tuple[Any, Any], PairEvidence] = {}

@@ -32,6 +32,7 @@ from funcnet.network.schema import (
     PAIR_COLUMNS,
     PAIR_KINDS,
 )
+from funcnet.network.stability import EdgeStability, edge_stability
 from funcnet.parameters import MEASURES
 
 __all__ = [
@@ -51,4 +52,6 @@ __all__ = [
     "kinds_for",
     "pair_kinds",
     "edges_from_pairs",
+    "EdgeStability",
+    "edge_stability",
 ]

@@ -381,6 +381,7 @@ def functional_network(
     alpha: float = 0.05,
     seed: int = 0,
     resamples: int = 200,
+    surrogate_method: str = "shift",
     edge_rule: str = "paper",
     **overrides: Any,
 ) -> FunctionalNetwork:
@@ -429,7 +430,10 @@ def functional_network(
     seed : int
         Seeds the half-samples; the same seed gives the same table.
     resamples : int
-        Half-samples per pair for the intervals.
+        Half-samples per pair for the intervals (0: no intervals, their columns NaN).
+    surrogate_method : {"shift", "twin"}
+        Surrogates of the dependence test: the non-circular time-shift lattice (default) or
+        twin surrogates (:mod:`funcnet.evidence.surrogates`; validity in docs/evidence.md).
     edge_rule : {"paper", "interval"}
         ``"paper"`` (default): ``|diff| >= mu`` (section 2.4). ``"interval"`` (needs
         ``evidence=True``): a measure is directed only when its interval excludes 0 and
@@ -497,7 +501,7 @@ def functional_network(
     if edge_rule == "interval" and not evidence:
         raise ParameterError.of("edge_rule", "'interval' needs evidence=True")
     if evidence:
-        check_evidence_arguments(surrogates, alpha, resamples)
+        check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
     columns = column_names(data, names)
     node_names, groups = node_groups(nodes, columns)
     if len(node_names) < 2:
@@ -521,11 +525,12 @@ def functional_network(
     if evidence:
         found = pairwise_evidence(
             signals, names=node_names, parameters=p, surrogates=surrogates,
-            alpha=alpha, seed=seed, resamples=resamples,
+            alpha=alpha, seed=seed, resamples=resamples, surrogate_method=surrogate_method,
         )
         pairs = _with_evidence(pairs, found, p, edge_rule)
         settings = {"surrogates": surrogates, "alpha": float(alpha), "seed": int(seed),
-                    "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule}
+                    "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule,
+                    "surrogate_method": surrogate_method}
     channels = None if nodes is None else {
         name: tuple(columns[i] for i in group)
         for name, group in zip(node_names, groups, strict=True)

@@ -9,6 +9,7 @@ module           what it holds
 ``evaluate``     one finding measured on networks: yes / partly / no / not evaluable
 ``trends``       statistics across networks: edge thinning with speed, design factors
 ``analyses``     :func:`run_paper_analyses`: a simulated plan -> windows -> networks -> findings
+``coupling``     the dependence test on every claimed relation: coupled, or untestable
 ``figures``      the paper's Figures 1, 2, 5, 9, 10, 11 (compute, then draw with
                  :mod:`funcnet.plot`); imported on its own (it needs matplotlib)
 ===============  ============================================================================
@@ -45,6 +46,7 @@ from funcnet.paper.claims import (
     FindingSpec,
     parse_claim,
 )
+from funcnet.paper.coupling import CouplingEvidence, claims_coupling
 from funcnet.paper.evaluate import (
     baseline_findings,
     evaluate,
@@ -83,4 +85,6 @@ __all__ = [
     "main_move",
     "network_problems",
     "run_paper_analyses",
+    "CouplingEvidence",
+    "claims_coupling",
 ]

@@ -17,7 +17,7 @@ from typing import Any
 import pandas as pd
 
 from funcnet._io import atomic_path
-from funcnet.network.schema import PAIR_COLUMNS
+from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS
 
 __all__ = ["Progress", "PACKAGES", "save_figure", "escape", "table", "mapping_table",
            "pairs_table", "figure_html", "page", "step", "contents"]
@@ -130,8 +130,9 @@ def mapping_table(mapping: Mapping[str, Any], key: str = "name", value: str = "v
 def pairs_table(pairs: pd.DataFrame) -> str:
     """A pairs table: the columns of :data:`funcnet.network.schema.PAIR_COLUMNS` it has.
 
-    The schema's order, whatever the table's; other columns (a study's identity and parameter
-    columns) are left out.
+    The schema's order, whatever the table's; then the evidence columns
+    (:data:`~funcnet.network.schema.EVIDENCE_COLUMNS`) and a study's ``stability`` when they
+    hold values; other columns (a study's identity and parameter columns) are left out.
 
     Examples
     --------
@@ -141,7 +142,12 @@ def pairs_table(pairs: pd.DataFrame) -> str:
     ...     rows).index("<th>kind</th>")
     (3, True)
     """
-    return table(pairs[[c for c in PAIR_COLUMNS if c in pairs.columns]])
+    columns = [c for c in PAIR_COLUMNS if c in pairs.columns]
+    # a network with evidence (or a study's stability): those columns too, when they hold any
+    for extra in (EVIDENCE_COLUMNS, ("stability",)):
+        if extra[-1] in pairs.columns and pairs[extra[-1]].notna().any():
+            columns += [c for c in extra if c in pairs.columns]
+    return table(pairs[columns])
 
 
 def figure_html(out_dir: Path, name: str, fig: Any, caption: str) -> str:

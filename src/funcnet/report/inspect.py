@@ -73,10 +73,10 @@ from funcnet.robot import (
     read_trace,
     resample,
 )
-from funcnet.robot.preprocess import staircase_signals, velocity
+from funcnet.robot.preprocess import DERIVED_SIGNALS, staircase_signals, velocity
 
-__all__ = ["TraceInspection", "inspect_recording", "inspect_trace", "write_inspection",
-           "READING_AN_ARROW"]
+__all__ = ["DETRENDED_NODES", "TraceInspection", "inspect_recording", "inspect_trace",
+           "write_inspection", "READING_AN_ARROW"]
 
 #: What the report says about reading an arrow (paper section 2.4; README "Direction").
 READING_AN_ARROW = (
@@ -94,6 +94,12 @@ READING_AN_ARROW = (
 )
 
 _MOTION = ("standstill",)
+
+#: Detrended nodes (``funcnet inspect --detrended``): the positions' ramps replaced by the
+#: following error FE = RP - AP and the torsion TORSION = MP - AP, with V and the currents.
+#: In cruise the positions are ramps, which time-shift surrogates cannot treat as stationary
+#: (issue 10, item 5; docs/evidence.md).
+DETRENDED_NODES = ("FE", "TORSION", "V", "RC", "AC")
 
 
 @dataclass(frozen=True)
@@ -256,6 +262,7 @@ def inspect_recording(
     interpolate: bool = True,
     backlash: bool = True,
     progress: Progress = None,
+    evidence_options: Mapping[str, Any] | None = None,
     **overrides: Any,
 ) -> TraceInspection:
     """Summarize a recording's motion and compute a functional network per phase of each move.
@@ -265,7 +272,9 @@ def inspect_recording(
     recording : Recording
         As :func:`funcnet.robot.read_trace` returns it (with RP; V is derived from AP here).
     signals : sequence of str, optional
-        The nodes; default the paper's (RP, AP, MP, V, RC, AC) that the recording has.
+        The nodes; default the paper's (RP, AP, MP, V, RC, AC) that the recording has. Derived
+        signals named here (FE = RP - AP, TORSION = MP - AP, :data:`DETRENDED_NODES`) are
+        computed from the recording.
     parameters : NetworkParameters, optional
         Network parameters (default :class:`~funcnet.NetworkParameters`'s).
     evidence : bool
@@ -277,6 +286,10 @@ def inspect_recording(
         Run :func:`funcnet.diagnosis.diagnose_recording` on the recording as read.
     progress : callable, optional
         ``progress(done, total, description)``.
+    evidence_options : mapping, optional
+        The evidence keywords of :func:`funcnet.functional_network` (``surrogates``,
+        ``alpha``, ``seed``, ``resamples``, ``surrogate_method``, ``edge_rule``); default its
+        defaults.
     **overrides
         Network parameters by name (``rr=0.1``).
 
@@ -302,8 +315,13 @@ def inspect_recording(
         rec = resample(raw, method="interpolate") if coarse else raw
     else:
         coarse, rec = (), raw
-    if "AP" in rec.data.columns:
-        rec = add_derived_signals(rec, ["V"])
+    # V always (when AP is there); FE and TORSION (the detrended nodes) when asked for, from
+    # the interpolated positions
+    derived = [name for name in ("V", *(signals or ())) if name in DERIVED_SIGNALS
+               and name not in rec.data.columns
+               and all(c in rec.data.columns for c in DERIVED_SIGNALS[name][0])]
+    if derived:
+        rec = add_derived_signals(rec, list(dict.fromkeys(derived)))
     if signals is None:
         signals = [s for s in PAPER_NODES if s in rec.data.columns]
     signals = list(signals)
@@ -343,7 +361,7 @@ def inspect_recording(
             span = next(w for w in windows if w.label == label)
             part = rec.window(span.start, span.stop).data[list(net.nodes)]
             full = functional_network(part, parameters=net.parameters, label=label, warn=False,
-                                      evidence=True)
+                                      evidence=True, **dict(evidence_options or {}))
             networks[label] = dataclasses.replace(full, window=net.window)
             tick(f"evidence {label}")
     diagnosis, diagnosis_error = None, ""
@@ -608,6 +626,7 @@ def inspect_trace(
     channels: Any = None,
     axis: int | None = None,
     progress: Progress = None,
+    evidence_options: Mapping[str, Any] | None = None,
     **overrides: Any,
 ) -> Path:
     """Read traces and write the engineer's report of each (and an index for several).
@@ -619,7 +638,7 @@ def inspect_trace(
     out_dir : path-like
         The report folder. One trace: ``out_dir/index.html``; several: one folder per trace
         (named after the file) and ``out_dir/index.html`` linking them.
-    signals, parameters, evidence
+    signals, parameters, evidence, evidence_options
         As :func:`inspect_recording`.
     channels, axis
         As :func:`funcnet.robot.read_trace`.
@@ -654,7 +673,7 @@ def inspect_trace(
     if len(paths) == 1:
         recording = read_trace(paths[0], channels=channels, axis=axis)
         ins = inspect_recording(recording, signals=signals, parameters=p, evidence=evidence,
-                                progress=progress)
+                                progress=progress, evidence_options=evidence_options)
         return write_inspection(ins, out, progress=progress)
     taken: set[str] = set()
     rows = []
@@ -662,7 +681,7 @@ def inspect_trace(
         slug = _slug(path, taken)
         recording = read_trace(path, channels=channels, axis=axis)
         ins = inspect_recording(recording, signals=signals, parameters=p, evidence=evidence,
-                                progress=progress)
+                                progress=progress, evidence_options=evidence_options)
         write_inspection(ins, out / slug, progress=progress)
         moves = ins.moves
         rows.append(f"<tr><td><a href=\"{escape(slug)}/index.html\">{escape(path.name)}</a>"

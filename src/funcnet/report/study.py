@@ -44,7 +44,7 @@ from funcnet.report.html import (
 )
 from funcnet.study import PARAMETER_COLUMNS, load_results, package_versions
 
-__all__ = ["write_report", "consensus", "problem_counts"]
+__all__ = ["write_report", "consensus", "problem_counts", "evidence_counts"]
 
 _WINDOW_KEYS = ["recording", "window", "start", "stop"]
 _GRID = 24  # networks in the example figure
@@ -164,6 +164,62 @@ def consensus(rows: pd.DataFrame) -> pd.DataFrame:
                                                          "of"]]
 
 
+def has_evidence(rows: pd.DataFrame) -> bool:
+    """Whether a study's rows carry evidence (its ``[evidence]`` was enabled for some)."""
+    return "evidence" in rows.columns and bool(rows["evidence"].notna().any())
+
+
+def evidence_counts(rows: pd.DataFrame, alpha: float = 0.05) -> pd.DataFrame:
+    """Per window label: how many pairs the coupling test shows coupled, and how many it could
+    not test.
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        The rows of one parameter set, with the evidence columns.
+    alpha : float
+        The study's ``[evidence] alpha`` (for :func:`funcnet.paper.coupling.untestable`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``window, pairs, coupled`` (``coupled`` and ``coupled-directed``),
+        ``coupled-directed, asymmetry-only`` (the paper's arrow, nothing supports coupling),
+        ``not-coupled, untestable`` (among the pairs not shown coupled: too few surrogates to
+        reject at ``alpha``), ``surrogates`` (their range), windows in order of first start.
+
+    Examples
+    --------
+    >>> rows = pd.DataFrame({"window": ["cruise"] * 3, "start": [1.0] * 3,
+    ...                      "evidence": ["coupled", "asymmetry-only", "not-coupled"],
+    ...                      "coupled": [True, False, False], "coupling_p": [0.01, 0.3, 0.5],
+    ...                      "surrogates": [100, 12, 100]})
+    >>> evidence_counts(rows).iloc[0].to_dict()  # doctest: +NORMALIZE_WHITESPACE
+    {'window': 'cruise', 'pairs': 3, 'coupled': 1, 'coupled-directed': 0,
+     'asymmetry-only': 1, 'not-coupled': 1, 'untestable': 1, 'surrogates': '12–100'}
+    """
+    from funcnet.paper.coupling import untestable
+
+    rows = rows[rows["evidence"].notna()]
+    out = []
+    for window, group in rows.sort_values("start", kind="stable").groupby("window", sort=False):
+        label = group["evidence"].astype(str)
+        blind = [not bool(c) and untestable(k, p, alpha) for c, k, p in
+                 zip(group["coupled"], group["surrogates"], group["coupling_p"], strict=True)]
+        k = group["surrogates"].astype(float)
+        out.append({"window": str(window), "pairs": len(group),
+                    "coupled": int(label.isin(["coupled", "coupled-directed"]).sum()),
+                    "coupled-directed": int((label == "coupled-directed").sum()),
+                    "asymmetry-only": int((label == "asymmetry-only").sum()),
+                    "not-coupled": int((label == "not-coupled").sum()),
+                    "untestable": int(sum(blind)),
+                    "surrogates": f"{k.min():g}–{k.max():g}" if k.min() != k.max()
+                    else f"{k.min():g}"})
+    return pd.DataFrame(out, columns=["window", "pairs", "coupled", "coupled-directed",
+                                      "asymmetry-only", "not-coupled", "untestable",
+                                      "surrogates"])
+
+
 def _consensus_figure(table_: pd.DataFrame) -> Any:
     from matplotlib.colors import to_rgb
     from matplotlib.figure import Figure
@@ -204,15 +260,17 @@ def _network_grid(windows: Sequence[tuple[tuple[Any, ...], pd.DataFrame]], polic
     chunk = list(windows)[:_GRID]
     cols = min(6, len(chunk))
     fig = Figure(figsize=(2.4 * cols, 2.7 * -(-len(chunk) // cols) + 0.6), layout="constrained")
-    degenerate = False
+    degenerate = evidence = False
     for j, ((label, t0, t1), pairs) in enumerate(chunk):
         ax = fig.add_subplot(-(-len(chunk) // cols), cols, j + 1)
         # sliding windows are labelled by their span already
         title = label if str(label).endswith(" s") else f"{label}\n{t0:.2f}–{t1:.2f} s"
         plot.plot_network(pairs, ax, title=title, fontsize=9, legend=False, degenerate=policy)
         ax.set_facecolor(plot.phase_color(label, 99))
-        degenerate |= bool(plot.network_edges(pairs, degenerate=policy)["degenerate"].any())
-    plot.add_network_legend(fig, degenerate=degenerate)
+        edges = plot.network_edges(pairs, degenerate=policy)
+        degenerate |= bool(edges["degenerate"].any())
+        evidence |= plot.edge_evidence(pairs, edges) is not None
+    plot.add_network_legend(fig, degenerate=degenerate, evidence=evidence)
     fig.suptitle(name, fontsize=10)
     return fig
 
@@ -278,6 +336,7 @@ def write_report(
     document_path = results / "study.json"
     document = json.loads(document_path.read_text()) if document_path.is_file() else {}
     run = document.get("run", {})
+    alpha = float(((document.get("study") or {}).get("evidence") or {}).get("alpha", 0.05))
     parameters = [c for c in PARAMETER_COLUMNS.values() if c in rows.columns]
     varying = [c for c in parameters if rows[c].astype(str).nunique() > 1]
     settings = list(rows.groupby(varying, sort=False, dropna=False)) if varying else [((), rows)]
@@ -314,7 +373,10 @@ def write_report(
                                  f"Example: the networks of recording {first} ({label}), "
                                  f"{min(len(windows), _GRID)} of its {len(windows)} windows. "
                                  "Black arrow: directed; red: bidirectional (mutual or no "
-                                 "coupling); width ∝ weight (Eq. 13)."))
+                                 "coupling); width ∝ weight (Eq. 13)."
+                                 + (" Dotted, pale: the coupling test does not show the pair "
+                                    "coupled (asymmetry-only or not-coupled)."
+                                    if has_evidence(mine) else "")))
         if len(windows) >= 3:
             step(progress, 3 * k + 2, steps, f"report: {label}: timeline")
             centred = mine.assign(time=(mine["start"] + mine["stop"]) / 2)
@@ -322,6 +384,15 @@ def write_report(
             parts.append(figure_html(out, f"{slug}-timeline", timeline.figure,
                                      f"Example: edge kind and weight per window centre, "
                                      f"recording {first} ({label})."))
+        if has_evidence(group):
+            parts += ["<h4>Coupling evidence</h4>",
+                      "<p>Per window label, over the recordings: pairs the joint-recurrence "
+                      f"test shows coupled (α = {alpha:g}, Benjamini–Hochberg over each "
+                      "network's pairs), arrows without coupling evidence (asymmetry-only), and "
+                      "pairs the test could not have shown coupled (untestable: with K "
+                      "surrogates no p-value is below 1/(K+1); short windows hold few). "
+                      "Untestable is not uncoupled. The pairs tables below have every "
+                      "evidence column.</p>", table(evidence_counts(group, alpha))]
         sections.append("".join(parts))
     problems = problem_counts(rows, [*_WINDOW_KEYS, *parameters])
     kinds = rows["kind"].astype(str).where(~rows["degenerate"].astype(bool), "degenerate")

@@ -38,6 +38,7 @@ _EXPORTS = {
     "reversal_windows": "funcnet.robot.windows",
     "sliding_windows": "funcnet.robot.windows",
     "span_window": "funcnet.robot.windows",
+    "complete_span": "funcnet.robot.windows",
     "AxisParameters": "funcnet.robot.sim.axis",
     "SimulatedTrial": "funcnet.robot.sim.axis",
     "simulate_trial": "funcnet.robot.sim.axis",

@@ -27,6 +27,7 @@ __all__ = [
     "REVERSAL_SHIFTS",
     "PAPER_NODES",
     "span_window",
+    "complete_span",
     "phase_windows",
     "fixed_windows",
     "reversal_windows",
@@ -106,6 +107,48 @@ def span_window(start: float, stop: float) -> Window:
     Window(label='1.000-1.280 s', start=1.0, stop=1.28, phase=None, offset=0.0)
     """
     return Window(f"{start:.3f}-{stop:.3f} s", start, stop)
+
+
+def complete_span(recording: Recording) -> Window:
+    """The span where every signal of a recording has a recorded value, as one window.
+
+    Signals logged on a coarser grid (the 4 ms IPO signals AP and MP on a 2 ms trace) have no
+    value at the first ticks; a window starting there would hold NaN. The window runs from the
+    first tick where every column has a value to one sample period past the last such tick
+    (windows hold ``start <= time < stop``).
+
+    Parameters
+    ----------
+    recording : Recording
+
+    Returns
+    -------
+    Window
+        Labelled ``"whole recording"``, without a phase.
+
+    Raises
+    ------
+    WindowError
+        No tick where every signal has a value; the message names the recording's source.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from funcnet.robot import Recording, SignalInfo
+    >>> data = pd.DataFrame({"RC": [0.0, 1.0, 2.0, 3.0], "AP": [np.nan, 1.0, np.nan, 2.0]},
+    ...                     index=pd.Index([0.0, 0.002, 0.004, 0.006], name="time"))
+    >>> info = {n: SignalInfo(n, None, None, 0.002) for n in data}
+    >>> rec = Recording(data.ffill().where(data.notna().cummax()), {}, info, source="t.csv",
+    ...                 sample_period=0.002)
+    >>> complete_span(rec)
+    Window(label='whole recording', start=0.002, stop=0.008, phase=None, offset=0.0)
+    """
+    recorded = recording.data.index[recording.data.notna().all(axis=1).to_numpy()]
+    if recorded.empty:
+        raise WindowError(f"{recording.source or '<recording>'}: no tick where every signal has "
+                          "a recorded value")
+    start, stop = float(recorded[0]), float(recorded[-1]) + recording.sample_period
+    return Window(label="whole recording", start=start, stop=stop)
 
 
 def _numbered(names: Sequence[str]) -> list[str]:

@@ -5,7 +5,8 @@ Decisions (where the specification leaves room):
 * A task's key is the SHA-256 of the source file's content hash, the recording's name and trial
   in the results, the window (label, phase, offset, start, stop), the complete parameter set
   (:meth:`~funcnet.parameters.NetworkParameters.to_dict`), the signal selection, the constant
-  policy, the channel map's content hash, the axis and the funcnet version. A re-run therefore
+  policy, the channel map's content hash, the axis, the funcnet version and, when enabled, the
+  ``[evidence]`` settings and the ``[stability]`` grid. A re-run therefore
   computes exactly the tasks whose key has no file yet. The name is part of the key so that two
   identical files listed under two names keep their own rows.
 * Results are written by the process that runs :func:`run_study` (workers return rows), one file
@@ -374,10 +375,13 @@ def _network_tasks(
                 axis=study.axis,
                 resample=study.resample,
                 funcnet=__version__,
+                # only when on: the keys of plain tasks (and their cached rows) stay as they were
+                **({"evidence": dict(study.evidence)} if study.evidence else {}),
+                **({"stability": study.to_dict()["stability"]} if study.stability else {}),
             )
             tasks[key] = NetworkTask(
                 key, wt.source, window, parameters, study.signals, channels, study.axis,
-                study.resample, study.constant,
+                study.resample, study.constant, study.evidence, study.stability,
             )
     return list(tasks.values()), failures
 

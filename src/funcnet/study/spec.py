@@ -4,6 +4,9 @@ Everything a run needs is checked here, when the file is read, before anything i
 hashed: the keys, the recordings, the window kinds and their options, and every network
 parameter value of the grid (through :meth:`funcnet.parameters.NetworkParameters.from_mapping`,
 so a bad value gives the same message as anywhere else, naming the file and the TOML key).
+
+Length: over 600 lines because every table of the TOML file ([recordings], [[windows]],
+[network], [evidence], [stability]) and its checks belong together.
 """
 
 from __future__ import annotations
@@ -24,10 +27,12 @@ from funcnet.parameters import NetworkParameters
 
 __all__ = [
     "WINDOW_KINDS",
+    "EVIDENCE_KEYS",
     "WindowSpec",
     "Study",
     "load_study",
     "parameter_grid",
+    "evidence_settings",
 ]
 
 #: Window kinds of a study: one per builder of :mod:`funcnet.robot.windows`, and ``range``.
@@ -47,6 +52,11 @@ REVERSAL_WIDTH = 0.2
 _PAIR_VALUED = ("eps",)
 
 _Fail = Callable[[str, str], StudyError]
+
+#: The keys of a study's ``[evidence]`` table besides ``enabled``: the evidence keywords of
+#: :func:`funcnet.functional_network`, with its defaults.
+EVIDENCE_KEYS: dict[str, Any] = {"surrogates": None, "alpha": 0.05, "seed": 0, "resamples": 200,
+                                 "edge_rule": "paper", "surrogate_method": "shift"}
 
 
 @dataclass(frozen=True)
@@ -114,6 +124,15 @@ class Study:
         Folder that recording names in the results are relative to (the study file's folder).
     source : Path, optional
         The study file, for error messages and provenance.
+    evidence : tuple of (str, value)
+        The ``[evidence]`` settings (every key of :data:`EVIDENCE_KEYS`, sorted) when it is
+        enabled, else empty: each network gets the evidence columns
+        (:func:`evidence_settings`).
+    stability : tuple of (str, value)
+        ``(("grid", ...),)`` when ``[stability]`` is enabled (the grid as written, checked by
+        :func:`funcnet.network.stability.check_grid`; ``None`` for the default grid), else
+        empty: each window's rows get the stability columns of
+        :func:`funcnet.network.stability.edge_stability`.
 
     Examples
     --------
@@ -134,6 +153,8 @@ class Study:
     constant: str = "error"
     base_dir: Path = dataclasses.field(default_factory=Path.cwd)
     source: Path | None = None
+    evidence: tuple[tuple[str, Any], ...] = ()
+    stability: tuple[tuple[str, Any], ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """The study as JSON-compatible data (paths as strings)."""
@@ -151,7 +172,42 @@ class Study:
             "constant": self.constant,
             "windows": [w.as_dict() for w in self.windows],
             "parameters": {name: list(values) for name, values in self.parameters},
+            "evidence": dict(self.evidence) if self.evidence else None,
+            "stability": _stability_record(self.stability),
         }
+
+
+def _stability_record(stability: tuple[tuple[str, Any], ...]) -> dict[str, Any] | None:
+    """``[stability]`` as JSON-compatible data (grid values as lists), None when off."""
+    if not stability:
+        return None
+    grid = dict(stability)["grid"]
+    return {"grid": None if grid is None else {key: [list(v) if isinstance(v, tuple) else v
+                                                     for v in values]
+                                               for key, values in grid}}
+
+
+def evidence_settings(study: Study) -> dict[str, Any] | None:
+    """The evidence keywords of :func:`funcnet.functional_network` for a study, or None.
+
+    Parameters
+    ----------
+    study : Study
+
+    Returns
+    -------
+    dict or None
+        ``surrogates``, ``alpha``, ``seed``, ``resamples``, ``edge_rule``,
+        ``surrogate_method`` when the study's ``[evidence]`` is enabled.
+
+    Examples
+    --------
+    >>> evidence_settings(Study()) is None
+    True
+    >>> evidence_settings(Study(evidence=(("alpha", 0.1),)))
+    {'alpha': 0.1}
+    """
+    return dict(study.evidence) if study.evidence else None
 
 
 def _str_or_none(value: object) -> str | None:
@@ -238,6 +294,14 @@ def load_study(path: str | os.PathLike[str]) -> Study:
         [network]
         delay = [5, 10]              # a list spans a grid
         eps = [0.2, 0.3]             # eps is a pair (auto, cross): a list of pairs spans a grid
+        [evidence]                   # optional: the evidence columns on every row
+        enabled = true
+        surrogates = 99              # optional, default chosen from the number of pairs
+        alpha = 0.05                 # optional, also seed, resamples, edge_rule,
+                                     # surrogate_method (funcnet.functional_network's)
+        [stability]                  # optional: each pair's stability over a settings grid
+        enabled = true
+        grid = {mu = [0.03, 0.1]}    # optional, default funcnet.network.stability's grid
 
     TOML has no null: ``"none"`` stands for None (``normalize = "none"``, ``eps = ["none",
     0.2]``).
@@ -255,8 +319,9 @@ def load_study(path: str | os.PathLike[str]) -> Study:
     ------
     StudyError
         On malformed TOML, an unknown key, a value of the wrong type, an invalid network
-        parameter, a window kind or option that does not exist, or a pattern that matches no
-        file; the one-line message names the file and the key.
+        parameter or evidence setting or stability grid, a window kind or option that does not
+        exist, or a pattern that matches no file; the one-line message names the file and the
+        key.
     OSError
         If the file cannot be read.
 
@@ -305,7 +370,8 @@ def _study_from_document(doc: Mapping[str, Any], source: Path) -> Study:
     def fail(key: str, message: str) -> StudyError:
         return StudyError(f"{source}: {key}: {message}")
 
-    _reject_unknown(doc, {"signals", "constant", "recordings", "windows", "network"}, "", fail)
+    _reject_unknown(doc, {"signals", "constant", "recordings", "windows", "network", "evidence",
+                          "stability"}, "", fail)
     table = doc.get("recordings", {})
     if not isinstance(table, dict):
         raise fail("recordings", "must be a table ([recordings])")
@@ -366,7 +432,66 @@ def _study_from_document(doc: Mapping[str, Any], source: Path) -> Study:
         constant=constant,
         base_dir=base,
         source=source,
+        evidence=_evidence_table(doc.get("evidence", {}), fail),
+        stability=_stability_table(doc.get("stability", {}), fail),
     )
+
+
+def _enabled(table: Any, name: str, known: set[str], fail: _Fail) -> bool:
+    """Whether an optional ``[name]`` table is enabled; its keys checked."""
+    if not isinstance(table, dict):
+        raise fail(f"[{name}]", "must be a table")
+    _reject_unknown(table, {"enabled", *known}, f"[{name}] ", fail)
+    enabled = table.get("enabled", bool(table))
+    if not isinstance(enabled, bool):
+        raise fail(f"[{name}] enabled", "must be true or false")
+    return enabled
+
+
+def _evidence_table(table: Any, fail: _Fail) -> tuple[tuple[str, Any], ...]:
+    """``[evidence]`` as sorted (key, value) pairs, every value checked; empty when off."""
+    from funcnet.evidence import EDGE_RULES, check_evidence_arguments
+
+    if not _enabled(table, "evidence", set(EVIDENCE_KEYS), fail):
+        return ()
+    settings = {**EVIDENCE_KEYS, **{k: _from_toml(v) for k, v in table.items()
+                                    if k != "enabled"}}
+    seed = settings["seed"]
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise fail("[evidence] seed", "must be a non-negative integer")
+    if settings["edge_rule"] not in EDGE_RULES:
+        raise fail("[evidence] edge_rule", f"must be one of {', '.join(EDGE_RULES)}, got "
+                   f"{settings['edge_rule']!r}")
+    if settings["edge_rule"] == "interval" and settings["resamples"] == 0:
+        raise fail("[evidence] edge_rule", "'interval' needs intervals: resamples >= 1")
+    try:
+        check_evidence_arguments(settings["surrogates"], settings["alpha"],
+                                 settings["resamples"], settings["surrogate_method"])
+    except ParameterError as exc:
+        name = exc.parameter if exc.parameter is not None else "evidence"
+        raise fail(f"[evidence] {name}", str(exc.detail or exc)) from None
+    return tuple(sorted(settings.items()))
+
+
+def _stability_table(table: Any, fail: _Fail) -> tuple[tuple[str, Any], ...]:
+    """``[stability]`` as ``(("grid", grid),)``, the grid checked; empty when off."""
+    if not _enabled(table, "stability", {"grid"}, fail):
+        return ()
+    grid = table.get("grid")
+    if grid is None:
+        return (("grid", None),)
+    if not isinstance(grid, dict) or not grid:
+        raise fail("[stability] grid", "must be a table of parameter -> list of values")
+    from funcnet.network.stability import check_grid
+
+    values = {key: [_from_toml(v) for v in (value if isinstance(value, list) else [value])]
+              for key, value in grid.items()}
+    try:
+        check_grid(values)
+    except ParameterError as exc:
+        raise fail("[stability] grid", str(exc)) from None
+    # kept as written (checked only): edge_stability reads it again on each window
+    return (("grid", tuple(sorted((key, tuple(v)) for key, v in values.items()))),)
 
 
 def _recording_files(patterns: Any, base: Path, fail: _Fail) -> list[Path]:

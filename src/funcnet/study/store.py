@@ -10,7 +10,9 @@ Layout of a results folder ``out_dir``::
 
 A row is the task's identity (:data:`IDENTITY_SCHEMA`), its parameter set (one column per
 network parameter, :data:`PARAMETER_COLUMNS`) and the pairs table's columns, in the order and
-types of :mod:`funcnet.network.schema`. Decisions:
+types of :mod:`funcnet.network.schema` (with a study's ``[evidence]``, its evidence columns; with
+``[stability]``, ``stability`` and the ``stability_*`` columns of
+:func:`funcnet.network.stability.edge_stability`). Decisions:
 
 * The target rates keep their parameter names, ``rr`` and ``cr`` (the pairs table names what
   was achieved ``achieved_rr_x``, ``achieved_rr_y``, ``achieved_cr``); the edge policy
@@ -90,12 +92,14 @@ _PARAMETER_TYPES: dict[str, pa.DataType] = {
 FOLDERS = ("rows", "failed", "windows", "cache")
 
 
-def _pairs_schema() -> pa.Schema:
-    """The pairs table's columns as an Arrow schema, from :mod:`funcnet.network.schema`."""
-    from funcnet.network.schema import PAIR_DTYPES
+def _pairs_schema(evidence: bool = False) -> pa.Schema:
+    """The pairs table's columns as an Arrow schema, from :mod:`funcnet.network.schema` (with
+    ``evidence``, its evidence columns too)."""
+    from funcnet.network.schema import EVIDENCE_DTYPES, PAIR_DTYPES
 
     fields = []
-    for name, dtype in PAIR_DTYPES.items():
+    dtypes = {**PAIR_DTYPES, **(EVIDENCE_DTYPES if evidence else {})}
+    for name, dtype in dtypes.items():
         kind = pd.api.types.pandas_dtype(dtype)
         if pd.api.types.is_bool_dtype(kind):
             fields.append((name, pa.bool_()))
@@ -141,9 +145,12 @@ def rows_table(identity: Mapping[str, Any], parameters: NetworkParameters,
         kind = _PARAMETER_TYPES.get(name, pa.string())
         columns[PARAMETER_COLUMNS[name]] = pa.array([_parameter_value(name, value)] * n,
                                                     type=kind)
-    schema = _pairs_schema()
-    table = pa.Table.from_pandas(pairs.reset_index(drop=True)[schema.names], schema=schema,
+    schema = _pairs_schema(evidence="evidence" in pairs.columns)
+    # Columns beyond the schema (a study's stability columns) follow, typed by pandas.
+    extra = [c for c in pairs.columns if c not in schema.names]
+    table = pa.Table.from_pandas(pairs.reset_index(drop=True)[[*schema.names, *extra]],
                                  preserve_index=False)
+    table = table.cast(pa.schema([*schema, *(table.schema.field(c) for c in extra)]))
     for name, column in zip(table.column_names, table.columns, strict=True):
         columns[name] = column
     return pa.table(columns).replace_schema_metadata(None)

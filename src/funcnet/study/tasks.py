@@ -71,6 +71,9 @@ class NetworkTask:
     axis: int | None
     resample: str | None
     constant: str
+    # The study's [evidence] and [stability] settings (empty: off), see funcnet.study.spec.
+    evidence: tuple[tuple[str, Any], ...] = ()
+    stability: tuple[tuple[str, Any], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -275,10 +278,21 @@ def network_rows(task: NetworkTask) -> Outcome:
                 constant=task.constant,
             )
         (network,) = networks.values()
+        part = recording.window(window.start, window.stop).data[list(network.nodes)]
+        if task.evidence:
+            with _one_thread_per_task():
+                network = _with_evidence(network, part, task.evidence)
+            networks = {window.label: network}
     except ParameterError as exc:
         return Outcome(task.key, fatal=str(exc))
     except FuncnetError as exc:
         return Outcome(task.key, error=str(exc))
+    pairs = network.pairs
+    unstable: tuple[tuple[str, int, str], ...] = ()
+    if task.stability:
+        with _one_thread_per_task():
+            pairs, unstable = _with_stability(network, part, task.stability,
+                                              f"{task.source.name} [{window.label}]")
     dropped = [s for s in signals if s not in network.nodes]
     identity = {
         "recording": task.source.name,
@@ -293,9 +307,43 @@ def network_rows(task: NetworkTask) -> Outcome:
         "constant": task.constant,
         "dropped": ",".join(dropped),
     }
-    rows = rows_table(identity, task.parameters, network.pairs)
-    found = task_warnings(networks, recording, signals, task.source.name)
+    rows = rows_table(identity, task.parameters, pairs)
+    found = task_warnings(networks, recording, signals, task.source.name) + unstable
     return Outcome(task.key, value=rows, warnings=found)
+
+
+def _with_evidence(network: Any, part: Any, evidence: tuple[tuple[str, Any], ...]) -> Any:
+    """The window's network again with the evidence columns (same nodes and parameters)."""
+    import dataclasses
+
+    from funcnet.network import functional_network
+
+    full = functional_network(part, parameters=network.parameters, label=network.label,
+                              warn=False, evidence=True, **dict(evidence))
+    return dataclasses.replace(full, window=network.window)
+
+
+def _with_stability(network: Any, part: Any, stability: tuple[tuple[str, Any], ...],
+                    where: str) -> tuple[Any, tuple[tuple[str, int, str], ...]]:
+    """The pairs table with each pair's stability columns (``stability``, ``stability_*``).
+
+    A setting of the grid the window cannot be analysed at (a doubled delay on a short window)
+    does not cost the window its network: the columns stay empty and a ``stability`` warning
+    says why.
+    """
+    from funcnet.network.stability import edge_stability
+
+    grid = dict(stability)["grid"]
+    try:
+        result = edge_stability(part, parameters=network.parameters,
+                                grid=None if grid is None else {k: list(v) for k, v in grid})
+    except FuncnetError as exc:
+        return network.pairs, (("stability", 1, f"{where}: no stability: {exc}"),)
+    table = result.table.drop(columns=["kind"])
+    table = table.rename(columns={c: c if c.startswith("stability") else f"stability_{c}"
+                                  for c in table.columns if c not in ("x", "y")})
+    merged = network.pairs.merge(table, on=["x", "y"], how="left", validate="one_to_one")
+    return merged, ()
 
 
 def _nodes(signals: Sequence[str] | None, columns: Any, paper: Sequence[str]) -> list[str]:

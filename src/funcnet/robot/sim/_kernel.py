@@ -139,7 +139,11 @@ def axis_kernel(
         if w_a == 0.0 and w_a_new != 0.0:
             if n >= n_start and np.isnan(events[0]):
                 events[0] = (n + 1) * dt
-            if n_reverse >= 0 and n >= n_reverse and w_a_new < 0.0 and np.isnan(events[2]):
+            # the restart the lost motion ends at is the gear driving the arm back (tau < 0):
+            # an elastic arm's hub can be dragged back by its ringing tip while the gear still
+            # pushes forward, which crosses no dead zone (a rigid arm restarts back only so)
+            if (n_reverse >= 0 and n >= n_reverse and w_a_new < 0.0 and tau < 0.0
+                    and np.isnan(events[2])):  # fmt: skip
                 events[1] = t_d_max
                 events[2] = (n + 1) * dt
                 events[3] = d_max - delta

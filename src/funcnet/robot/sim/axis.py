@@ -471,8 +471,10 @@ class SimulatedTrial:
         after the set-point starts; NaN if it never does), ``motion_start`` (s), ``motion_end``
         (s, the set-point arrives), and for a forward-then-reverse trial ``reversal_time`` (s,
         the motor's turning point: its last step forward before the arm's restart),
-        ``restart_time`` (s, the arm starts back), ``lost_motion`` (deg, the change of the
-        torsion ``theta_m / N - theta_a`` between the two, i.e. of MP - AP across the reversal:
+        ``restart_time`` (s, the gear drives the arm back from rest: an elastic arm's hub
+        dragged back by its tip while the gear still pushes forward does not count),
+        ``lost_motion`` (deg, the change of the torsion ``theta_m / N - theta_a`` between the
+        two, i.e. of MP - AP across the reversal:
         the motor's travel while the arm rests -- dead zone plus the gear's wind-up on both
         flanks -- plus what the arm still coasts forward in the dead zone after the motor has
         turned), ``windup_forward`` (deg, the torsion at the turning point minus half the dead

@@ -1,0 +1,496 @@
+"""Drawing functional networks: circular layout, edge colours and widths, legends, titles.
+
+Paper section 3.4: nodes on a circle, one per signal, every node drawn even without edges;
+directed edges black with an arrow head at the target, bidirectional edges red; line width
+proportional to the weight of Eq. 13 on an absolute scale, so that widths compare across panels.
+Edges of degenerate pairs (kept only with ``degenerate="keep"``) are drawn dashed and grey.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.patches import Circle, FancyArrowPatch
+
+from funcnet._io import atomic_path
+from funcnet.errors import ParameterError
+from funcnet.network.rule import edges_from_pairs
+from funcnet.plot.style import (
+    BIDIRECTIONAL_COLOR,
+    DEGENERATE_COLOR,
+    DIRECTED_COLOR,
+    _new_axes,
+)
+
+__all__ = [
+    "network_edges",
+    "network_nodes",
+    "network_legend_handles",
+    "add_network_legend",
+    "plot_network",
+    "plot_no_network",
+    "network_title",
+    "save_network",
+    "edge_evidence",
+]
+
+#: Readings of :data:`funcnet.network.schema.EVIDENCE_LABELS` whose pair the coupling test does
+#: not show coupled: their edges are drawn dotted and pale (the paper's arrow, nothing more).
+NO_COUPLING_EVIDENCE = ("asymmetry-only", "not-coupled")
+UNCOUPLED_COLOR = "0.55"
+UNCOUPLED_BIDIRECTIONAL_COLOR = "#f0a0a0"  # a pale red: still bidirectional, not coupled
+UNCOUPLED_STYLE = ":"
+
+
+def network_legend_handles(width_scale: float = 10.0, weight: float = 0.2, *,
+                           degenerate: bool = False, evidence: bool = False) -> list[Line2D]:
+    """Legend entries explaining a network drawing: edge colours and the width scale.
+
+    Parameters
+    ----------
+    width_scale : float
+        The line width per unit of weight used by :func:`plot_network`.
+    weight : float
+        The reference weight (Eq. 13) whose width the legend shows.
+    degenerate : bool
+        Add the entry of degenerate edges (grey, dashed).
+    evidence : bool
+        Add the entries of the evidence styles (a network with evidence columns): solid where
+        the coupling test shows the pair coupled, dotted and pale where it does not.
+
+    Returns
+    -------
+    list of matplotlib.lines.Line2D
+        Directed (black), bidirectional (red), optionally degenerate (grey, dashed), optionally
+        the two evidence styles, and a grey line of the reference weight's width.
+
+    References
+    ----------
+    Paper section 3.4 (black directed, red bidirectional edges; width by Eq. 13).
+
+    Examples
+    --------
+    >>> [h.get_label() for h in network_legend_handles()]
+    ['directed (|diff| ≥ μ)', 'bidirectional (|diff| < μ)', 'weight 0.2 (width ∝ weight)']
+    >>> network_legend_handles(degenerate=True)[2].get_label()
+    'degenerate pair (arrow meaningless)'
+    >>> [h.get_linestyle() for h in network_legend_handles(evidence=True)[2:4]]
+    ['-', ':']
+    """
+    handles = [Line2D([], [], color=DIRECTED_COLOR, linewidth=1.5, marker=">",
+                      label="directed (|diff| ≥ μ)"),
+               Line2D([], [], color=BIDIRECTIONAL_COLOR, linewidth=1.5,
+                      label="bidirectional (|diff| < μ)")]
+    if degenerate:
+        handles.append(Line2D([], [], color=DEGENERATE_COLOR, linewidth=1.5, linestyle="--",
+                              label="degenerate pair (arrow meaningless)"))
+    if evidence:
+        handles += [Line2D([], [], color=DIRECTED_COLOR, linewidth=1.5,
+                           label="coupled (coupling test)"),
+                    Line2D([], [], color=UNCOUPLED_COLOR, linewidth=1.5, linestyle=":",
+                           label="not shown coupled")]
+    handles.append(Line2D([], [], color="0.4", linewidth=width_scale * weight,
+                          label=f"weight {weight:g} (width ∝ weight)"))
+    return handles
+
+
+def network_edges(net: Any, *, degenerate: str = "drop") -> pd.DataFrame:
+    """The edges to draw: a network's ``.edges``, or those of a pairs table.
+
+    Parameters
+    ----------
+    net : FunctionalNetwork or pandas.DataFrame
+        A :class:`funcnet.FunctionalNetwork` (its own ``edges``, which hold degenerate pairs
+        only when it was built with ``degenerate="keep"``), or a pairs table with at least the
+        columns ``x, y, kind, weight`` (e.g. one window's rows of a study's results); a table
+        without ``degenerate`` counts as having no degenerate pair.
+    degenerate : {"drop", "keep"}
+        For a pairs table: leave degenerate pairs out (default) or keep them as edges flagged
+        ``degenerate`` (:func:`funcnet.network.rule.edges_from_pairs`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``source, target, weight, kind, degenerate``
+        (:data:`funcnet.network.schema.EDGE_COLUMNS`).
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> pairs = pd.DataFrame({"x": ["A", "A"], "y": ["B", "C"], "kind": ["y->x", "x->y"],
+    ...                       "weight": [0.2, 0.4], "degenerate": [False, True]})
+    >>> network_edges(pairs)[["source", "target"]].values.tolist()
+    [['B', 'A']]
+    >>> network_edges(pairs, degenerate="keep")["degenerate"].tolist()
+    [False, True]
+    """
+    if not isinstance(net, pd.DataFrame):
+        return net.edges
+    if "degenerate" in net.columns:
+        # Rows of older results mixed with newer ones hold NaN there: not degenerate.
+        flags = net["degenerate"].eq(True)
+    else:
+        flags = pd.Series(False, index=net.index)
+    return edges_from_pairs(net.assign(degenerate=flags.astype(bool)), degenerate=degenerate)
+
+
+def network_nodes(net: Any) -> list[str]:
+    """The nodes of a network, or of a pairs table (its signals in order of appearance).
+
+    Examples
+    --------
+    >>> network_nodes(pd.DataFrame({"x": ["A", "A"], "y": ["B", "C"]}))
+    ['A', 'B', 'C']
+    """
+    if isinstance(net, pd.DataFrame):
+        return list(dict.fromkeys([*net["x"], *net["y"]]))
+    return list(net.nodes)
+
+
+_network_nodes = network_nodes
+
+
+def edge_evidence(net: Any, edges: pd.DataFrame) -> list[str] | None:
+    """The ``evidence`` reading of each edge's pair, or ``None`` for a network without evidence.
+
+    Parameters
+    ----------
+    net : FunctionalNetwork or pandas.DataFrame
+        A network or a pairs table; the evidence is its pairs table's ``evidence`` column
+        (:data:`funcnet.network.schema.EVIDENCE_COLUMNS`).
+    edges : pandas.DataFrame
+        Its edges (:func:`network_edges`), ``source`` and ``target`` in either order of the
+        pair's ``x`` and ``y``.
+
+    Returns
+    -------
+    list of str or None
+        One reading per edge (``""`` for a pair without one, e.g. rows of a study run without
+        evidence among rows with it); ``None`` when no pair has a reading.
+
+    Examples
+    --------
+    >>> pairs = pd.DataFrame({"x": ["A", "A"], "y": ["B", "C"], "kind": ["y->x", "x->y"],
+    ...                       "weight": [0.2, 0.4], "evidence": ["coupled", "asymmetry-only"]})
+    >>> edge_evidence(pairs, network_edges(pairs))
+    ['coupled', 'asymmetry-only']
+    >>> edge_evidence(pairs.drop(columns="evidence"), network_edges(pairs)) is None
+    True
+    """
+    pairs = net if isinstance(net, pd.DataFrame) else net.pairs
+    if "evidence" not in pairs.columns:
+        return None
+    labels = pairs["evidence"].where(pairs["evidence"].notna(), "").astype(str)
+    if not (labels != "").any():
+        return None
+    reading = {frozenset((str(x), str(y))): label
+               for x, y, label in zip(pairs["x"], pairs["y"], labels, strict=True)}
+    return [reading.get(frozenset((str(a), str(b))), "")
+            for a, b in zip(edges["source"], edges["target"], strict=True)]
+
+
+def plot_network(
+    net: Any,
+    ax: Axes | None = None,
+    *,
+    nodes: Sequence[str] | None = None,
+    width_scale: float = 10.0,
+    min_width: float = 0.6,
+    node_size: float = 0.13,
+    node_color: str = "#f2f2f2",
+    title: str | None = None,
+    fontsize: float = 10.0,
+    legend: bool = True,
+    degenerate: str = "drop",
+) -> Axes:
+    """Draw a functional network in a circular layout (paper section 3.4, Fig. 9-11).
+
+    Parameters
+    ----------
+    net : FunctionalNetwork or pandas.DataFrame
+        The network, or its pairs table (see :func:`network_edges`).
+    ax : matplotlib.axes.Axes, optional
+        Where to draw; a new figure's axes when omitted.
+    nodes : sequence of str, optional
+        The nodes to place, in circle order (default the network's). Giving the same list to
+        every panel keeps each signal at the same place; a node the network lacks (e.g. a signal
+        left out of a window because it was constant there) is drawn dashed, without edges.
+    width_scale : float
+        Line width in points per unit of weight (Eq. 13). Absolute, so that widths compare across
+        panels and figures.
+    min_width : float
+        Smallest line width, so that a bidirectional edge of weight near 0 stays visible.
+    node_size : float
+        Node radius in data units (the circle of nodes has radius 1); names longer than three
+        characters get a larger node and a smaller font so that they fit.
+    node_color : str
+        Face colour of the nodes.
+    title : str, optional
+        Axes title (e.g. the window's label).
+    fontsize : float
+        Font size of the node labels.
+    legend : bool
+        Add a legend below the network explaining the edge colours and the width scale
+        (:func:`network_legend_handles`); multi-panel figures draw one for the whole figure.
+        When degenerate edges are drawn, the legend has their entry too; for a network with
+        evidence columns, the entries of the evidence styles.
+    degenerate : {"drop", "keep"}
+        For a pairs table only: draw degenerate pairs as edges (``"keep"``) or not (see
+        :func:`network_edges`); a network's own edges say it themselves.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes; each node is a :class:`~matplotlib.patches.Circle` with gid ``node:NAME``,
+        each edge a :class:`~matplotlib.patches.FancyArrowPatch` with gid
+        ``edge:SOURCE->TARGET:KIND``, black when directed and red when bidirectional; an edge
+        of a degenerate pair is grey and dashed, with gid ``edge:SOURCE->TARGET:KIND:degenerate``.
+        For a network with evidence (:func:`edge_evidence`), each edge's gid ends with its
+        pair's reading (``edge:RP->AP:directed:coupled``), and an edge whose pair the coupling
+        test does not show coupled (:data:`NO_COUPLING_EVIDENCE`) is dotted and pale (grey when
+        directed, pale red when bidirectional); without evidence columns nothing changes.
+
+    References
+    ----------
+    Paper section 3.4 (circular layout, black/red edges, width by the weight of Eq. 13).
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> pairs = pd.DataFrame({"x": ["RP", "RP", "AP"], "y": ["AP", "MP", "MP"],
+    ...                       "kind": ["x->y", "x->y", "bidirectional"],
+    ...                       "weight": [0.2, 0.1, 0.01]})
+    >>> ax = plot_network(pairs)
+    >>> sorted(p.get_gid() for p in ax.patches if p.get_gid().startswith("edge:"))
+    ['edge:AP->MP:bidirectional', 'edge:RP->AP:directed', 'edge:RP->MP:directed']
+    """
+    ax = _new_axes(ax)
+    present = _network_nodes(net)
+    nodes = list(present) if nodes is None else [*nodes, *(n for n in present if n not in nodes)]
+    # Clockwise from the top, as networkx.circular_layout places them in the paper's figures.
+    angles = np.pi / 2 - 2 * np.pi * np.arange(len(nodes)) / max(len(nodes), 1)
+    position = {name: (np.cos(a), np.sin(a)) for name, a in zip(nodes, angles, strict=True)}
+    radius = {name: _node_radius(name, node_size) for name in nodes}
+    for name in nodes:
+        circle = Circle(position[name], radius[name], facecolor=node_color, edgecolor="0.2",
+                        linewidth=0.8, zorder=3,
+                        linestyle="-" if name in present else "--")
+        circle.set_gid(f"node:{name}")
+        ax.add_patch(circle)
+        ax.text(*position[name], str(name), ha="center", va="center", zorder=4,
+                fontsize=fontsize * min(1.0, 4.0 / max(len(str(name)), 1)) ** 0.5)
+    edges = network_edges(net, degenerate=degenerate)
+    readings = edge_evidence(net, edges)
+    for k, edge in enumerate(edges.itertuples(index=False)):
+        bidirectional = edge.kind == "bidirectional"
+        width = max(min_width, width_scale * edge.weight)
+        color = BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR
+        style = "-"
+        reading = "" if readings is None else readings[k]
+        if reading in NO_COUPLING_EVIDENCE:
+            color = UNCOUPLED_BIDIRECTIONAL_COLOR if bidirectional else UNCOUPLED_COLOR
+            style = UNCOUPLED_STYLE
+        if edge.degenerate:
+            color, style = DEGENERATE_COLOR, "--"
+        arrow = FancyArrowPatch(
+            position[edge.source], position[edge.target],
+            arrowstyle="<|-|>" if bidirectional else "-|>",
+            # The head grows with the line so that a thick edge does not hide it.
+            mutation_scale=fontsize + 1 + 2.0 * width, shrinkA=0, shrinkB=0,
+            patchA=None, patchB=None, joinstyle="miter", capstyle="butt",
+            linewidth=width, color=color, linestyle=style,
+            # Curved slightly so that the arrows of a cycle do not overlap the node labels.
+            connectionstyle="arc3,rad=0.08", zorder=2,
+        )
+        # Stop the arrow at the node's rim rather than its centre.
+        arrow.set_positions(*_trim(position[edge.source], position[edge.target],
+                                   radius[edge.source], radius[edge.target]))
+        suffix = (":degenerate" if edge.degenerate else "") + (f":{reading}" if reading else "")
+        arrow.set_gid(f"edge:{edge.source}->{edge.target}:{edge.kind}{suffix}")
+        ax.add_patch(arrow)
+    ax.set_xlim(-1.3, 1.3)
+    ax.set_ylim(-1.3, 1.3)
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    if title is not None:
+        ax.set_title(title, fontsize=fontsize + 1)
+    if legend:
+        handles = network_legend_handles(width_scale,
+                                         degenerate=bool(edges["degenerate"].any()),
+                                         evidence=readings is not None)
+        ax.legend(handles=handles, loc="upper center",
+                  bbox_to_anchor=(0.5, 0.0), ncol=2, fontsize=max(9.0, fontsize - 1), frameon=False,
+                  handlelength=2.5)
+    return ax
+
+
+def _node_radius(name: Any, node_size: float) -> float:
+    """A node large enough for its name: names of up to three characters fit ``node_size``."""
+    return node_size * max(1.0, 0.25 * len(str(name)))
+
+
+def _trim(a: tuple[float, float], b: tuple[float, float], ra: float,
+          rb: float) -> tuple[Any, Any]:
+    pa, pb = np.asarray(a), np.asarray(b)
+    unit = (pb - pa) / max(np.linalg.norm(pb - pa), 1e-12)
+    return tuple(pa + ra * unit), tuple(pb - rb * unit)
+
+
+def plot_no_network(ax: Axes, label: Any = None) -> Axes:
+    """Mark a panel whose network could not be computed: "no network", no axes.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel.
+    label : str, optional
+        Its title.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> plot_no_network(Figure().add_subplot(), "cruise").texts[0].get_text()
+    'no network'
+    """
+    ax.set_axis_off()
+    if label is not None:
+        ax.set_title(str(label), fontsize=9)
+    ax.text(0.5, 0.5, "no network", ha="center", va="center", transform=ax.transAxes)
+    return ax
+
+
+def add_network_legend(fig: Figure, width_scale: float = 10.0, *,
+                       degenerate: bool = False, evidence: bool = False) -> Any:
+    """One legend of the edge colours and widths below a figure of several networks.
+
+    Draw the panels with ``plot_network(..., legend=False)`` and call this once.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure (constrained layout makes room for the legend below the panels).
+    width_scale : float
+        The panels' line width per unit of weight.
+    degenerate : bool
+        Explain degenerate edges too (when a panel draws some).
+    evidence : bool
+        Explain the evidence styles too (when the panels have evidence columns).
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+        The legend (gid ``legend:network``), entries of :func:`network_legend_handles`.
+
+    Examples
+    --------
+    >>> fig = Figure(layout="constrained")
+    >>> add_network_legend(fig).get_gid()
+    'legend:network'
+    """
+    legend = fig.legend(handles=network_legend_handles(width_scale, degenerate=degenerate,
+                                                       evidence=evidence),
+                        loc="outside lower center", ncol=3, fontsize=9, frameon=False,
+                        handlelength=2.5)
+    legend.set_gid("legend:network")
+    return legend
+
+
+def network_title(net: Any, source: str | None = None) -> str:
+    """A network's title: trace, window (label and span) and its parameters, on two lines.
+
+    Parameters
+    ----------
+    net : FunctionalNetwork
+    source : str, optional
+        The trace; default the file of the network's window.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from funcnet.network import functional_network
+    >>> x = np.random.default_rng(0).random((120, 2))
+    >>> print(network_title(functional_network(x, delay=1, warn=False, label="cruise 1")))
+    cruise 1 (120 samples)
+    m = 3, τ = 1, RR = 0.05, CR = 0.05, μ = 0.05, minmax
+    """
+    window = getattr(net, "window", None) or {}
+    source = source if source is not None else window.get("source")
+    where = [Path(str(source)).name] if source else []
+    label = net.label or window.get("label")
+    if label:
+        where.append(str(label))
+    if window.get("start") is not None:
+        where.append(f"{float(window['start']):.3f}–{float(window['stop']):.3f} s")
+    p = net.parameters
+    first = " · ".join(where) + f" ({net.n_samples} samples)"
+    second = (f"m = {p.dim}, τ = {p.delay}, RR = {p.rr}, CR = {p.cr}, μ = {p.mu}, "
+              f"{p.normalize or 'not normalized'}")
+    return f"{first.strip()}\n{second}"
+
+
+def save_network(net: Any, path: str | os.PathLike[str], *,
+                 size: tuple[float, float] = (7.0, 7.5), dpi: int = 100,
+                 title: str | None = None) -> Path:
+    """Draw a network into an image file (PNG, SVG or PDF), titled and with its legend.
+
+    Parameters
+    ----------
+    net : FunctionalNetwork
+    path : path-like
+        The file; its suffix (``.png``, ``.svg``, ``.pdf``) names the format. Written
+        atomically.
+    size : (float, float)
+        Width and height in inches (pixels = inches × ``dpi`` for PNG).
+    dpi : int
+        Resolution of a PNG.
+    title : str, optional
+        Default :func:`network_title`: trace, window, parameters.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    ParameterError
+        Another suffix, or a size that is not positive.
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, pathlib
+    >>> from funcnet.network import functional_network
+    >>> net = functional_network(np.random.default_rng(0).random((120, 3)), delay=1, warn=False)
+    >>> out = save_network(net, pathlib.Path(tempfile.mkdtemp()) / "net.png", size=(8, 6))
+    >>> from matplotlib.image import imread
+    >>> imread(out).shape[:2]
+    (600, 800)
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".png", ".svg", ".pdf"):
+        raise ParameterError.of("path", f"must end in .png, .svg or .pdf, got {path.name!r}")
+    if len(size) != 2 or not all(float(v) > 0 for v in size):
+        raise ParameterError.of("size", f"must be two positive sizes in inches, got {size!r}")
+    fig = Figure(figsize=(float(size[0]), float(size[1])), dpi=dpi, layout="constrained")
+    ax = fig.add_subplot()
+    plot_network(net, ax, legend=True)
+    ax.set_title(network_title(net) if title is None else title, fontsize=10)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format=suffix[1:], dpi=dpi)
+    return path

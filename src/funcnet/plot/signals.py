@@ -1,0 +1,122 @@
+"""Drawing signals over time with their phases or windows shaded, and the signals' legend."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+
+from funcnet.plot.style import _new_axes, phase_color, signal_color
+
+__all__ = ["plot_signals", "add_signal_legend"]
+
+
+def _mark_spans(ax: Axes, spans: Sequence[tuple[str, float, float]], prefix: str,
+                label: bool = True) -> None:
+    for k, (name, start, stop) in enumerate(spans):
+        patch = ax.axvspan(start, stop, color=phase_color(name, k), alpha=0.7,
+                           zorder=0, linewidth=0)
+        patch.set_gid(f"{prefix}:{name}")
+        if label:  # alternate heights so that the names of short phases do not overlap
+            ax.annotate(str(name), ((start + stop) / 2, 1.0), xycoords=ax.get_xaxis_transform(),
+                        xytext=(0, 2 + 11 * (k % 2)), textcoords="offset points", fontsize=9,
+                        ha="center", va="bottom")
+
+
+def _spans(phases: Any) -> list[tuple[str, float, float]]:
+    """(name, start, stop) from a phase table (phase, start, stop) or a sequence of Windows."""
+    if isinstance(phases, pd.DataFrame):
+        return [(str(r.phase), float(r.start), float(r.stop)) for r in phases.itertuples()]
+    return [(str(w.label), float(w.start), float(w.stop)) for w in phases]
+
+
+def plot_signals(
+    data: pd.DataFrame,
+    *,
+    normalize: bool = True,
+    spans: Any = None,
+    ax: Axes | None = None,
+    span_prefix: str = "phase",
+    legend: bool = True,
+) -> Axes:
+    """Plot the columns of a recording window over time, optionally min-max normalized.
+
+    Parameters
+    ----------
+    data : pandas.DataFrame
+        Time (seconds) as index, one column per signal.
+    normalize : bool
+        Scale every column to [0, 1] over the plotted range (paper section 3.3); a constant column
+        is drawn at 0.5.
+    spans : phase table or sequence of Window, optional
+        Intervals to shade (gid ``{span_prefix}:{name}``).
+    ax : matplotlib.axes.Axes, optional
+        Where to draw.
+    span_prefix : str
+        Prefix of the spans' gids.
+    legend : bool
+        Draw a legend of the signals.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        One line per column (label = column name, colour :func:`signal_color`).
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> df = pd.DataFrame({"RP": np.arange(5.0), "AC": np.ones(5)}, index=np.arange(5) * 0.002)
+    >>> [line.get_label() for line in plot_signals(df).lines]
+    ['RP', 'AC']
+    """
+    ax = _new_axes(ax, (6.0, 2.5))
+    if spans is not None:
+        _mark_spans(ax, _spans(spans), span_prefix)
+    for name in data.columns:
+        values = data[name].to_numpy(dtype=float)
+        if normalize:
+            lo, hi = np.nanmin(values), np.nanmax(values)
+            values = (values - lo) / (hi - lo) if hi > lo else np.full_like(values, 0.5)
+        ax.plot(data.index.to_numpy(dtype=float), values, label=str(name), linewidth=0.9,
+                color=signal_color(name))
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("normalized" if normalize else "value")
+    if legend:
+        # beside the axes: a legend inside would hide the data (Fig. 9)
+        ax.legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False)
+    return ax
+
+
+
+def add_signal_legend(fig: Figure, names: Sequence[str]) -> Any:
+    """One legend of the signals' colours above a figure of several series panels.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    names : sequence of str
+        The signals, in legend order (colours of :func:`signal_color`).
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+        The legend (gid ``legend:signals``).
+
+    Examples
+    --------
+    >>> [t.get_text() for t in add_signal_legend(Figure(), ["RP", "V"]).get_texts()]
+    ['RP', 'V']
+    """
+    handles = [Line2D([], [], color=signal_color(name), linewidth=1.5, label=str(name))
+               for name in names]
+    legend = fig.legend(handles=handles, loc="outside upper center", ncol=max(len(handles), 1),
+                        fontsize=9, frameon=False)
+    legend.set_gid("legend:signals")
+    return legend
+
