@@ -17,6 +17,35 @@ Array = np.ndarray
 Int = int | np.integer[Any]
 
 
+@njit(cache=True, inline="always")
+def _statistics(n_x: Int, n_y: Int, n_xy: Int, row_x: Array, row_y: Array, row_xy: Array,
+                length: Int, theiler: Int) -> tuple[float, float, float]:
+    """``(phi, mcr(x|y), mcr(y|x))`` from the counts of one window (shared by both kernels)."""
+    sum_x_given_y = 0.0
+    sum_y_given_x = 0.0
+    rows_x = 0
+    rows_y = 0
+    for u in range(length):
+        if row_y[u] > 0:
+            sum_x_given_y += row_xy[u] / row_y[u]
+            rows_y += 1
+        if row_x[u] > 0:
+            sum_y_given_x += row_xy[u] / row_x[u]
+            rows_x += 1
+    gap = min(theiler + 1, length)
+    n_pairs = (length - gap) * (length - gap + 1) // 2
+    phi = 0.0
+    if n_pairs > 0:
+        px = n_x / n_pairs
+        py = n_y / n_pairs
+        var = px * (1.0 - px) * py * (1.0 - py)
+        if var > 0.0:
+            phi = (n_xy / n_pairs - px * py) / np.sqrt(var)
+    x_given_y = sum_x_given_y / rows_y if rows_y else 0.0
+    y_given_x = sum_y_given_x / rows_x if rows_x else 0.0
+    return phi, x_given_y, y_given_x
+
+
 @njit(cache=True)
 def _window_counts(a_y: Array, pairs_x: Array, pairs_y: Array, start_x: Int, start_y: Int,
                    length: Int, theiler: Int) -> tuple[float, float, float]:
@@ -58,29 +87,7 @@ def _window_counts(a_y: Array, pairs_x: Array, pairs_y: Array, start_x: Int, sta
         n_y += 1
         row_y[i - start_y] += 1
         row_y[j - start_y] += 1
-    sum_x_given_y = 0.0
-    sum_y_given_x = 0.0
-    rows_x = 0
-    rows_y = 0
-    for u in range(length):
-        if row_y[u] > 0:
-            sum_x_given_y += row_xy[u] / row_y[u]
-            rows_y += 1
-        if row_x[u] > 0:
-            sum_y_given_x += row_xy[u] / row_x[u]
-            rows_x += 1
-    gap = min(theiler + 1, length)
-    n_pairs = (length - gap) * (length - gap + 1) // 2
-    phi = 0.0
-    if n_pairs > 0:
-        px = n_x / n_pairs
-        py = n_y / n_pairs
-        var = px * (1.0 - px) * py * (1.0 - py)
-        if var > 0.0:
-            phi = (n_xy / n_pairs - px * py) / np.sqrt(var)
-    x_given_y = sum_x_given_y / rows_y if rows_y else 0.0
-    y_given_x = sum_y_given_x / rows_x if rows_x else 0.0
-    return phi, x_given_y, y_given_x
+    return _statistics(n_x, n_y, n_xy, row_x, row_y, row_xy, length, theiler)
 
 
 @njit(cache=True, parallel=True)
@@ -160,29 +167,7 @@ def _index_counts(a_x: Array, a_y: Array, index: Array, theiler: Int) -> tuple[f
                     n_xy += 1
                     row_xy[u] += 1
                     row_xy[v] += 1
-    sum_x_given_y = 0.0
-    sum_y_given_x = 0.0
-    rows_x = 0
-    rows_y = 0
-    for u in range(length):
-        if row_y[u] > 0:
-            sum_x_given_y += row_xy[u] / row_y[u]
-            rows_y += 1
-        if row_x[u] > 0:
-            sum_y_given_x += row_xy[u] / row_x[u]
-            rows_x += 1
-    gap = min(theiler + 1, length)
-    n_pairs = (length - gap) * (length - gap + 1) // 2
-    phi = 0.0
-    if n_pairs > 0:
-        px = n_x / n_pairs
-        py = n_y / n_pairs
-        var = px * (1.0 - px) * py * (1.0 - py)
-        if var > 0.0:
-            phi = (n_xy / n_pairs - px * py) / np.sqrt(var)
-    x_given_y = sum_x_given_y / rows_y if rows_y else 0.0
-    y_given_x = sum_y_given_x / rows_x if rows_x else 0.0
-    return phi, x_given_y, y_given_x
+    return _statistics(n_x, n_y, n_xy, row_x, row_y, row_xy, length, theiler)
 
 
 @njit(cache=True, parallel=True)
