@@ -4,20 +4,12 @@ from __future__ import annotations
 
 import json
 import re
-from pathlib import Path
 
 import pytest
 from typer.testing import CliRunner
 
+from conftest import REAL_TRACE as REAL
 from funcnet.cli import app
-
-REAL = (
-    Path(__file__).resolve().parents[2]
-    / "shared"
-    / "data"
-    / "sinumerik"
-    / "axis7-braking-trace.xml"
-)
 
 runner = CliRunner()
 

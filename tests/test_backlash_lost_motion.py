@@ -20,14 +20,6 @@ from funcnet.robot.sim.axis import SimulatedTrial, simulate_trial
 from funcnet.robot.sim.plan import ARCMIN, backlash_sweep_plan
 
 STEP = 360 / 2**22  # the arm encoder's step with the real sensors, deg
-# the real trace sits beside the repository (read only)
-REAL = (
-    Path(__file__).resolve().parents[2]
-    / "shared"
-    / "data"
-    / "sinumerik"
-    / "axis7-braking-trace.xml"
-)
 
 
 def _one(**grid: tuple[float, ...]) -> SimulatedTrial:
@@ -146,9 +138,9 @@ def test_the_elastic_arms_truth_ends_where_the_gear_drives_the_hub_back() -> Non
     assert truth["lost_motion"] > 0.5 * 4 * ARCMIN
 
 
-@pytest.mark.skipif(not REAL.exists(), reason="the real trace is not beside the repository")
-def test_the_real_traces_direction_changes_give_a_few_arm_encoder_steps_each() -> None:
-    (result,) = diagnose_backlash(REAL)
+def test_the_real_traces_direction_changes_give_a_few_arm_encoder_steps_each(
+        real_trace: Path) -> None:
+    (result,) = diagnose_backlash(real_trace)
     lost = [r.lost_motion for r in result.reversals]
     assert len(lost) == 2 and all(r.change.kind == "after standstill" for r in result.reversals)
     # measured 0.00203 and 0.00147 deg: 24 and 17 steps of that axis's 8.6e-5 deg encoder

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import REAL_TRACE as REAL
 from funcnet.diagnosis import (
     MOTOR_LOOP_SCORE,
     SCORE,
@@ -21,15 +22,6 @@ from funcnet.diagnosis import (
 from funcnet.errors import ParameterError
 from funcnet.robot import read_trace
 from funcnet.robot.sim import Trial, simulate_trial, write_trace
-
-# the shared data sits beside the repository (CI has it there too)
-REAL = (
-    Path(__file__).resolve().parents[2]
-    / "shared"
-    / "data"
-    / "sinumerik"
-    / "axis7-braking-trace.xml"
-)
 
 
 def _reversal_trace(tmp_path: Path, backlash_arcmin: float, name: str) -> tuple[Path, dict]:

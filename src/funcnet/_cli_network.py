@@ -8,9 +8,8 @@ the command turns them into its one-line messages.
 from __future__ import annotations
 
 import contextlib
-import dataclasses
 import sys
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -121,6 +120,37 @@ def _parse_window(text: str) -> tuple[float, float]:
     if not start < stop:
         raise ParameterError(f"--window: START must be less than STOP, got {text!r}")
     return start, stop
+
+
+def _window_request(phase: str | None, window: str | None
+                    ) -> tuple[bool, tuple[float, float] | None]:
+    """``--phase``/``--window`` checked before the trace is read: ``(whole, bounds)``."""
+    if phase is not None and window is not None:
+        raise ParameterError("give --phase or --window, not both")
+    whole = window is not None and window.strip().lower() == "all"
+    return whole, None if window is None or whole else _parse_window(window)
+
+
+def _chosen_windows(recording: Any, trace: Path, phase: str | None, whole: bool,
+                    bounds: tuple[float, float] | None) -> list[Any]:
+    """The windows asked for: ``--window all`` one window where every signal has a value,
+    ``--phase``/``--window START:STOP`` that one, neither every phase of a move."""
+    if whole:
+        return [_select_window(recording, None, None, trace)]
+    if phase is None and bounds is None:
+        return _moving_phases(recording, trace)
+    return [_select_window(recording, phase, bounds, trace)]
+
+
+def _network_overrides(given: dict[str, Any], normalize: str | None,
+                       keep_degenerate: bool) -> dict[str, Any]:
+    """The network options given on the command line, as NetworkParameters overrides."""
+    overrides = {k: v for k, v in given.items() if v is not None}
+    if normalize is not None:
+        overrides["normalize"] = None if normalize.lower() == "none" else normalize
+    if keep_degenerate:
+        overrides["degenerate"] = "keep"
+    return overrides
 
 
 def _select_window(
@@ -393,20 +423,3 @@ def _evidence_settings(evidence: bool, surrogates: int | None, alpha: float, see
         raise ParameterError(exc.spelled(flag), parameter=flag, detail=exc.detail) from None
     return {"surrogates": surrogates, "alpha": alpha, "seed": seed, "resamples": resamples,
             "edge_rule": edge_rule, "surrogate_method": surrogate_method}
-
-
-def _with_evidence(recording: Any, nets: Mapping[str, Any], windows: Sequence[Any],
-                   settings: Mapping[str, Any]) -> dict[str, Any]:
-    """Each window's network again, with the evidence columns (same nodes and parameters;
-    the window's record kept)."""
-    from funcnet.network import functional_network
-
-    spans = {w.label: w for w in windows}
-    found = {}
-    for label, net in nets.items():
-        span = spans[label]
-        part = recording.window(span.start, span.stop).data[list(net.nodes)]
-        full = functional_network(part, parameters=net.parameters, label=label, warn=False,
-                                  evidence=True, **settings)
-        found[label] = dataclasses.replace(full, window=net.window)
-    return found

@@ -18,10 +18,11 @@ import typer
 from funcnet._cli_network import (
     _check_cost,
     _check_signals,
-    _moving_phases,
+    _chosen_windows,
     _network_files,
-    _select_window,
+    _network_overrides,
     _signal_list,
+    _window_request,
 )
 from funcnet.errors import FuncnetError, ParameterError
 from funcnet.parameters import NetworkParameters
@@ -239,11 +240,7 @@ def _command(reported_errors: Callable[..., Any]) -> Callable[..., None]:
             given = {"dim": dim, "delay": delay, "rr": rr, "cr": cr, "mu": mu, "mu_c": mu_c,
                      "mu_t": mu_t, "metric": metric, "measure": measure, "rule": rule,
                      "theiler": theiler}
-            overrides: dict[str, Any] = {k: v for k, v in given.items() if v is not None}
-            if normalize is not None:
-                overrides["normalize"] = None if normalize.lower() == "none" else normalize
-            if keep_degenerate:
-                overrides["degenerate"] = "keep"
+            overrides = _network_overrides(given, normalize, keep_degenerate)
             grid = parse_vary(vary)
             if full and grid is None:
                 raise ParameterError("--full needs --vary (the default grid is one at a time)")
@@ -252,12 +249,7 @@ def _command(reported_errors: Callable[..., Any]) -> Callable[..., None]:
             with _spelled():
                 parameters = NetworkParameters(**overrides)
                 check_grid(grid, parameters)  # every value checked before the trace is read
-            if phase is not None and window is not None:
-                raise ParameterError("give --phase or --window, not both")
-            from funcnet._cli_network import _parse_window
-
-            whole = window is not None and window.strip().lower() == "all"
-            bounds = None if window is None or whole else _parse_window(window)
+            whole, bounds = _window_request(phase, window)
             names = _signal_list(signals)
             from funcnet.robot import PAPER_NODES, read_recording
 
@@ -270,11 +262,7 @@ def _command(reported_errors: Callable[..., Any]) -> Callable[..., None]:
 
                 _print_phases(recording)
                 return
-            if whole or phase is None and bounds is None:
-                chosen = ([_select_window(recording, None, None, trace)] if whole
-                          else _moving_phases(recording, trace))
-            else:
-                chosen = [_select_window(recording, phase, bounds, trace)]
+            chosen = _chosen_windows(recording, trace, phase, whole, bounds)
             nodes = names or [n for n in PAPER_NODES if n in recording.data.columns]
             _check_cost(recording, chosen, nodes, parameters, force)
             frames, results, labels = _compute(recording, chosen, nodes, parameters, grid,

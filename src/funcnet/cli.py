@@ -56,19 +56,18 @@ from funcnet._cli_network import (
     Surrogates,
     _check_cost,
     _check_signals,
+    _chosen_windows,
     _default,
     _evidence_settings,
     _is_terminal,
-    _moving_phases,
     _network_files,
+    _network_overrides,
     _parse_size,
-    _parse_window,
     _print_pairs,
     _print_phases,
-    _select_window,
     _signal_list,
     _spelled_as_options,
-    _with_evidence,
+    _window_request,
     _write_network,
 )
 from funcnet._cli_stability import register as _register_stability
@@ -562,21 +561,14 @@ def network(
             "rule": rule,
             "theiler": theiler,
         }
-        overrides: dict[str, Any] = {k: v for k, v in given.items() if v is not None}
-        if normalize is not None:
-            overrides["normalize"] = None if normalize.lower() == "none" else normalize
-        if keep_degenerate:
-            overrides["degenerate"] = "keep"
+        overrides = _network_overrides(given, normalize, keep_degenerate)
         # Options are checked before the trace is read: a bad one is reported as itself, not
         # as whatever the computation would stumble on first.
         with _spelled_as_options():
             parameters = NetworkParameters(**overrides)
-        if phase is not None and window is not None:
-            raise ParameterError("give --phase or --window, not both")
-        whole = window is not None and window.strip().lower() == "all"
-        bounds = None if window is None or whole else _parse_window(window)
+        whole, bounds = _window_request(phase, window)
         names = _signal_list(signals)
-        from funcnet.pipeline import window_networks
+        from funcnet.pipeline import window_evidence, window_networks
         from funcnet.robot import read_recording
 
         with _progress(quiet, "network") as progress:
@@ -588,19 +580,14 @@ def network(
             if list_phases:
                 _print_phases(recording)
                 return
-            if whole or phase is None and bounds is None:
-                # --window all: one window where every signal has a value; else one per phase
-                chosen = ([_select_window(recording, None, None, trace)] if whole
-                          else _moving_phases(recording, trace))
-            else:
-                chosen = [_select_window(recording, phase, bounds, trace)]
+            chosen = _chosen_windows(recording, trace, phase, whole, bounds)
             _check_cost(recording, chosen, names, parameters, force)
             nets = window_networks(
                 recording, chosen, signals=names, parameters=parameters,
                 constant="drop" if drop_constant else "error", progress=progress,
             )
             if evidence_settings is not None:
-                nets = _with_evidence(recording, nets, chosen, evidence_settings)
+                nets = window_evidence(recording, nets, chosen, **evidence_settings)
         if output is None:
             for net in nets.values():
                 _print_pairs(net)

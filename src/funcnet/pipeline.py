@@ -37,7 +37,7 @@ from funcnet.robot.preprocess import staircase_signals
 from funcnet.robot.recording import Recording
 from funcnet.robot.windows import PAPER_NODES, Window, phase_windows
 
-__all__ = ["window_networks", "window_warnings", "CONSTANT_POLICIES"]
+__all__ = ["window_networks", "window_evidence", "window_warnings", "CONSTANT_POLICIES"]
 
 #: What :func:`window_networks` does with a signal constant inside a window: raise, or leave it
 #: out of that window's network.
@@ -63,6 +63,43 @@ _SUMMARIES: dict[str, tuple[str, str]] = {
         "are meaningless (degenerate is True)",
     ),
 }
+
+
+def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwork],
+                    windows: Sequence[Window], **settings: Any) -> dict[str, FunctionalNetwork]:
+    """Each window's network again with the evidence columns (same nodes and parameters).
+
+    Parameters
+    ----------
+    recording : Recording
+        The recording the networks were computed on.
+    networks : mapping of str to FunctionalNetwork
+        :func:`window_networks`' result (or part of it), by window label.
+    windows : sequence of Window
+        The windows, among them one per label of ``networks``.
+    **settings
+        ``evidence=True``'s settings of :func:`funcnet.network.functional_network`
+        (``surrogates``, ``alpha``, ``seed``, ``resamples``, ``edge_rule``, ...).
+
+    Returns
+    -------
+    dict of str to FunctionalNetwork
+        By label; each keeps its window's record.
+
+    Raises
+    ------
+    KeyError
+        A label of ``networks`` without its window.
+    """
+    spans = {w.label: w for w in windows}
+    found = {}
+    for label, net in networks.items():
+        span = spans[label]
+        part = recording.window(span.start, span.stop).data[list(net.nodes)]
+        full = functional_network(part, parameters=net.parameters, label=label, warn=False,
+                                  evidence=True, **settings)
+        found[label] = dataclasses.replace(full, window=net.window)
+    return found
 
 
 def window_networks(

@@ -266,7 +266,7 @@ def network_rows(task: NetworkTask) -> Outcome:
         ``error`` if the window cannot be analysed (a constant signal, too short ...).
     """
     import funcnet.robot as robot
-    from funcnet.pipeline import window_networks
+    from funcnet.pipeline import window_evidence, window_networks
 
     try:
         recording = _cached_recording(task)
@@ -278,11 +278,11 @@ def network_rows(task: NetworkTask) -> Outcome:
                 constant=task.constant,
             )
         (network,) = networks.values()
-        part = recording.window(window.start, window.stop).data[list(network.nodes)]
         if task.evidence:
             with _one_thread_per_task():
-                network = _with_evidence(network, part, task.evidence)
-            networks = {window.label: network}
+                networks = window_evidence(recording, networks, [window], **dict(task.evidence))
+            (network,) = networks.values()
+        part = recording.window(window.start, window.stop).data[list(network.nodes)]
     except ParameterError as exc:
         return Outcome(task.key, fatal=str(exc))
     except FuncnetError as exc:
@@ -310,17 +310,6 @@ def network_rows(task: NetworkTask) -> Outcome:
     rows = rows_table(identity, task.parameters, pairs)
     found = task_warnings(networks, recording, signals, task.source.name) + unstable
     return Outcome(task.key, value=rows, warnings=found)
-
-
-def _with_evidence(network: Any, part: Any, evidence: tuple[tuple[str, Any], ...]) -> Any:
-    """The window's network again with the evidence columns (same nodes and parameters)."""
-    import dataclasses
-
-    from funcnet.network import functional_network
-
-    full = functional_network(part, parameters=network.parameters, label=network.label,
-                              warn=False, evidence=True, **dict(evidence))
-    return dataclasses.replace(full, window=network.window)
 
 
 def _with_stability(network: Any, part: Any, stability: tuple[tuple[str, Any], ...],
