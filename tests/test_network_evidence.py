@@ -6,11 +6,12 @@ import warnings
 
 import networkx as nx
 import numpy as np
+import pandas as pd
 import pytest
 
 from funcnet import systems
 from funcnet.errors import ParameterError
-from funcnet.network import FunctionalNetwork, functional_network
+from funcnet.network import FunctionalNetwork, add_evidence, functional_network
 from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS, check_pairs
 
 
@@ -120,3 +121,37 @@ def test_twin_surrogates_and_no_intervals_pass_through(data, networks):
     with pytest.raises(ParameterError, match="surrogate_method"):
         functional_network(data, delay=1, evidence=True, surrogate_method="circular",
                            warn=False)
+
+
+def test_add_evidence_to_a_plain_network_equals_computing_it_with_evidence(data, networks):
+    plain, full = networks
+    assert add_evidence(plain, data, resamples=100) == full
+    frame = pd.DataFrame(data, columns=list("abcd"))
+    assert add_evidence(plain, frame[list("dcba")], resamples=100) == full  # by column name
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        interval = functional_network(data, names=list("abcd"), delay=1, evidence=True,
+                                      resamples=100, edge_rule="interval")
+    assert add_evidence(plain, data, resamples=100, edge_rule="interval") == interval
+
+
+def test_add_evidence_to_multichannel_nodes(data):
+    frame = pd.DataFrame(data, columns=["a1", "a2", "b1", "b2"])
+    nodes = {"A": ["a1", "a2"], "B": ["b1", "b2"]}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        plain = functional_network(frame, nodes=nodes, delay=1)
+        full = functional_network(frame, nodes=nodes, delay=1, evidence=True, resamples=20)
+    assert add_evidence(plain, frame, resamples=20) == full
+
+
+def test_add_evidence_refuses_data_that_is_not_the_networks(data, networks):
+    plain, full = networks
+    with pytest.raises(ParameterError, match="data.*399 samples.*400"):
+        add_evidence(plain, data[:-1])
+    with pytest.raises(ParameterError, match="data.*no column.*'d'"):
+        add_evidence(plain, pd.DataFrame(data[:, :3], columns=list("abc")))
+    with pytest.raises(ParameterError, match="network.*already"):
+        add_evidence(full, data)
+    with pytest.raises(ParameterError, match="surrogates"):
+        add_evidence(plain, data, surrogates=0)

@@ -30,7 +30,13 @@ from funcnet.errors import (
     WindowError,
 )
 from funcnet.measures import CrossMeasures, threshold_warnings
-from funcnet.network import FunctionalNetwork, edges_from_pairs, functional_network, pair_kinds
+from funcnet.network import (
+    FunctionalNetwork,
+    add_evidence,
+    edges_from_pairs,
+    functional_network,
+    pair_kinds,
+)
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import NetworkParameters, resolve
 from funcnet.robot.preprocess import staircase_signals
@@ -67,7 +73,8 @@ _SUMMARIES: dict[str, tuple[str, str]] = {
 
 def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwork],
                     windows: Sequence[Window], **settings: Any) -> dict[str, FunctionalNetwork]:
-    """Each window's network again with the evidence columns (same nodes and parameters).
+    """Each window's network with the evidence columns (:func:`funcnet.network.add_evidence`:
+    the measures are not computed again).
 
     Parameters
     ----------
@@ -84,7 +91,7 @@ def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwo
     Returns
     -------
     dict of str to FunctionalNetwork
-        By label; each keeps its window's record.
+        By label; each keeps its label and its window's record.
 
     Raises
     ------
@@ -96,9 +103,7 @@ def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwo
     for label, net in networks.items():
         span = spans[label]
         part = recording.window(span.start, span.stop).data[list(net.nodes)]
-        full = functional_network(part, parameters=net.parameters, label=label, warn=False,
-                                  evidence=True, **settings)
-        found[label] = dataclasses.replace(full, window=net.window)
+        found[label] = add_evidence(net, part, **settings)
     return found
 
 

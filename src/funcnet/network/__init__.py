@@ -6,7 +6,9 @@ module             what it holds
 ``schema``         the one pairs-table and edges-table schema, the kind vocabulary
 ``rule``           the edge rule as pure functions of a pairs table (section 2.4, Eq. 10, 13)
 ``functional``     :class:`FunctionalNetwork` and :func:`functional_network`
+``evidence``       :func:`add_evidence`: the evidence columns of a network already computed
 ``readwrite``      JSON, GraphML, networkx
+``stability``      :func:`edge_stability`: how many settings of a grid keep each pair's kind
 =================  ==========================================================================
 
 ``functional_network(..., evidence=True)`` adds the evidence columns of :mod:`funcnet.evidence`
@@ -21,6 +23,7 @@ Examples
 
 from __future__ import annotations
 
+from funcnet.network.evidence import add_evidence
 from funcnet.network.functional import FunctionalNetwork, check_parameters, functional_network
 from funcnet.network.rule import combine_kinds, edge_kind, edges_from_pairs, kinds_for, pair_kinds
 from funcnet.network.schema import (
@@ -46,6 +49,7 @@ __all__ = [
     "EVIDENCE_LABELS",
     "FunctionalNetwork",
     "functional_network",
+    "add_evidence",
     "check_parameters",
     "edge_kind",
     "combine_kinds",

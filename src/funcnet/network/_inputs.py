@@ -7,14 +7,16 @@ problem is named: the column, the node, or the ``names``/``nodes`` argument.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from funcnet.errors import ParameterError, SignalError
+from funcnet.preprocess import normalize as normalize_signals
 
-__all__ = ["column_names", "float_columns", "node_groups"]
+__all__ = ["column_names", "float_columns", "node_groups", "PreparedSignals", "prepared_signals"]
 
 
 def column_names(data: Any, names: Any) -> list[str]:
@@ -117,3 +119,60 @@ def node_groups(nodes: Any, columns: Sequence[str]) -> tuple[list[str], list[lis
             f"states of equal dimension); got {shown}",
         )
     return names, groups
+
+
+@dataclass(frozen=True)
+class PreparedSignals:
+    """The nodes' signals as the network reads them: normalized, one array per node.
+
+    Attributes
+    ----------
+    names : tuple of str
+        Node names, in node order.
+    columns : tuple of str
+        Every column's name.
+    groups : tuple of tuple of int
+        Per node, the indices of its columns.
+    signals : tuple of ndarray
+        Per node, its normalized samples: (N,) for a one-column node, (N, c) for a group.
+    n_samples : int
+    """
+
+    names: tuple[str, ...]
+    columns: tuple[str, ...]
+    groups: tuple[tuple[int, ...], ...]
+    signals: tuple[np.ndarray, ...]
+    n_samples: int
+
+
+def prepared_signals(data: Any, names: Any, nodes: Any, normalize: str | None) -> PreparedSignals:
+    """Columns named, grouped into nodes and normalized per column (every check named).
+
+    Raises
+    ------
+    ParameterError
+        Bad ``names`` or ``nodes``.
+    SignalError
+        Fewer than two nodes; a column not numeric, with NaN/inf, or constant under a
+        normalization.
+    """
+    columns = column_names(data, names)
+    node_names, groups = node_groups(nodes, columns)
+    if len(node_names) < 2:
+        raise SignalError(
+            f"a functional network needs at least two signals, got {len(node_names)}"
+        )
+    used = [i for group in groups for i in group]
+    values = float_columns(data, used, columns)
+    values = normalize_signals(values, normalize, names=[columns[i] for i in used])
+    position = {i: k for k, i in enumerate(used)}
+    # A one-column node is a 1-D signal (bit for bit the numbers of a plain column); a group
+    # is an (N, c) multichannel signal.
+    signals = tuple(
+        values[:, position[group[0]]] if len(group) == 1
+        else values[:, [position[i] for i in group]]
+        for group in groups
+    )
+    return PreparedSignals(tuple(node_names), tuple(columns),
+                           tuple(tuple(group) for group in groups), signals,
+                           int(values.shape[0]))

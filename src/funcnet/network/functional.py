@@ -24,28 +24,14 @@ from typing import Any
 import networkx as nx
 import pandas as pd
 
-from funcnet.errors import ParameterError, SignalError
-from funcnet.evidence import (
-    EDGE_RULES,
-    check_evidence_arguments,
-    evidence_label,
-    interval_kind,
-    pairwise_evidence,
-)
-from funcnet.evidence.pairs import PairEvidence
+from funcnet.evidence import check_evidence_arguments
 from funcnet.measures import pairwise_cross_measures
 from funcnet.network import readwrite
-from funcnet.network._inputs import column_names, float_columns, node_groups
-from funcnet.network.rule import combine_kinds, edges_from_pairs, pair_kinds
-from funcnet.network.schema import (
-    EVIDENCE_COLUMNS,
-    PAIR_COLUMNS,
-    RESULT_COLUMNS,
-    RULE_COLUMNS,
-    pairs_frame,
-)
+from funcnet.network._inputs import prepared_signals
+from funcnet.network.evidence import check_edge_rule, evidence_columns
+from funcnet.network.rule import edges_from_pairs, pair_kinds
+from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import NetworkParameters, resolve
-from funcnet.preprocess import normalize as normalize_signals
 
 __all__ = ["FunctionalNetwork", "functional_network", "check_parameters"]
 
@@ -495,83 +481,33 @@ def functional_network(
     False
     """
     p = resolve(parameters, overrides)
-    if edge_rule not in EDGE_RULES:
-        raise ParameterError.of("edge_rule", f"must be one of {', '.join(EDGE_RULES)}; got "
-                                f"{edge_rule!r}")
-    if edge_rule == "interval" and not evidence:
-        raise ParameterError.of("edge_rule", "'interval' needs evidence=True")
+    check_edge_rule(edge_rule, evidence)
     if evidence:
         check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
-    columns = column_names(data, names)
-    node_names, groups = node_groups(nodes, columns)
-    if len(node_names) < 2:
-        raise SignalError(
-            f"a functional network needs at least two signals, got {len(node_names)}"
-        )
-    used = [i for group in groups for i in group]
-    values = float_columns(data, used, columns)
-    values = normalize_signals(values, p.normalize, names=[columns[i] for i in used])
-    position = {i: k for k, i in enumerate(used)}
-    # A one-column node is a 1-D signal (bit for bit the numbers of a plain column); a group
-    # is an (N, c) multichannel signal.
-    signals = [
-        values[:, position[group[0]]] if len(group) == 1
-        else values[:, [position[i] for i in group]]
-        for group in groups
-    ]
-    results = pairwise_cross_measures(signals, names=node_names, parameters=p, warn=warn)
+    prepared = prepared_signals(data, names, nodes, p.normalize)
+    results = pairwise_cross_measures(list(prepared.signals), names=list(prepared.names),
+                                      parameters=p, warn=warn)
     pairs = _pairs_table(results, p)
     settings = None
     if evidence:
-        found = pairwise_evidence(
-            signals, names=node_names, parameters=p, surrogates=surrogates,
-            alpha=alpha, seed=seed, resamples=resamples, surrogate_method=surrogate_method,
+        pairs, settings = evidence_columns(
+            pairs, prepared, p, surrogates=surrogates, alpha=alpha, seed=seed,
+            resamples=resamples, surrogate_method=surrogate_method, edge_rule=edge_rule,
         )
-        pairs = _with_evidence(pairs, found, p, edge_rule)
-        settings = {"surrogates": surrogates, "alpha": float(alpha), "seed": int(seed),
-                    "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule,
-                    "surrogate_method": surrogate_method}
     channels = None if nodes is None else {
-        name: tuple(columns[i] for i in group)
-        for name, group in zip(node_names, groups, strict=True)
+        name: tuple(prepared.columns[i] for i in group)
+        for name, group in zip(prepared.names, prepared.groups, strict=True)
     }
     return FunctionalNetwork(
-        nodes=tuple(node_names),
+        nodes=prepared.names,
         pairs=pairs,
         edges=edges_from_pairs(pairs, degenerate=p.degenerate),
         parameters=p,
-        n_samples=int(values.shape[0]),
+        n_samples=prepared.n_samples,
         label=None if label is None else str(label),
         channels=channels,
         evidence=settings,
     )
-
-
-def _with_evidence(pairs: pd.DataFrame, found: Mapping[tuple[str, str], PairEvidence],
-                   p: NetworkParameters, edge_rule: str) -> pd.DataFrame:
-    """``pairs`` with the evidence columns; under ``edge_rule="interval"`` new kinds."""
-    columns: dict[str, list[Any]] = {name: pairs[name].tolist() for name in PAIR_COLUMNS}
-    rows = [found[(x, y)] for x, y in zip(columns["x"], columns["y"], strict=True)]
-    if edge_rule == "interval":
-        c_kinds = [interval_kind(e.c_diff, e.c_diff_low, e.c_diff_high, p.mu_clustering)
-                   for e in rows]
-        t_kinds = [interval_kind(e.t_diff, e.t_diff_low, e.t_diff_high, p.mu_transitivity)
-                   for e in rows]
-        if p.measure == "clustering":
-            kinds = c_kinds
-        elif p.measure == "transitivity":
-            kinds = t_kinds
-        else:
-            kinds = [combine_kinds(c, t) for c, t in zip(c_kinds, t_kinds, strict=True)]
-        columns.update(c_kind=c_kinds, t_kind=t_kinds, kind=kinds)
-    for name in EVIDENCE_COLUMNS:
-        if name != "evidence":
-            columns[name] = [getattr(e, name) for e in rows]
-    columns["evidence"] = [
-        evidence_label(e.coupled, e.direction, kind)
-        for e, kind in zip(rows, columns["kind"], strict=True)
-    ]
-    return pairs_frame(columns)
 
 
 def _pairs_table(results: Mapping[tuple[str, str], Any],

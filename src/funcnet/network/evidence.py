@@ -1,0 +1,174 @@
+"""A network's evidence columns: the reading of :mod:`funcnet.evidence` added to its pairs table.
+
+:func:`add_evidence` adds them to a plain network already computed (one window's network of
+:func:`funcnet.pipeline.window_networks`, say) from the data it was computed from; it gives
+exactly what ``functional_network(..., evidence=True)`` gives, without computing the measures
+again.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+import pandas as pd
+
+from funcnet.errors import ParameterError
+from funcnet.evidence import (
+    EDGE_RULES,
+    check_evidence_arguments,
+    evidence_label,
+    interval_kind,
+    pairwise_evidence,
+)
+from funcnet.evidence.pairs import PairEvidence
+from funcnet.network._inputs import PreparedSignals, prepared_signals
+from funcnet.network.rule import combine_kinds, edges_from_pairs
+from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS, pairs_frame
+from funcnet.parameters import NetworkParameters
+
+if TYPE_CHECKING:
+    from funcnet.network.functional import FunctionalNetwork
+
+__all__ = ["add_evidence", "check_edge_rule", "evidence_columns"]
+
+
+def check_edge_rule(edge_rule: Any, evidence: bool) -> None:
+    """Raise a :class:`ParameterError` for an unknown ``edge_rule`` or ``"interval"`` without
+    evidence.
+
+    Examples
+    --------
+    >>> check_edge_rule("interval", evidence=True)
+    >>> check_edge_rule("interval", evidence=False)
+    Traceback (most recent call last):
+        ...
+    funcnet.errors.ParameterError: edge_rule 'interval' needs evidence=True
+    """
+    if edge_rule not in EDGE_RULES:
+        raise ParameterError.of("edge_rule", f"must be one of {', '.join(EDGE_RULES)}; got "
+                                f"{edge_rule!r}")
+    if edge_rule == "interval" and not evidence:
+        raise ParameterError.of("edge_rule", "'interval' needs evidence=True")
+
+
+def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkParameters, *,
+                     surrogates: int | None, alpha: float, seed: int, resamples: int,
+                     surrogate_method: str,
+                     edge_rule: str) -> tuple[pd.DataFrame, dict[str, Any]]:
+    """A plain pairs table with the evidence columns, and the settings that made them.
+
+    Under ``edge_rule="interval"`` the kinds follow the interval rule
+    (:func:`funcnet.evidence.interval_kind`). The arguments are those of
+    :func:`funcnet.network.functional_network`, checked there.
+    """
+    found = pairwise_evidence(
+        list(prepared.signals), names=list(prepared.names), parameters=p, surrogates=surrogates,
+        alpha=alpha, seed=seed, resamples=resamples, surrogate_method=surrogate_method,
+    )
+    settings = {"surrogates": surrogates, "alpha": float(alpha), "seed": int(seed),
+                "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule,
+                "surrogate_method": surrogate_method}
+    return _with_evidence(pairs, found, p, edge_rule), settings
+
+
+def _with_evidence(pairs: pd.DataFrame, found: Mapping[tuple[str, str], PairEvidence],
+                   p: NetworkParameters, edge_rule: str) -> pd.DataFrame:
+    columns: dict[str, list[Any]] = {name: pairs[name].tolist() for name in PAIR_COLUMNS}
+    rows = [found[(x, y)] for x, y in zip(columns["x"], columns["y"], strict=True)]
+    if edge_rule == "interval":
+        c_kinds = [interval_kind(e.c_diff, e.c_diff_low, e.c_diff_high, p.mu_clustering)
+                   for e in rows]
+        t_kinds = [interval_kind(e.t_diff, e.t_diff_low, e.t_diff_high, p.mu_transitivity)
+                   for e in rows]
+        if p.measure == "clustering":
+            kinds = c_kinds
+        elif p.measure == "transitivity":
+            kinds = t_kinds
+        else:
+            kinds = [combine_kinds(c, t) for c, t in zip(c_kinds, t_kinds, strict=True)]
+        columns.update(c_kind=c_kinds, t_kind=t_kinds, kind=kinds)
+    for name in EVIDENCE_COLUMNS:
+        if name != "evidence":
+            columns[name] = [getattr(e, name) for e in rows]
+    columns["evidence"] = [
+        evidence_label(e.coupled, e.direction, kind)
+        for e, kind in zip(rows, columns["kind"], strict=True)
+    ]
+    return pairs_frame(columns)
+
+
+def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | None = None,
+                 alpha: float = 0.05, seed: int = 0, resamples: int = 200,
+                 surrogate_method: str = "shift", edge_rule: str = "paper") -> FunctionalNetwork:
+    """The network with the evidence columns, from the data it was computed from.
+
+    Equal to ``functional_network(data, ..., evidence=True, ...)`` with the network's nodes and
+    parameters; its measures are not computed again.
+
+    Parameters
+    ----------
+    network : FunctionalNetwork
+        A plain network (without evidence).
+    data : pandas.DataFrame or array_like, shape (N, k)
+        The samples the network was computed from: a DataFrame with a column per node (or per
+        channel of a multichannel node), or an array with one column per node in node order.
+    surrogates, alpha, seed, resamples, surrogate_method, edge_rule
+        As in :func:`funcnet.network.functional_network`.
+
+    Returns
+    -------
+    FunctionalNetwork
+        The same nodes, parameters, label and window; the pairs table with the evidence
+        columns; under ``edge_rule="interval"`` the kinds and edges of that rule.
+
+    Raises
+    ------
+    ParameterError
+        A bad evidence argument; ``network`` already with evidence; ``data`` with another number
+        of samples than the network or without one of its nodes' columns.
+    SignalError
+        As :func:`funcnet.network.functional_network` for the data's columns.
+
+    References
+    ----------
+    docs/evidence.md (the dependence test, the intervals, the readings).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from funcnet.network import functional_network
+    >>> from funcnet.systems import henon_pair
+    >>> data = henon_pair(300, 0.6, seed=0)
+    >>> plain = functional_network(data, names=["x", "y"], delay=1, warn=False)
+    >>> full = add_evidence(plain, data, surrogates=19, resamples=0)
+    >>> full == functional_network(data, names=["x", "y"], delay=1, warn=False, evidence=True,
+    ...                            surrogates=19, resamples=0)
+    True
+    >>> full.pairs.loc[0, "evidence"]
+    'coupled'
+    """
+    check_edge_rule(edge_rule, evidence=True)
+    check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
+    if network.evidence is not None:
+        raise ParameterError.of("network", "already has evidence columns")
+    if isinstance(data, pd.DataFrame):
+        channels = network.channels or {node: (node,) for node in network.nodes}
+        missing = [c for node in network.nodes for c in channels[node] if c not in data.columns]
+        if missing:
+            raise ParameterError.of("data", f"has no column(s) {missing} of the network's "
+                                    f"nodes; it has {[str(c) for c in data.columns]}")
+        prepared = prepared_signals(data, None, dict(channels), network.parameters.normalize)
+    else:
+        prepared = prepared_signals(data, list(network.nodes), None,
+                                    network.parameters.normalize)
+    if prepared.n_samples != network.n_samples:
+        raise ParameterError.of("data", f"has {prepared.n_samples} samples; the network was "
+                                f"computed from {network.n_samples}")
+    pairs, settings = evidence_columns(
+        network.pairs, prepared, network.parameters, surrogates=surrogates, alpha=alpha,
+        seed=seed, resamples=resamples, surrogate_method=surrogate_method, edge_rule=edge_rule,
+    )
+    edges = edges_from_pairs(pairs, degenerate=network.parameters.degenerate)
+    return dataclasses.replace(network, pairs=pairs, edges=edges, evidence=settings)
