@@ -254,7 +254,7 @@ def with_fn(args: argparse.Namespace, out: list[str]) -> pd.DataFrame:
     sweep = run_sweep(plan, networks=True, evidence=True, workers=args.workers,
                       intervals=args.intervals)  # fmt: skip
     elapsed = time.perf_counter() - start
-    extra = f" and resampling intervals ({args.intervals} half-samples)" if args.intervals else ""
+    extra = f" and resampling intervals ({args.intervals} subsamples)" if args.intervals else ""
     out.append(f"sweep with FN features and the coupling test{extra}: {len(plan)} trials "
                f"simulated and analysed in {elapsed:.0f} s with {args.workers} workers\n")
     names = [SCORE, "vibration", *FN_FEATURES, "signature"]
@@ -385,7 +385,7 @@ def main() -> None:
     )
     parser.add_argument(
         "--intervals", type=int, default=0,
-        help="with --with-fn: also the resampling intervals (N half-samples; timing only)",
+        help="with --with-fn: also the resampling intervals (N subsamples; timing only)",
     )
     parser.add_argument("--save", type=Path, default=None, help="folder for the tables (CSV)")
     args = parser.parse_args()

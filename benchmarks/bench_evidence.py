@@ -8,7 +8,7 @@ Usage::
 
 Every pair is a two-node :func:`funcnet.functional_network` with the library's defaults
 (``dim = 3``, rr = cr = mu = 0.05, min-max) and ``evidence=True`` (99 surrogates, alpha = 0.05,
-200 half-samples); delays: 1 for maps, noise and filtered maps, 3 for Lorenz (sampled every
+200 subsamples); delays: 1 for maps, noise and filtered maps, 3 for Lorenz (sampled every
 0.05), 8 for Rossler (sampled every 0.2). Seeds start at 1000 (the tests use lower seeds).
 
 Length: over 600 lines because the tables, the trend and robot runs and the peers' adapters
@@ -377,7 +377,7 @@ def table_coverage(found: dict[tuple[str, int], list], lengths: tuple[int, ...])
 
 
 def table_timing(repeat: int = 3) -> None:
-    print("\n## 4. Timing: 6 signals, 300 samples, 99 surrogates, 200 half-samples\n")
+    print("\n## 4. Timing: 6 signals, 300 samples, 99 surrogates, 200 subsamples\n")
     data = np.column_stack([
         systems.henon_pair(300, 0.6, seed=1), systems.white_noise(300, seed=2),
         systems.logistic_pair(300, seed=3),
@@ -600,7 +600,7 @@ def main() -> None:
     parser.add_argument("--only", choices=("fp", "power", "timing", "robot", "peers"),
                         default=None)
     parser.add_argument("--resamples", type=int, default=200,
-                        help="half-samples per pair; 0 skips the intervals (faster)")
+                        help="subsamples per pair; 0 skips the intervals (faster)")
     parser.add_argument("--no-peers", action="store_true", help="skip the CCM/PCMCI columns")
     args = parser.parse_args()
     peers = not args.no_peers

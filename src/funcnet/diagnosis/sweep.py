@@ -107,7 +107,7 @@ def trial_indicators(
     evidence : bool
         Build the motor-side networks with the coupling test (``fn_coupled``).
     intervals : int
-        With ``evidence``: half-samples of the resampling intervals (0: none; see
+        With ``evidence``: subsamples of the resampling intervals (0: none; see
         :func:`~funcnet.diagnosis.indicators.reversal_indicators`).
 
     Returns
@@ -311,7 +311,7 @@ def run_sweep(
     evidence : bool
         With ``networks``: the coupling test too (``fn_coupled``).
     intervals : int
-        With ``evidence``: half-samples of the resampling intervals too (0: none; they cost
+        With ``evidence``: subsamples of the resampling intervals too (0: none; they cost
         time and change no indicator).
     progress : callable, optional
         ``progress(done, total, name)`` after each chunk.

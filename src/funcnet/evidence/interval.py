@@ -4,10 +4,10 @@ A resample keeps a fraction of the window's states, chosen as whole blocks of co
 states without replacement, and repeats on them every data-dependent step of the network: it
 normalizes the kept states again (``parameters.normalize``: min-max or z-score of the kept
 samples), recomputes the thresholds by rate (``A_X``, ``A_Y``, ``CR_XY``) and the measures
-``C^XY``, ``C^YX``, ``T^XY``, ``T^YX`` (Eq. 6-10). Resamples are drawn at two sizes, about a
-half and about three quarters of the states (``fractions``), and the spread of the full-window
-value is extrapolated from them with an **estimated convergence rate** (Bertail, Politis and
-Romano 1999). Why this design:
+``C^XY``, ``C^YX``, ``T^XY``, ``T^YX`` (Eq. 6-10). Resamples are drawn at two sizes, about
+two fifths and about three quarters of the states (``FRACTIONS``), and the spread of the
+full-window value is extrapolated from them with an **estimated convergence rate** (Bertail,
+Politis and Romano 1999). Why this design:
 
 * **no duplicates**: a bootstrap with replacement repeats states, and a repeated state is
   recurrent with its copy and cross-recurrent with the same states, which inflates the
@@ -24,23 +24,33 @@ Romano 1999). Why this design:
   wide for maps. For a kept fraction ``f``, the spread of the resampled values around their
   centre is modelled as ``v(f) = s**2 ((1/f)**(2 beta) - 1)`` (the finite-population form of
   ``var(theta_b) - var(theta_N)`` with ``var(theta_n) ~ n**(-2 beta)``); two fractions give
-  ``beta`` (clipped to ``[BETA_MIN, BETA_MAX]`` = ``[0.1, 0.75]``, a calibration choice made
-  on other seeds than the benchmark's) and the full window's spread ``s``;
+  ``beta`` (clipped to ``[BETA_MIN, BETA_MAX]`` = ``[0.1, 0.75]``) and the full window's spread
+  ``s``. The spreads that give ``beta`` are the same ``level``-quantiles of the absolute
+  deviations that scale the interval (Bertail, Politis and Romano estimate the rate from
+  quantile ranges too). The fractions 0.4 / 0.75 (the first version: 0.5 / 0.75 and the central
+  68 % range for ``beta``) were chosen on seeds 5000-5199 and validated on seeds 2000-2199
+  (docs/evidence.md sections 2, 3): between 0.5 and 0.75 the model's spread ratio only moves
+  from 1.58 (``beta = 0.1``) to 1.96 (``beta = 1``), within the noise of two spreads of 100
+  resamples; going further down than 0.4 fails at 140 samples, where subsamples of three or four
+  blocks (about 40 states) no longer shrink the spread of ``C_diff``;
 * **normalization and thresholds again**: under min-max most of the scatter of ``C_diff`` for
   noise comes from the samples' extremes; a resample that kept the window's normalization
   could not see that (a first version covered 0 in 17 % of noise pairs at N = 1000).
 
-The interval is ``d +- k q`` for the observed difference ``d``, the ``level``-quantile ``q`` of
-the absolute deviations of the smaller resamples from their median, and the rate factor
-``k = 1 / sqrt((1/f)**(2 beta) - 1)`` (``k = 1`` for an exact half and ``beta = 1/2``). Measuring
-deviations from the resamples' median and not from ``d`` removes the shift a smaller network
-has; the interval contains ``d`` always. It is symmetric (Hall 1988): the reflected interval
-``[d - k (q_hi - med), d + k (med - q_lo)]`` of the previous version covered 0 in 85 % of 100
-noise pairs (seeds 5000-5099, N = 140 and 300) where the symmetric one covered 90-93 %: under
-min-max half of a noise window's resamples lose an extreme sample and fall back towards 0, and
-the reflection turns that tail away from 0. The fraction of the smaller resamples with the
-sign of ``d`` is a stability figure, not a probability. Calibration: docs/evidence.md, section
-3 (``benchmarks/bench_interval.py``).
+The interval is ``d +- sqrt(k_1 q_1 k_2 q_2)`` for the observed difference ``d``, the
+``level``-quantiles ``q_i`` of the absolute deviations of the resamples of size ``i`` from their
+median, and the rate factors ``k_i = 1 / sqrt((1/f_i)**(2 beta) - 1)`` (``k = 1`` for an exact
+half and ``beta = 1/2``): each size extrapolated to the full window, and the two extrapolations
+averaged geometrically. Measuring deviations from the resamples' median and not from ``d``
+removes the shift a smaller network has; the interval contains ``d`` always. It is
+symmetric (Hall 1988): the reflected interval ``[d - k (q_hi - med), d + k (med - q_lo)]`` of
+the previous version covered 0 in 85 % of 100 noise pairs (seeds 5000-5099, N = 140 and 300)
+where the symmetric one covered 90-93 %: under min-max half of a noise window's resamples lose
+an extreme sample and fall back towards 0, and the reflection turns that tail away from 0. The
+fraction of the smaller resamples with the sign of ``d`` is a stability figure, not a
+probability. Calibration: docs/evidence.md, section 3 (``benchmarks/bench_interval.py``).
+
+Length: over 600 lines because the module notes carry the method's calibration history.
 
 References
 ----------
@@ -73,17 +83,19 @@ __all__ = ["AsymmetryInterval", "half_samples", "subsamples", "resampled_differe
            "interval_kind", "FRACTIONS", "BETA_MIN", "BETA_MAX"]
 
 #: Kept fractions of the two resample sizes (of the blocks; the exact fraction of states is
-#: used in the formulas).
-FRACTIONS: tuple[float, float] = (0.5, 0.75)
+#: used in the formulas). Chosen on seeds 5000-5199 among 0.3-0.9 (module notes); the first
+#: version used (0.5, 0.75).
+FRACTIONS: tuple[float, float] = (0.4, 0.75)
 #: Smallest convergence exponent accepted: at ``beta -> 0`` the extrapolated spread diverges;
-#: 0.1 caps the widening at 2.6 times the half-sample spread (white noise under min-max
-#: measured about 0.3 over 140-2000 samples).
+#: 0.1 caps the widening (``k`` 2.2 at a kept fraction of 0.4, 2.6 at a half; white noise
+#: under min-max measured about 0.3 over 140-2000 samples).
 BETA_MIN = 0.1
 #: Largest exponent accepted. One pair's estimate is noisy (two spreads of 100 resamples);
 #: an estimate of 1 where the truth is 0.3 (noise) halves the interval and misses. Chosen on
 #: seeds 5000-5099 (100 pairs per process at 140 and 300 samples) over 0.65, 0.75, 0.85, 1:
 #: with 1 noise covered 0.89-0.93 and Lorenz 0.80-0.94, with 0.75 0.91-0.95 and 0.83-0.94;
-#: validated on seeds 1000-1199 (benchmarks/bench_interval.py, docs/evidence.md section 3).
+#: validated on seeds 1000-1199; kept for the fractions (0.4, 0.75) after comparing 0.65-0.85
+#: on seeds 5000-5199 (benchmarks/bench_interval.py, docs/evidence.md section 3).
 BETA_MAX = 0.75
 
 
@@ -229,7 +241,7 @@ def _renormalized(states: np.ndarray, method: str | None, dim: int) -> np.ndarra
 def resampled_differences(states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
                           chosen: np.ndarray, *,
                           parameters: NetworkParameters | None = None) -> np.ndarray:
-    """``C_diff`` and ``T_diff`` of every pair on every half-sample: shape (pairs, R, 2).
+    """``C_diff`` and ``T_diff`` of every pair on every resample: shape (pairs, R, 2).
 
     Each signal's kept states are normalized again and its recurrence thresholded again once
     per resample, and reused in all its pairs (module notes).
@@ -241,7 +253,7 @@ def resampled_differences(states: Sequence[np.ndarray], pairs: Sequence[tuple[in
     pairs : sequence of (i, j)
         The pairs, as positions in ``states``.
     chosen : ndarray of int, shape (R, n_kept)
-        Kept states of each resample (:func:`half_samples`).
+        Kept states of each resample (:func:`subsamples`).
     parameters : NetworkParameters, optional
         ``normalize``, ``dim``, ``rr`` (one or one per signal), ``cr``, ``eps``, ``metric``,
         ``theiler``, ``rule``.
@@ -291,19 +303,20 @@ def _fill(out: np.ndarray, states: Sequence[np.ndarray], pairs: Sequence[tuple[i
             out[k, r, 1] = measures.t_diff
 
 
-def _spread(values: np.ndarray) -> float:
-    """Half the central 68 % range: a standard deviation that ignores a few wild resamples."""
-    lo, hi = np.quantile(values, [0.16, 0.84])
-    return float(hi - lo) / 2.0
+def _spread(values: np.ndarray, level: float = 0.95) -> float:
+    """The ``level``-quantile of the absolute deviations from the median: the spread the
+    interval is built from (module notes)."""
+    return float(np.quantile(np.abs(values - np.median(values)), level))
 
 
-def rate_factor(small: np.ndarray, large: np.ndarray,
-                fractions: tuple[float, float]) -> tuple[float, float]:
+def rate_factor(small: np.ndarray, large: np.ndarray, fractions: tuple[float, float], *,
+                level: float = 0.95) -> tuple[float, float]:
     """The rate exponent ``beta`` and the factor ``k`` that scales the smaller resamples'
     spread to the full window's (module notes).
 
-    With ``a_i = 1 / f_i`` and robust spreads ``s_i`` of the resampled values at the kept
-    fractions ``f_1 < f_2``, ``beta`` solves
+    With ``a_i = 1 / f_i`` and spreads ``s_i`` (the ``level``-quantile of the absolute
+    deviations from the median) of the resampled values at the kept fractions ``f_1 < f_2``,
+    ``beta`` solves
     ``(s_1 / s_2)**2 = (a_1**(2 beta) - 1) / (a_2**(2 beta) - 1)`` (clipped to
     ``[BETA_MIN, BETA_MAX]``) and ``k = 1 / sqrt(a_1**(2 beta) - 1)``.
 
@@ -313,6 +326,8 @@ def rate_factor(small: np.ndarray, large: np.ndarray,
         Resampled values at the smaller and the larger fraction.
     fractions : (float, float)
         The exact kept fractions of states, smaller first.
+    level : float in (0, 1)
+        Quantile of the absolute deviations used as the spread.
 
     Returns
     -------
@@ -326,22 +341,25 @@ def rate_factor(small: np.ndarray, large: np.ndarray,
 
     References
     ----------
-    Bertail, Politis and Romano (1999), section 2 (rate from the spreads at two subsample
+    Bertail, Politis and Romano (1999), section 2 (rate from quantile ranges at two subsample
     sizes), with the finite-population form of the spread of subsamples without replacement.
 
     Examples
     --------
+    Spreads of the model with ``beta = 1/2`` (variances ``1/f - 1``: 1.5 and 1/3); the
+    quantile of 40,000 values still carries about 1 % error, and ``beta`` amplifies it:
+
     >>> rng = np.random.default_rng(0)
-    >>> beta, k = rate_factor(rng.normal(0, 1.0, 4000), rng.normal(0, 1 / 3 ** 0.5, 4000),
-    ...                       (0.5, 0.75))
+    >>> beta, k = rate_factor(rng.normal(0, 1.5 ** 0.5, 40_000),
+    ...                       rng.normal(0, 1 / 3 ** 0.5, 40_000), (0.4, 0.75))
     >>> round(beta, 1), round(k, 1)
-    (0.5, 1.0)
+    (0.5, 0.8)
     """
     f1, f2 = fractions
     if not 0.0 < f1 < f2 < 1.0:
         raise ParameterError.of("fractions", f"must satisfy 0 < f1 < f2 < 1, got {fractions}")
     a1, a2 = 1.0 / f1, 1.0 / f2
-    s1, s2 = _spread(small), _spread(large)
+    s1, s2 = _spread(small, level), _spread(large, level)
     if s1 <= 0.0:
         # No spread at the smaller size: nothing to extrapolate, keep the standard rate.
         beta = 0.5
@@ -366,16 +384,23 @@ def rate_factor(small: np.ndarray, large: np.ndarray,
     return beta, 1.0 / math.sqrt(a1 ** (2 * beta) - 1.0)
 
 
-def _bounds(observed: float, values: np.ndarray, level: float,
-            k: float) -> tuple[float, float, float]:
-    # Symmetric: the level-quantile of the resamples' absolute deviation from their median.
-    # Under min-max the resamples of noise are often bimodal (half of them lose an extreme
-    # sample and fall back towards 0); a reflected interval then barely extends towards 0.
-    med = np.median(values)
-    half = k * float(np.quantile(np.abs(values - med), level))
+def _bounds(observed: float, values: np.ndarray, half: float) -> tuple[float, float, float]:
+    # Symmetric: d +- half, half from the level-quantiles of the resamples' absolute
+    # deviations from their median. Under min-max the resamples of noise are often bimodal
+    # (half of them lose an extreme sample and fall back towards 0); a reflected interval then
+    # barely extends towards 0.
     sign = np.sign(observed)
     same = float(np.mean(np.sign(values) == sign)) if sign != 0 else float(np.mean(values == 0))
     return observed - half, observed + half, same
+
+
+def _extrapolated(small: np.ndarray, large: np.ndarray, fractions: tuple[float, float],
+                  level: float) -> tuple[float, float]:
+    """``beta`` and the half-width ``sqrt(k_1 q_1 k_2 q_2)``: both sizes' spreads scaled to the
+    full window with the estimated rate, averaged geometrically (module notes)."""
+    beta, k_small = rate_factor(small, large, fractions, level=level)
+    k_large = 1.0 / math.sqrt((1.0 / fractions[1]) ** (2 * beta) - 1.0)
+    return beta, math.sqrt(k_small * _spread(small, level) * k_large * _spread(large, level))
 
 
 def interval_from(c_diff: float, t_diff: float, values: np.ndarray, *,
@@ -393,7 +418,7 @@ def interval_from(c_diff: float, t_diff: float, values: np.ndarray, *,
     level : float in (0, 1)
     rate_values : ndarray, shape (R2, 2), optional
         The same at the larger fraction. Without it the spread of ``values`` is used as it is
-        (``k = 1``: the plain half-sample interval, rate 1/2).
+        (``k = 1``: the plain subsample interval, rate 1/2 for an exact half).
     fractions : (float, float), optional
         The exact kept fractions of states of ``values`` and ``rate_values``; needed with
         ``rate_values``.
@@ -417,16 +442,17 @@ def interval_from(c_diff: float, t_diff: float, values: np.ndarray, *,
     if not 0.0 < level < 1.0:
         raise ParameterError.of("level", f"must be in (0, 1), got {level}")
     c_rate = t_rate = 0.5
-    c_k = t_k = 1.0
+    c_half = _spread(values[:, 0], level)
+    t_half = _spread(values[:, 1], level)
     total = int(values.shape[0])
     if rate_values is not None:
         if fractions is None:
             raise ParameterError.of("fractions", "must be given with rate_values")
-        c_rate, c_k = rate_factor(values[:, 0], rate_values[:, 0], fractions)
-        t_rate, t_k = rate_factor(values[:, 1], rate_values[:, 1], fractions)
+        c_rate, c_half = _extrapolated(values[:, 0], rate_values[:, 0], fractions, level)
+        t_rate, t_half = _extrapolated(values[:, 1], rate_values[:, 1], fractions, level)
         total += int(rate_values.shape[0])
-    c_low, c_high, c_same = _bounds(c_diff, values[:, 0], level, c_k)
-    t_low, t_high, t_same = _bounds(t_diff, values[:, 1], level, t_k)
+    c_low, c_high, c_same = _bounds(c_diff, values[:, 0], c_half)
+    t_low, t_high, t_same = _bounds(t_diff, values[:, 1], t_half)
     return AsymmetryInterval(
         c_diff=float(c_diff), t_diff=float(t_diff),
         c_diff_low=float(c_low), c_diff_high=float(c_high),
@@ -443,8 +469,9 @@ def asymmetry_intervals(states: Sequence[np.ndarray], pairs: Sequence[tuple[int,
                         seed: int = 0) -> list[AsymmetryInterval]:
     """Intervals of every pair of a network from one set of resamples (module notes).
 
-    ``resamples - resamples // 2`` resamples keep half of the blocks (:func:`half_samples`
-    with ``seed``) and ``resamples // 2`` keep three quarters (a separate stream);
+    ``resamples - resamples // 2`` resamples keep ``FRACTIONS[0]`` of the blocks
+    (:func:`subsamples` with ``seed``) and ``resamples // 2`` keep ``FRACTIONS[1]`` (a
+    separate stream);
     each signal is normalized and thresholded again once per resample, for all its pairs.
 
     Parameters
@@ -457,7 +484,7 @@ def asymmetry_intervals(states: Sequence[np.ndarray], pairs: Sequence[tuple[int,
         The observed differences of each pair.
     parameters : NetworkParameters, optional
     resamples : int
-        In all; with 1 the plain half-sample interval (no rate).
+        In all; with 1 the plain subsample interval of the smaller size (no rate).
     level : float in (0, 1)
     block : int, optional
         Block length, default ``ceil(sqrt(M))``.
@@ -489,12 +516,13 @@ def asymmetry_intervals(states: Sequence[np.ndarray], pairs: Sequence[tuple[int,
     if not 0.0 < level < 1.0:
         raise ParameterError.of("level", f"must be in (0, 1), got {level}")
     n_states = int(np.shape(states[0])[0])
-    small = half_samples(n_states, resamples - resamples // 2, block=block, seed=seed)
+    small = subsamples(n_states, resamples - resamples // 2, FRACTIONS[0], block=block,
+                       seed=seed)
     values = resampled_differences(states, pairs, small, parameters=parameters)
     if resamples < 2:
-        # One resample cannot give a rate: the plain half-sample interval (k = 1).
+        # One resample cannot give a rate: the plain subsample interval (k = 1).
         return [interval_from(c, t, values[k], level=level) for k, (c, t) in enumerate(observed)]
-    # A separate stream for the larger size: the half-samples do not depend on it.
+    # A separate stream for the larger size: the smaller resamples do not depend on it.
     large = subsamples(n_states, resamples // 2, FRACTIONS[1], block=block, seed=(seed, 1))
     fractions = (small.shape[1] / n_states, large.shape[1] / n_states)
     larger = resampled_differences(states, pairs, large, parameters=parameters)

@@ -215,7 +215,7 @@ def pairwise_evidence(
     alpha : float
         Level of the coupling and direction decisions (after Benjamini-Hochberg).
     seed : int
-        Seeds the half-samples and the twin surrogates (the shift surrogates are a fixed
+        Seeds the subsamples and the twin surrogates (the shift surrogates are a fixed
         lattice).
     resamples : int
         Half-samples per pair; 0 skips the intervals (their columns and the sign fractions
@@ -312,7 +312,7 @@ def pairwise_evidence(
             entry["pair"] = (i, j)
             raw.append(entry)
     if resamples:
-        # One set of half-samples for the network: each signal is re-thresholded once per
+        # One set of subsamples for the network: each signal is re-thresholded once per
         # resample.
         intervals = asymmetry_intervals(states, [e["pair"] for e in raw],
                                         [e["observed"] for e in raw], parameters=p,

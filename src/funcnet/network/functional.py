@@ -414,7 +414,7 @@ def functional_network(
     alpha : float
         Level of the coupling and direction decisions.
     seed : int
-        Seeds the half-samples; the same seed gives the same table.
+        Seeds the subsamples; the same seed gives the same table.
     resamples : int
         Half-samples per pair for the intervals (0: no intervals, their columns NaN).
     surrogate_method : {"shift", "twin"}
