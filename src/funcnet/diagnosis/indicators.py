@@ -1,5 +1,7 @@
 """Backlash indicators at one direction change: physical baselines and functional-network features.
 
+Length: the two-encoder lost motion's fit of the arm's start (a compiled kernel) sits with it.
+
 Each indicator is a number computed from one reversal of a trace (:mod:`.reversals`); higher
 means more backlash for every one of them except where noted. Motor-side indicators read only
 RP (to find the moves), MP, RC and AC -- what a robot without the arm-side encoder logs; the
@@ -16,10 +18,14 @@ Physical indicators
     readings: a loop hunting across the dead zone stops the arm in it); the turn is the
     motor's last move the old way before it (between ticks, AP interpolated there, when the
     arm still coasts). The restart is placed between ticks by a least-squares fit of the
-    arm's start to the readings' distances from the rest reading: a jerk-driven cube law (the
-    gear's torque builds up with the motor's travel) bent by the gear-arm resonance, which is
-    fitted over the first 100 encoder steps (see :func:`_restart_time`); MP is interpolated
-    there. After a standstill: the motor's travel from its rest to the arm's restart.
+    arm's start to the readings' distances from the rest reading: the physics of a rigid arm
+    driven through the gear's spring by the logged motor travel against friction falling from
+    its static to its sliding level, resonance and friction drop fitted per reversal
+    (:func:`_fit_restart`); where that puts the restart far
+    earlier than the shape-only fit (a jerk-driven cube law bent by the gear-arm resonance,
+    :func:`_restart_time`) -- the motor hitting the flank at speed -- the latter is taken. MP is
+    interpolated there. After a standstill: the motor's travel from its rest to the arm's
+    restart (the shape-only fit).
 ``motor_hysteresis`` (deg, motor side: RP and MP)
     The motor's lead on the set-point ``MP - RP`` where the set-point runs at half its peak
     speed before the reversal, minus the same after it (sign: old direction). The position
@@ -65,6 +71,7 @@ import warnings
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
+import numba
 import numpy as np
 import pandas as pd
 
@@ -120,6 +127,9 @@ _OMEGAS = tuple(np.arange(0.0, 401.0, 10.0))  # rad/s: the resonance's candidate
 # fitted with this share of the fitted resonance (chosen on every third trial of the sweep,
 # confirmed on the rest and on the other sweeps; docs/backlash.md section 3.1)
 _STRIBECK = 0.7
+# encoder steps by which the physical start's estimate may fall below the shape-only one
+# (chosen on every third trial of the sweep with the physical start's spans; section 3.1)
+_GUARD = 5
 
 
 def _values(rec: Recording, name: str) -> np.ndarray:
@@ -231,6 +241,178 @@ def _restart_time(
     return restart
 
 
+# The physical start (:func:`_fit_restart`). Assumed, not fitted -- the simulator's values, a real
+# axis's are unknown (docs/backlash.md section 3.1): the gear-arm mode's damping ratio (its
+# ``gear_damping``: about 10 %) and the arm bearing's Stribeck velocity (rad/s)
+_ZETA = 0.1
+_STRIBECK_VELOCITY = 0.002
+# encoder steps of the arm's travel over which w and s are fitted (with t0), and over which t0
+# is then fitted alone; chosen on every third no-backlash trial of the sweep, confirmed on the
+# rest and on the other sweeps (docs/backlash.md section 3.1)
+_PARAM_SPAN = 200
+_START_SPAN = 25
+_TICKS = 24  # readings at most, from the first beyond the rest's rounding
+_RAD = math.pi / 180
+
+
+@numba.njit(cache=True)
+def _squared_errors(
+    starts: np.ndarray, w2: np.ndarray, cj: np.ndarray, drop: np.ndarray, v_s: float,
+    motor: np.ndarray, speed: np.ndarray, at: np.ndarray, distance: np.ndarray, dt: float,
+) -> np.ndarray:  # fmt: skip
+    """Sum of squared errors of the modelled travel at the readings, per parameter set and start.
+
+    Infinite where the sum already exceeds the least found before (only the least is used).
+
+    ``motor``, ``speed``: the motor's travel (rad) and speed on a grid of step ``dt``; ``starts``
+    and ``at`` (the readings): indices on that grid; ``distance``: the readings' travel (rad).
+    Explicit (semi-implicit Euler) integration; before its start the arm reads its rest.
+    """
+    out = np.full((w2.size, starts.size), np.inf)
+    last = at[-1]
+    best = np.inf
+    for p in range(w2.size):
+        for a in range(starts.size):
+            n0 = starts[a]
+            m0, v0 = motor[n0], speed[n0]
+            x = xd = s = 0.0
+            r = 0
+            while r < at.size and at[r] <= n0:
+                s += distance[r] ** 2
+                r += 1
+            for n in range(n0, last):
+                acc = (w2[p] * (motor[n] - m0 - x) + cj[p] * (speed[n] - v0 - xd)
+                       + drop[p] * (1.0 - math.exp(-((xd / v_s) ** 2))))  # fmt: skip
+                if acc < 0.0 and xd <= 0.0:  # the arm sticks again rather than move back
+                    acc = 0.0
+                xd += acc * dt
+                x += xd * dt
+                while r < at.size and at[r] == n + 1:
+                    s += (distance[r] - x) ** 2
+                    r += 1
+                if s > best:  # the sum only grows: this one cannot be the least (left at inf)
+                    break
+            if s <= best:
+                out[p, a] = s
+                best = s
+    return out
+
+
+def _pairs(omegas: np.ndarray, drops: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every pair of the two grids, as two flat arrays."""
+    grid = np.meshgrid(omegas, drops, indexing="ij")
+    return grid[0].ravel(), grid[1].ravel()
+
+
+def _best(
+    t: np.ndarray, motor_deg: np.ndarray, origin: float, times: np.ndarray,
+    distance: np.ndarray, starts: np.ndarray, omegas: np.ndarray, drops: np.ndarray, dt: float,
+) -> tuple[float, float, float]:  # fmt: skip
+    """The least-squares start time, ``w`` and ``s`` over the candidates (pairs ``omegas``,
+    ``drops``), on a grid of step ``dt`` from ``origin``; MP linear between its readings."""
+    grid = origin + np.arange(int(round((times[-1] - origin) / dt)) + 2) * dt
+    motor = np.interp(grid, t, motor_deg) * _RAD
+    seg = np.clip(np.searchsorted(t, grid, side="right"), 1, t.size - 1)
+    speed = (motor_deg[seg] - motor_deg[seg - 1]) / (t[seg] - t[seg - 1]) * _RAD
+    at = np.round((times - origin) / dt).astype(np.int64)
+    n0 = np.unique(np.clip(np.round((starts - origin) / dt).astype(np.int64), 0, grid.size - 1))
+    errors = _squared_errors(n0, omegas**2, 2 * _ZETA * omegas, drops, _STRIBECK_VELOCITY,
+                             motor, speed, at, distance, dt)  # fmt: skip
+    p, a = np.unravel_index(int(np.argmin(errors)), errors.shape)
+    return float(grid[n0[a]]), float(omegas[p]), float(drops[p])
+
+
+def _fit_restart(
+    t: np.ndarray, mp: np.ndarray, ap: np.ndarray, rest: float, first: int, earliest: int,
+    new: int, quantum: float, back: int = 8,
+) -> tuple[float, float, float] | None:  # fmt: skip
+    """The arm's restart between ticks, fitted with the physics of its start.
+
+    The two-encoder lost motion (:func:`funcnet.diagnosis.indicators.lost_motion`) ends where
+    the gear drives the arm back from rest, an instant between the 4 ms readings: the arm creeps
+    below one encoder step for a few ticks after it breaks free. Its start follows the physics
+    of a rigid arm of inertia ``J`` on a gear of stiffness ``k`` and damping ``c`` driven by the
+    motor (whose travel ``m`` the motor encoder logs), against the bearing's friction falling
+    from its static to its sliding level as the arm speeds up (Stribeck):
+
+    ``x'' = w**2 (m - x) + 2 zeta w (m' - m'(t0) - x') + s (1 - exp(-(x' / v_s)**2))``
+
+    with ``x`` the arm's travel from its rest and ``m`` the motor's (joint side) since the
+    restart ``t0``, ``w = sqrt(k / J)``, ``s = (F_s - F_c) / J`` the Stribeck drop per inertia
+    (the gear torque equals the static friction at ``t0``; the arm's viscous friction is left
+    out, below 5 % of the drop at these speeds). Fitted per reversal: ``w`` and ``s`` with
+    ``t0`` over the readings up to ``_PARAM_SPAN`` encoder steps, then ``t0`` alone over those
+    up to ``_START_SPAN`` steps (where the model with the fitted parameters is closest; the
+    larger span carries the parameters). Assumed, not fitted: the gear's damping ratio ``_ZETA``
+    and the Stribeck velocity ``v_s`` -- the simulator's values
+    (:class:`funcnet.robot.sim.axis.AxisParameters`: ``gear_damping`` gives about 10 %,
+    ``arm_stribeck_velocity`` 0.002 rad/s); a real axis's are unknown (docs/backlash.md section
+    3.1 gives the estimate's sensitivity to them).
+
+    Parameters
+    ----------
+    t, mp, ap : ndarray
+        Times (s) and the motor and arm positions (deg, joint side) on their own grid.
+    rest : float
+        The arm's rest reading.
+    first : int
+        Index of the first reading a step and a half beyond the rest.
+    earliest : int
+        Index of the first reading of the rest (the restart is not before it).
+    new : int
+        The new direction, +1 or -1.
+    quantum : float
+        The arm encoder's step, deg.
+    back : int
+        Ticks before ``first`` the restart may lie (the arm creeps below a step).
+
+    Returns
+    -------
+    tuple of float or None
+        The restart (s), ``w`` (rad/s) and ``s`` (rad/s**2); None with fewer than three readings
+        within ``_PARAM_SPAN`` steps.
+
+    Examples
+    --------
+    A rigid arm breaking free at 0.08 s behind a motor moving back at 0.2 deg/s (no friction
+    drop), read every 4 ms by a 2**22-count encoder:
+
+    >>> q = 360 / 2**22
+    >>> t = np.arange(0.0, 0.2, 0.004)
+    >>> mp = -0.2 * np.clip(t - 0.05, 0, None)
+    >>> tau = np.clip(t - 0.08, 0, None)
+    >>> ap = np.round(-0.2 * (tau - np.sin(70 * tau) / 70) / q) * q
+    >>> first = int(np.flatnonzero(ap < -1.5 * q)[0])
+    >>> restart, omega, drop = _fit_restart(t, mp, ap, 0.0, first, 0, -1, q)
+    >>> round(restart, 4)
+    0.0797
+    """
+    ticks = np.arange(first, min(first + _TICKS, t.size))
+    distance = new * (ap[ticks] - rest)
+    ticks = ticks[distance < _PARAM_SPAN * quantum]
+    distance = distance[distance < _PARAM_SPAN * quantum] * _RAD
+    if ticks.size < 3:
+        return None
+    times, motor_deg = t[ticks], new * mp
+    origin = float(t[max(earliest, first - back)])
+    end = float(t[first])
+    # the parameters and the start, coarse to fine (a grid: the error has local minima)
+    omegas, drops = _pairs(np.arange(30.0, 181.0, 10.0), np.arange(0.0, 0.41, 0.04))
+    coarse = np.arange(origin, end + 1e-9, 5e-4)
+    start, omega, drop = _best(t, motor_deg, origin, times, distance, coarse, omegas, drops, 2e-4)
+    omegas, drops = _pairs(np.arange(omega - 10, omega + 10.1, 2.5), np.arange(0.0, 0.401, 0.02))
+    starts = np.arange(max(origin, start - 2e-3), min(end, start + 2e-3) + 1e-9, 1e-4)
+    start, omega, drop = _best(t, motor_deg, origin, times, distance, starts, omegas, drops, 1e-4)
+    # the restart alone, over the readings nearest the rest
+    near = distance < _START_SPAN * quantum * _RAD
+    if not near.any():  # the arm left fast: the start fitted with the parameters stands
+        return start, omega, drop
+    start, _, _ = _best(t, motor_deg, origin, times[near], distance[near],
+                        np.arange(origin, end + 1e-9, 5e-5), np.array([omega]), np.array([drop]),
+                        5e-5)  # fmt: skip
+    return start, omega, drop
+
+
 def _motor_turn(t: np.ndarray, mp: np.ndarray, end: int, old: int) -> tuple[int, float, float]:
     """The motor's turning point before index ``end``: its last move the old way.
 
@@ -301,13 +483,26 @@ def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None
         if moved.size == 0:
             return math.nan
         first = k + int(moved[0])
-        restart = _restart_time(t, ap, rest, first, earliest, new, quantum, back=8)
-        # MP - AP across the reversal (old direction's sign): at the motor's turning point (the
-        # arm may still coast forward there: AP between ticks) minus at the restart, where the
-        # arm still reads its rest
-        j, t_turn, _ = _motor_turn(t, mp, _index(t, restart), old)
-        at_turn = old * (mp[j] - float(np.interp(t_turn, t, ap)))
-        return float(at_turn - old * (np.interp(restart, t, mp) - rest))
+
+        def across(restart: float) -> float:
+            # MP - AP across the reversal (old direction's sign): at the motor's turning point
+            # (the arm may still coast forward there: AP between ticks) minus at the restart,
+            # where the arm still reads its rest
+            j, t_turn, _ = _motor_turn(t, mp, _index(t, restart), old)
+            at_turn = old * (mp[j] - float(np.interp(t_turn, t, ap)))
+            return float(at_turn - old * (np.interp(restart, t, mp) - rest))
+
+        # the restart from the physics of the arm's start, its parameters fitted per reversal
+        # (_fit_restart); the shape-only fit when the arm moves too little for that, or when the
+        # physics puts the restart far earlier (the motor hitting the flank at speed: its impact
+        # lies between the MP readings, and the model, which has the gear transmit the static
+        # friction at the restart, then finds an earlier start with a too low resonance)
+        shape = across(_restart_time(t, ap, rest, first, earliest, new, quantum, back=8))
+        fit = _fit_restart(t, mp, ap, rest, first, earliest, new, quantum, back=8)
+        if fit is None:
+            return shape
+        physics = across(fit[0])
+        return shape if physics < shape - _GUARD * quantum else physics
     # after a standstill: the arm rested since long before the motor turned; its reading
     # jitters by an encoder step or two
     turn = _turn(rec, change) if turn is None else turn
@@ -439,7 +634,7 @@ def _coupled(values: np.ndarray, nodes: Sequence[str], parameters: NetworkParame
     ``functional_network(..., evidence=True)`` tests (min-max per window): its ``coupled``
     column does not depend on the half-sampling intervals, which are not computed
     (``resamples=0``) where :func:`funcnet.evidence.pairwise_evidence` allows it (else the
-    smallest number, 1) unless ``intervals`` half-samples are asked for (to time them).
+    smallest number, 1) unless ``intervals`` subsamples are asked for (to time them).
     """
     from funcnet.evidence import pairwise_evidence
     from funcnet.preprocess import normalize
@@ -512,7 +707,7 @@ def reversal_indicators(
         Build the motor-side networks with the coupling test of :mod:`funcnet.evidence`
         (``fn_coupled``; NaN without it).
     intervals : int
-        With ``evidence``: half-samples of the resampling intervals (0: none; they do not
+        With ``evidence``: subsamples of the resampling intervals (0: none; they do not
         change ``fn_coupled``; a number > 0 only costs their time, for the timing of the sweep
         with intervals).
 
