@@ -121,7 +121,7 @@ def test_without_backlash_the_estimate_is_within_a_few_encoder_steps() -> None:
     steps = (table["lost_motion"] - table["true_lost_motion"]).abs() / STEP
     assert len(table) == 12
     # measured: median 0.4 steps, max 0.9 (99.7 % of the sweep's 324 within two)
-    assert steps.max() <= 2
+    assert steps.max() < 1.5
     # the lost motion without backlash is the gear's wind-up on both flanks: 24-70 steps
     assert (table["true_lost_motion"] > 20 * STEP).all()
 
@@ -176,7 +176,9 @@ def test_the_restart_fit_recovers_a_cube_law_start_from_rounded_readings() -> No
 def test_the_physical_start_fit_recovers_a_simulated_breakaway() -> None:
     # an independent reference: the arm's start integrated by scipy (rigid arm on the gear's
     # spring and damper, behind a motor at constant speed, friction falling from static to
-    # sliding), read every 4 ms by an encoder of 2**22 counts with the rest off the grid
+    # sliding), read every 4 ms by an encoder of 2**22 counts with the rest off the grid. It
+    # uses the fit's own assumed damping ratio and Stribeck velocity: this checks the fit under
+    # a matched model (the sensitivity to a mismatch is in docs/backlash.md section 3.1)
     from scipy.integrate import solve_ivp
 
     from funcnet.diagnosis.indicators import _STRIBECK_VELOCITY, _ZETA, _fit_restart

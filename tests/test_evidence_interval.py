@@ -101,6 +101,21 @@ def test_two_sizes_give_the_geometric_mean_of_both_extrapolations() -> None:
     assert iv.resamples == 600
 
 
+def test_one_size_without_spread_still_gives_a_wide_interval() -> None:
+    # A geometric mean with a zero factor would give a zero-width interval: the size that has
+    # a spread is extrapolated alone.
+    rng = np.random.default_rng(5)
+    small = rng.normal(0, 1.0, (200, 2))
+    constant = np.zeros((200, 2))
+    iv = interval_from(0.3, 0.1, small, rate_values=constant, fractions=(0.4, 0.75))
+    assert iv.c_diff_high - iv.c_diff_low > 1.0 and iv.t_diff_high - iv.t_diff_low > 1.0
+    # NaN resamples: NaN interval and NaN rate, not a made-up rate
+    gaps = small.copy()
+    gaps[3, 0] = np.nan
+    iv = interval_from(0.3, 0.1, gaps, rate_values=small, fractions=(0.4, 0.75))
+    assert np.isnan(iv.c_rate) and np.isnan(iv.c_diff_low) and not np.isnan(iv.t_rate)
+
+
 def test_without_rate_values_k_is_one() -> None:
     # Without rate values: k = 1, the symmetric interval of the half-samples' spread.
     rng = np.random.default_rng(3)

@@ -155,3 +155,24 @@ def test_add_evidence_refuses_data_that_is_not_the_networks(data, networks):
         add_evidence(full, data)
     with pytest.raises(ParameterError, match="surrogates"):
         add_evidence(plain, data, surrogates=0)
+
+
+def test_add_evidence_takes_the_frame_the_network_was_computed_from(data):
+    frame = pd.DataFrame(data)  # integer column labels: the network names them "0" ... "3"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        plain = functional_network(frame, delay=1)
+        full = functional_network(frame, delay=1, evidence=True, resamples=20)
+    assert add_evidence(plain, frame, resamples=20) == full
+    extra = frame.assign(unused=np.arange(len(frame)))  # other columns are ignored
+    assert add_evidence(plain, extra, resamples=20) == full
+
+
+def test_add_evidence_asks_for_a_frame_for_multichannel_nodes(data):
+    frame = pd.DataFrame(data, columns=["a1", "a2", "b1", "b2"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        plain = functional_network(frame, nodes={"A": ["a1", "a2"], "B": ["b1", "b2"]},
+                                   delay=1)
+    with pytest.raises(ParameterError, match="data must be a DataFrame with the channel"):
+        add_evidence(plain, data)

@@ -25,7 +25,12 @@ from funcnet.errors import (
 )
 from funcnet.network import FunctionalNetwork, functional_network
 from funcnet.parameters import NetworkParameters
-from funcnet.pipeline import CONSTANT_POLICIES, window_networks, window_warnings
+from funcnet.pipeline import (
+    CONSTANT_POLICIES,
+    window_evidence,
+    window_networks,
+    window_warnings,
+)
 from funcnet.robot.phases import detect_phases
 from funcnet.robot.preprocess import add_derived_signals, resample
 from funcnet.robot.recording import Recording, SignalInfo, read_trace
@@ -173,6 +178,21 @@ def test_networks_record_their_window_and_survive_json(synthetic):
         again = FunctionalNetwork.from_json(network.to_json())
         assert again == network
         assert again.window["start"] == window.start
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.ThresholdWarning")
+def test_window_evidence_equals_each_windows_network_computed_with_evidence(synthetic):
+    windows = [STILL, *MOVING]
+    plain = window_networks(synthetic, windows, signals=["RP", "AP"], delay=5)
+    found = window_evidence(synthetic, plain, windows, surrogates=19, resamples=20, seed=3)
+    for window in windows:
+        part = synthetic.window(window.start, window.stop).data[["RP", "AP"]]
+        direct = functional_network(part, delay=5, label=window.label, warn=False,
+                                    evidence=True, surrogates=19, resamples=20, seed=3)
+        got = found[window.label]
+        assert got.window == plain[window.label].window  # the window's record is kept
+        assert got.pairs.equals(direct.pairs) and got.edges.equals(direct.edges)
+        assert got.evidence == direct.evidence and got.label == window.label
 
 
 def test_errors_inside_a_window_name_file_window_and_span(synthetic):

@@ -651,7 +651,7 @@ def _coupled(values: np.ndarray, nodes: Sequence[str], parameters: NetworkParame
 
 @functools.cache
 def _resamples() -> int:
-    """Half-samples to ask of :func:`~funcnet.evidence.pairwise_evidence`: 0 (the intervals are
+    """Resamples to ask of :func:`~funcnet.evidence.pairwise_evidence`: 0 (the intervals are
     not used here) where the evidence module takes it, else its smallest, 1."""
     from funcnet.evidence.pairs import check_evidence_arguments
 

@@ -31,8 +31,8 @@ Politis and Romano 1999). Why this design:
   68 % range for ``beta``) were chosen on seeds 5000-5199 and validated on seeds 2000-2199
   (docs/evidence.md sections 2, 3): between 0.5 and 0.75 the model's spread ratio only moves
   from 1.58 (``beta = 0.1``) to 1.96 (``beta = 1``), within the noise of two spreads of 100
-  resamples; going further down than 0.4 fails at 140 samples, where subsamples of three or four
-  blocks (about 40 states) no longer shrink the spread of ``C_diff``;
+  resamples; going further down than 0.4 fails at 140 samples (11 blocks of 12 states), where a
+  subsample of three blocks (0.3: 36 states) no longer shrinks the spread of ``C_diff``;
 * **normalization and thresholds again**: under min-max most of the scatter of ``C_diff`` for
   noise comes from the samples' extremes; a resample that kept the window's normalization
   could not see that (a first version covered 0 in 17 % of noise pairs at N = 1000).
@@ -332,7 +332,7 @@ def rate_factor(small: np.ndarray, large: np.ndarray, fractions: tuple[float, fl
     Returns
     -------
     (float, float)
-        ``beta`` and ``k``.
+        ``beta`` and ``k``; NaN for both when a spread is NaN (a resample without a value).
 
     Raises
     ------
@@ -360,6 +360,8 @@ def rate_factor(small: np.ndarray, large: np.ndarray, fractions: tuple[float, fl
         raise ParameterError.of("fractions", f"must satisfy 0 < f1 < f2 < 1, got {fractions}")
     a1, a2 = 1.0 / f1, 1.0 / f2
     s1, s2 = _spread(small, level), _spread(large, level)
+    if not (math.isfinite(s1) and math.isfinite(s2)):
+        return math.nan, math.nan  # a resample without a value: no rate to report
     if s1 <= 0.0:
         # No spread at the smaller size: nothing to extrapolate, keep the standard rate.
         beta = 0.5
@@ -400,7 +402,12 @@ def _extrapolated(small: np.ndarray, large: np.ndarray, fractions: tuple[float, 
     full window with the estimated rate, averaged geometrically (module notes)."""
     beta, k_small = rate_factor(small, large, fractions, level=level)
     k_large = 1.0 / math.sqrt((1.0 / fractions[1]) ** (2 * beta) - 1.0)
-    return beta, math.sqrt(k_small * _spread(small, level) * k_large * _spread(large, level))
+    small_half, large_half = k_small * _spread(small, level), k_large * _spread(large, level)
+    if small_half > 0.0 and large_half > 0.0:
+        return beta, math.sqrt(small_half * large_half)
+    # one size without spread (a few distinct values): the other size's extrapolation alone,
+    # not a zero-width interval
+    return beta, max(small_half, large_half)
 
 
 def interval_from(c_diff: float, t_diff: float, values: np.ndarray, *,

@@ -218,8 +218,9 @@ def pairwise_evidence(
         Seeds the subsamples and the twin surrogates (the shift surrogates are a fixed
         lattice).
     resamples : int
-        Half-samples per pair; 0 skips the intervals (their columns and the sign fractions
-        are NaN) for callers that want only the coupling test.
+        Resamples for the intervals (subsamples of two sizes, one set per network); 0 skips
+        the intervals (their columns and the sign fractions are NaN) for callers that want only
+        the coupling test.
     level : float
         Nominal coverage of the intervals.
     surrogate_method : {"shift", "twin"}

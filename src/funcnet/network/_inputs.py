@@ -136,6 +136,7 @@ class PreparedSignals:
     signals : tuple of ndarray
         Per node, its normalized samples: (N,) for a one-column node, (N, c) for a group.
     n_samples : int
+        Samples per signal (``N``).
     """
 
     names: tuple[str, ...]
@@ -148,6 +149,19 @@ class PreparedSignals:
 def prepared_signals(data: Any, names: Any, nodes: Any, normalize: str | None) -> PreparedSignals:
     """Columns named, grouped into nodes and normalized per column (every check named).
 
+    Parameters
+    ----------
+    data : pandas.DataFrame or array_like, shape (N, k)
+    names : sequence of str or None
+        Column names (default the DataFrame's columns, else "0", "1", ...).
+    nodes : mapping or None
+        Node name -> column name(s); default one node per column.
+    normalize : {"minmax", "zscore"} or None
+
+    Returns
+    -------
+    PreparedSignals
+
     Raises
     ------
     ParameterError
@@ -155,6 +169,15 @@ def prepared_signals(data: Any, names: Any, nodes: Any, normalize: str | None) -
     SignalError
         Fewer than two nodes; a column not numeric, with NaN/inf, or constant under a
         normalization.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> data = np.arange(16.0).reshape(4, 4) ** 2
+    >>> prepared = prepared_signals(data, ["a1", "a2", "b1", "b2"],
+    ...                             {"A": ["a1", "a2"], "B": ["b1", "b2"]}, "minmax")
+    >>> prepared.names, prepared.groups, [s.shape for s in prepared.signals]
+    (('A', 'B'), ((0, 1), (2, 3)), [(4, 2), (4, 2)])
     """
     columns = column_names(data, names)
     node_names, groups = node_groups(nodes, columns)

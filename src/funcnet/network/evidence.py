@@ -24,7 +24,7 @@ from funcnet.evidence import (
 )
 from funcnet.evidence.pairs import PairEvidence
 from funcnet.network._inputs import PreparedSignals, prepared_signals
-from funcnet.network.rule import combine_kinds, edges_from_pairs
+from funcnet.network.rule import edges_from_pairs, kinds_for
 from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS, pairs_frame
 from funcnet.parameters import NetworkParameters
 
@@ -60,8 +60,23 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
     """A plain pairs table with the evidence columns, and the settings that made them.
 
     Under ``edge_rule="interval"`` the kinds follow the interval rule
-    (:func:`funcnet.evidence.interval_kind`). The arguments are those of
-    :func:`funcnet.network.functional_network`, checked there.
+    (:func:`funcnet.evidence.interval_kind`).
+
+    Parameters
+    ----------
+    pairs : pandas.DataFrame
+        The network's plain pairs table (:data:`~funcnet.network.schema.PAIR_COLUMNS`).
+    prepared : PreparedSignals
+        The nodes' signals the table was computed from.
+    p : NetworkParameters
+        The network's parameters.
+    surrogates, alpha, seed, resamples, surrogate_method, edge_rule
+        As in :func:`funcnet.network.functional_network` (checked by the caller).
+
+    Returns
+    -------
+    (pandas.DataFrame, dict)
+        The pairs table with the evidence columns, and the network's ``evidence`` settings.
     """
     found = pairwise_evidence(
         list(prepared.signals), names=list(prepared.names), parameters=p, surrogates=surrogates,
@@ -82,13 +97,8 @@ def _with_evidence(pairs: pd.DataFrame, found: Mapping[tuple[str, str], PairEvid
                    for e in rows]
         t_kinds = [interval_kind(e.t_diff, e.t_diff_low, e.t_diff_high, p.mu_transitivity)
                    for e in rows]
-        if p.measure == "clustering":
-            kinds = c_kinds
-        elif p.measure == "transitivity":
-            kinds = t_kinds
-        else:
-            kinds = [combine_kinds(c, t) for c, t in zip(c_kinds, t_kinds, strict=True)]
-        columns.update(c_kind=c_kinds, t_kind=t_kinds, kind=kinds)
+        kinds = kinds_for(pd.DataFrame({"c_kind": c_kinds, "t_kind": t_kinds}), p.measure)
+        columns.update(c_kind=c_kinds, t_kind=t_kinds, kind=kinds.tolist())
     for name in EVIDENCE_COLUMNS:
         if name != "evidence":
             columns[name] = [getattr(e, name) for e in rows]
@@ -113,7 +123,8 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
         A plain network (without evidence).
     data : pandas.DataFrame or array_like, shape (N, k)
         The samples the network was computed from: a DataFrame with a column per node (or per
-        channel of a multichannel node), or an array with one column per node in node order.
+        channel of a multichannel node; other columns are ignored), or, for one-column nodes
+        only, an array with one column per node in node order.
     surrogates, alpha, seed, resamples, surrogate_method, edge_rule
         As in :func:`funcnet.network.functional_network`.
 
@@ -127,7 +138,8 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     ------
     ParameterError
         A bad evidence argument; ``network`` already with evidence; ``data`` with another number
-        of samples than the network or without one of its nodes' columns.
+        of samples than the network or without one of its nodes' columns; an array for a
+        network with multichannel nodes.
     SignalError
         As :func:`funcnet.network.functional_network` for the data's columns.
 
@@ -153,13 +165,19 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
     if network.evidence is not None:
         raise ParameterError.of("network", "already has evidence columns")
+    channels = network.channels or {node: (node,) for node in network.nodes}
     if isinstance(data, pd.DataFrame):
-        channels = network.channels or {node: (node,) for node in network.nodes}
+        # the network named its columns as str (functional_network), so compare them so
+        data = data.rename(columns=str)
         missing = [c for node in network.nodes for c in channels[node] if c not in data.columns]
         if missing:
             raise ParameterError.of("data", f"has no column(s) {missing} of the network's "
-                                    f"nodes; it has {[str(c) for c in data.columns]}")
+                                    f"nodes; it has {list(data.columns)}")
         prepared = prepared_signals(data, None, dict(channels), network.parameters.normalize)
+    elif any(len(columns) > 1 for columns in channels.values()):
+        raise ParameterError.of("data", "must be a DataFrame with the channel columns of the "
+                                "network's multichannel nodes (an array cannot say which "
+                                "column is which channel)")
     else:
         prepared = prepared_signals(data, list(network.nodes), None,
                                     network.parameters.normalize)

@@ -416,7 +416,8 @@ def functional_network(
     seed : int
         Seeds the subsamples; the same seed gives the same table.
     resamples : int
-        Half-samples per pair for the intervals (0: no intervals, their columns NaN).
+        Resamples for the intervals (subsamples of two sizes, one set per network; 0: no
+        intervals, their columns NaN).
     surrogate_method : {"shift", "twin"}
         Surrogates of the dependence test: the non-circular time-shift lattice (default) or
         twin surrogates (:mod:`funcnet.evidence.surrogates`; validity in docs/evidence.md).
