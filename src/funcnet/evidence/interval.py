@@ -355,11 +355,15 @@ def rate_factor(small: np.ndarray, large: np.ndarray, fractions: tuple[float, fl
     >>> round(beta, 1), round(k, 1)
     (0.5, 0.8)
     """
+    return _rate(_spread(small, level), _spread(large, level), fractions)
+
+
+def _rate(s1: float, s2: float, fractions: tuple[float, float]) -> tuple[float, float]:
+    """:func:`rate_factor` from the two spreads."""
     f1, f2 = fractions
     if not 0.0 < f1 < f2 < 1.0:
         raise ParameterError.of("fractions", f"must satisfy 0 < f1 < f2 < 1, got {fractions}")
     a1, a2 = 1.0 / f1, 1.0 / f2
-    s1, s2 = _spread(small, level), _spread(large, level)
     if not (math.isfinite(s1) and math.isfinite(s2)):
         return math.nan, math.nan  # a resample without a value: no rate to report
     if s1 <= 0.0:
@@ -400,9 +404,10 @@ def _extrapolated(small: np.ndarray, large: np.ndarray, fractions: tuple[float, 
                   level: float) -> tuple[float, float]:
     """``beta`` and the half-width ``sqrt(k_1 q_1 k_2 q_2)``: both sizes' spreads scaled to the
     full window with the estimated rate, averaged geometrically (module notes)."""
-    beta, k_small = rate_factor(small, large, fractions, level=level)
+    q_small, q_large = _spread(small, level), _spread(large, level)
+    beta, k_small = _rate(q_small, q_large, fractions)
     k_large = 1.0 / math.sqrt((1.0 / fractions[1]) ** (2 * beta) - 1.0)
-    small_half, large_half = k_small * _spread(small, level), k_large * _spread(large, level)
+    small_half, large_half = k_small * q_small, k_large * q_large
     if small_half > 0.0 and large_half > 0.0:
         return beta, math.sqrt(small_half * large_half)
     # one size without spread (a few distinct values): the other size's extrapolation alone,
@@ -448,11 +453,11 @@ def interval_from(c_diff: float, t_diff: float, values: np.ndarray, *,
     """
     if not 0.0 < level < 1.0:
         raise ParameterError.of("level", f"must be in (0, 1), got {level}")
-    c_rate = t_rate = 0.5
-    c_half = _spread(values[:, 0], level)
-    t_half = _spread(values[:, 1], level)
     total = int(values.shape[0])
-    if rate_values is not None:
+    if rate_values is None:
+        c_rate = t_rate = 0.5
+        c_half, t_half = _spread(values[:, 0], level), _spread(values[:, 1], level)
+    else:
         if fractions is None:
             raise ParameterError.of("fractions", "must be given with rate_values")
         c_rate, c_half = _extrapolated(values[:, 0], rate_values[:, 0], fractions, level)

@@ -269,6 +269,13 @@ def _figures(table: pd.DataFrame, scores: pd.DataFrame, score: str, best_fn: str
     drawn = [score, *[c for c in _DRAWN if c != score], *([best_fn] if best_fn else [])]
     drawn = [c for c in drawn if c in set(scores["indicator"])]
     out: list[tuple[str, Path]] = []
+
+    def finish(fig: Any, name: str, caption: str) -> None:
+        # saved under figures/, its element and file listed, the figure freed
+        fig.tight_layout()
+        out.append((figure_html(out_dir, name, fig, caption), out_dir / "figures" / f"{name}.png"))
+        plt.close(fig)
+
     fig, axes = plt.subplots(len(noises), len(speeds), figsize=(5 * len(speeds),
                              4.2 * len(noises)), squeeze=False)  # fmt: skip
     for i, noise in enumerate(noises):
@@ -286,12 +293,8 @@ def _figures(table: pd.DataFrame, scores: pd.DataFrame, score: str, best_fn: str
             title = f"{speed:g} deg/min" + ("" if noise is None else f", noise x{noise:g}")
             ax.set(xlabel="false positive rate", ylabel="true positive rate", title=title)
             ax.legend(fontsize=7, loc="lower right")
-    fig.tight_layout()
-    name = f"{stem}-roc"
-    out.append((figure_html(out_dir, name, fig, "ROC curves, backlash >= 0.5 arcmin vs none "
-                            "(solid: backlash_score and the best FN feature)"),  # fmt: skip
-                out_dir / "figures" / f"{name}.png"))
-    plt.close(fig)
+    finish(fig, f"{stem}-roc", "ROC curves, backlash >= 0.5 arcmin vs none (solid: "
+           "backlash_score and the best FN feature)")
     shown = [score, *([best_fn] if best_fn else [])]
     fig, axes = plt.subplots(len(shown), len(speeds), figsize=(5 * len(speeds),
                              4 * len(shown)), squeeze=False)  # fmt: skip
@@ -309,12 +312,8 @@ def _figures(table: pd.DataFrame, scores: pd.DataFrame, score: str, best_fn: str
             ax.set(xlabel="true backlash (arcmin)", ylabel=indicator, title=f"{speed:g} deg/min")
             if noises != [None]:
                 ax.legend(fontsize=7)
-    fig.tight_layout()
-    name = f"{stem}-scatter"
-    out.append((figure_html(out_dir, name, fig, "Indicator against the true backlash, per trial "
-                            "(backlash_score above, the best FN feature below)"),  # fmt: skip
-                out_dir / "figures" / f"{name}.png"))
-    plt.close(fig)
+    finish(fig, f"{stem}-scatter", "Indicator against the true backlash, per trial "
+           "(backlash_score above, the best FN feature below)")
     return out
 
 
