@@ -317,13 +317,15 @@ def lost_motion_summary(sweep: pd.DataFrame) -> str:
 
 
 def _lost_motion_other_sweeps(args: argparse.Namespace, out: list[str]) -> None:
-    """The lost motion against its truth on the other sweeps of ``--save`` (one seed each)."""
+    """The lost motion against its truth on the other sweeps of ``--save`` (one seed each:
+    the first of ``--seeds``, or 1; the held-out plan its own)."""
+    seed = (args.seeds[0],) if args.seeds else (1,)
     held = backlash_sweep_plan(backlash_arcmin=(0.0, 0.75, 1.5, 3.0), tcps=(1.4, 1.8),
                                friction_scales=(0.85, 1.2), stiffness_scales=(0.85, 1.2),
                                seeds=(7,), noise_scales=(1.5,), group="held-out")  # fmt: skip
     plans = {
-        "motor": backlash_sweep_plan(seeds=(1,), position_feedback="motor"),
-        "elastic": backlash_sweep_plan(seeds=(1,), arm_model="elastic"),
+        "motor": backlash_sweep_plan(seeds=seed, position_feedback="motor"),
+        "elastic": backlash_sweep_plan(seeds=seed, arm_model="elastic"),
         "heldout": held,
         "heldout_motor": [
             dataclasses.replace(t, name=t.name + "-m", position_feedback="motor") for t in held
@@ -387,6 +389,10 @@ def main() -> None:
         "--intervals", type=int, default=0,
         help="with --with-fn: also the resampling intervals (N subsamples; timing only)",
     )
+    parser.add_argument(
+        "--seeds", type=int, nargs="+", default=None,
+        help="the main sweep's noise seeds (default 1 2 3): other seeds validate on fresh trials",
+    )
     parser.add_argument("--save", type=Path, default=None, help="folder for the tables (CSV)")
     args = parser.parse_args()
     if args.compare:
@@ -412,6 +418,8 @@ def main() -> None:
     small: dict[str, Any] = {}
     if args.quick:
         small = {"seeds": (1,), "friction_scales": (1.0,), "stiffness_scales": (0.7, 1.4)}
+    if args.seeds:
+        small["seeds"] = tuple(args.seeds)
     physical = list(PHYSICAL)
     out = _Printer()
 

@@ -26,6 +26,8 @@ _EXPORTS = {
     "MOTOR_SIDE": "funcnet.diagnosis.indicators",
     "reversal_indicators": "funcnet.diagnosis.indicators",
     "lost_motion": "funcnet.diagnosis.indicators",
+    "ArmStart": "funcnet.diagnosis.indicators",
+    "first_start": "funcnet.diagnosis.indicators",
     "run_sweep": "funcnet.diagnosis.sweep",
     "folder_indicators": "funcnet.diagnosis.sweep",
     "score_indicators": "funcnet.diagnosis.sweep",

@@ -20,8 +20,9 @@ Physical indicators
     arm still coasts). The restart is placed between ticks by a least-squares fit of the
     arm's start to the readings' distances from the rest reading: the physics of a rigid arm
     driven through the gear's spring by the logged motor travel against friction falling from
-    its static to its sliding level, resonance and friction drop fitted per reversal
-    (:func:`_fit_restart`); where that puts the restart far
+    its static to its sliding level, resonance and friction drop fitted where the arm first
+    starts from a long rest in the same recording (:func:`first_start`), or at the reversal
+    itself without such a start (:func:`_fit_restart`); where that puts the restart far
     earlier than the shape-only fit (a jerk-driven cube law bent by the gear-arm resonance,
     :func:`_restart_time`) -- the motor hitting the flank at speed -- the latter is taken. MP is
     interpolated there. After a standstill: the motor's travel from its rest to the arm's
@@ -69,6 +70,7 @@ import functools
 import math
 import warnings
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numba
@@ -90,6 +92,8 @@ __all__ = [
     "MOTOR_SIDE",
     "reversal_indicators",
     "lost_motion",
+    "ArmStart",
+    "first_start",
 ]
 
 #: Physical indicators (the baselines).
@@ -413,6 +417,120 @@ def _fit_restart(
     return start, omega, drop
 
 
+def _quantum(ap: np.ndarray) -> float:
+    """The arm encoder's step: the least change between readings."""
+    steps = np.abs(np.diff(ap))
+    return float(steps[steps > 0].min()) if np.any(steps > 0) else 1e-9
+
+
+# readings (0.1 s at 4 ms) the arm rests on one reading before a start whose physics is fitted
+# for the axis's parameters (:func:`first_start`): a rest, not a pause of the encoder's count
+_REST_READINGS = 25
+
+
+@dataclass(frozen=True)
+class ArmStart:
+    """The arm's start from a rest, fitted with its physics (:func:`first_start`).
+
+    Attributes
+    ----------
+    time : float
+        The restart, s.
+    omega : float
+        The gear-arm resonance ``sqrt(k / J)``, rad/s.
+    drop : float
+        The bearing friction's Stribeck drop per inertia ``(F_s - F_c) / J``, rad/s**2.
+    """
+
+    time: float
+    omega: float
+    drop: float
+
+
+def first_start(rec: Recording) -> ArmStart | None:
+    """The arm's first start from a rest in a recording, fitted with the physics of its start.
+
+    The resonance ``w = sqrt(k / J)`` and the Stribeck drop ``s`` are the axis's, not the
+    reversal's: fitted where the arm starts from a long rest (the recording's first run of at
+    least ``_REST_READINGS`` equal AP readings followed by a move of more than a step and a
+    half that the motor leads), they place the arm's restart at a reversal
+    (:func:`lost_motion`'s ``axis``) better than a fit of all three there: on the main sweep
+    the resonance fitted at the start is off the simulator's ``sqrt(k / J)`` by 4 % (s.d.), at
+    the reversal by 20 % (docs/backlash.md section 3.1). The fit is that of the reversal's
+    restart (:func:`_fit_restart`), with its assumed damping ratio and Stribeck velocity.
+
+    Parameters
+    ----------
+    rec : Recording
+        With MP and AP on the positions' own grid (:func:`.motor_side_recording`).
+
+    Returns
+    -------
+    ArmStart or None
+        None without such a rest and start (an arm whose reading jitters at rest, as on the
+        real trace, has none), or with fewer than three readings within the fit's span.
+
+    References
+    ----------
+    Paper section 5.1 (backlash at the reversals); the start's model: :func:`_fit_restart`.
+
+    Examples
+    --------
+    A rigid arm breaking free at 0.3 s behind a motor moving at 0.2 deg/s, read every 4 ms by a
+    2**22-count encoder:
+
+    >>> import pandas as pd
+    >>> from funcnet.robot import SignalInfo
+    >>> q = 360 / 2**22
+    >>> t = np.arange(0.0, 0.5, 0.004)
+    >>> tau = np.clip(t - 0.3, 0, None)
+    >>> ap = np.round(0.2 * (tau - np.sin(70 * tau) / 70) / q) * q
+    >>> mp = 0.2 * np.clip(t - 0.25, 0, None)
+    >>> info = {c: SignalInfo(c, "posn", None, 0.004) for c in ("MP", "AP")}
+    >>> rec = Recording(pd.DataFrame({"MP": mp, "AP": ap}, index=pd.Index(t, name="time")),
+    ...                 {}, info, sample_period=0.004)
+    >>> start = first_start(rec)
+    >>> round(start.time, 3), abs(start.omega - 70) < 7
+    (0.3, True)
+    """
+    t = rec.data.index.to_numpy()
+    mp, ap = _values(rec, "MP"), _values(rec, "AP")
+    quantum = _quantum(ap)
+    bounds = np.concatenate(([0], np.flatnonzero(np.diff(ap) != 0) + 1, [ap.size]))
+    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+        if b - a < _REST_READINGS or b == ap.size:
+            continue
+        rest = float(ap[a])
+        moved = np.flatnonzero(np.abs(ap[b:] - rest) > 1.5 * quantum)
+        if moved.size == 0:
+            return None
+        first = b + int(moved[0])
+        new = 1 if ap[first] > rest else -1
+        if new * (mp[first] - mp[a]) <= 0:  # the arm moved without the motor leading it
+            continue
+        fit = _fit_restart(t, mp, ap, rest, first, a, new, quantum)
+        return None if fit is None else ArmStart(*fit)
+    return None
+
+
+def _restart_with(
+    t: np.ndarray, mp: np.ndarray, ap: np.ndarray, rest: float, first: int, earliest: int,
+    new: int, quantum: float, axis: ArmStart, back: int = 8,
+) -> float | None:  # fmt: skip
+    """The restart fitted alone with the axis's resonance and drop (:func:`first_start`), over
+    the readings up to ``_START_SPAN`` steps; None without such a reading."""
+    ticks = np.arange(first, min(first + _TICKS, t.size))
+    distance = new * (ap[ticks] - rest)
+    near = distance < _START_SPAN * quantum
+    if not near.any():
+        return None
+    origin = float(t[max(earliest, first - back)])
+    candidates = np.arange(origin, float(t[first]) + 1e-9, 5e-5)
+    start, _, _ = _best(t, new * mp, origin, t[ticks[near]], distance[near] * _RAD, candidates,
+                        np.array([axis.omega]), np.array([axis.drop]), 5e-5)  # fmt: skip
+    return start
+
+
 def _motor_turn(t: np.ndarray, mp: np.ndarray, end: int, old: int) -> tuple[int, float, float]:
     """The motor's turning point before index ``end``: its last move the old way.
 
@@ -431,7 +549,10 @@ def _motor_turn(t: np.ndarray, mp: np.ndarray, end: int, old: int) -> tuple[int,
     return j, float(t[j - 1] + x * (t[j] - t[j - 1])) if j >= 1 else float(t[j]), float(mp[j])
 
 
-def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None) -> float:
+def lost_motion(
+    rec: Recording, change: DirectionChange, turn: int | None = None, *,
+    axis: ArmStart | None = None,
+) -> float:  # fmt: skip
     """Two-encoder lost motion at a direction change, in deg (NaN if the arm never restarts).
 
     Parameters
@@ -443,6 +564,9 @@ def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None
         Index of the motor's turning point, used after a standstill only (found from MP when
         omitted); at a reversal the turn is the motor's last move the old way before the
         arm's restart (see the module's notes).
+    axis : ArmStart, optional
+        The axis's gear-arm resonance and Stribeck drop (:func:`first_start`): at a reversal
+        the restart is then fitted alone with them; without, all three are fitted there.
 
     Returns
     -------
@@ -468,8 +592,7 @@ def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None
     mp, ap = _values(rec, "MP"), _values(rec, "AP")
     new = change.direction
     old = -new
-    steps = np.abs(np.diff(ap))
-    quantum = float(steps[steps > 0].min()) if np.any(steps > 0) else 1e-9
+    quantum = _quantum(ap)
     if change.kind == "reversal":
         k = _arm_restart(t, mp, ap, change, quantum)
         if k is None:
@@ -498,10 +621,15 @@ def lost_motion(rec: Recording, change: DirectionChange, turn: int | None = None
         # lies between the MP readings, and the model, which has the gear transmit the static
         # friction at the restart, then finds an earlier start with a too low resonance)
         shape = across(_restart_time(t, ap, rest, first, earliest, new, quantum, back=8))
-        fit = _fit_restart(t, mp, ap, rest, first, earliest, new, quantum, back=8)
-        if fit is None:
-            return shape
-        physics = across(fit[0])
+        restart = None
+        if axis is not None:  # the axis's parameters, from its start from a long rest
+            restart = _restart_with(t, mp, ap, rest, first, earliest, new, quantum, axis)
+        if restart is None:
+            fit = _fit_restart(t, mp, ap, rest, first, earliest, new, quantum, back=8)
+            if fit is None:
+                return shape
+            restart = fit[0]
+        physics = across(restart)
         return shape if physics < shape - _GUARD * quantum else physics
     # after a standstill: the arm rested since long before the motor turned; its reading
     # jitters by an encoder step or two
@@ -575,7 +703,8 @@ def _physical(rec: Recording, change: DirectionChange, turn: int) -> dict[str, f
         "current_dwell": float(t[at] - t[left]),
         "current_step": step,
         "vibration": float(np.sqrt(np.mean(residual**2))) if residual.size else math.nan,
-        "lost_motion": lost_motion(rec, change, turn) if "AP" in rec.data.columns else math.nan,
+        "lost_motion": (lost_motion(rec, change, turn, axis=first_start(rec))
+                        if "AP" in rec.data.columns else math.nan),  # fmt: skip
     }
     return result
 
