@@ -3,7 +3,7 @@
 The truth (``SimulatedTrial.truth["lost_motion"]``) is the change of the torsion
 ``theta_m / N - theta_a`` (MP - AP) from the motor's turning point to the arm's restart; these
 tests check it against the simulator's own hidden states, then pin the estimate of
-:func:`funcnet.diagnosis.indicators.lost_motion` against it (figures measured, docs/backlash.md).
+:func:`funcnet.diagnosis.two_encoder.lost_motion` against it (figures measured, docs/backlash.md).
 """
 
 from __future__ import annotations
@@ -154,7 +154,7 @@ def test_the_real_traces_direction_changes_give_a_few_arm_encoder_steps_each(
 def test_the_restart_fit_recovers_a_cube_law_start_from_rounded_readings() -> None:
     # an independent reference: a jerk-driven start u = A (t - t0)**3 read every 4 ms by an
     # encoder of 2**22 counts (rest position off the grid by a random fraction of a step)
-    from funcnet.diagnosis.indicators import _restart_time
+    from funcnet.diagnosis.two_encoder import _restart_time
 
     rng = np.random.default_rng(5)
     errors = []
@@ -181,7 +181,7 @@ def test_the_physical_start_fit_recovers_a_simulated_breakaway() -> None:
     # a matched model (the sensitivity to a mismatch is in docs/backlash.md section 3.1)
     from scipy.integrate import solve_ivp
 
-    from funcnet.diagnosis.indicators import _STRIBECK_VELOCITY, _ZETA, _fit_restart
+    from funcnet.diagnosis.two_encoder import _STRIBECK_VELOCITY, _ZETA, _fit_restart
 
     rng = np.random.default_rng(11)
     errors, ratios = [], []

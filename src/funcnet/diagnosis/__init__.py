@@ -3,6 +3,7 @@
 :mod:`~funcnet.diagnosis.reversals` finds the direction changes of an axis,
 :mod:`~funcnet.diagnosis.indicators` computes the backlash indicators at a reversal (physical
 baselines, motor-side functional-network features, the paper's signature),
+:mod:`~funcnet.diagnosis.two_encoder` the two-encoder lost motion among them,
 :mod:`~funcnet.diagnosis.sweep` simulates the sweep and scores the indicators against the
 truth, and :mod:`~funcnet.diagnosis.diagnose` diagnoses real traces
 (:func:`diagnose_backlash`). Names are imported lazily.
@@ -25,9 +26,9 @@ _EXPORTS = {
     "INDICATORS": "funcnet.diagnosis.indicators",
     "MOTOR_SIDE": "funcnet.diagnosis.indicators",
     "reversal_indicators": "funcnet.diagnosis.indicators",
-    "lost_motion": "funcnet.diagnosis.indicators",
-    "ArmStart": "funcnet.diagnosis.indicators",
-    "first_start": "funcnet.diagnosis.indicators",
+    "lost_motion": "funcnet.diagnosis.two_encoder",
+    "ArmStart": "funcnet.diagnosis.two_encoder",
+    "first_start": "funcnet.diagnosis.two_encoder",
     "run_sweep": "funcnet.diagnosis.sweep",
     "folder_indicators": "funcnet.diagnosis.sweep",
     "score_indicators": "funcnet.diagnosis.sweep",

@@ -25,7 +25,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet._io import write_text_atomic
-from funcnet.diagnosis.indicators import lost_motion, reversal_indicators
+from funcnet.diagnosis.indicators import reversal_indicators
 from funcnet.diagnosis.reversals import (
     MAX_DWELL,
     DirectionChange,
@@ -33,6 +33,7 @@ from funcnet.diagnosis.reversals import (
     motor_side_recording,
 )
 from funcnet.diagnosis.sweep import with_contact_score
+from funcnet.diagnosis.two_encoder import lost_motion
 from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import velocity
