@@ -391,7 +391,8 @@ def main() -> None:
     )
     parser.add_argument(
         "--seeds", type=int, nargs="+", default=None,
-        help="the main sweep's noise seeds (default 1 2 3): other seeds validate on fresh trials",
+        help="the main sweep's noise seeds (default 1 2 3): other seeds validate on fresh "
+        "trials; with --lost-motion the motor-loop and elastic sweeps take the first",
     )
     parser.add_argument("--save", type=Path, default=None, help="folder for the tables (CSV)")
     args = parser.parse_args()

@@ -156,14 +156,17 @@ def _physical(rec: Recording, change: DirectionChange, turn: int) -> dict[str, f
     if a_side.size and b_side.size:
         ia, ib = lo + int(a_side[-1]), turn + int(b_side[0])
         hysteresis = float(-new * ((mp[ia] - rp[ia]) - (mp[ib] - rp[ib])))
+    lost = math.nan
+    if "AP" in rec.data.columns:
+        axis = first_start(rec) if change.kind == "reversal" else None
+        lost = lost_motion(rec, change, turn, axis=axis)
     result = {
         "motor_hysteresis": hysteresis,
         "motor_travel": float(travel[at]),
         "current_dwell": float(t[at] - t[left]),
         "current_step": step,
         "vibration": float(np.sqrt(np.mean(residual**2))) if residual.size else math.nan,
-        "lost_motion": (lost_motion(rec, change, turn, axis=first_start(rec))
-                        if "AP" in rec.data.columns else math.nan),  # fmt: skip
+        "lost_motion": lost,
     }
     return result
 

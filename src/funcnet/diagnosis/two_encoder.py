@@ -380,8 +380,9 @@ def first_start(rec: Recording) -> ArmStart | None:
     Returns
     -------
     ArmStart or None
-        None without such a rest and start (an arm whose reading jitters at rest, as on the
-        real trace, has none), or with fewer than three readings within the fit's span.
+        The first such start that can be fitted; None without one (an arm whose reading
+        jitters at rest, as on the real trace, has none; a start with a gap in MP, or with
+        fewer than three readings within the fit's span, cannot be fitted).
 
     References
     ----------
@@ -419,10 +420,13 @@ def first_start(rec: Recording) -> ArmStart | None:
             return None
         first = b + int(moved[0])
         new = 1 if ap[first] > rest else -1
-        if new * (mp[first] - mp[a]) <= 0:  # the arm moved without the motor leading it
+        if not new * (mp[first] - mp[a]) > 0:  # the arm moved without the motor leading it
+            continue
+        if not np.isfinite(mp[a : first + _TICKS]).all():  # a gap in MP: nothing to fit
             continue
         fit = _fit_restart(t, mp, ap, rest, first, a, new, quantum)
-        return None if fit is None else ArmStart(*fit)
+        if fit is not None:
+            return ArmStart(*fit)
     return None
 
 
