@@ -33,7 +33,7 @@ from funcnet.diagnosis.reversals import (
     motor_side_recording,
 )
 from funcnet.diagnosis.sweep import with_contact_score
-from funcnet.diagnosis.two_encoder import lost_motion
+from funcnet.diagnosis.two_encoder import first_start, lost_motion
 from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import velocity
@@ -271,11 +271,13 @@ def diagnose_recording(
     changes = find_direction_changes(rec, max_dwell=max_dwell)
     has_ap = "AP" in rec.data.columns and bool(np.isfinite(rec.data["AP"]).any())
     indicator, table = (SCORE, cal) if has_ap else (MOTOR_LOOP_SCORE, cal["motor_loop"])
+    # the axis's start from rest, fitted once for every reversal's lost motion
+    arm_start = first_start(rec) if has_ap and changes else None
     results = []
     for change in changes:
         speed = _move_speed(rec, change)
         if change.kind == "reversal":
-            values = reversal_indicators(rec, change, networks=False)
+            values = reversal_indicators(rec, change, networks=False, arm_start=arm_start)
             if not has_ap:
                 row = pd.DataFrame([{**values, "peak_speed": speed}])
                 contact = with_contact_score(row, table["reference"])["motor_contact"]

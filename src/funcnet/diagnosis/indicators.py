@@ -60,7 +60,14 @@ import numpy as np
 import pandas as pd
 
 from funcnet.diagnosis.reversals import DirectionChange
-from funcnet.diagnosis.two_encoder import _index, _turn, _values, first_start, lost_motion
+from funcnet.diagnosis.two_encoder import (
+    ArmStart,
+    _index,
+    _turn,
+    _values,
+    first_start,
+    lost_motion,
+)
 from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError
 from funcnet.parameters import NetworkParameters
 from funcnet.robot.recording import Recording
@@ -112,7 +119,9 @@ def _smooth(x: np.ndarray, n: int) -> np.ndarray:
     return np.convolve(padded, kernel, mode="valid")
 
 
-def _physical(rec: Recording, change: DirectionChange, turn: int) -> dict[str, float]:
+def _physical(
+    rec: Recording, change: DirectionChange, turn: int, arm_start: ArmStart | None
+) -> dict[str, float]:
     t = rec.data.index.to_numpy()
     dt = rec.sample_period
     new = change.direction
@@ -158,7 +167,9 @@ def _physical(rec: Recording, change: DirectionChange, turn: int) -> dict[str, f
         hysteresis = float(-new * ((mp[ia] - rp[ia]) - (mp[ib] - rp[ib])))
     lost = math.nan
     if "AP" in rec.data.columns:
-        axis = first_start(rec) if change.kind == "reversal" else None
+        axis = None
+        if change.kind == "reversal":
+            axis = first_start(rec) if arm_start is None else arm_start
         lost = lost_motion(rec, change, turn, axis=axis)
     result = {
         "motor_hysteresis": hysteresis,
@@ -282,6 +293,7 @@ def reversal_indicators(
     networks: bool = True,
     evidence: bool = False,
     intervals: int = 0,
+    arm_start: ArmStart | None = None,
 ) -> dict[str, Any]:
     """Every indicator of :data:`INDICATORS` at one direction change.
 
@@ -301,6 +313,9 @@ def reversal_indicators(
         With ``evidence``: subsamples of the resampling intervals (0: none; they do not
         change ``fn_coupled``; a number > 0 only costs their time, for the timing of the sweep
         with intervals).
+    arm_start : ArmStart, optional
+        The arm's first start from rest in ``rec`` (:func:`.first_start`), for the lost motion;
+        found in ``rec`` when omitted (pass it to fit it once for several reversals).
 
     Returns
     -------
@@ -320,7 +335,7 @@ def reversal_indicators(
     turn = _turn(rec, change)
     t_turn = float(rec.data.index[turn])
     result: dict[str, Any] = {"turn_time": t_turn}
-    result.update(_physical(rec, change, turn))
+    result.update(_physical(rec, change, turn, arm_start))
     names = FN_FEATURES
     if networks and all(n in rec.data.columns for n in _MOTOR_NODES):
         # the reversal window (the dead-zone crossing) and the braking before it, batched

@@ -319,14 +319,10 @@ def _fit_restart(
     omegas, drops = _pairs(np.arange(omega - 10, omega + 10.1, 2.5), np.arange(0.0, 0.401, 0.02))
     starts = np.arange(max(origin, start - 2e-3), min(end, start + 2e-3) + 1e-9, 1e-4)
     start, omega, drop = _best(t, motor_deg, origin, times, distance, starts, omegas, drops, 1e-4)
-    # the restart alone, over the readings nearest the rest
-    near = distance < _START_SPAN * quantum * _RAD
-    if not near.any():  # the arm left fast: the start fitted with the parameters stands
-        return start, omega, drop
-    start, _, _ = _best(t, motor_deg, origin, times[near], distance[near],
-                        np.arange(origin, end + 1e-9, 5e-5), np.array([omega]), np.array([drop]),
-                        5e-5)  # fmt: skip
-    return start, omega, drop
+    # the restart alone, over the readings nearest the rest (without one the arm left fast:
+    # the start fitted with the parameters stands)
+    alone = _restart_alone(t, mp, ap, rest, first, earliest, new, quantum, omega, drop, back)
+    return (start if alone is None else alone), omega, drop
 
 
 def _quantum(ap: np.ndarray) -> float:
@@ -430,12 +426,12 @@ def first_start(rec: Recording) -> ArmStart | None:
     return None
 
 
-def _restart_with(
+def _restart_alone(
     t: np.ndarray, mp: np.ndarray, ap: np.ndarray, rest: float, first: int, earliest: int,
-    new: int, quantum: float, axis: ArmStart, back: int = 8,
+    new: int, quantum: float, omega: float, drop: float, back: int = 8,
 ) -> float | None:  # fmt: skip
-    """The restart fitted alone with the axis's resonance and drop (:func:`first_start`), over
-    the readings up to ``_START_SPAN`` steps; None without such a reading."""
+    """The restart fitted alone with a given resonance and drop (:func:`_fit_restart`'s last
+    stage), over the readings up to ``_START_SPAN`` steps; None without such a reading."""
     ticks = np.arange(first, min(first + _TICKS, t.size))
     distance = new * (ap[ticks] - rest)
     near = distance < _START_SPAN * quantum
@@ -444,7 +440,7 @@ def _restart_with(
     origin = float(t[max(earliest, first - back)])
     candidates = np.arange(origin, float(t[first]) + 1e-9, 5e-5)
     start, _, _ = _best(t, new * mp, origin, t[ticks[near]], distance[near] * _RAD, candidates,
-                        np.array([axis.omega]), np.array([axis.drop]), 5e-5)  # fmt: skip
+                        np.array([omega]), np.array([drop]), 5e-5)  # fmt: skip
     return start
 
 
@@ -546,8 +542,8 @@ def lost_motion(
         if axis is not None:
             # the resonance and drop are the axis's: the mean of their fits at its start from a
             # long rest and here (a reversal's own fit at times falls into a wrong minimum)
-            mean = ArmStart(math.nan, (axis.omega + fit[1]) / 2, (axis.drop + fit[2]) / 2)
-            alone = _restart_with(t, mp, ap, rest, first, earliest, new, quantum, mean)
+            alone = _restart_alone(t, mp, ap, rest, first, earliest, new, quantum,
+                                   (axis.omega + fit[1]) / 2, (axis.drop + fit[2]) / 2)  # fmt: skip
             restart = restart if alone is None else alone
         physics = across(restart)
         return shape if physics < shape - _GUARD * quantum else physics
