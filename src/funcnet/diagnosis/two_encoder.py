@@ -223,9 +223,10 @@ def _pairs(omegas: np.ndarray, drops: np.ndarray) -> tuple[np.ndarray, np.ndarra
 def _best(
     t: np.ndarray, motor_deg: np.ndarray, origin: float, times: np.ndarray,
     distance: np.ndarray, starts: np.ndarray, omegas: np.ndarray, drops: np.ndarray, dt: float,
-) -> tuple[float, float, float]:  # fmt: skip
+) -> tuple[float, float, float, float]:  # fmt: skip
     """The least-squares start time, ``w`` and ``s`` over the candidates (pairs ``omegas``,
-    ``drops``), on a grid of step ``dt`` from ``origin``; MP linear between its readings."""
+    ``drops``), on a grid of step ``dt`` from ``origin``; MP linear between its readings. Last:
+    the least sum of squared errors (rad**2)."""
     grid = origin + np.arange(int(round((times[-1] - origin) / dt)) + 2) * dt
     motor = np.interp(grid, t, motor_deg) * _RAD
     seg = np.clip(np.searchsorted(t, grid, side="right"), 1, t.size - 1)
@@ -235,13 +236,13 @@ def _best(
     errors = _squared_errors(n0, omegas**2, 2 * _ZETA * omegas, drops, _STRIBECK_VELOCITY,
                              motor, speed, at, distance, dt)  # fmt: skip
     p, a = np.unravel_index(int(np.argmin(errors)), errors.shape)
-    return float(grid[n0[a]]), float(omegas[p]), float(drops[p])
+    return float(grid[n0[a]]), float(omegas[p]), float(drops[p]), float(errors[p, a])
 
 
 def _fit_restart(
     t: np.ndarray, mp: np.ndarray, ap: np.ndarray, rest: float, first: int, earliest: int,
-    new: int, quantum: float, back: int = 8,
-) -> tuple[float, float, float] | None:  # fmt: skip
+    new: int, quantum: float, back: int = 8, ticks: int = _TICKS, span: float = _PARAM_SPAN,
+) -> tuple[float, float, float, float] | None:  # fmt: skip
     """The arm's restart between ticks, fitted with the physics of its start.
 
     The two-encoder lost motion (:func:`lost_motion`) ends where
@@ -257,10 +258,10 @@ def _fit_restart(
     restart ``t0``, ``w = sqrt(k / J)``, ``s = (F_s - F_c) / J`` the Stribeck drop per inertia
     (the gear torque equals the static friction at ``t0``; the arm's viscous friction is left
     out, below 5 % of the drop at these speeds). Fitted per reversal: ``w`` and ``s`` with
-    ``t0`` over the readings up to ``_PARAM_SPAN`` encoder steps, then ``t0`` alone over those
-    up to ``_START_SPAN`` steps (where the model with the fitted parameters is closest; the
-    larger span carries the parameters). Assumed, not fitted: the gear's damping ratio ``_ZETA``
-    and the Stribeck velocity ``v_s`` -- the simulator's values
+    ``t0`` over the readings up to ``span`` encoder steps (``ticks`` at most), then ``t0``
+    alone over those up to ``_START_SPAN`` steps (where the model with the fitted parameters
+    is closest; the larger span carries the parameters). Assumed, not fitted: the gear's
+    damping ratio ``_ZETA`` and the Stribeck velocity ``v_s`` -- the simulator's values
     (:class:`funcnet.robot.sim.axis.AxisParameters`: ``gear_damping`` gives about 10 %,
     ``arm_stribeck_velocity`` 0.002 rad/s); a real axis's are unknown (docs/backlash.md section
     3.1 gives the estimate's sensitivity to them).
@@ -281,12 +282,16 @@ def _fit_restart(
         The arm encoder's step, deg.
     back : int
         Ticks before ``first`` the restart may lie (the arm creeps below a step).
+    ticks, span : int, float
+        The parameters are fitted over at most ``ticks`` readings from ``first``, those up to
+        ``span`` encoder steps from the rest.
 
     Returns
     -------
     tuple of float or None
-        The restart (s), ``w`` (rad/s) and ``s`` (rad/s**2); None with fewer than three readings
-        within ``_PARAM_SPAN`` steps.
+        The restart (s), ``w`` (rad/s), ``s`` (rad/s**2) and the RMS residual of the
+        parameters' fit (encoder steps); None with fewer than three readings within ``span``
+        steps.
 
     Examples
     --------
@@ -299,30 +304,33 @@ def _fit_restart(
     >>> tau = np.clip(t - 0.08, 0, None)
     >>> ap = np.round(-0.2 * (tau - np.sin(70 * tau) / 70) / q) * q
     >>> first = int(np.flatnonzero(ap < -1.5 * q)[0])
-    >>> restart, omega, drop = _fit_restart(t, mp, ap, 0.0, first, 0, -1, q)
+    >>> restart, omega, drop, residual = _fit_restart(t, mp, ap, 0.0, first, 0, -1, q)
     >>> round(restart, 4)
     0.0797
     """
-    ticks = np.arange(first, min(first + _TICKS, t.size))
-    distance = new * (ap[ticks] - rest)
-    ticks = ticks[distance < _PARAM_SPAN * quantum]
-    distance = distance[distance < _PARAM_SPAN * quantum] * _RAD
-    if ticks.size < 3:
+    readings = np.arange(first, min(first + ticks, t.size))
+    distance = new * (ap[readings] - rest)
+    readings = readings[distance < span * quantum]
+    distance = distance[distance < span * quantum] * _RAD
+    if readings.size < 3:
         return None
-    times, motor_deg = t[ticks], new * mp
+    times, motor_deg = t[readings], new * mp
     origin = float(t[max(earliest, first - back)])
     end = float(t[first])
     # the parameters and the start, coarse to fine (a grid: the error has local minima)
     omegas, drops = _pairs(np.arange(30.0, 181.0, 10.0), np.arange(0.0, 0.41, 0.04))
     coarse = np.arange(origin, end + 1e-9, 5e-4)
-    start, omega, drop = _best(t, motor_deg, origin, times, distance, coarse, omegas, drops, 2e-4)
+    start, omega, drop, _ = _best(t, motor_deg, origin, times, distance, coarse, omegas, drops,
+                                  2e-4)  # fmt: skip
     omegas, drops = _pairs(np.arange(omega - 10, omega + 10.1, 2.5), np.arange(0.0, 0.401, 0.02))
     starts = np.arange(max(origin, start - 2e-3), min(end, start + 2e-3) + 1e-9, 1e-4)
-    start, omega, drop = _best(t, motor_deg, origin, times, distance, starts, omegas, drops, 1e-4)
+    start, omega, drop, error = _best(t, motor_deg, origin, times, distance, starts, omegas, drops,
+                                      1e-4)  # fmt: skip
+    residual = math.sqrt(error / distance.size) / (quantum * _RAD)
     # the restart alone, over the readings nearest the rest (without one the arm left fast:
     # the start fitted with the parameters stands)
     alone = _restart_alone(t, mp, ap, rest, first, earliest, new, quantum, omega, drop, back)
-    return (start if alone is None else alone), omega, drop
+    return (start if alone is None else alone), omega, drop, residual
 
 
 def _quantum(ap: np.ndarray) -> float:
@@ -334,6 +342,14 @@ def _quantum(ap: np.ndarray) -> float:
 # readings (0.1 s at 4 ms) the arm rests on one reading before a start whose physics is fitted
 # for the axis's parameters (:func:`first_start`): a rest, not a pause of the encoder's count
 _REST_READINGS = 25
+# the start from a long rest is fitted over this many readings whatever the arm's travel (160 ms:
+# a period of the gear-arm resonance or more at 40 rad/s and above), where the model holds over
+# them -- the fit's RMS residual at most _START_RESIDUAL encoder steps (a gear that opens again
+# as the arm rings does not fit it) --, else as a reversal's restart (chosen on the main sweep's
+# seeds 1-3 and a motor-encoder loop sweep, where 2.5-4 steps give the same misses; validated on
+# other seeds: docs/backlash.md section 3.1)
+_START_TICKS = 40
+_START_RESIDUAL = 3.0
 
 
 @dataclass(frozen=True)
@@ -366,7 +382,11 @@ def first_start(rec: Recording) -> ArmStart | None:
     resonance fitted at the start is off the simulator's ``sqrt(k / J)`` by 4 % (s.d.), at the
     reversal by 20 %, a few reversals falling into a wrong minimum (docs/backlash.md section
     3.1). The fit is that of the reversal's restart (:func:`_fit_restart`), with its assumed
-    damping ratio and Stribeck velocity.
+    damping ratio and Stribeck velocity, over ``_START_TICKS`` readings (160 ms: a period of the
+    resonance or more, which pins it where the fit over the reversal's span of 24 readings at
+    most -- less than a period -- may trade it for the friction drop) where the model holds
+    there, its RMS residual at most ``_START_RESIDUAL`` encoder steps; else (a gear that opens
+    again as the arm rings) over the reversal's span.
 
     Parameters
     ----------
@@ -420,9 +440,14 @@ def first_start(rec: Recording) -> ArmStart | None:
             continue
         if not np.isfinite(mp[a : first + _TICKS]).all():  # a gap in MP: nothing to fit
             continue
-        fit = _fit_restart(t, mp, ap, rest, first, a, new, quantum)
+        fit = None
+        if np.isfinite(mp[a : first + _START_TICKS]).all():
+            fit = _fit_restart(t, mp, ap, rest, first, a, new, quantum, ticks=_START_TICKS,
+                               span=math.inf)  # fmt: skip
+        if fit is None or fit[3] > _START_RESIDUAL:
+            fit = _fit_restart(t, mp, ap, rest, first, a, new, quantum)
         if fit is not None:
-            return ArmStart(*fit)
+            return ArmStart(*fit[:3])
     return None
 
 
@@ -439,8 +464,8 @@ def _restart_alone(
         return None
     origin = float(t[max(earliest, first - back)])
     candidates = np.arange(origin, float(t[first]) + 1e-9, 5e-5)
-    start, _, _ = _best(t, new * mp, origin, t[ticks[near]], distance[near] * _RAD, candidates,
-                        np.array([omega]), np.array([drop]), 5e-5)  # fmt: skip
+    start, _, _, _ = _best(t, new * mp, origin, t[ticks[near]], distance[near] * _RAD, candidates,
+                           np.array([omega]), np.array([drop]), 5e-5)  # fmt: skip
     return start
 
 
