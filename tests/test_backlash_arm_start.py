@@ -99,7 +99,7 @@ def test_a_start_the_rigid_model_does_not_fit_over_a_period_is_fitted_as_a_resta
     # an arm whose gear opens again as it rings (backlash 4 arcmin, friction 0.7) leaves the
     # model over 160 ms: its fit's residual is far above the rounding, and the start is then
     # fitted over the reversal's span, near the true resonance
-    from funcnet.diagnosis.two_encoder import _START_RESIDUAL, _START_TICKS, _fit_restart
+    from funcnet.diagnosis.two_encoder import _START_READINGS, _START_RESIDUAL, _fit_restart
 
     ((trial, sim, rec),) = _recording(backlash_arcmin=(4,), speeds=(175,), tcps=(1.6,),
                                       friction_scales=(0.7,), stiffness_scales=(1.4,), seeds=(1,),
@@ -107,15 +107,20 @@ def test_a_start_the_rigid_model_does_not_fit_over_a_period_is_fitted_as_a_resta
     t = rec.data.index.to_numpy()
     mp, ap = rec.data["MP"].to_numpy(float), rec.data["AP"].to_numpy(float)
     rest = ap[0]
+    assert np.all(ap[:25] == rest)  # the trial begins with a long rest: the start fitted
     first = int(np.flatnonzero(np.abs(ap - rest) > 1.5 * STEP)[0])
     new = 1 if ap[first] > rest else -1
-    long = _fit_restart(t, mp, ap, rest, first, 0, new, STEP, ticks=_START_TICKS, span=math.inf)
-    assert long is not None and long[3] > _START_RESIDUAL
+    over_a_period = _fit_restart(t, mp, ap, rest, first, 0, new, STEP,
+                                 max_readings=_START_READINGS, span=math.inf)  # fmt: skip
+    assert over_a_period is not None
+    _, omega_long, _, residual = over_a_period
+    assert residual > _START_RESIDUAL  # measured 15.6 steps
     omega = _resonance(trial, sim)
+    assert abs(omega_long / omega - 1) > 0.2  # measured -41 %
     axis = first_start(rec)
     assert axis is not None
-    assert abs(long[1] / omega - 1) > 0.2  # measured -41 %, residual 15.6 steps
     assert abs(axis.omega / omega - 1) < 0.05  # measured -2 %
+    assert abs(axis.time - sim.truth["breakaway_time"]) < 0.004
 
 
 def test_an_arm_without_a_long_rest_has_no_start(real_trace: Path) -> None:

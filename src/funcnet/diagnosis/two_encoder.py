@@ -241,7 +241,8 @@ def _best(
 
 def _fit_restart(
     t: np.ndarray, mp: np.ndarray, ap: np.ndarray, rest: float, first: int, earliest: int,
-    new: int, quantum: float, back: int = 8, ticks: int = _TICKS, span: float = _PARAM_SPAN,
+    new: int, quantum: float, back: int = 8, max_readings: int = _TICKS,
+    span: float = _PARAM_SPAN,
 ) -> tuple[float, float, float, float] | None:  # fmt: skip
     """The arm's restart between ticks, fitted with the physics of its start.
 
@@ -258,7 +259,7 @@ def _fit_restart(
     restart ``t0``, ``w = sqrt(k / J)``, ``s = (F_s - F_c) / J`` the Stribeck drop per inertia
     (the gear torque equals the static friction at ``t0``; the arm's viscous friction is left
     out, below 5 % of the drop at these speeds). Fitted per reversal: ``w`` and ``s`` with
-    ``t0`` over the readings up to ``span`` encoder steps (``ticks`` at most), then ``t0``
+    ``t0`` over the readings up to ``span`` encoder steps (``max_readings`` at most), then ``t0``
     alone over those up to ``_START_SPAN`` steps (where the model with the fitted parameters
     is closest; the larger span carries the parameters). Assumed, not fitted: the gear's
     damping ratio ``_ZETA`` and the Stribeck velocity ``v_s`` -- the simulator's values
@@ -282,9 +283,9 @@ def _fit_restart(
         The arm encoder's step, deg.
     back : int
         Ticks before ``first`` the restart may lie (the arm creeps below a step).
-    ticks, span : int, float
-        The parameters are fitted over at most ``ticks`` readings from ``first``, those up to
-        ``span`` encoder steps from the rest.
+    max_readings, span : int, float
+        The parameters are fitted over at most ``max_readings`` readings from ``first``, those
+        up to ``span`` encoder steps from the rest.
 
     Returns
     -------
@@ -308,7 +309,7 @@ def _fit_restart(
     >>> round(restart, 4)
     0.0797
     """
-    readings = np.arange(first, min(first + ticks, t.size))
+    readings = np.arange(first, min(first + max_readings, t.size))
     distance = new * (ap[readings] - rest)
     readings = readings[distance < span * quantum]
     distance = distance[distance < span * quantum] * _RAD
@@ -342,13 +343,11 @@ def _quantum(ap: np.ndarray) -> float:
 # readings (0.1 s at 4 ms) the arm rests on one reading before a start whose physics is fitted
 # for the axis's parameters (:func:`first_start`): a rest, not a pause of the encoder's count
 _REST_READINGS = 25
-# the start from a long rest is fitted over this many readings whatever the arm's travel (160 ms:
-# a period of the gear-arm resonance or more at 40 rad/s and above), where the model holds over
-# them -- the fit's RMS residual at most _START_RESIDUAL encoder steps (a gear that opens again
-# as the arm rings does not fit it) --, else as a reversal's restart (chosen on the main sweep's
-# seeds 1-3 and a motor-encoder loop sweep, where 2.5-4 steps give the same misses; validated on
-# other seeds: docs/backlash.md section 3.1)
-_START_TICKS = 40
+# readings over which the start from a long rest is fitted, and the RMS residual (encoder steps)
+# up to which that fit stands (:func:`first_start`; the bound chosen on the main sweep's seeds 1-3
+# and a motor-encoder loop sweep, where 2.5-4 give the same misses; validated on other seeds:
+# docs/backlash.md section 3.1)
+_START_READINGS = 40
 _START_RESIDUAL = 3.0
 
 
@@ -379,14 +378,15 @@ def first_start(rec: Recording) -> ArmStart | None:
     least ``_REST_READINGS`` equal AP readings followed by a move of more than a step and a
     half that the motor leads), they steady the restart's fit at a reversal
     (:func:`lost_motion`'s ``axis``, which takes the mean of both fits): on the main sweep the
-    resonance fitted at the start is off the simulator's ``sqrt(k / J)`` by 4 % (s.d.), at the
+    resonance fitted at the start is off the simulator's ``sqrt(k / J)`` by 3.5 % (s.d.), at the
     reversal by 20 %, a few reversals falling into a wrong minimum (docs/backlash.md section
     3.1). The fit is that of the reversal's restart (:func:`_fit_restart`), with its assumed
-    damping ratio and Stribeck velocity, over ``_START_TICKS`` readings (160 ms: a period of the
-    resonance or more, which pins it where the fit over the reversal's span of 24 readings at
-    most -- less than a period -- may trade it for the friction drop) where the model holds
-    there, its RMS residual at most ``_START_RESIDUAL`` encoder steps; else (a gear that opens
-    again as the arm rings) over the reversal's span.
+    damping ratio and Stribeck velocity, over ``_START_READINGS`` readings whatever the arm's
+    travel (160 ms: a period of the resonance or more at 40 rad/s and above, which pins it where
+    the reversal's span of 24 readings at most -- shorter than a period below about 65 rad/s --
+    lets the fit trade it for the friction drop) where the model holds there, its RMS residual
+    at most ``_START_RESIDUAL`` encoder steps; else (a gear that opens again as the arm rings,
+    or a gap in MP within those readings) over the reversal's span.
 
     Parameters
     ----------
@@ -441,9 +441,9 @@ def first_start(rec: Recording) -> ArmStart | None:
         if not np.isfinite(mp[a : first + _TICKS]).all():  # a gap in MP: nothing to fit
             continue
         fit = None
-        if np.isfinite(mp[a : first + _START_TICKS]).all():
-            fit = _fit_restart(t, mp, ap, rest, first, a, new, quantum, ticks=_START_TICKS,
-                               span=math.inf)  # fmt: skip
+        if np.isfinite(mp[a : first + _START_READINGS]).all():
+            fit = _fit_restart(t, mp, ap, rest, first, a, new, quantum,
+                               max_readings=_START_READINGS, span=math.inf)  # fmt: skip
         if fit is None or fit[3] > _START_RESIDUAL:
             fit = _fit_restart(t, mp, ap, rest, first, a, new, quantum)
         if fit is not None:
