@@ -85,7 +85,10 @@ def _arm_restart(
     still moves forward is no restart across the dead zone.
     """
     new = change.direction
-    a = max(_index(t, change.stop), 2)
+    # the rest reading itself read at or after the set-point's turn: a rest the arm leaves in the
+    # tick across the turn is a hunting loop's swing through zero speed before it, not the
+    # restart the truth counts (the first after the turn)
+    a = max(_index(t, change.stop) + 1, 2)
     b = _index(t, change.start + min(change.dwell, 1.0) + 1.0)
     for k in range(a, b + 1):
         if new * (ap[k] - ap[k - 1]) > 0 and new * (ap[k - 1] - ap[k - 2]) <= 0:
