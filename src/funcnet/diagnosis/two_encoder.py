@@ -245,7 +245,7 @@ def _best(
 def _fit_restart(
     t: np.ndarray, mp: np.ndarray, ap: np.ndarray, rest: float, first: int, earliest: int,
     new: int, quantum: float, back: int = 8, max_readings: int = _TICKS,
-    span: float = _PARAM_SPAN,
+    span: float = _PARAM_SPAN, alone: bool = True,
 ) -> tuple[float, float, float, float] | None:  # fmt: skip
     """The arm's restart between ticks, fitted with the physics of its start.
 
@@ -289,6 +289,9 @@ def _fit_restart(
     max_readings, span : int, float
         The parameters are fitted over at most ``max_readings`` readings from ``first``, those
         up to ``span`` encoder steps from the rest.
+    alone : bool
+        Whether the restart is then fitted alone with the fitted parameters (False: the start
+        fitted with them is returned, for a caller that fits it alone with other parameters).
 
     Returns
     -------
@@ -331,10 +334,12 @@ def _fit_restart(
     start, omega, drop, error = _best(t, motor_deg, origin, times, distance, starts, omegas, drops,
                                       1e-4)  # fmt: skip
     residual = math.sqrt(error / distance.size) / (quantum * _RAD)
-    # the restart alone, over the readings nearest the rest (without one the arm left fast:
-    # the start fitted with the parameters stands)
-    alone = _restart_alone(t, mp, ap, rest, first, earliest, new, quantum, omega, drop, back)
-    return (start if alone is None else alone), omega, drop, residual
+    if alone:
+        # the restart alone, over the readings nearest the rest (without one the arm left fast:
+        # the start fitted with the parameters stands)
+        refined = _restart_alone(t, mp, ap, rest, first, earliest, new, quantum, omega, drop, back)
+        start = start if refined is None else refined
+    return start, omega, drop, residual
 
 
 def _quantum(ap: np.ndarray) -> float:
@@ -563,7 +568,8 @@ def lost_motion(
         # lies between the MP readings, and the model, which has the gear transmit the static
         # friction at the restart, then finds an earlier start with a too low resonance)
         shape = across(_restart_time(t, ap, rest, first, earliest, new, quantum, back=8))
-        fit = _fit_restart(t, mp, ap, rest, first, earliest, new, quantum, back=8)
+        fit = _fit_restart(t, mp, ap, rest, first, earliest, new, quantum, back=8,
+                           alone=axis is None)  # fmt: skip
         if fit is None:
             return shape
         restart = fit[0]
