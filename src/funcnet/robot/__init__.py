@@ -30,6 +30,8 @@ _EXPORTS = {
     "resample": "funcnet.robot.preprocess",
     "PHASES": "funcnet.robot.phases",
     "detect_phases": "funcnet.robot.phases",
+    "direction_changes": "funcnet.robot.phases",
+    "Turn": "funcnet.robot.phases",
     "phase_table": "funcnet.robot.phases",
     "PAPER_NODES": "funcnet.robot.windows",
     "Window": "funcnet.robot.windows",

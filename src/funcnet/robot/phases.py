@@ -5,12 +5,15 @@ and braking (section 4.1, Fig. 9), and the reversal of a forward-and-reverse mov
 Fig. 11). :func:`detect_phases` finds them from the position set-point RP and its derivatives;
 :func:`phase_table` takes phases given by hand. Both give the same table: one row per phase with
 ``phase``, ``start`` and ``stop`` (seconds, ``start <= time < stop``), in time order.
+:func:`direction_changes` finds where the set-point turns, after a standstill or in continuous
+motion.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
@@ -19,10 +22,14 @@ from funcnet.errors import ParameterError
 from funcnet.robot.preprocess import reference_speed, velocity
 from funcnet.robot.recording import Recording
 
-__all__ = ["PHASES", "detect_phases", "phase_table"]
+__all__ = ["PHASES", "Turn", "detect_phases", "direction_changes", "phase_table"]
 
 #: Phase names, as the paper writes them.
 PHASES = ("standstill", "early spin-up", "late spin-up", "cruise", "braking", "reversal")
+
+#: Default of :func:`direction_changes`' ``relative``: a stretch of motion counts when its speed
+#: exceeds this fraction of the reference's peak speed.
+TURN_SPEED = 0.05
 
 
 def _fraction(value: float, name: str) -> float:
@@ -51,6 +58,173 @@ def _merge_runs(
                 continue
         merged.append((first, stop))
     return merged
+
+
+@dataclass(frozen=True)
+class Turn:
+    """One direction change of the reference motion (:func:`direction_changes`).
+
+    Attributes
+    ----------
+    time : float
+        s, the turning point: where the reference reaches its extreme position between the two
+        stretches (the middle of the ticks that hold it, when it rests there).
+    stop : float
+        s, the end of the stretch before: the first tick whose speed no longer exceeds
+        ``threshold``.
+    start : float
+        s, the start of the stretch after: its first tick above ``threshold``.
+    direction : int
+        The direction of the motion after the turn, +1 or -1.
+    dwell : float
+        s of standstill at the turn: from the first to the last tick between ``stop`` and
+        ``start`` whose speed is at most ``standstill`` times the peak (0 when there is none;
+        a tick or two where a continuous motion passes through zero).
+    threshold : float
+        The speed (reference units per second) both stretches exceed.
+    """
+
+    time: float
+    stop: float
+    start: float
+    direction: int
+    dwell: float
+    threshold: float
+
+    def to_dict(self) -> dict[str, float | int]:
+        """The fields as a JSON-ready dict."""
+        return {
+            "time": self.time,
+            "stop": self.stop,
+            "start": self.start,
+            "direction": self.direction,
+            "dwell": self.dwell,
+            "threshold": self.threshold,
+        }
+
+
+def _stretches(signed: np.ndarray, threshold: float) -> list[tuple[int, int, int]]:
+    """Maximal runs of ticks moving faster than ``threshold`` one way: (first, stop, sign)."""
+    label = np.where(signed > threshold, 1, np.where(signed < -threshold, -1, 0)).astype(np.int8)
+    change = np.flatnonzero(np.diff(label)) + 1
+    starts = np.concatenate([[0], change])
+    stops = np.concatenate([change, [label.size]])
+    return [(int(a), int(b), int(label[a])) for a, b in zip(starts, stops, strict=True) if label[a]]
+
+
+def _turn_ticks(
+    position: np.ndarray, signed: np.ndarray, threshold: float
+) -> list[tuple[int, int, float, int]]:
+    """Turns as ticks: (stop, start, turning tick (may be half-way), direction after)."""
+    turns = []
+    stretches = _stretches(signed, threshold)
+    for (_, stop, before), (start, _, after) in zip(stretches, stretches[1:], strict=False):
+        if before == after:
+            continue
+        # the extreme position from the last tick of the stretch before to the first after
+        lo = stop - 1
+        reached = before * position[lo : start + 1]
+        first = int(np.argmax(reached))
+        held = np.flatnonzero(reached[first:] != reached[first])
+        last = first + (int(held[0]) if held.size else reached.size - first) - 1
+        turns.append((stop, start, lo + (first + last) / 2, after))
+    return turns
+
+
+def direction_changes(
+    recording: Recording,
+    *,
+    reference: str = "RP",
+    min_speed: float | None = None,
+    relative: float = TURN_SPEED,
+    standstill: float = 1e-4,
+) -> list[Turn]:
+    """Where the reference motion changes direction, after a standstill or in continuous motion.
+
+    With ``v`` the velocity of the reference (:func:`~funcnet.robot.preprocess.velocity`, Eq.
+    11-12), a *stretch* is a maximal run of ticks with ``v > threshold`` or one with
+    ``v < -threshold``. A direction change is a pair of consecutive stretches of opposite sign;
+    what lies between them (the gap, slower than ``threshold``) holds the turn, whether the
+    reference rests there or passes through zero speed. A wiggle that never exceeds
+    ``threshold`` is no stretch, so it makes no direction change, and two stretches the same way
+    with a wiggle between them are one way of motion.
+
+    Parameters
+    ----------
+    recording : Recording
+    reference : str
+        Column of the position set-point.
+    min_speed : float, optional
+        The threshold in the reference's units per second (1.0 for 1 deg/s on an axis in
+        degrees). Default ``relative`` times the reference's peak speed.
+    relative : float
+        The threshold as a fraction of the peak speed, in (0, 1), when ``min_speed`` is not
+        given.
+    standstill : float
+        A tick rests when ``|v| <= standstill * max|v|`` (as in :func:`detect_phases`); only
+        ``dwell`` reads it.
+
+    Returns
+    -------
+    list of Turn
+        In time order; empty when the reference moves one way only or not at all.
+
+    Raises
+    ------
+    ChannelError
+        No ``reference`` column.
+    SignalError
+        The reference has NaN values.
+    ParameterError
+        ``min_speed`` not positive, or a fraction outside (0, 1).
+
+    References
+    ----------
+    Paper section 4.3 (the reversal of a forward-and-reverse move, Fig. 11); Eq. 11-12 (the
+    velocity).
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot.recording import Recording, SignalInfo
+    >>> t = np.arange(0, 4, 0.004)
+    >>> rp = 30 * np.sin(np.pi * t / 2)  # out and back: turns at 1 s and 3 s, no rest
+    >>> data = pd.DataFrame({"RP": rp}, index=pd.Index(t.round(9), name="time"))
+    >>> rec = Recording(data, {}, {"RP": SignalInfo("RP", "posn", None, 0.004)},
+    ...                 sample_period=0.004)
+    >>> [(round(c.time, 3), c.direction, round(c.stop, 3), round(c.start, 3))
+    ...  for c in direction_changes(rec, min_speed=1.0)]
+    [(1.0, -1, 0.988, 1.016), (3.0, 1, 2.988, 3.016)]
+    """
+    _fraction(relative, "relative")
+    _fraction(standstill, "standstill")
+    if min_speed is not None and not (min_speed > 0 and math.isfinite(min_speed)):
+        raise ParameterError(f"min_speed: must be > 0 (units per second), got {min_speed}")
+    dt = recording.sample_period
+    speed = reference_speed(recording, reference)
+    peak = float(speed.max())
+    if peak == 0:
+        return []
+    position = recording.data[reference].to_numpy(dtype=np.float64)
+    signed = velocity(position, dt)
+    threshold = float(min_speed) if min_speed is not None else relative * peak
+    resting = speed <= standstill * peak
+    t0 = float(recording.data.index[0])
+    turns = []
+    for stop, start, turn, after in _turn_ticks(position, signed, threshold):
+        rest = np.flatnonzero(resting[stop:start])
+        dwell = (rest[-1] - rest[0] + 1) * dt if rest.size else 0.0
+        turns.append(
+            Turn(
+                time=round(t0 + turn * dt, 9),
+                stop=round(t0 + stop * dt, 9),
+                start=round(t0 + start * dt, 9),
+                direction=after,
+                dwell=round(float(dwell), 9),
+                threshold=threshold,
+            )
+        )
+    return turns
 
 
 def detect_phases(

@@ -1,0 +1,152 @@
+"""Direction changes of the set-point: after a standstill and in continuous motion."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+import scipy.io
+
+from funcnet.errors import ChannelError, ParameterError
+from funcnet.robot.phases import Turn, direction_changes
+from funcnet.robot.recording import Recording, SignalInfo
+
+KUKA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "kuka-kr300"
+DT = 0.004
+
+
+def recording_of(rp: np.ndarray, dt: float = DT) -> Recording:
+    t = np.round(np.arange(rp.size) * dt, 9)
+    data = pd.DataFrame({"RP": rp}, index=pd.Index(t, name="time"))
+    return Recording(data, {}, {"RP": SignalInfo("RP", "posn", None, dt)}, sample_period=dt)
+
+
+def expected_changes(time: np.ndarray, rp: np.ndarray, min_speed: float) -> list[tuple]:
+    """The definition, computed plainly: the speed changes sign between two stretches where it
+    exceeds ``min_speed``; returns (end of the stretch before, start of the one after, sign)."""
+    v = np.gradient(rp, time)
+    stretches = []  # (first index, last index, sign)
+    for i, value in enumerate(v):
+        sign = 1 if value > min_speed else -1 if value < -min_speed else 0
+        if sign == 0:
+            continue
+        if stretches and stretches[-1][2] == sign and stretches[-1][1] == i - 1:
+            stretches[-1][1] = i
+        else:
+            stretches.append([i, i, sign])
+    return [
+        (time[a[1]], time[b[0]], b[2])
+        for a, b in zip(stretches, stretches[1:], strict=False)
+        if a[2] != b[2]
+    ]
+
+
+def kuka_axes():
+    for run in "AB":
+        path = KUKA / f"kr300-run-{run}.mat"
+        if not path.exists():  # pragma: no cover - the shared data are always there
+            pytest.fail(f"the KUKA recording is missing: {path}")
+        rec = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)["rec"]
+        for axis in range(6):
+            yield run, axis + 1, np.asarray(rec.time_cont, float), np.asarray(
+                rec.ref_pos_deg[axis], float
+            )
+
+
+@pytest.mark.parametrize("min_speed", [1.0, None])
+def test_every_direction_change_of_both_kuka_runs_is_found(min_speed):
+    total = 0
+    for run, axis, time, rp in kuka_axes():
+        expected = expected_changes(time, rp, 1.0)
+        found = direction_changes(recording_of(rp), min_speed=min_speed)
+        where = f"run {run} axis {axis}"
+        assert len(found) == len(expected), (where, expected, found)
+        for (end, begin, sign), turn in zip(expected, found, strict=True):
+            assert end - 0.1 <= turn.time <= begin + 0.1, (where, end, begin, turn)
+            assert turn.direction == sign, where
+            assert turn.stop <= turn.time <= turn.start, where
+            # continuous motion: the set-point never rests at these turns
+            assert turn.dwell <= 2 * DT, where
+        total += len(expected)
+    # 1-4 per axis, as the recordings' README says: 11 in run A, 16 in run B; none is one-way
+    assert total == 27
+
+
+def sine_recording(periods: float, amplitude: float = 30.0, period: float = 4.0):
+    t = np.arange(0, periods * period, DT)
+    return recording_of(amplitude * np.sin(2 * np.pi * t / period))
+
+
+def test_a_sinusoid_turns_at_its_extremes():
+    turns = direction_changes(sine_recording(2.5), min_speed=1.0)
+    # closed form: the extremes of sin(2 pi t / 4) at t = 1, 3, 5, 7, 9
+    np.testing.assert_allclose([c.time for c in turns], [1, 3, 5, 7, 9], atol=DT / 2)
+    assert [c.direction for c in turns] == [-1, 1, -1, 1, -1]
+    assert all(c.dwell <= DT and c.threshold == 1.0 for c in turns)
+    # the bracket: |v| = 30 (pi/2) |cos| falls to 1 deg/s 1/(30 pi^2 / 4) s... within a tick
+    half = np.arcsin(1.0 / (30 * np.pi / 2)) / (np.pi / 2)
+    for c in turns:
+        assert c.time - c.stop == pytest.approx(half, abs=1.5 * DT)
+        assert c.start - c.time == pytest.approx(half, abs=1.5 * DT)
+
+
+def test_several_reversals_of_unequal_size_within_one_move():
+    t = np.arange(0, 10, DT)
+    # a smooth multi-reversal excitation: two harmonics, windowed to rest at both ends
+    window = np.sin(np.pi * t / 10) ** 2
+    rp = window * (20 * np.sin(2 * np.pi * t / 5) + 8 * np.sin(2 * np.pi * t / 1.7))
+    found = direction_changes(recording_of(rp), min_speed=1.0)
+    expected = expected_changes(t, rp, 1.0)
+    assert len(expected) >= 4
+    assert len(found) == len(expected)
+    for (end, begin, sign), turn in zip(expected, found, strict=True):
+        assert end <= turn.time <= begin and turn.direction == sign
+        # the turn is the position's extreme between the stretches
+        inside = (t >= end) & (t <= begin)
+        extreme = t[inside][np.argmax(-sign * rp[inside])]
+        assert turn.time == pytest.approx(extreme, abs=DT)
+
+
+def test_a_wiggle_below_the_threshold_is_no_direction_change():
+    t = np.arange(0, 6, DT)
+    bump = lambda centre, width: np.exp(-(((t - centre) / width) ** 2))  # noqa: E731
+    for wiggle in (0.8, 0.5):
+        # one way at up to 12 deg/s, a wiggle back, then on the same way
+        v = 12 * bump(1.5, 0.4) - wiggle * bump(3.0, 0.2) + 12 * bump(4.5, 0.4)
+        rec = recording_of(np.cumsum(v) * DT)
+        assert np.gradient(rec.data["RP"].to_numpy(), DT).min() < -0.9 * wiggle  # it goes back
+        assert direction_changes(rec, min_speed=1.0) == []
+        # read with a threshold below the wiggle, the same motion has two changes
+        assert [c.direction for c in direction_changes(rec, min_speed=0.3)] == [-1, 1]
+    # the default threshold, 5 % of the peak speed (0.6 deg/s here), is above the smaller one
+    assert direction_changes(rec) == []
+
+
+def test_a_trapezoid_with_dwell_turns_in_the_middle_of_its_rest():
+    # out at 10 deg/s (1 s ramps), rest 0.3 s, back
+    knots = [0, 0.5, 1.5, 2.5, 3.5, 3.8, 4.8, 5.8, 6.8, 7.5]
+    speeds = [0, 0, 10, 10, 0, 0, -10, -10, 0, 0]
+    t = np.arange(0, 7.5, DT)
+    rp = np.cumsum(np.interp(t, knots, speeds)) * DT
+    (turn,) = direction_changes(recording_of(rp), min_speed=1.0)
+    assert turn.time == pytest.approx(3.65, abs=DT)
+    assert turn.direction == -1
+    assert turn.dwell == pytest.approx(0.3, abs=3 * DT)
+    # 1 deg/s is reached 0.1 s from the rest on both sides
+    assert turn.stop == pytest.approx(3.4, abs=2 * DT)
+    assert turn.start == pytest.approx(3.9, abs=2 * DT)
+    assert turn.to_dict()["direction"] == -1 and isinstance(turn, Turn)
+
+
+def test_one_way_and_standstill_have_none_and_bad_input_raises():
+    t = np.arange(0, 2, DT)
+    assert direction_changes(recording_of(5 * t**2)) == []
+    assert direction_changes(recording_of(np.ones(50))) == []
+    rec = sine_recording(1)
+    for bad in ({"min_speed": 0.0}, {"min_speed": float("nan")}, {"relative": 1.5}):
+        with pytest.raises(ParameterError):
+            direction_changes(rec, **bad)
+    with pytest.raises(ChannelError):
+        direction_changes(rec, reference="AP")
