@@ -10,7 +10,7 @@ import pytest
 import scipy.io
 
 from funcnet.errors import ChannelError, ParameterError
-from funcnet.robot.phases import Turn, direction_changes
+from funcnet.robot.phases import Turn, detect_phases, direction_changes
 from funcnet.robot.recording import Recording, SignalInfo
 
 KUKA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "kuka-kr300"
@@ -150,3 +150,133 @@ def test_one_way_and_standstill_have_none_and_bad_input_raises():
             direction_changes(rec, **bad)
     with pytest.raises(ChannelError):
         direction_changes(rec, reference="AP")
+
+
+# --------------------------------------------------------------------------------------------
+# phases of continuous motion
+
+
+def phases_of(rec: Recording, **options) -> pd.DataFrame:
+    return detect_phases(rec, **options)
+
+
+def phase_at(table: pd.DataFrame, time: float) -> str:
+    row = table[(table["start"] <= time) & (time < table["stop"])]
+    return str(row["phase"].iloc[0])
+
+
+def assert_phases_read_the_motion(table, t, rp, changes, where):
+    """Each direction change inside its own reversal phase; no other phase moves both ways
+    faster than 1 deg/s; cruise holds the speed within 2 % of a local peak; spin-up speeds up
+    and braking slows down; the table covers the recording."""
+    assert table["start"].iloc[0] == 0.0, where
+    np.testing.assert_array_equal(table["stop"].iloc[:-1], table["start"].iloc[1:])
+    reversals = table[table["phase"] == "reversal"]
+    assert len(reversals) == len(changes), (where, reversals, changes)
+    v = np.gradient(rp, t)
+    for (end, begin, _), row in zip(changes, reversals.itertuples(), strict=True):
+        # the set-point's turn (its extreme between the two stretches) inside the reversal
+        inside = (t >= end) & (t <= begin)
+        extreme = t[inside][np.argmax(np.abs(rp[inside] - rp[inside][0]))]
+        assert row.start <= extreme < row.stop, (where, extreme, row)
+    for row in table.itertuples():
+        part = (t >= row.start) & (t < row.stop)
+        if row.phase != "reversal":
+            assert not (v[part].max() > 1 and v[part].min() < -1), (where, row)
+        speed = np.abs(v[part])
+        if row.phase == "cruise":
+            assert speed.min() >= 0.97 * speed.max(), (where, row)
+        if row.phase in ("early spin-up", "late spin-up") and part.sum() > 2:
+            assert speed[-1] > speed[0], (where, row)
+        if row.phase == "braking" and part.sum() > 2:
+            assert speed[-1] < speed[0], (where, row)
+
+
+def test_phases_of_every_kuka_axis_read_the_continuous_motion():
+    for run, axis, time, rp in kuka_axes():
+        t = np.round(np.arange(rp.size) * DT, 9)
+        table = detect_phases(recording_of(rp))
+        changes = expected_changes(time, rp, 1.0)
+        assert_phases_read_the_motion(table, t, rp, changes, f"run {run} axis {axis}")
+
+
+def test_axis_1_of_run_a_out_and_back():
+    # 0 -> 46 deg -> 0 with the direction change at 4.9 s: no braking through the turn
+    (_, _, time, rp), *_ = kuka_axes()
+    table = detect_phases(recording_of(rp))
+    moving = table[table["phase"] != "standstill"]["phase"].tolist()
+    assert moving == ["early spin-up", "late spin-up", "cruise", "braking", "reversal",
+                      "late spin-up", "cruise", "braking"]
+    assert phase_at(table, 4.9) == "reversal"
+    # cruise at each peak speed: 25 deg/s out, 23 deg/s back
+    v = np.gradient(rp, time)
+    for row in table[table["phase"] == "cruise"].itertuples():
+        part = (time >= row.start) & (time < row.stop)
+        assert np.abs(v[part]).max() == pytest.approx(
+            np.abs(v[(time < 4.9) if row.start < 4.9 else (time > 4.9)]).max(), rel=0.01
+        )
+
+
+def test_phases_of_a_windowed_multi_reversal_motion():
+    t = np.arange(0, 10, DT)
+    window = np.sin(np.pi * t / 10) ** 2
+    rp = window * (20 * np.sin(2 * np.pi * t / 5) + 8 * np.sin(2 * np.pi * t / 1.7))
+    table = detect_phases(recording_of(rp))
+    assert_phases_read_the_motion(table, t, rp, expected_changes(t, rp, 1.0), "windowed")
+
+
+def test_a_dip_between_two_humps_cuts_the_move_without_a_reversal():
+    t = np.arange(0, 6, DT)
+    bump = lambda centre, width: np.exp(-(((t - centre) / width) ** 2))  # noqa: E731
+    v = 12 * bump(1.5, 0.4) + 1.5 + 12 * bump(4.5, 0.4)  # slows to ~1.5 deg/s, never rests
+    v = v * np.clip(t / 0.5, 0, 1) * np.clip((6 - t) / 0.5, 0, 1)
+    rp = np.cumsum(v) * DT
+    table = detect_phases(recording_of(rp))
+    phases = table["phase"].tolist()
+    assert "reversal" not in phases and phases.count("cruise") == 2
+    assert "standstill" not in phases[1:-1]
+    assert phase_at(table, 3.0) in ("braking", "late spin-up")
+    assert phases.count("early spin-up") == 1  # only the start from rest
+    assert_phases_read_the_motion(table, t, rp, [], "dip")
+    # without the dip rule (dip close to 0), one cruise spans both humps and the slow middle
+    one = detect_phases(recording_of(rp), dip=1e-6)["phase"].tolist()
+    assert one.count("cruise") == 1
+
+
+def test_a_wiggle_below_the_threshold_makes_no_reversal():
+    t = np.arange(0, 6, DT)
+    bump = lambda centre, width: np.exp(-(((t - centre) / width) ** 2))  # noqa: E731
+    v = 12 * bump(1.5, 0.4) - 0.5 * bump(3.0, 0.2) + 12 * bump(4.5, 0.4)
+    rp = np.cumsum(v) * DT
+    table = detect_phases(recording_of(rp))
+    assert "reversal" not in table["phase"].tolist()
+    assert table["phase"].tolist().count("cruise") == 2
+    # a threshold below the wiggle reads it as two direction changes
+    slow = detect_phases(recording_of(rp), min_speed=0.3)["phase"].tolist()
+    assert slow.count("reversal") == 2
+
+
+def test_a_trapezoid_with_dwell_keeps_the_point_to_point_phases():
+    knots = [0, 0.5, 1.5, 2.5, 3.5, 3.8, 4.8, 5.8, 6.8, 7.5]
+    speeds = [0, 0, 10, 10, 0, 0, -10, -10, 0, 0]
+    t = np.arange(0, 7.5, DT)
+    rp = np.cumsum(np.interp(t, knots, speeds)) * DT
+    table = detect_phases(recording_of(rp))
+    assert table["phase"].tolist() == [
+        "standstill", "early spin-up", "late spin-up", "cruise", "braking", "reversal",
+        "late spin-up", "cruise", "braking", "standstill",
+    ]
+    reversal = table[table["phase"] == "reversal"].iloc[0]
+    # from half speed down (3.0 s) to half speed up (4.3 s), the 0.3 s rest included
+    assert reversal["start"] == pytest.approx(3.0, abs=2 * DT)
+    assert reversal["stop"] == pytest.approx(4.3, abs=2 * DT)
+    cruise = table[table["phase"] == "cruise"].iloc[0]
+    assert cruise["start"] == pytest.approx(1.5 - 0.02, abs=2 * DT)  # 98 % of 10 deg/s
+    assert cruise["stop"] == pytest.approx(2.5 + 0.02, abs=2 * DT)
+
+
+def test_turn_threshold_checks():
+    rec = sine_recording(1)
+    for bad in ({"min_speed": -1.0}, {"relative": 0.0}, {"dip": 1.0}):
+        with pytest.raises(ParameterError, match=next(iter(bad))):
+            detect_phases(rec, **bad)

@@ -227,6 +227,52 @@ def direction_changes(
     return turns
 
 
+def _dips(speed: np.ndarray, first: int, stop: int, threshold: float, dip: float) -> list[int]:
+    """Ticks where a one-way stretch slows between two humps faster than ``threshold`` to below
+    ``dip`` times the lower of them: the deepest first, then within each side."""
+    part = speed[first:stop]
+    if part.size < 3:
+        return []
+    before = np.maximum.accumulate(part)
+    after = np.maximum.accumulate(part[::-1])[::-1]
+    lower = np.minimum(before, after)
+    ratio = np.where(lower > threshold, part / np.where(lower > 0, lower, 1.0), 1.0)
+    deepest = int(np.argmin(ratio))
+    if ratio[deepest] >= dip:
+        return []
+    cut = first + deepest
+    return [
+        *_dips(speed, first, cut, threshold, dip),
+        cut,
+        *_dips(speed, cut, stop, threshold, dip),
+    ]
+
+
+def _segments(
+    moves: list[tuple[int, int]],
+    turns: list[float],
+    speed: np.ndarray,
+    threshold: float,
+    dip: float,
+) -> list[tuple[int, int, bool]]:
+    """The moves cut at the turns inside them and at deep dips: (first, stop, from rest)."""
+    segments: list[tuple[int, int, bool]] = []
+    for first, stop in moves:
+        cuts = [first]
+        for turn in turns:
+            cut = int(math.ceil(turn))
+            if first < cut < stop:
+                cuts.append(cut)
+        cuts.append(stop)
+        edges = [first]
+        for a, b in zip(cuts, cuts[1:], strict=False):
+            edges.extend([*_dips(speed, a, b, threshold, dip), b])
+        segments.extend(
+            (a, b, a == first) for a, b in zip(edges, edges[1:], strict=False) if b > a
+        )
+    return segments
+
+
 def detect_phases(
     recording: Recording,
     *,
@@ -237,6 +283,9 @@ def detect_phases(
     reversal: float = 0.5,
     reversal_dwell: float = 0.5,
     min_gap: float = 0.05,
+    min_speed: float | None = None,
+    relative: float = TURN_SPEED,
+    dip: float = 0.5,
 ) -> pd.DataFrame:
     """Find the motion phases from the reference motion.
 
@@ -245,18 +294,27 @@ def detect_phases(
 
     - a *move* is a maximal run of ticks with ``|v| > standstill * max|v|``; runs in the same
       direction less than ``min_gap`` seconds apart are one move (a slow set-point written with
-      finite decimals stands still for a few ticks while it creeps off and onto its target);
-      every other tick is **standstill**;
-    - in a move of peak speed ``p``, **cruise** runs from the first to the last tick with
-      ``|v| >= cruise * p``; before it is the spin-up, after it **braking**;
-    - the spin-up is **early spin-up** until ``|a|`` first reaches ``early`` times its maximum
-      over the spin-up (the jerk-limited build-up of acceleration, where static friction is
-      overcome; 0-220 ms in the paper's baseline), **late spin-up** after;
-    - two moves in opposite directions with at most ``reversal_dwell`` seconds of standstill
-      between them make a **reversal**: from the tick in the first move's braking where ``|v|``
-      falls below ``reversal * p`` to the tick in the second move's spin-up where it rises to
-      ``reversal * p`` of that move, the standstill between included. What remains of the
-      braking stays braking; what remains of the spin-up is late spin-up.
+      finite decimals stands still for a few ticks while it creeps off and onto its target); a
+      run never faster than the turn threshold (``min_speed``, default ``relative * max|v|``, as
+      in :func:`direction_changes`) is a creep, not a move; every other tick is **standstill**;
+    - a move is cut into *segments* where the reference turns inside it (a direction change of
+      :func:`direction_changes` in continuous motion, cut at its turning point) and where it
+      slows between two humps faster than the turn threshold to below ``dip`` times the lower
+      of them (cut at the slowest tick); a point-to-point move is one segment;
+    - in a segment of peak speed ``p``, **cruise** (the steady speed) runs from the first to the
+      last tick with ``|v| >= cruise * p``; before it is the spin-up (accelerating), after it
+      **braking** (decelerating). On a smooth profile without a plateau, cruise is where the
+      speed stays within ``1 - cruise`` of the segment's peak;
+    - the spin-up of a segment that starts from rest is **early spin-up** until ``|a|`` first
+      reaches ``early`` times its maximum over the spin-up (the jerk-limited build-up of
+      acceleration, where static friction is overcome; 0-220 ms in the paper's baseline),
+      **late spin-up** after; a segment that starts moving (after a dip) has late spin-up only;
+    - two consecutive segments in opposite directions with at most ``reversal_dwell`` seconds of
+      standstill between them and a direction change of :func:`direction_changes` between them
+      make a **reversal**: from the tick in the first segment's braking where ``|v|`` falls
+      below ``reversal * p`` to the tick in the second's spin-up where it rises to
+      ``reversal * p`` of that segment, the standstill or the continuous turn between included.
+      What remains of the braking stays braking; what remains of the spin-up is late spin-up.
 
     Parameters
     ----------
@@ -264,12 +322,17 @@ def detect_phases(
     reference : str
         Column of the position set-point (noise-free; a measured position would need looser
         thresholds).
-    standstill, cruise, early, reversal : float
+    standstill, cruise, early, reversal, dip : float
         The fractions above, each in (0, 1).
     reversal_dwell : float
         Longest standstill, in seconds, between the two moves of a reversal.
     min_gap : float
         Shortest standstill, in seconds, that separates two moves in the same direction.
+    min_speed : float, optional
+        The turn threshold in the reference's units per second (see :func:`direction_changes`);
+        default ``relative`` times the peak speed.
+    relative : float
+        The turn threshold as a fraction of the peak speed, in (0, 1).
 
     Returns
     -------
@@ -289,7 +352,8 @@ def detect_phases(
     References
     ----------
     Paper section 4.1 (phases early spin-up, late spin-up, cruise, braking; Fig. 9), 4.2 (fixed
-    windows per phase), 4.3 (reversal, Fig. 11).
+    windows per phase), 4.3 (reversal, Fig. 11). The paper's moves are point-to-point: the
+    segments, the creep rule and the turns' test leave them as the paper's rule gives them.
 
     Examples
     --------
@@ -308,14 +372,36 @@ def detect_phases(
     3         cruise  1.730  3.068
     4        braking  3.068  3.794
     5     standstill  3.794  5.000
+
+    Continuous motion, out and back twice without a rest (turns at 1, 2 and 3 s):
+
+    >>> rp = 10 * (1 - np.cos(np.pi * t[:2000]))
+    >>> data = pd.DataFrame({"RP": rp}, index=pd.Index(t[:2000].round(9), name="time"))
+    >>> rec = Recording(data, {}, {"RP": SignalInfo("RP", "posn", None, 0.002)})
+    >>> table = detect_phases(rec).round(3)
+    >>> table[table["stop"] <= 2.2]  # cruise: sin(pi t) >= 0.98; reversal: below 0.5
+               phase  start   stop
+    0  early spin-up  0.000  0.006
+    1   late spin-up  0.006  0.438
+    2         cruise  0.438  0.564
+    3        braking  0.564  0.834
+    4       reversal  0.834  1.168
+    5   late spin-up  1.168  1.438
+    6         cruise  1.438  1.564
+    7        braking  1.564  1.834
+    8       reversal  1.834  2.168
     """
     for value, name in (
         (standstill, "standstill"),
         (cruise, "cruise"),
         (early, "early"),
         (reversal, "reversal"),
+        (relative, "relative"),
+        (dip, "dip"),
     ):
         _fraction(value, name)
+    if min_speed is not None and not (min_speed > 0 and math.isfinite(min_speed)):
+        raise ParameterError(f"min_speed: must be > 0 (units per second), got {min_speed}")
     for value, name in ((reversal_dwell, "reversal_dwell"), (min_gap, "min_gap")):
         if not (value >= 0 and math.isfinite(value)):
             raise ParameterError(f"{name}: must be >= 0 seconds, got {value}")
@@ -326,22 +412,32 @@ def detect_phases(
     if speed.max() > 0:
         signed = velocity(recording.data[reference].to_numpy(dtype=np.float64), dt)
         accel = np.abs(velocity(signed, dt))
+        position = recording.data[reference].to_numpy(dtype=np.float64)
+        threshold = float(min_speed) if min_speed is not None else relative * speed.max()
+        turns = [turn for _, _, turn, _ in _turn_ticks(position, signed, threshold)]
         moves = _merge_runs(_runs(speed > standstill * speed.max()), signed, min_gap / dt)
-        for first, stop in moves:
+        # a creep or wiggle never faster than the threshold is no move
+        moves = [(first, stop) for first, stop in moves if speed[first:stop].max() > threshold]
+        segments = _segments(moves, turns, speed, threshold, dip)
+        for first, stop, from_rest in segments:
             peak = speed[first:stop].max()
             cruising = np.flatnonzero(speed[first:stop] >= cruise * peak) + first
             c0, c1 = cruising[0], cruising[-1] + 1
             labels[first:c0] = PHASES.index("late spin-up")
-            if c0 > first:
+            if c0 > first and from_rest:
                 reached = np.flatnonzero(accel[first:c0] >= early * accel[first:c0].max())
                 labels[first : first + reached[0]] = PHASES.index("early spin-up")
             labels[c0:c1] = PHASES.index("cruise")
             labels[c1:stop] = PHASES.index("braking")
-        for (first_a, stop_a), (first_b, stop_b) in zip(moves, moves[1:], strict=False):
+        for (first_a, stop_a, _), (first_b, stop_b, _) in zip(
+            segments, segments[1:], strict=False
+        ):
             opposite = np.sign(signed[first_a:stop_a].sum()) != np.sign(
                 signed[first_b:stop_b].sum()
             )
             if not opposite or (first_b - stop_a) * dt > reversal_dwell:
+                continue
+            if not any(first_a <= turn < stop_b for turn in turns):
                 continue
             level_a = reversal * speed[first_a:stop_a].max()
             level_b = reversal * speed[first_b:stop_b].max()
