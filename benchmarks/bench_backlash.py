@@ -268,7 +268,7 @@ def with_fn(args: argparse.Namespace, out: list[str]) -> pd.DataFrame:
         args.save.mkdir(parents=True, exist_ok=True)
         sweep.to_csv(args.save / "sweep_with_fn.csv", index=False)
     if args.report:
-        from funcnet.report.sweep import write_sweep_report
+        from funcnet.report.sweep_report import write_sweep_report
 
         report = write_sweep_report(sweep, args.report, resamples=args.resamples,
                                     source=f"backlash_sweep_plan(), {len(plan)} trials")

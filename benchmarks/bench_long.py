@@ -112,7 +112,7 @@ def triangles(cross: Any, auto_x: Any, auto_y: Any, threads: int,
               block_words: int | None = None) -> tuple[Any, ...]:
     """``(k_xy, tri_xy, k_yx, tri_yx)``: row-wise kernel twice, or the blocked one; both
     transpose ``CR_XY`` first."""
-    from funcnet._kernels import _cross_triangles, _cross_triangles_both, _transpose_packed
+    from funcnet._isrn_kernels import _cross_triangles, _cross_triangles_both, _transpose_packed
 
     transposed = _transpose_packed(cross, auto_y.shape[0])
     if block_words is None:
@@ -125,7 +125,7 @@ def kernel_table(sizes: tuple[int, ...], repeats: int) -> list[dict[str, Any]]:
     import numpy as np
 
     from funcnet.embedding import embed
-    from funcnet.preprocess import normalize
+    from funcnet.normalization import normalize
     from funcnet.recurrence import auto_recurrence, cross_recurrence
 
     frame = trace_frame()

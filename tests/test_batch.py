@@ -12,7 +12,7 @@ import pytest
 
 import funcnet.batch
 import funcnet.pipeline
-from funcnet import _batch
+from funcnet import _batch_kernels
 from funcnet.batch import DIRECT_MAX_STATES, RESULT_FIELDS, BatchPairs, applies, batch_pairs
 from funcnet.errors import FuncnetWarning, ParameterError, SignalError
 from funcnet.network import functional_network
@@ -97,7 +97,7 @@ def test_random_windows_of_random_lengths(case: int) -> None:
 def test_sampled_bracket_and_direct_selection(
     direct_pairs: int, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setattr(_batch, "DIRECT_PAIRS", direct_pairs)
+    monkeypatch.setattr(_batch_kernels, "DIRECT_PAIRS", direct_pairs)
     for case in (0, 1, 3):
         p = NetworkParameters(**CASES[case])
         rng = np.random.default_rng(200 + case)
@@ -109,7 +109,7 @@ def test_sampled_bracket_and_direct_selection(
 
 def test_per_signal_rates_and_measures_of_a_window() -> None:
     from funcnet.measures import pairwise_cross_measures
-    from funcnet.preprocess import normalize
+    from funcnet.normalization import normalize
 
     p = NetworkParameters(rr=(0.05, 0.2, 0.01), cr=0.1)
     rng = np.random.default_rng(4)
@@ -186,7 +186,7 @@ def test_pairwise_sum_is_numpys() -> None:
     rng = np.random.default_rng(5)
     for n in [*range(1, 300), 1000, 4097, 9000]:
         a = rng.random(n) ** 3
-        assert _batch._mean(a) == a.mean()
+        assert _batch_kernels._mean(a) == a.mean()
 
 
 def test_selection_with_ties() -> None:
@@ -195,7 +195,7 @@ def test_selection_with_ties() -> None:
         n = int(rng.integers(1, 400))
         a = np.round(rng.random(n) * rng.integers(1, 8))
         k = int(rng.integers(0, n))
-        assert _batch._select(a.copy(), n, k) == np.sort(a)[k]
+        assert _batch_kernels._select(a.copy(), n, k) == np.sort(a)[k]
 
 
 def test_direct_limit_covers_the_papers_windows() -> None:

@@ -15,8 +15,8 @@ import pandas as pd
 import pytest
 from typer.testing import CliRunner
 
-from funcnet import _cli_network, cli
-from funcnet.cli import app
+from funcnet import cli
+from funcnet.cli import app, network_helpers
 
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 
@@ -192,7 +192,7 @@ def test_network_phase_and_drawings(trial: Path, tmp_path: Path) -> None:
 
 
 def test_network_rich_table_on_a_terminal(trial: Path, monkeypatch) -> None:
-    monkeypatch.setattr(_cli_network, "_is_terminal", lambda stream: True)
+    monkeypatch.setattr(network_helpers, "_is_terminal", lambda stream: True)
     result = runner.invoke(
         app, ["network", str(trial), "--window", "0.5:1.1"], env={"COLUMNS": "200"}
     )
@@ -205,7 +205,7 @@ def test_network_rich_table_on_a_terminal(trial: Path, monkeypatch) -> None:
 
 
 def test_network_table_says_what_became_of_degenerate_pairs(trial: Path, monkeypatch) -> None:
-    monkeypatch.setattr(_cli_network, "_is_terminal", lambda stream: True)
+    monkeypatch.setattr(network_helpers, "_is_terminal", lambda stream: True)
     arguments = ["network", str(trial), "--window", "0.5:0.8", "--signals", "RP,AP"]
     for options, words in (([], "degenerate pairs are no edges"),
                            (["--keep-degenerate"], "degenerate pairs are flagged edges")):
@@ -215,7 +215,7 @@ def test_network_table_says_what_became_of_degenerate_pairs(trial: Path, monkeyp
 
 
 def test_network_table_on_a_narrow_terminal(trial: Path, monkeypatch) -> None:
-    monkeypatch.setattr(_cli_network, "_is_terminal", lambda stream: True)
+    monkeypatch.setattr(network_helpers, "_is_terminal", lambda stream: True)
     result = runner.invoke(
         app, ["network", str(trial), "--window", "0.5:1.1"], env={"COLUMNS": "80"}
     )
@@ -295,7 +295,7 @@ def test_terminal_columns_are_pairs_columns() -> None:
     from funcnet.network.schema import PAIR_COLUMNS
 
     for narrow in (False, True):
-        columns = _cli_network._shown_columns(narrow)
+        columns = network_helpers._shown_columns(narrow)
         assert set(columns) <= set(PAIR_COLUMNS) and "degenerate" in columns
 
 
@@ -759,7 +759,7 @@ def test_network_without_phases_says_how_to_give_a_window(tmp_path: Path) -> Non
 
 def test_network_refuses_a_forecast_over_the_limit_unless_forced(trial: Path, tmp_path: Path,
                                                                  monkeypatch) -> None:
-    monkeypatch.setattr(_cli_network, "COST_LIMIT_SECONDS", 1e-6)
+    monkeypatch.setattr(network_helpers, "COST_LIMIT_SECONDS", 1e-6)
     arguments = ["network", str(trial), "--window", "0.5:1.1", "--signals", "RP,AP,AC"]
     refused = runner.invoke(app, arguments)
     _assert_one_error_line(refused, "over a minute or 4 GiB", "--force", "states")

@@ -40,7 +40,7 @@ from test_measures import reference_direction
 from test_recurrence import make_signal, reference_auto, reference_cross, reference_embed
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "funcnet"
-CORE = ("embedding.py", "_kernels.py", "_order_statistic.py", "recurrence.py", "measures.py")
+CORE = ("embedding.py", "_isrn_kernels.py", "_order_statistic.py", "recurrence.py", "measures.py")
 
 
 def sine_pair(n=251):

@@ -29,8 +29,8 @@ from funcnet.evidence.interval import (
     subsamples,
 )
 from funcnet.measures import isrn_measures
+from funcnet.normalization import normalize
 from funcnet.parameters import NetworkParameters
-from funcnet.preprocess import normalize
 from funcnet.recurrence import auto_recurrence, cross_recurrence
 
 

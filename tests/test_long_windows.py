@@ -25,7 +25,7 @@ from hypothesis import strategies as st
 
 import funcnet._order_statistic as order_statistic
 import funcnet.measures as measures
-from funcnet._kernels import (
+from funcnet._isrn_kernels import (
     _cross_triangles,
     _cross_triangles_both,
     _pack_rows,

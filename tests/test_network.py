@@ -22,8 +22,8 @@ from funcnet.network import (
     edge_kind,
     functional_network,
 )
+from funcnet.normalization import normalize
 from funcnet.parameters import NetworkParameters
-from funcnet.preprocess import normalize
 
 MEASURE_COLUMNS = [
     "c_xy",

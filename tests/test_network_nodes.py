@@ -14,8 +14,8 @@ import funcnet.network.functional as functional
 from funcnet.errors import ParameterError, SignalError, ThresholdWarning
 from funcnet.measures import cross_measures
 from funcnet.network import functional_network
+from funcnet.normalization import normalize
 from funcnet.parameters import NetworkParameters
-from funcnet.preprocess import normalize
 
 
 def quiet(data, **kwargs):

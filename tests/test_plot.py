@@ -424,8 +424,8 @@ def test_edge_timeline_marks_degenerate_pairs():
 
 
 def test_recurrence_plots_figure_computes_as_the_network_does():
+    from funcnet.normalization import normalize
     from funcnet.parameters import NetworkParameters
-    from funcnet.preprocess import normalize
 
     data = trial_frame(300)
     parameters = NetworkParameters(delay=4, rr=0.1)

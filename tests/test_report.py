@@ -228,7 +228,7 @@ def test_study_report_networks_timeline_and_chromium(tiny_study, tmp_path):
 
 @pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 def test_study_report_shows_the_evidence(tiny_plan, tmp_path):
-    from funcnet.report.study import evidence_counts
+    from funcnet.report.study_report import evidence_counts
     from funcnet.study import load_results, load_study, run_study
 
     trace = (tiny_plan / "main-v35-p16-s3.xml").as_posix()

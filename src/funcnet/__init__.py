@@ -31,7 +31,7 @@ _EXPORTS = {
     "threshold_warnings": "funcnet.measures",
     "local_cross_clustering": "funcnet.measures",
     "cross_degree": "funcnet.measures",
-    "normalize": "funcnet.preprocess",
+    "normalize": "funcnet.normalization",
     "FunctionalNetwork": "funcnet.network",
     "functional_network": "funcnet.network",
     "add_evidence": "funcnet.network",

@@ -23,7 +23,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from funcnet._kernels import (
+from funcnet._isrn_kernels import (
     _add_band_bits,
     _collect_band,
     _count_keys,

@@ -5,7 +5,8 @@ functional networks. The per-window path (:func:`funcnet.measures.pairwise_cross
 each normalized window) pays Python, validation and result objects per pair per window;
 :func:`batch_pairs` validates once, then computes every window's normalization, every signal's
 recurrence adjacency (once per window) and every pair's cross-recurrence and cross measures in
-compiled loops spread over the cores (:mod:`funcnet._batch`), and returns the numbers as arrays.
+compiled loops spread over the cores (:mod:`funcnet._batch_kernels`), and returns the numbers as
+arrays.
 
 The numbers are those of the per-window path, bit for bit: window ``w`` of
 ``batch_pairs(stack, names=..., parameters=p)`` holds, per pair, exactly the ``c_xy`` ...
@@ -32,14 +33,14 @@ from typing import Any
 
 import numpy as np
 
-from funcnet import _batch
-from funcnet._kernels import _METRIC_CODE
+from funcnet import _batch_kernels
+from funcnet._isrn_kernels import _METRIC_CODE
 from funcnet._order_statistic import _pyunicorn_rank, _rank_from_rate
 from funcnet.embedding import MIN_STATES
 from funcnet.errors import FuncnetError, ParameterError, SignalError
 from funcnet.measures import CrossMeasures, _pair_parameters, pairwise_cross_measures
+from funcnet.normalization import normalize as normalize_signals
 from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
-from funcnet.preprocess import normalize as normalize_signals
 
 __all__ = ["DIRECT_MAX_STATES", "RESULT_FIELDS", "BatchPairs", "applies", "batch_pairs"]
 
@@ -292,7 +293,7 @@ def batch_pairs(
     --------
     >>> import numpy as np
     >>> from funcnet.measures import pairwise_cross_measures
-    >>> from funcnet.preprocess import normalize
+    >>> from funcnet.normalization import normalize
     >>> stack = np.random.default_rng(0).random((4, 150, 3))
     >>> result = batch_pairs(stack, names=["a", "b", "c"])
     >>> result["c_diff"].shape
@@ -337,13 +338,14 @@ def batch_pairs(
         norm_offsets = np.zeros(block.size + 1, dtype=np.int64)
         np.cumsum(lengths[block], out=norm_offsets[1:])
         serial = block.size * max(n_pairs, n_signals) < _PARALLEL_TASKS
-        kernel = _batch.batch_kernel_serial if serial else _batch.batch_kernel
+        kernel = _batch_kernels.batch_kernel_serial if serial else _batch_kernels.batch_kernel
         out = kernel(
-            table, starts[block], stops[block], norm_offsets, _batch.NORMALIZE_CODE[p.normalize],
+            table, starts[block], stops[block], norm_offsets,
+            _batch_kernels.NORMALIZE_CODE[p.normalize],
             pyunicorn, p.dim, p.delay, _METRIC_CODE[p.metric], p.theiler, pyunicorn,
             # Rank among the unordered candidates j > i + theiler; 0: nothing recurrent.
             np.ascontiguousarray((auto_rank[block] + 1) // 2), cross_rank[block], pair_x, pair_y,
-            int(n_states[block].max()), _batch.DIRECT_PAIRS,
+            int(n_states[block].max()), _batch_kernels.DIRECT_PAIRS,
         )
         auto_eps[block], auto_count[block], cross_eps[block], cross_count[block] = out[:4]
         measures[block], constant[block] = out[4], out[5]

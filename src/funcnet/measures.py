@@ -53,7 +53,7 @@ from typing import Any
 import numba
 import numpy as np
 
-from funcnet._kernels import _cross_triangles, _cross_triangles_both, _transpose_packed
+from funcnet._isrn_kernels import _cross_triangles, _cross_triangles_both, _transpose_packed
 from funcnet.embedding import signal_states
 from funcnet.errors import (
     DegenerateWarning,

@@ -52,7 +52,7 @@ Parameters
 
 Memory and speed: the ``M x M`` distance matrix is never stored, in any precision. Recurrence
 structures are bit-packed rows (:class:`PackedRecurrence`, ``M^2 / 8`` bytes) built by compiled,
-parallel kernels (:mod:`funcnet._kernels`) that compute one row of distances at a time; the
+parallel kernels (:mod:`funcnet._isrn_kernels`) that compute one row of distances at a time; the
 exact order statistic (:mod:`funcnet._order_statistic`) costs one pass over the pairs. At
 M = 20000 one pair of signals needs about 0.4 GB. The kernels run many short parallel loops;
 on a machine busy with other work, OpenMP's default of idle threads spinning between them can
@@ -76,7 +76,7 @@ from typing import Any
 import numba
 import numpy as np
 
-from funcnet._kernels import (
+from funcnet._isrn_kernels import (
     _METRIC_CODE,
     _merge_into,
     _pack_rows,

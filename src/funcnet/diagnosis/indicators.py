@@ -239,7 +239,7 @@ def _coupled(values: np.ndarray, nodes: Sequence[str], parameters: NetworkParame
     smallest number, 1) unless ``intervals`` subsamples are asked for (to time them).
     """
     from funcnet.evidence import pairwise_evidence
-    from funcnet.preprocess import normalize
+    from funcnet.normalization import normalize
 
     try:
         values = normalize(values, parameters.normalize, names=list(nodes))

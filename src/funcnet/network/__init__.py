@@ -23,7 +23,7 @@ Examples
 
 from __future__ import annotations
 
-from funcnet.network.evidence import add_evidence
+from funcnet.network.edge_evidence import add_evidence
 from funcnet.network.functional import FunctionalNetwork, check_parameters, functional_network
 from funcnet.network.rule import combine_kinds, edge_kind, edges_from_pairs, kinds_for, pair_kinds
 from funcnet.network.schema import (

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet.errors import ParameterError, SignalError
-from funcnet.preprocess import normalize as normalize_signals
+from funcnet.normalization import normalize as normalize_signals
 
 __all__ = ["column_names", "float_columns", "node_groups", "PreparedSignals", "prepared_signals"]
 

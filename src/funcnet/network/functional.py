@@ -28,7 +28,7 @@ from funcnet.evidence import check_evidence_arguments
 from funcnet.measures import pairwise_cross_measures
 from funcnet.network import readwrite
 from funcnet.network._inputs import prepared_signals
-from funcnet.network.evidence import check_edge_rule, evidence_columns
+from funcnet.network.edge_evidence import check_edge_rule, evidence_columns
 from funcnet.network.rule import edges_from_pairs, pair_kinds
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import NetworkParameters, resolve

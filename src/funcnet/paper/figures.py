@@ -29,8 +29,8 @@ from matplotlib.figure import Figure
 from funcnet import plot
 from funcnet.embedding import embed
 from funcnet.network import FunctionalNetwork, functional_network
+from funcnet.normalization import normalize
 from funcnet.parameters import NetworkParameters
-from funcnet.preprocess import normalize
 from funcnet.recurrence import isrn_adjacency, recurrence_matrix
 
 __all__ = [

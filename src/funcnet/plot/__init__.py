@@ -39,7 +39,7 @@ from funcnet._io import atomic_path as atomic_path
 from funcnet.errors import ParameterError as ParameterError
 from funcnet.network.rule import edges_from_pairs as edges_from_pairs
 from funcnet.network.schema import PAIR_KINDS as PAIR_KINDS
-from funcnet.plot.network import (
+from funcnet.plot.network_diagram import (
     NO_COUPLING_EVIDENCE,
     add_network_legend,
     edge_evidence,
@@ -51,14 +51,14 @@ from funcnet.plot.network import (
     plot_no_network,
     save_network,
 )
-from funcnet.plot.network import _network_nodes as _network_nodes
-from funcnet.plot.network import _node_radius as _node_radius
-from funcnet.plot.network import _trim as _trim
-from funcnet.plot.recurrence import plot_graph, plot_recurrence
+from funcnet.plot.network_diagram import _network_nodes as _network_nodes
+from funcnet.plot.network_diagram import _node_radius as _node_radius
+from funcnet.plot.network_diagram import _trim as _trim
+from funcnet.plot.recurrence_plot import plot_graph, plot_recurrence
 from funcnet.plot.signals import _mark_spans as _mark_spans
 from funcnet.plot.signals import _spans as _spans
 from funcnet.plot.signals import add_signal_legend, plot_signals
-from funcnet.plot.stability import plot_stability
+from funcnet.plot.stability_heatmap import plot_stability
 from funcnet.plot.style import _BIDIRECTIONAL as _BIDIRECTIONAL
 from funcnet.plot.style import _CONFLICT as _CONFLICT
 from funcnet.plot.style import _OTHER_COLORS as _OTHER_COLORS

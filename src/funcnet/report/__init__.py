@@ -28,7 +28,7 @@ from funcnet._lazy import attach
 
 _EXPORTS = {
     "build_demo_report": "funcnet.report.demo",
-    "write_report": "funcnet.report.study",
+    "write_report": "funcnet.report.study_report",
     "save_figure": "funcnet.report.html",
     "inspect_trace": "funcnet.report.inspect",
     "inspect_recording": "funcnet.report.inspect",

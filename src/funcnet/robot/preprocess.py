@@ -2,7 +2,7 @@
 
 Velocity from the arm-side position (Eq. 11-12), derived signals (V, following error, torsion),
 trimming to the motion or a time range, and resampling of mixed-rate signals to a common grid.
-Normalization per analysis window is the network's job (:func:`funcnet.preprocess.normalize`,
+Normalization per analysis window is the network's job (:func:`funcnet.normalization.normalize`,
 called by :func:`funcnet.functional_network`), not done here.
 """
 

@@ -4,7 +4,7 @@ Private to :mod:`funcnet.cli` (registered there with one line, :func:`register`,
 ``funcnet stability``); the options live here. The
 input is a folder that ``funcnet simulate --plan backlash-sweep`` (or any reversal plan) wrote
 -- traces and ``manifest.csv`` with the truth -- or an indicator table (``.csv``) saved from a
-sweep; the output :func:`funcnet.report.sweep.write_sweep_report`'s page.
+sweep; the output :func:`funcnet.report.sweep_report.write_sweep_report`'s page.
 """
 
 from __future__ import annotations
@@ -65,7 +65,7 @@ def backlash_report(
 
         from funcnet.diagnosis.sweep import folder_indicators
         from funcnet.errors import ParameterError
-        from funcnet.report.sweep import write_sweep_report
+        from funcnet.report.sweep_report import write_sweep_report
 
         if output.suffix.lower() not in (".html", ".htm"):
             raise ParameterError(f"-o {output}: the report is an .html page")
@@ -80,14 +80,14 @@ def backlash_report(
     typer.echo(f"report: {report.path}")
 
 
-# cli.py's error handling and progress bar (set by register: this module cannot import cli.py,
-# which imports it)
+# funcnet.cli's error handling and progress bar (set by register: funcnet.cli imports this
+# module, which therefore cannot import it)
 _HOOKS: dict[str, Callable[..., Any]] = {}
 
 
 def register(app: typer.Typer, *, command_class: type[Any], reported_errors: Callable[..., Any],
              progress: Callable[..., Any]) -> None:  # fmt: skip
-    """Add ``funcnet backlash-report`` to ``app`` (``cli.py``'s group, its command class, its
+    """Add ``funcnet backlash-report`` to ``app`` (``funcnet.cli``'s group, its command class, its
     error handling and its progress bar)."""
     _HOOKS.update(reported_errors=reported_errors, progress=progress)
     app.command("backlash-report", cls=command_class)(backlash_report)

@@ -1,4 +1,4 @@
-"""Tests of funcnet.preprocess.normalize (section 3.3 min-max, z-score, validation)."""
+"""Tests of funcnet.normalization.normalize (section 3.3 min-max, z-score, validation)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from funcnet.errors import ParameterError, SignalError
-from funcnet.preprocess import normalize
+from funcnet.normalization import normalize
 
 
 def test_minmax_per_column_against_closed_form():

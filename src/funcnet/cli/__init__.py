@@ -42,7 +42,8 @@ from typer._click.exceptions import ClickException, NoArgsIsHelpError
 from typer.core import TyperCommand, TyperGroup
 
 from funcnet import __version__
-from funcnet._cli_network import (
+from funcnet.cli.backlash_report_command import register as _register_sweep_report
+from funcnet.cli.network_helpers import (
     _FLAGS,  # noqa: F401  (the command's spelling of each parameter; tests read it here)
     _NO_OPTION,  # noqa: F401
     Alpha,
@@ -70,8 +71,7 @@ from funcnet._cli_network import (
     _window_request,
     _write_network,
 )
-from funcnet._cli_stability import register as _register_stability
-from funcnet._cli_sweep import register as _register_sweep_report
+from funcnet.cli.stability_command import register as _register_stability
 from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError
 from funcnet.parameters import NetworkParameters
 
@@ -852,6 +852,3 @@ def main() -> None:
     os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
     app(prog_name="funcnet")
 
-
-if __name__ == "__main__":
-    main()

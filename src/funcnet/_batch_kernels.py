@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 from numba import njit, prange
 
-from funcnet._kernels import Int, _lowest_bit, _popcount, add_coordinate_keys
+from funcnet._isrn_kernels import Int, _lowest_bit, _popcount, add_coordinate_keys
 
 Array = np.ndarray
 

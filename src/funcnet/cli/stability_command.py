@@ -15,7 +15,7 @@ from typing import Annotated, Any
 
 import typer
 
-from funcnet._cli_network import (
+from funcnet.cli.network_helpers import (
     _check_cost,
     _check_signals,
     _chosen_windows,
@@ -258,7 +258,7 @@ def _command(reported_errors: Callable[..., Any]) -> Callable[..., None]:
                                            resample=resample)
             _check_signals(names, recording, trace)
             if list_phases:
-                from funcnet._cli_network import _print_phases
+                from funcnet.cli.network_helpers import _print_phases
 
                 _print_phases(recording)
                 return
@@ -320,6 +320,6 @@ def _compute(recording: Any, chosen: list[Any], nodes: list[str], parameters: Ne
 
 def register(app: typer.Typer, *, command_class: type[Any],
              reported_errors: Callable[..., Any]) -> None:
-    """Add ``funcnet stability`` to ``app`` (``cli.py``'s group, its command class and its
+    """Add ``funcnet stability`` to ``app`` (``funcnet.cli``'s group, its command class and its
     error handling)."""
     app.command("stability", cls=command_class)(_command(reported_errors))
