@@ -26,6 +26,13 @@ import pandas as pd
 
 from funcnet._io import write_text_atomic
 from funcnet.diagnosis.indicators import reversal_indicators
+from funcnet.diagnosis.reversal_error import (
+    GearFit,
+    fit_gear,
+    reversal_error,
+    torque_column,
+    torque_traversed,
+)
 from funcnet.diagnosis.reversals import (
     MAX_DWELL,
     DirectionChange,
@@ -33,7 +40,7 @@ from funcnet.diagnosis.reversals import (
     motor_side_recording,
 )
 from funcnet.diagnosis.sweep import with_contact_score
-from funcnet.diagnosis.two_encoder import first_start, lost_motion
+from funcnet.diagnosis.two_encoder import _quantum, first_start, lost_motion
 from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import velocity
@@ -83,9 +90,16 @@ class ReversalResult:
         The trace's score indicator (deg) at a reversal; None after a standstill (the
         calibration holds reversals only).
     lost_motion : float or None
-        Two-encoder lost motion (deg); None without AP or when the arm does not restart.
+        Two-encoder lost motion (deg; None without AP or when the arm does not restart):
+        :func:`.two_encoder.lost_motion`, at a continuous change :func:`.reversal_error`.
     indicators : dict
         Every motor-side indicator computed there (physical ones; NaN -> None).
+    traversed : bool
+        The gear torque changed sign there, beyond its noise (:func:`.torque_traversed`).
+    lost_motion_low, lost_motion_high : float or None
+        deg, the lost motion's interval: at a continuous change the bootstrap's 95 %; where the
+        arm rests, the simulated sweep's validated accuracy (5 % or two arm-encoder steps,
+        whichever is more; docs/backlash.md section 3.1).
     """
 
     change: DirectionChange
@@ -93,6 +107,9 @@ class ReversalResult:
     backlash_score: float | None
     lost_motion: float | None
     indicators: dict[str, float | None] = field(default_factory=dict)
+    traversed: bool = False
+    lost_motion_low: float | None = None
+    lost_motion_high: float | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready."""
@@ -101,6 +118,9 @@ class ReversalResult:
             "speed": self.speed,
             "backlash_score": self.backlash_score,
             "lost_motion": self.lost_motion,
+            "lost_motion_low": self.lost_motion_low,
+            "lost_motion_high": self.lost_motion_high,
+            "traversed": self.traversed,
             "indicators": dict(self.indicators),
         }
 
@@ -132,10 +152,18 @@ class BacklashResult:
         Every direction change (reversals and changes after a standstill).
     reading : dict or None
         The calibration's reading: ``indicator``, ``speed`` (calibrated speed used),
-        ``extrapolated`` (the trace's speed is outside the calibrated ones), ``arcmin_low``,
-        ``arcmin_high`` and ``text``; None without a score.
+        ``extrapolated`` (always False now: a reading outside the calibrated speeds is None),
+        ``arcmin_low``, ``arcmin_high`` and ``text``; None without a score, and where the
+        trace's speed or signals lie outside those the calibration was made on
+        (``reading_reason`` says which).
     message : str
         One line saying what was found.
+    reading_reason : str or None
+        Why ``reading`` is None (None when there is a reading).
+    lost_motion_reason : str or None
+        Why ``lost_motion`` is None: no AP, or no direction change (None when there is one).
+    gear : GearFit or None
+        With AP and continuous changes: the gear's fit over the recording (:func:`.fit_gear`).
     """
 
     path: str
@@ -147,6 +175,9 @@ class BacklashResult:
     reversals: tuple[ReversalResult, ...]
     reading: dict[str, Any] | None
     message: str
+    reading_reason: str | None = None
+    lost_motion_reason: str | None = None
+    gear: GearFit | None = None
 
     @property
     def score_unit(self) -> str:
@@ -165,6 +196,9 @@ class BacklashResult:
             "lost_motion_spread": self.lost_motion_spread,
             "reversals": [r.to_dict() for r in self.reversals],
             "reading": self.reading,
+            "reading_reason": self.reading_reason,
+            "lost_motion_reason": self.lost_motion_reason,
+            "gear": None if self.gear is None else self.gear.to_dict(),
             "message": self.message,
             "note": MODEL_NOTE,
         }
@@ -210,21 +244,15 @@ def _reading(score: float, speed: float, calibration: Mapping[str, Any]) -> dict
     if not inside:  # between the bands or beyond them: the nearest median
         inside = [min(widths, key=lambda b: abs(table[f"{b:g}"][len(quantiles) // 2] - score))]
     low, high = min(inside), max(inside)
-    extrapolated = not (min(speeds) <= speed <= max(speeds))
     span = f"{low:g} arcmin" if low == high else f"{low:g}-{high:g} arcmin"
     text = (
         f"on the simulated sweep at {nearest:g} deg/min, {calibration['indicator']} values "
         f"like this came with {span} of backlash"
-        + (
-            f" (the trace's {speed:.0f} deg/min is outside the calibrated speeds)"
-            if extrapolated
-            else ""
-        )
     )
     return {
         "indicator": calibration["indicator"],
         "speed": nearest,
-        "extrapolated": extrapolated,
+        "extrapolated": False,  # a speed outside the calibrated ones is not read (_outside)
         "arcmin_low": low,
         "arcmin_high": high,
         "text": text,
@@ -272,10 +300,17 @@ def diagnose_recording(
     has_ap = "AP" in rec.data.columns and bool(np.isfinite(rec.data["AP"]).any())
     indicator, table = (SCORE, cal) if has_ap else (MOTOR_LOOP_SCORE, cal["motor_loop"])
     # the axis's start from rest, fitted once for every reversal's lost motion
-    arm_start = first_start(rec) if has_ap and changes else None
+    resting = [c for c in changes if c.kind != "continuous"]
+    arm_start = first_start(rec) if has_ap and resting else None
+    # the gear between the encoders, fitted once for every continuous change's reversal error
+    continuous = len(resting) < len(changes)
+    gear = fit_gear(rec) if has_ap and continuous else None
+    quantum = _quantum(rec.data["AP"].to_numpy(dtype=np.float64)) if has_ap else math.nan
     results = []
     for change in changes:
         speed = _move_speed(rec, change)
+        traversed = torque_traversed(rec, change)
+        low = high = None
         if change.kind == "reversal":
             values = reversal_indicators(rec, change, networks=False, arm_start=arm_start)
             if not has_ap:
@@ -285,31 +320,61 @@ def diagnose_recording(
             score = _none(values[indicator])
             lost = _none(values["lost_motion"]) if has_ap else None
             shown = {k: _none(v) for k, v in values.items() if k != "signature"}
+        elif change.kind == "continuous":
+            # the motor-side score is calibrated on reversals where the arm rests at the turn
+            score = None
+            shown = {}
+            lost = None
+            if has_ap:
+                error = reversal_error(rec, change, gear)
+                lost, low, high = (_none(error.lost_motion), _none(error.low),
+                                   _none(error.high))  # fmt: skip
         else:
             score = None
             lost = _none(lost_motion(rec, change)) if has_ap else None
             shown = {}
-        results.append(ReversalResult(change, speed, score, lost, shown))
+        if lost is not None and change.kind != "continuous":
+            # the sweep's validated accuracy: 5 % or two arm-encoder steps (section 3.1)
+            width = max(0.05 * abs(lost), 2 * quantum)
+            low, high = lost - width, lost + width
+        results.append(ReversalResult(change, speed, score, lost, shown, traversed, low, high))
     scores = [r.backlash_score for r in results if r.backlash_score is not None]
     losses = [r.lost_motion for r in results if r.lost_motion is not None]
     score = float(np.mean(scores)) if scores else None
     reading = None
     spread = None
+    reason = None
     if score is not None:
         speed = float(np.mean([r.speed for r in results if r.backlash_score is not None]))
-        reading = _reading(score, speed, table)
-        spread = _none(_spread(score, reading, table))
+        reason = _outside(speed, rec, table, has_ap)
+        if reason is None:
+            reading = _reading(score, speed, table)
+            spread = _none(_spread(score, reading, table))
+    elif changes:
+        reason = "no reversal with a rest at the turn: the calibration holds such reversals only"
+    else:
+        reason = "no direction change"
     n_rev = sum(r.change.kind == "reversal" for r in results)
+    n_cont = sum(r.change.kind == "continuous" for r in results)
     if not changes:
         message = "no direction change: the axis moves one way only; no backlash indicator"
     elif n_rev == 0:
+        found = (f"{n_cont} in continuous motion (the arm never rests), "
+                 f"{len(changes) - n_cont} after a standstill" if n_cont
+                 else f"{len(changes)} direction change(s) after a standstill")  # fmt: skip
         message = (
-            f"no reversal (a direction change within {max_dwell:g} s): {len(changes)} "
-            "direction change(s) after a standstill; the motor-side score is calibrated on "
-            "reversals only" + ("; two-encoder lost motion measured there" if losses else "")
+            f"no reversal (a direction change within {max_dwell:g} s): {found}; the motor-side "
+            "score is calibrated on reversals only"
+            + ("; two-encoder lost motion measured there" if losses else "")
         )
     else:
-        message = f"{n_rev} reversal(s); " + (reading["text"] if reading else "no score")
+        message = f"{n_rev} reversal(s); " + (
+            reading["text"] if reading else f"no reading ({reason})" if reason else "no score"
+        )
+    lost_reason = None
+    if not losses:
+        lost_reason = ("no AP" if not has_ap else "no direction change" if not changes
+                       else "the arm does not restart")  # fmt: skip
     return BacklashResult(
         path=str(where),
         score_indicator=indicator,
@@ -320,7 +385,29 @@ def diagnose_recording(
         reversals=tuple(results),
         reading=reading,
         message=message,
+        reading_reason=None if reading is not None else reason,
+        lost_motion_reason=lost_reason,
+        gear=gear,
     )
+
+
+def _outside(speed: float, rec: Recording, table: Mapping[str, Any], has_ap: bool) -> str | None:
+    """Why a score cannot be read on the calibration (None when it can): the trace's speed
+    outside the calibrated speeds, or (without AP, where the score reads the current) a current
+    signal that is not a current."""
+    speeds = sorted(float(s) for s in table["levels"])
+    # 5 % either side: the calibration's keys are the sweep's peak speeds rounded to 0.1 deg/min
+    if not (min(speeds) / 1.05 <= speed <= max(speeds) * 1.05):
+        return (
+            f"the trace's {speed:.0f} deg/min is outside the calibrated speeds "
+            f"{min(speeds):g}-{max(speeds):g} deg/min"
+        )
+    if not has_ap:
+        name = torque_column(rec)
+        units = rec.signals[name].units_type if name in rec.signals else None
+        if units not in (None, "current"):
+            return f"{name} is a {units} signal; the calibration was made on a current (A)"
+    return None
 
 
 def diagnose_backlash(

@@ -5,7 +5,13 @@ the other way. When the standstill between the two moves is short (at most ``max
 as the reversal phase of :func:`funcnet.robot.detect_phases`) it is a **reversal** as in the
 paper's backlash trials (section 4.3): the motor crosses the gear's dead zone right after its
 turning point. After a longer standstill (``kind="after standstill"``) the dead zone is crossed
-too, at the start of the next move, from rest.
+too, at the start of the next move, from rest. In continuous motion (``kind="continuous"``) the
+set-point's speed changes sign without resting at all: the arm never stops, it follows the motor
+through the turn (the smooth multi-axis trajectories of a real robot).
+
+A move counts only when the set-point's speed reaches ``min_speed`` (1 deg/s, or half the trace's
+peak speed on a slower trace): a set-point that wiggles below it near a standstill does not
+change direction.
 """
 
 from __future__ import annotations
@@ -19,10 +25,18 @@ from funcnet.errors import ChannelError, ParameterError
 from funcnet.robot.preprocess import add_derived_signals, resample, staircase_signals, velocity
 from funcnet.robot.recording import Recording
 
-__all__ = ["DirectionChange", "find_direction_changes", "motor_side_recording", "MAX_DWELL"]
+__all__ = [
+    "DirectionChange",
+    "find_direction_changes",
+    "motor_side_recording",
+    "MAX_DWELL",
+    "MIN_SPEED",
+]
 
 #: Longest standstill, in s, between the two moves of a reversal (as ``detect_phases``).
 MAX_DWELL = 0.5
+#: deg/s a set-point must exceed for a move (or half its peak speed, if less).
+MIN_SPEED = 1.0
 
 
 @dataclass(frozen=True)
@@ -40,7 +54,12 @@ class DirectionChange:
     direction : int
         The second move's direction, +1 or -1.
     kind : str
-        ``"reversal"`` (dwell at most ``max_dwell``) or ``"after standstill"``.
+        ``"reversal"`` (dwell at most ``max_dwell``), ``"after standstill"`` or
+        ``"continuous"`` (no standstill: ``stop`` and ``start`` then bracket the set-point's turn,
+        the end and the start of the stretches where its speed exceeds the move threshold, and
+        ``dwell`` is 0).
+    turn : float or None
+        s, where the set-point's speed changes sign (continuous changes; None otherwise).
     """
 
     stop: float
@@ -48,6 +67,7 @@ class DirectionChange:
     dwell: float
     direction: int
     kind: str
+    turn: float | None = None
 
     def to_dict(self) -> dict[str, float | int | str]:
         """The fields as a JSON-ready dict."""
@@ -57,6 +77,7 @@ class DirectionChange:
             "dwell": self.dwell,
             "direction": self.direction,
             "kind": self.kind,
+            "turn": self.turn,
         }
 
 
@@ -67,6 +88,7 @@ def find_direction_changes(
     standstill: float = 1e-4,
     max_dwell: float = MAX_DWELL,
     min_gap: float = 0.05,
+    min_speed: float = MIN_SPEED,
 ) -> list[DirectionChange]:
     """The direction changes of the reference motion.
 
@@ -82,6 +104,10 @@ def find_direction_changes(
         Longest standstill, in s, of a ``"reversal"``.
     min_gap : float
         Moves in the same direction less than ``min_gap`` s apart are one move.
+    min_speed : float
+        deg/s a move's set-point speed must exceed to count, or half the trace's peak speed
+        where that is less (a slow trace); a wiggle below it is no move. The stretches above it
+        bracket a continuous change.
 
     Returns
     -------
@@ -106,6 +132,16 @@ def find_direction_changes(
     >>> [(round(c.stop, 2), round(c.dwell, 2), c.direction, c.kind)
     ...  for c in find_direction_changes(rec)]
     [(2.0, 0.2, -1, 'reversal')]
+
+    A smooth set-point turning without a rest (a continuous change, bracketed by the stretches
+    where it moves faster than 1 deg/s):
+
+    >>> rp = 10 * np.sin(np.pi * t / 2)
+    >>> rec = Recording(pd.DataFrame({"RP": rp}, index=pd.Index(t, name="time")), {},
+    ...                 {"RP": SignalInfo("RP", "posn", None, 0.002)})
+    >>> [(round(c.stop, 2), round(c.turn, 2), round(c.start, 2), c.kind)
+    ...  for c in find_direction_changes(rec)]
+    [(0.96, 1.0, 1.04, 'continuous'), (2.96, 3.0, 3.04, 'continuous')]
     """
     if reference not in recording.data.columns:
         raise ChannelError(
@@ -113,15 +149,25 @@ def find_direction_changes(
         )
     if not (0 < standstill < 1) or not (max_dwell >= 0 and math.isfinite(max_dwell)):
         raise ParameterError.of("standstill", "must be in (0, 1), max_dwell >= 0")
+    if not (min_speed > 0 and math.isfinite(min_speed)):
+        raise ParameterError.of("min_speed", f"must be a positive number of deg/s, got {min_speed!r}")
     dt = recording.sample_period
     x = recording.data[reference].to_numpy(dtype=np.float64)
     x = np.where(np.isnan(x), np.nanmean(x) if np.isfinite(x).any() else 0.0, x)
     v = velocity(x, dt)
     if not np.any(v):
         return []
+    fast = min(min_speed, 0.5 * float(np.abs(v).max()))
     moving = np.abs(v) > standstill * np.abs(v).max()
     edges = np.flatnonzero(np.diff(np.concatenate([[0], moving.astype(np.int8), [0]])))
-    runs = [[int(a), int(b)] for a, b in zip(edges[::2], edges[1::2], strict=True)]
+    runs = []
+    for a, b in zip(edges[::2], edges[1::2], strict=True):
+        # a run whose speed changes sign is a continuous change: one move per sign
+        flips = np.flatnonzero(np.diff(np.sign(v[a:b])) != 0) + a + 1
+        bounds = [int(a), *(int(f) for f in flips), int(b)]
+        runs += [[lo, hi] for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)]
+    # a wiggle below the move threshold is no move
+    runs = [[a, b] for a, b in runs if np.abs(v[a:b]).max() > fast]
     moves: list[list[int]] = []
     for a, b in runs:  # join same-direction runs separated by less than min_gap
         sign = np.sign(v[a:b].sum())
@@ -136,6 +182,11 @@ def find_direction_changes(
         s0, s1 = np.sign(v[a0:b0].sum()), np.sign(v[a1:b1].sum())
         if s0 == s1 or s1 == 0:
             continue
+        # no standstill between -- the set-point turns while moving, its speed at most dipping
+        # below the standstill threshold as it crosses zero, its reading never held: continuous
+        if a1 == b0 or not np.any(np.diff(x[b0 - 1 : a1 + 1]) == 0):
+            changes.append(_continuous(v, a0, b0, a1, b1, fast, t0, dt, int(s1)))
+            continue
         dwell = (a1 - b0) * dt
         changes.append(
             DirectionChange(
@@ -147,6 +198,27 @@ def find_direction_changes(
             )
         )
     return changes
+
+
+def _continuous(
+    v: np.ndarray, a0: int, b0: int, a1: int, b1: int, fast: float, t0: float, dt: float,
+    direction: int,
+) -> DirectionChange:  # fmt: skip
+    """A continuous change between the moves ``[a0, b0)`` and ``[a1, b1)``: bracketed by the last
+    sample of the first and the first of the second where the speed exceeds ``fast``; the turn
+    where the speed, linear between samples, crosses zero."""
+    before = a0 + int(np.flatnonzero(np.abs(v[a0:b0]) > fast)[-1])
+    after = a1 + int(np.flatnonzero(np.abs(v[a1:b1]) > fast)[0])
+    turn = b0 + int(np.flatnonzero(direction * v[b0 : a1 + 1] > 0)[0])
+    share = v[turn - 1] / (v[turn - 1] - v[turn]) if turn > 0 else 0.0
+    return DirectionChange(
+        stop=round(t0 + (before + 1) * dt, 9),
+        start=round(t0 + after * dt, 9),
+        dwell=0.0,
+        direction=direction,
+        kind="continuous",
+        turn=round(float(t0 + (turn - 1 + share) * dt), 9),
+    )
 
 
 def motor_side_recording(recording: Recording) -> Recording:

@@ -1,0 +1,403 @@
+"""The lost motion at a direction change in continuous motion: the reversal error (needs AP).
+
+Where the arm never rests at a turn (a robot's smooth trajectories; ``kind="continuous"`` in
+:func:`~funcnet.diagnosis.reversals.find_direction_changes`) the arm follows the motor through
+the turn, elastically. ``MP - AP`` there is the gear's wind-up under its torque, plus the lost
+motion -- the reversal error of ISO 230-2: the arm lags the motor by more in one direction than
+in the other (backlash crossed where the gear torque changes sign; friction in the gear) -- plus
+what the two encoders' timing adds: an encoder read a little earlier than the other reads
+``speed x skew`` apart (on the KUKA KR 300 runs 2.8-3.1 ms on every axis, docs/backlash.md).
+
+:func:`fit_gear` fits, over the recording's samples where the motor moves faster than 1 deg/s,
+
+``MP - AP = offset + compliance * torque + skew * VM + hysteresis / 2 * sign(VM)``
+
+(least squares; ``torque`` the AC column, the motor torque or current) and
+:func:`reversal_error` measures at each direction change the step of the part the torque and
+the speed do not explain, ``MP - AP - compliance * torque - skew * VM``, from the stretch before
+the turn to the stretch after it (0.25 s each, beyond the bracket where the set-point moves
+slower than 1 deg/s), with a moving-block bootstrap interval over the samples (the fit
+redone on each resample). :func:`torque_traversed` says whether the gear torque changed sign
+there (the backlash is crossed only then).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from funcnet.diagnosis.reversals import DirectionChange
+from funcnet.errors import ChannelError, ParameterError
+from funcnet.robot.preprocess import velocity
+from funcnet.robot.recording import Recording
+
+__all__ = [
+    "GearFit",
+    "ReversalError",
+    "fit_gear",
+    "gear_torque",
+    "reversal_error",
+    "torque_traversed",
+    "torque_column",
+]
+
+#: deg/s the motor must exceed for a sample to enter the gear's fit (the plain fit of the issue).
+FIT_SPEED = 1.0
+_WINDOW = 0.25  # s of each stretch beside the turn over which the step is measured
+_BLOCK = 0.05  # s, the bootstrap's blocks (the torque ripples at 10-25 Hz)
+_SMOOTH = 0.04  # s, the gear torque's moving mean (takes the ripple out)
+_MARGIN = 2.0  # the gear torque's noise (s.d. of its moving mean) a sign must lie beyond
+
+
+def torque_column(rec: Recording) -> str:
+    """The motor torque or current column (AC, else RC).
+
+    Raises
+    ------
+    ChannelError
+        Neither.
+    """
+    for name in ("AC", "RC"):
+        if name in rec.data.columns:
+            return name
+    raise ChannelError(rec.source or "<recording>", "no AC or RC (motor torque or current)")
+
+
+def _columns(rec: Recording) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Times, MP - AP, the motor speed VM (from MP, Eq. 11-12) and the torque."""
+    for name in ("MP", "AP"):
+        if name not in rec.data.columns:
+            raise ChannelError(rec.source or "<recording>", f"no {name} column")
+    t = rec.data.index.to_numpy(dtype=np.float64)
+    mp = rec.data["MP"].to_numpy(dtype=np.float64)
+    ap = rec.data["AP"].to_numpy(dtype=np.float64)
+    torque = rec.data[torque_column(rec)].to_numpy(dtype=np.float64)
+    return t, mp - ap, velocity(mp, rec.sample_period), torque
+
+
+@dataclass(frozen=True)
+class GearFit:
+    """The gear between the two encoders, fitted from a recording (:func:`fit_gear`).
+
+    Attributes
+    ----------
+    compliance : float
+        deg of ``MP - AP`` per unit of torque (the gear's elastic wind-up).
+    skew : float
+        s: ``MP - AP`` per motor speed -- the two encoders read this far apart in time.
+    offset : float
+        deg, ``MP - AP`` at rest without torque.
+    hysteresis : float
+        deg, twice the direction term: the reversal error over the whole recording.
+    rms : float
+        deg, the fit's residual.
+    samples : int
+        Samples fitted (motor faster than :data:`FIT_SPEED`).
+    torque : str
+        The torque column fitted (AC or RC).
+    """
+
+    compliance: float
+    skew: float
+    offset: float
+    hysteresis: float
+    rms: float
+    samples: int
+    torque: str
+
+    def to_dict(self) -> dict[str, float | int | str]:
+        """JSON-ready."""
+        return {
+            "compliance": self.compliance,
+            "skew": self.skew,
+            "offset": self.offset,
+            "hysteresis": self.hysteresis,
+            "rms": self.rms,
+            "samples": self.samples,
+            "torque": self.torque,
+        }
+
+
+def _design(d_torque: np.ndarray, vm: np.ndarray) -> np.ndarray:
+    return np.column_stack([np.ones_like(vm), d_torque, vm, np.sign(vm)])
+
+
+def _solve(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    coef, *_ = np.linalg.lstsq(x, y, rcond=None)
+    return np.asarray(coef)
+
+
+def fit_gear(rec: Recording, *, min_speed: float = FIT_SPEED) -> GearFit | None:
+    """Fit the gear's compliance, the encoders' skew and the reversal error over a recording.
+
+    Parameters
+    ----------
+    rec : Recording
+        With MP, AP and AC (or RC), on the positions' own grid.
+    min_speed : float
+        deg/s the motor speed must exceed for a sample to be fitted.
+
+    Returns
+    -------
+    GearFit or None
+        None with fewer than 20 such samples or AP all NaN.
+
+    Raises
+    ------
+    ChannelError
+        No MP, AP or torque.
+
+    References
+    ----------
+    Paper section 5.1 (backlash at the reversals); ISO 230-2 (reversal error).
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot import Recording, SignalInfo
+    >>> t = np.arange(0, 4, 0.004)
+    >>> mp = 10 * np.sin(t)
+    >>> vm = 10 * np.cos(t)
+    >>> torque = 3 * np.sin(2 * t)
+    >>> ap = mp - (0.001 * torque + 0.003 * vm + 0.02 * np.sign(vm))
+    >>> info = {c: SignalInfo(c, "posn", None, 0.004) for c in ("MP", "AP", "AC")}
+    >>> rec = Recording(pd.DataFrame({"MP": mp, "AP": ap, "AC": torque},
+    ...                              index=pd.Index(t, name="time")), {}, info, sample_period=0.004)
+    >>> fit = fit_gear(rec)
+    >>> round(fit.compliance, 4), round(fit.skew, 4), round(fit.hysteresis, 3)
+    (0.001, 0.003, 0.04)
+    """
+    if not (min_speed >= 0 and math.isfinite(min_speed)):
+        raise ParameterError.of("min_speed", f"must be a speed >= 0 in deg/s, got {min_speed!r}")
+    _, d, vm, torque = _columns(rec)
+    use = (np.abs(vm) > min_speed) & np.isfinite(d) & np.isfinite(torque) & np.isfinite(vm)
+    if use.sum() < 20:
+        return None
+    x = _design(torque[use], vm[use])
+    coef = _solve(x, d[use])
+    rms = float(np.sqrt(np.mean((d[use] - x @ coef) ** 2)))
+    return GearFit(
+        compliance=float(coef[1]),
+        skew=float(coef[2]),
+        offset=float(coef[0]),
+        hysteresis=float(2 * coef[3]),
+        rms=rms,
+        samples=int(use.sum()),
+        torque=torque_column(rec),
+    )
+
+
+def gear_torque(rec: Recording, *, motor_inertia: float = 0.0) -> tuple[np.ndarray, float]:
+    """The gear torque estimated from the motor torque, and its noise.
+
+    The motor torque (or current) less the motor's own inertia torque ``motor_inertia * d VM /
+    dt`` (0 by default: a recording does not say the motor's inertia), as a moving mean over 40
+    ms (the torque ripples at 10-25 Hz on a real robot); its noise is the standard deviation of
+    the torque about that mean, divided by the root of the samples averaged. The motor's own
+    friction, which flips with the motor's direction, is left in: it cannot be told apart from
+    the arm's in the motor torque (docs/backlash.md).
+
+    Parameters
+    ----------
+    rec : Recording
+        With MP and AC or RC.
+    motor_inertia : float
+        Torque units per deg/s**2 of the motor (joint side): the motor inertia times the gear
+        ratio (times pi/180 for N m and kg m**2).
+
+    Returns
+    -------
+    tuple
+        The estimate per sample and its noise (torque units).
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot import Recording, SignalInfo
+    >>> t = np.arange(0, 1, 0.004)
+    >>> info = {c: SignalInfo(c, "posn", None, 0.004) for c in ("MP", "AC")}
+    >>> rec = Recording(pd.DataFrame({"MP": t, "AC": np.where(t < 0.5, -2.0, 2.0)},
+    ...                              index=pd.Index(t, name="time")), {}, info, sample_period=0.004)
+    >>> tau, noise = gear_torque(rec)
+    >>> float(tau[0]), float(tau[-1]), noise < 0.5
+    (-2.0, 2.0, True)
+    """
+    if "MP" not in rec.data.columns:
+        raise ChannelError(rec.source or "<recording>", "no MP column")
+    dt = rec.sample_period
+    torque = rec.data[torque_column(rec)].to_numpy(dtype=np.float64)
+    if motor_inertia:
+        vm = velocity(rec.data["MP"].to_numpy(dtype=np.float64), dt)
+        torque = torque - motor_inertia * np.gradient(vm, dt)
+    n = max(1, round(_SMOOTH / dt))
+    padded = np.pad(torque, (n // 2, n - 1 - n // 2), mode="edge")
+    smooth = np.convolve(padded, np.ones(n) / n, mode="valid")
+    scatter = torque - smooth
+    noise = float(np.nanstd(scatter) / math.sqrt(n)) if np.isfinite(scatter).any() else math.nan
+    return smooth, noise
+
+
+def _windows(t: np.ndarray, change: DirectionChange, window: float) -> tuple[np.ndarray, ...]:
+    """Indices of the stretch before the turn and of the one after it."""
+    before = np.flatnonzero((t >= change.stop - window) & (t < change.stop))
+    after = np.flatnonzero((t >= change.start) & (t < change.start + window))
+    return before, after
+
+
+def torque_traversed(
+    rec: Recording, change: DirectionChange, *, motor_inertia: float = 0.0,
+    window: float = _WINDOW,
+) -> bool:  # fmt: skip
+    """Whether the gear torque changed sign at a direction change, beyond its noise.
+
+    True when the gear torque (:func:`gear_torque`) lies below ``-2 noise`` and above ``+2
+    noise`` within ``window`` s before the change's ``stop`` to ``window`` s after its
+    ``start``: the gear then crosses its dead zone there (if it has one).
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot import Recording, SignalInfo
+    >>> t = np.arange(0, 2, 0.004)
+    >>> info = {c: SignalInfo(c, "posn", None, 0.004) for c in ("MP", "AC")}
+    >>> change = DirectionChange(0.9, 1.1, 0.0, -1, "continuous", 1.0)
+    >>> def rec(torque):
+    ...     return Recording(pd.DataFrame({"MP": -(t - 1) ** 2, "AC": torque},
+    ...                      index=pd.Index(t, name="time")), {}, info, sample_period=0.004)
+    >>> (torque_traversed(rec(-5 * (t - 1)), change),
+    ...  torque_traversed(rec(-5 - 2 * (t - 1)), change))
+    (True, False)
+    """
+    t = rec.data.index.to_numpy(dtype=np.float64)
+    tau, noise = gear_torque(rec, motor_inertia=motor_inertia)
+    near = (t >= change.stop - window) & (t <= change.start + window) & np.isfinite(tau)
+    if not near.any() or not math.isfinite(noise):
+        return False
+    part = tau[near]
+    return bool(part.min() < -_MARGIN * noise and part.max() > _MARGIN * noise)
+
+
+@dataclass(frozen=True)
+class ReversalError:
+    """The lost motion at a continuous direction change (:func:`reversal_error`).
+
+    Attributes
+    ----------
+    lost_motion : float
+        deg, the step of ``MP - AP`` the torque and the speed do not explain, from before the
+        turn to after it, in the old direction's sign (positive: the arm lags the motor more
+        in each direction of motion).
+    low, high : float
+        deg, the bootstrap interval (95 %).
+    traversed : bool
+        The gear torque changed sign there (:func:`torque_traversed`).
+    """
+
+    lost_motion: float
+    low: float
+    high: float
+    traversed: bool
+
+
+def _blocks(rng: np.random.Generator, n: int, size: int) -> np.ndarray:
+    """A moving-block bootstrap draw of ``n`` indices in blocks of ``size``."""
+    size = max(1, min(size, n))
+    starts = rng.integers(0, n - size + 1, size=-(-n // size))
+    return (starts[:, None] + np.arange(size)[None, :]).ravel()[:n]
+
+
+def reversal_error(
+    rec: Recording, change: DirectionChange, gear: GearFit | None = None, *,
+    window: float = _WINDOW, resamples: int = 400, level: float = 0.95, seed: int = 0,
+    motor_inertia: float = 0.0,
+) -> ReversalError:  # fmt: skip
+    """The lost motion at a direction change in continuous motion, with an interval.
+
+    Parameters
+    ----------
+    rec : Recording
+        With MP, AP and AC (or RC) on the positions' own grid.
+    change : DirectionChange
+        Its ``stop`` and ``start`` bracket the turn (a ``"continuous"`` change).
+    gear : GearFit, optional
+        :func:`fit_gear` of the same recording (fitted here when omitted).
+    window : float
+        s of each stretch, before ``stop`` and after ``start``, whose means are compared.
+    resamples : int
+        Bootstrap resamples: blocks of 50 ms of the fit's samples and of each stretch drawn
+        with replacement, the gear refitted and the step measured again on each.
+    level : float
+        The interval's coverage.
+    seed : int
+        Of the bootstrap.
+    motor_inertia : float
+        For ``traversed`` (:func:`gear_torque`).
+
+    Returns
+    -------
+    ReversalError
+        NaN lost motion (and interval) without AP there or without a gear fit.
+
+    References
+    ----------
+    Paper section 5.1; ISO 230-2 (reversal error).
+
+    Examples
+    --------
+    An arm lagging its motor by 0.01 deg more in each direction (0.02 deg lost motion), a
+    gear winding up 0.001 deg per N m and encoders 3 ms apart:
+
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot import Recording, SignalInfo
+    >>> from funcnet.diagnosis.reversals import find_direction_changes
+    >>> t = np.arange(0, 6, 0.004)
+    >>> mp = 10 * np.sin(t)
+    >>> vm = 10 * np.cos(t)
+    >>> torque = 3 * np.sin(2 * t) + 0.3 * np.sign(vm)
+    >>> rng = np.random.default_rng(1)
+    >>> ap = mp - (0.001 * torque + 0.003 * vm + 0.01 * np.sign(vm)
+    ...            + 0.001 * rng.standard_normal(t.size))
+    >>> info = {c: SignalInfo(c, "posn", None, 0.004) for c in ("RP", "MP", "AP", "AC")}
+    >>> rec = Recording(pd.DataFrame({"RP": mp, "MP": mp, "AP": ap, "AC": torque},
+    ...                              index=pd.Index(t, name="time")), {}, info, sample_period=0.004)
+    >>> change = find_direction_changes(rec)[0]
+    >>> error = reversal_error(rec, change)
+    >>> round(error.lost_motion, 3), error.high - error.low < 0.002, error.traversed
+    (0.02, True, True)
+    """
+    if not (window > 0 and resamples >= 0 and 0 < level < 1):
+        raise ParameterError.of("window", "must be > 0 s, resamples >= 0, level in (0, 1)")
+    gear = fit_gear(rec) if gear is None else gear
+    traversed = torque_traversed(rec, change, motor_inertia=motor_inertia, window=window)
+    nan = ReversalError(math.nan, math.nan, math.nan, traversed)
+    if gear is None:
+        return nan
+    t, d, vm, torque = _columns(rec)
+    before, after = _windows(t, change, window)
+    before = before[np.isfinite(d[before]) & np.isfinite(torque[before])]
+    after = after[np.isfinite(d[after]) & np.isfinite(torque[after])]
+    if before.size < 3 or after.size < 3:
+        return nan
+    old = -change.direction
+
+    def step(c: float, skew: float, b: np.ndarray, a: np.ndarray) -> float:
+        rest = d - c * torque - skew * vm
+        return float(old * (rest[b].mean() - rest[a].mean()))
+
+    point = step(gear.compliance, gear.skew, before, after)
+    fitted = np.flatnonzero((np.abs(vm) > FIT_SPEED) & np.isfinite(d) & np.isfinite(torque))
+    rng = np.random.default_rng(seed)
+    block = max(1, round(_BLOCK / rec.sample_period))
+    draws = []
+    for _ in range(resamples):
+        rows = fitted[_blocks(rng, fitted.size, block)]
+        coef = _solve(_design(torque[rows], vm[rows]), d[rows])
+        draws.append(step(coef[1], coef[2], before[_blocks(rng, before.size, block)],
+                          after[_blocks(rng, after.size, block)]))  # fmt: skip
+    if draws:
+        low, high = np.quantile(draws, [(1 - level) / 2, (1 + level) / 2])
+    else:
+        low = high = point
+    return ReversalError(point, float(min(low, point)), float(max(high, point)), traversed)
