@@ -16,7 +16,7 @@ what the two encoders' timing adds: an encoder read a little earlier than the ot
 :func:`reversal_error` measures at each direction change the step of the part the torque and
 the speed do not explain, ``MP - AP - compliance * torque - skew * VM``, from the stretch before
 the turn to the stretch after it (0.25 s each, beyond the bracket where the set-point moves
-slower than 1 deg/s), with a moving-block bootstrap interval over the samples (the fit
+slower than 1 deg/s), with a circular block bootstrap interval over the samples (the fit
 redone on each resample). :func:`torque_traversed` says whether the gear torque changed sign
 there (the backlash is crossed only then).
 """
@@ -27,6 +27,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.stats import t as student_t
 
 from funcnet.diagnosis.reversals import DirectionChange
 from funcnet.errors import ChannelError, ParameterError
@@ -290,7 +291,7 @@ class ReversalError:
         turn to after it, in the old direction's sign (positive: the arm lags the motor more
         in each direction of motion).
     low, high : float
-        deg, the bootstrap interval (95 %).
+        deg, the interval (95 %; :func:`reversal_error`).
     traversed : bool
         The gear torque changed sign there (:func:`torque_traversed`).
     """
@@ -302,10 +303,11 @@ class ReversalError:
 
 
 def _blocks(rng: np.random.Generator, n: int, size: int) -> np.ndarray:
-    """A moving-block bootstrap draw of ``n`` indices in blocks of ``size``."""
+    """A circular block bootstrap draw of ``n`` indices in blocks of ``size`` (circular: every
+    sample as likely as any other, the ends included)."""
     size = max(1, min(size, n))
-    starts = rng.integers(0, n - size + 1, size=-(-n // size))
-    return (starts[:, None] + np.arange(size)[None, :]).ravel()[:n]
+    starts = rng.integers(0, n, size=-(-n // size))
+    return ((starts[:, None] + np.arange(size)[None, :]) % n).ravel()[:n]
 
 
 def reversal_error(
@@ -327,7 +329,9 @@ def reversal_error(
         s of each stretch, before ``stop`` and after ``start``, whose means are compared.
     resamples : int
         Bootstrap resamples: blocks of 50 ms of the fit's samples and of each stretch drawn
-        with replacement, the gear refitted and the step measured again on each.
+        with replacement (circular), the gear refitted and the step measured again on each;
+        the interval is the step -+ a t quantile (degrees of freedom: the stretches' blocks
+        less two) times the resamples' standard deviation.
     level : float
         The interval's coverage.
     seed : int
@@ -396,8 +400,8 @@ def reversal_error(
         coef = _solve(_design(torque[rows], vm[rows]), d[rows])
         draws.append(step(coef[1], coef[2], before[_blocks(rng, before.size, block)],
                           after[_blocks(rng, after.size, block)]))  # fmt: skip
-    if draws:
-        low, high = np.quantile(draws, [(1 - level) / 2, (1 + level) / 2])
-    else:
-        low = high = point
-    return ReversalError(point, float(min(low, point)), float(max(high, point)), traversed)
+    # the stretches hold a few blocks each, so the bootstrap's spread is itself uncertain: a
+    # t quantile with as many degrees of freedom as blocks in both less two (as batch means)
+    dof = max(1, -(-before.size // block) + -(-after.size // block) - 2)
+    half = float(student_t.ppf((1 + level) / 2, dof) * np.std(draws)) if draws else 0.0
+    return ReversalError(point, point - half, point + half, traversed)

@@ -69,7 +69,7 @@ class DirectionChange:
     kind: str
     turn: float | None = None
 
-    def to_dict(self) -> dict[str, float | int | str]:
+    def to_dict(self) -> dict[str, float | int | str | None]:
         """The fields as a JSON-ready dict."""
         return {
             "stop": self.stop,
@@ -150,7 +150,7 @@ def find_direction_changes(
     if not (0 < standstill < 1) or not (max_dwell >= 0 and math.isfinite(max_dwell)):
         raise ParameterError.of("standstill", "must be in (0, 1), max_dwell >= 0")
     if not (min_speed > 0 and math.isfinite(min_speed)):
-        raise ParameterError.of("min_speed", f"must be a positive number of deg/s, got {min_speed!r}")
+        raise ParameterError.of("min_speed", f"must be a speed > 0 in deg/s, got {min_speed!r}")
     dt = recording.sample_period
     x = recording.data[reference].to_numpy(dtype=np.float64)
     x = np.where(np.isnan(x), np.nanmean(x) if np.isfinite(x).any() else 0.0, x)
