@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from funcnet.errors import ChannelError, ParameterError
+from funcnet.robot.phases import direction_changes
 from funcnet.robot.preprocess import add_derived_signals, resample, staircase_signals, velocity
 from funcnet.robot.recording import Recording
 
@@ -178,6 +179,7 @@ def find_direction_changes(
         moves.append([a, b])
     t0 = float(recording.data.index[0])
     changes = []
+    turns = None
     for (a0, b0), (a1, b1) in zip(moves, moves[1:], strict=False):
         s0, s1 = np.sign(v[a0:b0].sum()), np.sign(v[a1:b1].sum())
         if s0 == s1 or s1 == 0:
@@ -185,7 +187,14 @@ def find_direction_changes(
         # no standstill between -- the set-point turns while moving, its speed at most dipping
         # below the standstill threshold as it crosses zero, its reading never held: continuous
         if a1 == b0 or not np.any(np.diff(x[b0 - 1 : a1 + 1]) == 0):
-            changes.append(_continuous(v, a0, b0, a1, b1, fast, t0, dt, int(s1)))
+            # bracketed by the stretches faster than the move threshold (robot.phases)
+            turns = direction_changes(recording, reference=reference, min_speed=fast) \
+                if turns is None else turns  # fmt: skip
+            at = round(t0 + b0 * dt, 9)
+            turn = next((u for u in turns if u.stop - 1e-9 <= at <= u.start + 1e-9), None)
+            bracket = (at, at, at) if turn is None else (turn.stop, turn.start, turn.time)
+            changes.append(DirectionChange(bracket[0], bracket[1], 0.0, int(s1), "continuous",
+                                           bracket[2]))  # fmt: skip
             continue
         dwell = (a1 - b0) * dt
         changes.append(
@@ -198,27 +207,6 @@ def find_direction_changes(
             )
         )
     return changes
-
-
-def _continuous(
-    v: np.ndarray, a0: int, b0: int, a1: int, b1: int, fast: float, t0: float, dt: float,
-    direction: int,
-) -> DirectionChange:  # fmt: skip
-    """A continuous change between the moves ``[a0, b0)`` and ``[a1, b1)``: bracketed by the last
-    sample of the first and the first of the second where the speed exceeds ``fast``; the turn
-    where the speed, linear between samples, crosses zero."""
-    before = a0 + int(np.flatnonzero(np.abs(v[a0:b0]) > fast)[-1])
-    after = a1 + int(np.flatnonzero(np.abs(v[a1:b1]) > fast)[0])
-    turn = b0 + int(np.flatnonzero(direction * v[b0 : a1 + 1] > 0)[0])
-    share = v[turn - 1] / (v[turn - 1] - v[turn]) if turn > 0 else 0.0
-    return DirectionChange(
-        stop=round(t0 + (before + 1) * dt, 9),
-        start=round(t0 + after * dt, 9),
-        dwell=0.0,
-        direction=direction,
-        kind="continuous",
-        turn=round(float(t0 + (turn - 1 + share) * dt), 9),
-    )
 
 
 def motor_side_recording(recording: Recording) -> Recording:
