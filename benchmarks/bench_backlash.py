@@ -7,6 +7,7 @@
     .venv/bin/python benchmarks/bench_backlash.py --lost-motion  # the lost motion vs its truth
     .venv/bin/python benchmarks/bench_backlash.py --with-fn      # the whole sweep with FN features
     .venv/bin/python benchmarks/bench_backlash.py --with-fn --trials 500 --report /tmp/s.html
+    .venv/bin/python benchmarks/bench_backlash.py --kuka         # the KUKA KR 300 runs' table
 
 Simulates :func:`funcnet.robot.sim.plan.backlash_sweep_plan` (1944 reversal trials: backlash x
 speed x TCP x friction x stiffness x 3 seeds x noise 1 and 2, sensors and logging of the real
@@ -339,6 +340,76 @@ def _lost_motion_other_sweeps(args: argparse.Namespace, out: list[str]) -> None:
             part.to_csv(args.save / f"lost_motion_{key}.csv", index=False)
 
 
+def _kuka_recording(rec: Any, axis: int) -> Any:
+    """One axis (1-based) of a KUKA run's ``rec`` struct: RP, MP, AP (axes 1-3), torque as AC."""
+    from funcnet.robot import Recording, SignalInfo
+
+    t = np.asarray(rec.time_cont, dtype=np.float64)
+    columns = {"RP": rec.ref_pos_deg, "MP": rec.act_pos_mot_deg, "AC": rec.act_torque_abs_nm}
+    if axis <= 3:
+        columns["AP"] = rec.act_pos_se_deg
+    data = pd.DataFrame({k: np.asarray(v[axis - 1], dtype=np.float64) for k, v in columns.items()},
+                        index=pd.Index(t, name="time"))  # fmt: skip
+    info = {c: SignalInfo(c, "torque" if c == "AC" else "posn", None, 0.004) for c in data}
+    return Recording(data, {}, info, source=f"axis {axis}", sample_period=0.004)
+
+
+def kuka_table() -> str:
+    """Per run and axis (1-3) of the KUKA KR 300 runs: the direction changes against the
+    set-point's (stretches faster than 1 deg/s), the lost motion at each with its interval and
+    ``traversed`` (also with the motor inertia of the runs' identification, ``para.J_mr`` times
+    the gear ratio ``para.u``), the axis's lost motion, the plain least squares (MP - AP on a
+    constant, the torque and the direction; motor faster than 1 deg/s) and the same with the
+    motor speed, and the gear's fit."""
+    import scipy.io
+
+    from funcnet.diagnosis import diagnose_recording
+    from funcnet.diagnosis.reversal_error import torque_traversed
+    from funcnet.diagnosis.reversals import motor_side_recording
+
+    lines = ["| run | axis | set-point changes | found | turn (s) | lost motion (arcmin) [95 %] "
+             "| traversed (with J_m) | axis lost_motion | plain LS | LS with speed | skew (ms) "
+             "| compliance (arcsec/N m) | reading |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
+    for run in ("A", "B"):
+        path = ROOT.parent / "shared" / "data" / "kuka-kr300" / f"kr300-run-{run}.mat"
+        mat = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)
+        rec, para = mat["rec"], mat["para"]
+        for axis in (1, 2, 3):
+            recording = _kuka_recording(rec, axis)
+            t = recording.data.index.to_numpy()
+            v = np.gradient(recording.data["RP"].to_numpy(), t)
+            fast = np.sign(v) * (np.abs(v) > 1.0)
+            signs = [s for i, s in enumerate(fast) if s and (i == 0 or s != fast[i - 1])]
+            expected = sum(a != b for a, b in zip(signs, signs[1:], strict=False))
+            result = diagnose_recording(recording, f"{run}{axis}")
+            inertia = float(para.J_mr[axis - 1] * para.u[axis - 1] * np.pi / 180)
+            moving = motor_side_recording(recording)
+            plain = []
+            for with_speed in (False, True):
+                mp, ap = recording.data["MP"].to_numpy(), recording.data["AP"].to_numpy()
+                torque, vm = recording.data["AC"].to_numpy(), np.gradient(mp, t)
+                use = np.abs(vm) > 1.0
+                x = np.column_stack([np.ones(use.sum()), torque[use]]
+                                    + ([vm[use]] if with_speed else []) + [np.sign(vm[use])])
+                coef, *_ = np.linalg.lstsq(x, (mp - ap)[use], rcond=None)
+                plain.append(2 * coef[-1] * 60)
+            for i, r in enumerate(result.reversals):
+                with_j = torque_traversed(moving, r.change, motor_inertia=inertia)
+                head = (f"| {run} | {axis} | {expected} | {len(result.reversals)} "
+                        if i == 0 else "| | | | ")  # fmt: skip
+                tail = (f"| {60 * result.lost_motion:+.2f} | {plain[0]:+.2f} | {plain[1]:+.2f} "
+                        f"| {1e3 * result.gear.skew:.2f} | {3600 * result.gear.compliance:.1f} "
+                        f"| {'none' if result.reading is None else result.reading['text']} |"
+                        if i == 0 else "| | | | | | |")  # fmt: skip
+                lines.append(
+                    f"{head}| {r.change.turn:.2f} | {60 * r.lost_motion:+.2f} "
+                    f"[{60 * r.lost_motion_low:+.2f}, {60 * r.lost_motion_high:+.2f}] "
+                    f"| {str(r.traversed).lower()} ({str(with_j).lower()}) {tail}"
+                )
+    return "\n".join(lines)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="a small sweep")
@@ -374,6 +445,7 @@ def main() -> None:
         "scores), then the motor-loop, elastic-arm and held-out sweeps",
     )
     parser.add_argument("--compare", action="store_true", help="only the real-vs-sim table")
+    parser.add_argument("--kuka", action="store_true", help="only the KUKA KR 300 runs' table")
     parser.add_argument(
         "--with-fn",
         action="store_true",
@@ -396,6 +468,9 @@ def main() -> None:
     )
     parser.add_argument("--save", type=Path, default=None, help="folder for the tables (CSV)")
     args = parser.parse_args()
+    if args.kuka:
+        print(kuka_table())
+        return
     if args.compare:
         print(compare_real())
         return
