@@ -225,8 +225,10 @@ def _scan_rows(
     n_chunks: int, capacity: int,
 ) -> tuple[Array, Array, Array, Array, Array]:
     """One pass (see _rate_rows): packed rows of key < lo, per-row counts of key < lo and
-    key <= hi, and the band lo <= key <= hi in ``n_chunks`` buffers of ``capacity`` (each
-    chunk is a block of rows; ``filled[c] > capacity`` means chunk c overflowed)."""
+    key <= hi, and the band lo <= key <= hi in ``n_chunks`` buffers of ``capacity``
+    (``filled[c] > capacity`` means chunk c overflowed). Chunk c takes every n_chunks-th row
+    pair from c on: a recording's band gathers in stretches of time (a robot at rest), which a
+    block of consecutive rows would collect in one chunk and overflow it."""
     n_rows = a.shape[0]
     n_iterations = _n_iterations(n_rows, auto)
     counts = np.zeros((n_rows, 2), dtype=np.int64)
@@ -237,8 +239,7 @@ def _scan_rows(
     for chunk in prange(n_chunks):
         keys = np.empty(packed.shape[1] * 64, dtype=np.float64)
         position = 0
-        first = chunk * n_iterations // n_chunks
-        for r in range(first, (chunk + 1) * n_iterations // n_chunks):
+        for r in range(chunk, n_iterations, n_chunks):
             for side in range(2):
                 i = _row_of(np.int64(r), side, n_rows, auto)
                 if i >= 0:
