@@ -47,6 +47,12 @@ NORMALIZE_CODE = {None: 0, "minmax": 1, "zscore": 2}
 # sample is off by more than _BRACKET_SIGMAS binomial standard deviations; a miss costs a
 # direct selection, never a wrong value).
 DIRECT_PAIRS = 6144
+#: Largest number of embedded states M for which a window, or one pair of
+#: :func:`funcnet.measures.cross_measures`, is computed by these kernels (thresholds selected
+#: among candidate distances that fit in cache); larger ones go through the per-window path,
+#: whose kernels for the whole matrix are faster there. Chosen by measurement
+#: (benchmarks/RESULTS.md, "Many short windows").
+DIRECT_MAX_STATES = 800
 _SAMPLE = 512
 _BRACKET_SIGMAS = 4.0
 
@@ -683,3 +689,44 @@ def _batch_kernel(
 #: region costs a wake-up of the other threads, which on a busy machine outweighs a small batch.
 batch_kernel = njit(cache=True, parallel=True)(_batch_kernel)
 batch_kernel_serial = njit(cache=True)(_batch_kernel)
+
+
+@njit(cache=True)
+def pair_kernel(
+    x: Array, y: Array, cast32: bool, dim: int, delay: int, metric: int, theiler: int,
+    strict: bool, rank_x: int, rank_y: int, rank_xy: int,
+) -> tuple[bool, float, int, float, int, float, int, float, float, float, float, bool, bool]:
+    """One pair of equally long signals, used as given (no normalization): the batch kernel on
+    one window of two signals, in the calling thread.
+
+    ``rank_x``, ``rank_y`` are ranks among the unordered candidates of A (0: nothing
+    recurrent), ``rank_xy`` that of CR. Returns ``(plain, eps_x, count_x, eps_y, count_y,
+    eps_xy, count_xy, c_xy, c_yx, t_xy, t_yx, constant_x, constant_y)``; ``plain`` is False,
+    and nothing computed, unless every value is finite and below 1e38 in magnitude (then the
+    float32 cast of ``cast32`` and every distance stay finite).
+    """
+    n = x.size
+    values = np.empty((n, 2), dtype=np.float64)
+    for t in range(n):
+        if not (abs(x[t]) < 1e38 and abs(y[t]) < 1e38):
+            return False, 0.0, 0, 0.0, 0, 0.0, 0, 0.0, 0.0, 0.0, 0.0, False, False
+        values[t, 0] = x[t]
+        values[t, 1] = y[t]
+    bounds = np.zeros(2, dtype=np.int64)
+    bounds[1] = n
+    pair_x = np.zeros(1, dtype=np.int64)
+    pair_y = np.ones(1, dtype=np.int64)
+    auto_rank = np.empty((1, 2), dtype=np.int64)
+    auto_rank[0, 0] = rank_x
+    auto_rank[0, 1] = rank_y
+    cross_rank = np.full(1, rank_xy, dtype=np.int64)
+    m = n - (dim - 1) * delay
+    auto_eps, auto_count, cross_eps, cross_count, measures, constant = batch_kernel_serial(
+        values, bounds[:1], bounds[1:], bounds, 0, cast32, dim, delay, metric, theiler, strict,
+        auto_rank, cross_rank, pair_x, pair_y, m, DIRECT_PAIRS,
+    )
+    return (
+        True, auto_eps[0, 0], auto_count[0, 0], auto_eps[0, 1], auto_count[0, 1],
+        cross_eps[0, 0], cross_count[0, 0], measures[0, 0, 0], measures[0, 0, 1],
+        measures[0, 0, 2], measures[0, 0, 3], constant[0, 0], constant[0, 1],
+    )

@@ -44,11 +44,9 @@ from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
 
 __all__ = ["DIRECT_MAX_STATES", "RESULT_FIELDS", "BatchPairs", "applies", "batch_pairs"]
 
-#: Largest number of embedded states M for which a window is computed by the batched kernels
-#: (thresholds selected among candidate distances that fit in cache); larger windows go
-#: through the per-window path, whose kernels for the whole matrix are faster there. Chosen by
-#: measurement (benchmarks/RESULTS.md, "Many short windows").
-DIRECT_MAX_STATES = 800
+#: Largest number of embedded states M for which a window is computed by the batched kernels;
+#: larger windows go through the per-window path (:data:`funcnet._batch_kernels.DIRECT_MAX_STATES`).
+DIRECT_MAX_STATES = _batch_kernels.DIRECT_MAX_STATES
 
 #: The per-pair numbers of a window, in the order of a pairs table
 #: (:data:`funcnet.network.schema.RESULT_COLUMNS`).

@@ -53,8 +53,15 @@ from typing import Any
 import numba
 import numpy as np
 
-from funcnet._isrn_kernels import _cross_triangles, _cross_triangles_both, _transpose_packed
-from funcnet.embedding import signal_states
+from funcnet import _batch_kernels
+from funcnet._isrn_kernels import (
+    _METRIC_CODE,
+    _cross_triangles,
+    _cross_triangles_both,
+    _transpose_packed,
+)
+from funcnet._order_statistic import _pyunicorn_rank, _rank_from_rate
+from funcnet.embedding import MIN_STATES, signal_states
 from funcnet.errors import (
     DegenerateWarning,
     FuncnetWarning,
@@ -174,18 +181,26 @@ class CrossMeasures:
     parameters: NetworkParameters | None
 
 
-def _block_reason(label: str, block: PackedRecurrence) -> str:
-    """Why a block is degenerate (``""`` when it is not)."""
-    if block.constant:
+def _degenerate_reason(
+    label: str, constant: bool, eps: float, rate: float, target: float | None
+) -> str:
+    """Why a block is degenerate (``""`` when it is not), from its threshold, achieved rate and
+    target rate (None: an explicit threshold)."""
+    if constant:
         return f"{label}: constant (a single distinct state)"
-    if block.eps == 0.0:
+    if eps == 0.0:
         return f"{label}: threshold 0 (too few distinct states)"
-    if block.target is not None and block.rate > 2 * block.target:
+    if target is not None and rate > 2 * target:
         return (
-            f"{label}: achieved rate {block.rate:.3g} over twice its target {block.target:.3g} "
+            f"{label}: achieved rate {rate:.3g} over twice its target {target:.3g} "
             "(too few distinct states)"
         )
     return ""
+
+
+def _block_reason(label: str, block: PackedRecurrence) -> str:
+    """Why a block is degenerate (``""`` when it is not)."""
+    return _degenerate_reason(label, block.constant, block.eps, block.rate, block.target)
 
 
 def isrn_measures(
@@ -522,11 +537,91 @@ def cross_measures(
     (0.0866, 0.0519, True)
     """
     p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
-    a_x, a_y, cr_xy = _isrn_blocks(x, y, p)
-    result = isrn_measures(a_x, a_y, cr_xy, parameters=p)
-    if warn:
+    result = _short_pair(x, y, p)
+    if result is None:
+        a_x, a_y, cr_xy = _isrn_blocks(x, y, p)
+        result = isrn_measures(a_x, a_y, cr_xy, parameters=p)
+    if warn and (not result.eps_ordered or result.rate_exceeded or result.degenerate):
         _warn({("x", "y"): result})
     return result
+
+
+def _short_pair(x: Any, y: Any, p: NetworkParameters) -> CrossMeasures | None:
+    """The measures of a short pair through the batched engine's kernel, or None.
+
+    Applies to equally long 1-D real signals of at most
+    :data:`funcnet._batch_kernels.DIRECT_MAX_STATES` states, thresholds by rate, values finite
+    and below 1e38 in magnitude; the kernel gives the general path's numbers bit for bit
+    (:mod:`funcnet._batch_kernels`) without its validation and packed blocks, which cost most
+    of a short pair's time. Everything else (including every input the
+    general path rejects) returns None and takes the general path.
+    """
+    if p.eps is not None:
+        return None
+    x, y = np.asarray(x), np.asarray(y)
+    if x.ndim != 1 or y.shape != x.shape or x.dtype.kind not in "biuf" or (
+        y.dtype.kind not in "biuf"
+    ):
+        return None
+    m = x.shape[0] - (p.dim - 1) * p.delay
+    if not MIN_STATES <= m <= _batch_kernels.DIRECT_MAX_STATES or p.theiler >= m - 1:
+        return None
+    rates = p.rr if isinstance(p.rr, tuple) else (p.rr, p.rr)
+    if len(rates) != 2:
+        return None
+    pyunicorn = p.rule == "pyunicorn"
+    n_candidates = (m - p.theiler) * (m - p.theiler - 1)
+    if pyunicorn:
+        ranks = [_pyunicorn_rank(rate, m, m * m) for rate in rates]
+        rank_xy = _pyunicorn_rank(p.cr, None, m * m)
+    else:
+        ranks = [_rank_from_rate(rate, n_candidates) for rate in rates]
+        rank_xy = _rank_from_rate(p.cr, m * m)
+    (plain, eps_x, count_x, eps_y, count_y, eps_xy, count_xy, c_xy, c_yx, t_xy, t_yx,
+     constant_x, constant_y) = _batch_kernels.pair_kernel(
+        np.ascontiguousarray(x, dtype=np.float64), np.ascontiguousarray(y, dtype=np.float64),
+        pyunicorn, p.dim, p.delay, _METRIC_CODE[p.metric], p.theiler, pyunicorn,
+        # Rank among the unordered candidates j > i + theiler (0: nothing recurrent).
+        (ranks[0] + 1) // 2, (ranks[1] + 1) // 2, rank_xy,
+    )
+    if not plain:
+        return None
+    rate_x, rate_y = count_x / n_candidates, count_y / n_candidates
+    rate_xy = count_xy / (m * m)
+    reasons = [
+        reason
+        for reason in (
+            _degenerate_reason("signal x", constant_x, eps_x, rate_x, rates[0]),
+            _degenerate_reason("signal y", constant_y, eps_y, rate_y, rates[1]),
+            _degenerate_reason("cross-recurrence (x, y)", False, eps_xy, rate_xy, p.cr),
+        )
+        if reason
+    ]
+    return CrossMeasures(
+        c_xy=c_xy,
+        c_yx=c_yx,
+        t_xy=t_xy,
+        t_yx=t_yx,
+        c_diff=c_xy - c_yx,
+        t_diff=t_xy - t_yx,
+        eps_x=eps_x,
+        eps_y=eps_y,
+        eps_xy=eps_xy,
+        achieved_rr_x=rate_x,
+        achieved_rr_y=rate_y,
+        achieved_cr=rate_xy,
+        eps_ordered=eps_xy < min(eps_x, eps_y),
+        # Recurrences come in symmetric pairs: an odd k always gives k + 1 without any tie.
+        rate_exceeded=(
+            count_x > 2 * ((ranks[0] + 1) // 2) or count_y > 2 * ((ranks[1] + 1) // 2)
+            or count_xy > rank_xy
+        ),
+        degenerate=bool(reasons),
+        degenerate_reason="; ".join(reasons),
+        m_x=m,
+        m_y=m,
+        parameters=p,
+    )
 
 
 def _pair_parameters(p: NetworkParameters, i: int, j: int) -> NetworkParameters:

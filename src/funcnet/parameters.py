@@ -14,6 +14,7 @@ Targets are named as the arguments (``rr``, ``cr``); what a computation achieved
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import numbers
 from collections.abc import Mapping
@@ -370,7 +371,32 @@ rule, theiler)
                 raise ParameterError.of(
                     str(key), f"is not a parameter here ({', '.join(allowed)})"
                 )
+    if all(type(value) in _PLAIN for value in overrides.values()):
+        # Plain values: the checked result is remembered (types in the key, so that 3.0 or True
+        # is never taken for 3), which saves the checks in a loop of short pairs.
+        spelled = tuple(
+            (name, type(value), value.hex() if type(value) is float else value)
+            for name, value in overrides.items()
+        )
+        return _resolved(parameters, spelled)
     base = parameters if parameters is not None else NetworkParameters()
     if not overrides:
         return base
     return base.replace(**overrides)
+
+
+_PLAIN = (int, float, str, type(None))
+
+
+@functools.lru_cache(maxsize=256)
+def _resolved(parameters: NetworkParameters | None,
+              spelled: tuple[tuple[str, type, Any], ...]) -> NetworkParameters:
+    """:func:`resolve` of plain overrides, spelled as ``(name, type, value)`` (a float by its
+    hex digits, so that -0.0 stays itself)."""
+    base = parameters if parameters is not None else NetworkParameters()
+    if not spelled:
+        return base
+    return base.replace(
+        **{name: float.fromhex(value) if kind is float else value
+           for name, kind, value in spelled}
+    )
