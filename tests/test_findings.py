@@ -502,7 +502,8 @@ def test_degenerate_pairs_do_not_count_in_the_mean_edge_weight():
 
 def test_pair_reading_tells_coupled_from_untestable_on_real_networks():
     from funcnet import functional_network
-    from funcnet.paper.coupling import pair_reading, untestable
+    from funcnet.evidence import untestable
+    from funcnet.paper.coupling import pair_reading
     from funcnet.systems import henon_pair
 
     x = henon_pair(800, 0.6, seed=1)
@@ -513,7 +514,8 @@ def test_pair_reading_tells_coupled_from_untestable_on_real_networks():
     short = functional_network(data, dim=2, delay=1, evidence=True, resamples=0, surrogates=9,
                                warn=False)
     row = short.pairs.iloc[0]
-    assert untestable(row["surrogates"], row["coupling_p"], 0.05)
+    assert untestable(short.pairs["surrogates"], 0.05).tolist() == [True]
+    assert row["evidence"] == "untestable" and not row["coupled"]
     assert pair_reading(short.pairs, "X", "Y", 0.05)[0] == "untestable"
     assert pair_reading(short.pairs, "X", "Z", 0.05)[0] == "untested"
 

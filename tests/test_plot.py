@@ -452,10 +452,11 @@ def test_pair_network_notes_come_from_the_flags():
 
 
 def evidence_pairs():
-    return pd.DataFrame({"x": ["RP", "RP", "AP"], "y": ["AP", "MP", "MP"],
-                         "kind": ["x->y", "y->x", "bidirectional"],
-                         "weight": [0.2, 0.4, 0.05],
-                         "evidence": ["coupled-directed", "asymmetry-only", "not-coupled"]})
+    return pd.DataFrame({"x": ["RP", "RP", "AP", "RP"], "y": ["AP", "MP", "MP", "V"],
+                         "kind": ["x->y", "y->x", "bidirectional", "x->y"],
+                         "weight": [0.2, 0.4, 0.05, 0.3],
+                         "evidence": ["coupled-directed", "asymmetry-only", "not-coupled",
+                                      "untestable"]})
 
 
 def test_edges_without_coupling_evidence_are_dotted_and_pale():
@@ -463,7 +464,8 @@ def test_edges_without_coupling_evidence_are_dotted_and_pale():
     arrows = {p.get_gid(): p for p in edge_patches(ax)}
     assert set(arrows) == {"edge:RP->AP:directed:coupled-directed",
                            "edge:MP->RP:directed:asymmetry-only",
-                           "edge:AP->MP:bidirectional:not-coupled"}
+                           "edge:AP->MP:bidirectional:not-coupled",
+                           "edge:RP->V:directed:untestable"}
     coupled = arrows["edge:RP->AP:directed:coupled-directed"]
     assert coupled.get_linestyle() == "-"
     assert coupled.get_edgecolor() == to_rgba(plot.DIRECTED_COLOR)
@@ -471,12 +473,19 @@ def test_edges_without_coupling_evidence_are_dotted_and_pale():
         assert arrows[gid].get_linestyle() == ":"
         assert arrows[gid].get_edgecolor() not in (to_rgba(plot.DIRECTED_COLOR),
                                                    to_rgba(plot.BIDIRECTIONAL_COLOR))
-    # the legend explains both styles
+    # an untestable pair is drawn neither as a finding nor as a tested absence
+    blind = arrows["edge:RP->V:directed:untestable"]
+    assert blind.get_linestyle() not in ("-", ":")
+    assert blind.get_edgecolor() not in {arrows[g].get_edgecolor() for g in arrows
+                                         if g != "edge:RP->V:directed:untestable"}
+    # the legend explains the three styles
     texts = [t.get_text() for t in ax.get_legend().get_texts()]
     handles = dict(zip(texts, ax.get_legend().legend_handles, strict=True))
     (solid,) = [t for t in texts if t.startswith("coupled")]
-    (dotted,) = [t for t in texts if t.startswith("not shown coupled")]
+    (dotted,) = [t for t in texts if "not shown coupled" in t]
+    (untested,) = [t for t in texts if t.startswith("untestable")]
     assert handles[solid].get_linestyle() == "-" and handles[dotted].get_linestyle() == ":"
+    assert handles[untested].get_linestyle() == blind.get_linestyle()
 
 
 def test_without_evidence_columns_the_drawing_is_unchanged():
@@ -486,9 +495,9 @@ def test_without_evidence_columns_the_drawing_is_unchanged():
     assert all(g.count(":") == 2 for g in (p.get_gid() for p in edge_patches(plain)))
     texts = [t.get_text() for t in plain.get_legend().get_texts()]
     assert not any("coupl" in t for t in texts)
-    assert len(with_evidence.get_legend().get_texts()) == len(texts) + 2
+    assert len(with_evidence.get_legend().get_texts()) == len(texts) + 3
     # rows of a study run without evidence (NaN) count as no evidence at all
-    gaps = evidence_pairs().assign(evidence=[None, None, None])
+    gaps = evidence_pairs().assign(evidence=[None] * 4)
     assert all(p.get_linestyle() == "-" for p in edge_patches(plot.plot_network(gaps)))
 
 

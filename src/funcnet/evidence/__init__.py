@@ -11,6 +11,8 @@ module             what it holds
 ``interval``       half-sampling (blocks without replacement) intervals of ``C_diff`` and
                    ``T_diff``, and the interval edge rule
 ``pairs``          :func:`pairwise_evidence` over a set of signals, and the reading of a pair
+``reading``        whether a pair's test could have rejected at all (:func:`untestable`),
+                   the labels of a network's pairs and why (:func:`evidence_readings`)
 =================  ==========================================================================
 
 This package sits above the measures and below the network (it never imports
@@ -52,6 +54,7 @@ from funcnet.evidence.pairs import (
     evidence_label,
     pairwise_evidence,
 )
+from funcnet.evidence.reading import evidence_readings, smallest_p_values, untestable
 from funcnet.evidence.surrogates import TwinPlan, twin_groups, twin_plan
 
 __all__ = [
@@ -70,15 +73,18 @@ __all__ = [
     "default_surrogates",
     "dependence_test",
     "evidence_label",
+    "evidence_readings",
     "half_samples",
     "interval_from",
     "interval_kind",
     "pairwise_evidence",
     "resampled_differences",
     "shift_plan",
+    "smallest_p_values",
     "surrogate_plan",
     "twin_groups",
     "twin_plan",
+    "untestable",
 ]
 
 #: Edge rules: the paper's (``mu`` only, the default) and ``mu`` with the interval.

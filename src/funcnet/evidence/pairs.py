@@ -14,14 +14,15 @@ The reading of a pair (:func:`evidence_label`):
                        the direction index is significant (BH-adjusted, ``direction``) and
                        the network's ``kind`` points the same way
 ``coupled``            dependence found, no direction supported
-``asymmetry-only``     no dependence found, yet the network's rule draws an arrow: the arrow
-                       rests on a difference of character only
-``not-coupled``        no dependence found, no arrow
+``untestable``         the test could not have rejected at ``alpha`` whatever the data (too
+                       few surrogates, :func:`funcnet.evidence.reading.untestable`)
+``asymmetry-only``     tested, no dependence found, yet the network's rule draws an arrow:
+                       the arrow rests on a difference of character only
+``not-coupled``        tested, no dependence found, no arrow
 =====================  ===================================================================
 
-"not-coupled" means the test found nothing, not that the signals are independent: short
-windows and smooth (long-memory) signals leave the test few surrogates and little power
-(docs/evidence.md).
+"not-coupled" means the test found nothing, not that the signals are independent: smooth
+(long-memory) signals leave the test few surrogates and little power (docs/evidence.md).
 """
 
 from __future__ import annotations
@@ -56,7 +57,7 @@ __all__ = ["EVIDENCE_LABELS", "PairEvidence", "pairwise_evidence", "evidence_lab
 
 #: The readings of a pair (the ``evidence`` column).
 EVIDENCE_LABELS: tuple[str, ...] = ("coupled-directed", "coupled", "not-coupled",
-                                    "asymmetry-only")
+                                    "asymmetry-only", "untestable")
 
 
 @dataclass(frozen=True)
@@ -104,7 +105,8 @@ class PairEvidence:
     direction: str
 
 
-def evidence_label(coupled: bool, direction: str, kind: str) -> str:
+def evidence_label(coupled: bool, direction: str, kind: str, *,
+                   untestable: bool = False) -> str:
     """The reading of a pair from its test result and the network's kind (module notes).
 
     Parameters
@@ -114,6 +116,9 @@ def evidence_label(coupled: bool, direction: str, kind: str) -> str:
         ``"x->y"``, ``"y->x"`` or ``""`` (the conditional-recurrence direction).
     kind : str
         The network's pair kind (``"x->y"``, ``"y->x"``, ``"bidirectional"``, ``"conflict"``).
+    untestable : bool
+        The test could not have rejected (:func:`funcnet.evidence.reading.untestable`): read
+        ``"untestable"`` rather than ``"asymmetry-only"`` or ``"not-coupled"``.
 
     Returns
     -------
@@ -126,11 +131,15 @@ def evidence_label(coupled: bool, direction: str, kind: str) -> str:
     ('asymmetry-only', 'coupled-directed')
     >>> evidence_label(True, "y->x", "x->y")  # the readings disagree
     'coupled'
+    >>> evidence_label(False, "", "x->y", untestable=True)
+    'untestable'
     """
     if coupled:
         # Two independent readings must agree: the conditional-recurrence direction alone named
         # a direction for 55 % of common-driver pairs (docs/evidence.md).
         return "coupled-directed" if direction and direction == kind else "coupled"
+    if untestable:
+        return "untestable"
     return "asymmetry-only" if kind in ("x->y", "y->x") else "not-coupled"
 
 

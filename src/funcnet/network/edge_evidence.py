@@ -18,7 +18,7 @@ from funcnet.errors import ParameterError
 from funcnet.evidence import (
     EDGE_RULES,
     check_evidence_arguments,
-    evidence_label,
+    evidence_readings,
     interval_kind,
     pairwise_evidence,
 )
@@ -31,7 +31,7 @@ from funcnet.parameters import NetworkParameters
 if TYPE_CHECKING:
     from funcnet.network.functional import FunctionalNetwork
 
-__all__ = ["add_evidence", "check_edge_rule", "evidence_columns"]
+__all__ = ["add_evidence", "check_edge_rule", "evidence_columns", "with_readings"]
 
 
 def check_edge_rule(edge_rule: Any, evidence: bool) -> None:
@@ -85,11 +85,11 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
     settings = {"surrogates": surrogates, "alpha": float(alpha), "seed": int(seed),
                 "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule,
                 "surrogate_method": surrogate_method}
-    return _with_evidence(pairs, found, p, edge_rule), settings
+    return _with_evidence(pairs, found, p, edge_rule, float(alpha)), settings
 
 
 def _with_evidence(pairs: pd.DataFrame, found: Mapping[tuple[str, str], PairEvidence],
-                   p: NetworkParameters, edge_rule: str) -> pd.DataFrame:
+                   p: NetworkParameters, edge_rule: str, alpha: float) -> pd.DataFrame:
     columns: dict[str, list[Any]] = {name: pairs[name].tolist() for name in PAIR_COLUMNS}
     rows = [found[(x, y)] for x, y in zip(columns["x"], columns["y"], strict=True)]
     if edge_rule == "interval":
@@ -100,13 +100,58 @@ def _with_evidence(pairs: pd.DataFrame, found: Mapping[tuple[str, str], PairEvid
         kinds = kinds_for(pd.DataFrame({"c_kind": c_kinds, "t_kind": t_kinds}), p.measure)
         columns.update(c_kind=c_kinds, t_kind=t_kinds, kind=kinds.tolist())
     for name in EVIDENCE_COLUMNS:
-        if name != "evidence":
+        if name not in _READING_COLUMNS:
             columns[name] = [getattr(e, name) for e in rows]
-    columns["evidence"] = [
-        evidence_label(e.coupled, e.direction, kind)
-        for e, kind in zip(rows, columns["kind"], strict=True)
-    ]
+    columns["evidence"], columns["evidence_reason"] = evidence_readings(
+        columns["coupled"], columns["coupling_p"], columns["surrogates"], columns["direction"],
+        columns["kind"], alpha)
     return pairs_frame(columns)
+
+
+#: The evidence columns read from the others (:func:`funcnet.evidence.evidence_readings`).
+_READING_COLUMNS = ("evidence", "evidence_reason")
+
+
+def with_readings(pairs: pd.DataFrame, alpha: float) -> pd.DataFrame:
+    """One network's pairs table with its ``evidence`` and ``evidence_reason`` read again.
+
+    For tables written before the ``untestable`` label and the reason existed (a JSON file, a
+    study's rows): the labels follow from the columns the test wrote (``coupled``,
+    ``coupling_p``, ``surrogates``, ``direction``, ``kind``), exactly as a fresh network's.
+
+    Parameters
+    ----------
+    pairs : pandas.DataFrame
+        The pairs of one network with the evidence columns (``evidence_reason`` may be missing;
+        other columns are kept).
+    alpha : float
+        The level the network's evidence was computed at.
+
+    Returns
+    -------
+    pandas.DataFrame
+        A copy with both columns (``evidence_reason`` right after ``evidence``).
+
+    Examples
+    --------
+    >>> old = pd.DataFrame({"coupled": [False], "coupling_p": [0.6], "surrogates": [4],
+    ...                     "direction": [""], "kind": ["x->y"], "evidence": ["asymmetry-only"]})
+    >>> with_readings(old, 0.05)[["evidence", "evidence_reason"]].values.tolist()
+    [['untestable', 'K=4 surrogates: smallest p 0.2 > alpha 0.05']]
+    """
+    labels, reasons = evidence_readings(pairs["coupled"].astype(bool).tolist(),
+                                        pairs["coupling_p"].tolist(),
+                                        pairs["surrogates"].tolist(),
+                                        pairs["direction"].astype(str).tolist(),
+                                        pairs["kind"].astype(str).tolist(), alpha)
+    out = pairs.copy()
+    out["evidence"] = pd.Series(labels, index=pairs.index, dtype="str")
+    reason = pd.Series(reasons, index=pairs.index, dtype="str")
+    if "evidence_reason" in out.columns:
+        out["evidence_reason"] = reason
+    else:
+        out.insert(out.columns.get_loc("evidence") + 1, "evidence_reason", reason)
+    return out
 
 
 def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | None = None,

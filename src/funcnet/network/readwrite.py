@@ -10,7 +10,9 @@ and every edge -- in the edges table, as a networkx or a GraphML arc -- carries 
   ``funcnet.FunctionalNetwork`` version 2; version 1 files (before the parameter contract) are
   read too: their columns ``rr_x``, ``rr_y``, ``cr`` become ``achieved_rr_x``,
   ``achieved_rr_y``, ``achieved_cr``, window metadata kept in their parameters moves to
-  ``window``, and their edges are rebuilt under ``degenerate="drop"``.
+  ``window``, and their edges are rebuilt under ``degenerate="drop"``. A version-2 file with
+  evidence written before the ``untestable`` label gets its ``evidence`` labels and the
+  ``evidence_reason`` column read from its test's columns (the numbers are unchanged).
 - **networkx** (:func:`to_networkx`): every node, one arc per directed edge and two per
   bidirectional one.
 - **GraphML** (:func:`write`): the networkx graph for other tools (scalar attributes only: the
@@ -32,9 +34,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import networkx as nx
+import pandas as pd
 
 from funcnet._io import atomic_path, write_text_atomic
 from funcnet.errors import ParameterError
+from funcnet.network.evidence import with_readings
 from funcnet.network.rule import edges_from_pairs
 from funcnet.network.schema import EDGE_COLUMNS, edges_frame, pairs_frame
 from funcnet.parameters import NetworkParameters
@@ -130,6 +134,17 @@ def _fields_v1(document: Mapping[str, Any]) -> dict[str, Any]:
     }
 
 
+def _pairs_read(document: Mapping[str, Any]) -> pd.DataFrame:
+    """The pairs table of a version-2 document; one written before the ``untestable`` label
+    and the ``evidence_reason`` column gets both, read from its test's columns."""
+    columns = document["pairs"]
+    if "evidence" not in columns or "evidence_reason" in columns:
+        return pairs_frame(columns)
+    alpha = float((document.get("evidence") or {})["alpha"])
+    frame = with_readings(pd.DataFrame(columns), alpha)
+    return pairs_frame({name: frame[name].tolist() for name in frame.columns})
+
+
 def fields_from_json(text: str) -> dict[str, Any]:
     """The fields of the network a JSON document holds (version 2 or 1).
 
@@ -170,7 +185,7 @@ def fields_from_json(text: str) -> dict[str, Any]:
         window = document["window"]
         return {
             "nodes": tuple(document["nodes"]),
-            "pairs": pairs_frame(document["pairs"]),
+            "pairs": _pairs_read(document),
             "edges": edges_frame(document["edges"]),
             "parameters": NetworkParameters.from_mapping(document["parameters"]),
             "n_samples": int(document["n_samples"]),
@@ -201,7 +216,8 @@ def to_networkx(network: FunctionalNetwork) -> nx.DiGraph:
         (``directed`` or ``bidirectional``) and ``degenerate``. The graph attributes hold
         ``label``, ``parameters`` (:meth:`NetworkParameters.to_dict`) and ``n_samples``.
         A network with evidence adds, on every arc, :data:`ARC_EVIDENCE`: ``coupling_p``,
-        ``coupled``, ``direction`` (``"A->B"`` in node names, or ``""``) and ``evidence``.
+        ``coupled``, ``direction`` (``"A->B"`` in node names, or ``""``), ``evidence`` and
+        ``evidence_reason``.
 
     References
     ----------
@@ -236,7 +252,7 @@ def to_networkx(network: FunctionalNetwork) -> nx.DiGraph:
 
 
 #: The evidence columns an arc carries (networkx, GraphML), when the network has them.
-ARC_EVIDENCE = ("coupling_p", "coupled", "direction", "evidence")
+ARC_EVIDENCE = ("coupling_p", "coupled", "direction", "evidence", "evidence_reason")
 
 
 def _edge_evidence(network: FunctionalNetwork) -> dict[frozenset[str], dict[str, Any]]:
@@ -245,12 +261,12 @@ def _edge_evidence(network: FunctionalNetwork) -> dict[frozenset[str], dict[str,
         return {}
     found: dict[frozenset[str], dict[str, Any]] = {}
     for row in network.pairs[["x", "y", *ARC_EVIDENCE]].itertuples(index=False):
-        x, y, p_value, coupled, direction, reading = row
+        x, y, p_value, coupled, direction, reading, reason = row
         # The direction is stored as the arc's source -> target, not as x/y.
         arrow = {"x->y": f"{x}->{y}", "y->x": f"{y}->{x}"}.get(str(direction), "")
         found[frozenset((x, y))] = {
             "coupling_p": float(p_value), "coupled": bool(coupled), "direction": arrow,
-            "evidence": str(reading),
+            "evidence": str(reading), "evidence_reason": str(reason),
         }
     return found
 

@@ -44,6 +44,10 @@ columns                                 dtype    meaning
 ``direction_p``                         float64  its surrogate p-value, BH-adjusted
 ``direction``                           str      ``"x->y"``, ``"y->x"`` or ``""``
 ``evidence``                            str      one of :data:`EVIDENCE_LABELS`
+                                                 (``untestable``: the test could not have
+                                                 rejected at ``alpha``)
+``evidence_reason``                     str      why, in one sentence (``K=4 surrogates:
+                                                 smallest p 0.2 > alpha 0.05``)
 ======================================  =======  ==============================================
 
 **Edges** (one row per directed edge or bidirectional pair): ``source``, ``target`` (str),
@@ -151,6 +155,7 @@ _EVIDENCE_DTYPES: dict[str, str] = {
     "direction_p": "float64",
     "direction": "str",
     "evidence": "str",
+    "evidence_reason": "str",
 }
 #: Column name -> dtype of the evidence group, in column order (after :data:`PAIR_COLUMNS`).
 EVIDENCE_DTYPES: Mapping[str, str] = MappingProxyType(_EVIDENCE_DTYPES)

@@ -10,8 +10,9 @@ intervals) and counts, per finding, the claimed relations whose pair the test sh
 Untestable is not uncoupled. The test's surrogates are time shifts of at least the
 decorrelation time; a short window holds few of them (4-12 on the paper's 140- and 300-sample
 robot windows, docs/evidence.md), and with ``K`` surrogates no p-value is below ``1/(K+1)``.
-A pair whose window holds so few that ``1/(K+1) > alpha`` (or none: ``coupling_p`` NaN) cannot
-be shown coupled whatever the data; it is counted as *untestable*, never as *not coupled*.
+A pair that could not have been shown coupled whatever the data (that bound, after the
+Benjamini-Hochberg adjustment over the window's pairs, above ``alpha``, or no surrogate at all:
+:func:`funcnet.evidence.untestable`) is counted as *untestable*, never as *not coupled*.
 
 References
 ----------
@@ -30,6 +31,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from funcnet.evidence import untestable
 from funcnet.paper.analyses import PaperAnalyses, TrialAnalysis
 from funcnet.paper.claims import (
     BASELINE,
@@ -39,8 +41,7 @@ from funcnet.paper.claims import (
     parse_claim,
 )
 
-__all__ = ["CouplingEvidence", "untestable", "pair_reading", "claimed_windows",
-           "claims_coupling"]
+__all__ = ["CouplingEvidence", "pair_reading", "claimed_windows", "claims_coupling"]
 
 #: A claimed relation: the trial analysis, the window key in it, and the claim text.
 ClaimSite = tuple[TrialAnalysis | None, Any, str]
@@ -60,7 +61,7 @@ class CouplingEvidence:
     not_coupled : int
         Tested and not shown coupled.
     untestable : int
-        Too few surrogates to reject at ``alpha`` (:func:`untestable`).
+        Too few surrogates to reject at ``alpha`` (:func:`funcnet.evidence.untestable`).
     untested : int
         No network, a signal left out of it, or the test failed on the window.
     max_untestable_surrogates : int
@@ -100,42 +101,15 @@ class CouplingEvidence:
         return "; ".join(parts)
 
 
-def untestable(surrogates: Any, coupling_p: Any, alpha: float) -> bool:
-    """Whether a pair's test could not have rejected at ``alpha`` whatever the data.
-
-    With ``K`` surrogates the smallest p-value is ``1/(K+1)``; when that exceeds ``alpha`` (or
-    the window held no surrogate, ``coupling_p`` NaN) the pair is untestable.
-
-    Parameters
-    ----------
-    surrogates : int
-        The pair's ``surrogates`` column.
-    coupling_p : float
-        Its ``coupling_p``.
-    alpha : float
-
-    Returns
-    -------
-    bool
-
-    Examples
-    --------
-    >>> untestable(12, 0.08, 0.05), untestable(19, 0.05, 0.05), untestable(0, float("nan"), 0.05)
-    (True, False, True)
-    """
-    k = 0 if surrogates is None or pd.isna(surrogates) else int(surrogates)
-    if k == 0 or coupling_p is None or pd.isna(coupling_p):
-        return True
-    return 1.0 / (k + 1) > alpha
-
-
 def pair_reading(pairs: pd.DataFrame, a: str, b: str, alpha: float) -> tuple[str, int]:
     """The test's reading of the pair ``a``-``b`` in a pairs table with evidence columns.
 
     Parameters
     ----------
     pairs : pandas.DataFrame
-        A pairs table with :data:`funcnet.network.schema.EVIDENCE_COLUMNS`.
+        One network's pairs table with :data:`funcnet.network.schema.EVIDENCE_COLUMNS` (all
+        its pairs: whether a pair is untestable depends on the others' surrogates through the
+        Benjamini-Hochberg adjustment, :func:`funcnet.evidence.untestable`).
     a, b : str
         The pair's signals, in either order.
     alpha : float
@@ -153,14 +127,15 @@ def pair_reading(pairs: pd.DataFrame, a: str, b: str, alpha: float) -> tuple[str
     >>> pair_reading(pairs, "B", "A", 0.05), pair_reading(pairs, "A", "C", 0.05)
     (('untestable', 8), ('untested', 0))
     """
-    rows = pairs[((pairs["x"] == a) & (pairs["y"] == b)) | ((pairs["x"] == b) & (pairs["y"] == a))]
-    if rows.empty:
+    match = (((pairs["x"] == a) & (pairs["y"] == b)) | ((pairs["x"] == b) & (pairs["y"] == a)))
+    if not match.any():
         return "untested", 0
-    row = rows.iloc[0]
+    where = int(np.flatnonzero(match.to_numpy())[0])
+    row = pairs.iloc[where]
     k = 0 if pd.isna(row["surrogates"]) else int(row["surrogates"])
     if bool(row["coupled"]):
         return "coupled", k
-    if untestable(row["surrogates"], row["coupling_p"], alpha):
+    if untestable(pairs["surrogates"].to_numpy(dtype=float), alpha)[where]:
         return "untestable", k
     return "not coupled", k
 

@@ -42,12 +42,18 @@ __all__ = [
     "edge_evidence",
 ]
 
-#: Readings of :data:`funcnet.network.schema.EVIDENCE_LABELS` whose pair the coupling test does
+#: Readings of :data:`funcnet.network.schema.EVIDENCE_LABELS` whose pair the coupling test did
 #: not show coupled: their edges are drawn dotted and pale (the paper's arrow, nothing more).
 NO_COUPLING_EVIDENCE = ("asymmetry-only", "not-coupled")
 UNCOUPLED_COLOR = "0.55"
 UNCOUPLED_BIDIRECTIONAL_COLOR = "#f0a0a0"  # a pale red: still bidirectional, not coupled
 UNCOUPLED_STYLE = ":"
+#: The reading of a pair whose test could not have rejected: drawn paler still, dash-dotted,
+#: so that it reads as neither a finding nor a tested absence.
+UNTESTABLE = "untestable"
+UNTESTABLE_COLOR = "0.75"
+UNTESTABLE_BIDIRECTIONAL_COLOR = "#f6c8c8"
+UNTESTABLE_STYLE = "-."
 
 
 def network_legend_handles(width_scale: float = 10.0, weight: float = 0.2, *,
@@ -64,13 +70,14 @@ def network_legend_handles(width_scale: float = 10.0, weight: float = 0.2, *,
         Add the entry of degenerate edges (grey, dashed).
     evidence : bool
         Add the entries of the evidence styles (a network with evidence columns): solid where
-        the coupling test shows the pair coupled, dotted and pale where it does not.
+        the coupling test shows the pair coupled, dotted and pale where it was tested and did
+        not, dash-dotted and paler where it could not have (untestable).
 
     Returns
     -------
     list of matplotlib.lines.Line2D
         Directed (black), bidirectional (red), optionally degenerate (grey, dashed), optionally
-        the two evidence styles, and a grey line of the reference weight's width.
+        the three evidence styles, and a grey line of the reference weight's width.
 
     References
     ----------
@@ -82,8 +89,10 @@ def network_legend_handles(width_scale: float = 10.0, weight: float = 0.2, *,
     ['directed (|diff| ≥ μ)', 'bidirectional (|diff| < μ)', 'weight 0.2 (width ∝ weight)']
     >>> network_legend_handles(degenerate=True)[2].get_label()
     'degenerate pair (arrow meaningless)'
-    >>> [h.get_linestyle() for h in network_legend_handles(evidence=True)[2:4]]
-    ['-', ':']
+    >>> [h.get_linestyle() for h in network_legend_handles(evidence=True)[2:5]]
+    ['-', ':', '-.']
+    >>> network_legend_handles(evidence=True)[4].get_label()
+    'untestable (too few surrogates)'
     """
     handles = [Line2D([], [], color=DIRECTED_COLOR, linewidth=1.5, marker=">",
                       label="directed (|diff| ≥ μ)"),
@@ -95,8 +104,10 @@ def network_legend_handles(width_scale: float = 10.0, weight: float = 0.2, *,
     if evidence:
         handles += [Line2D([], [], color=DIRECTED_COLOR, linewidth=1.5,
                            label="coupled (coupling test)"),
-                    Line2D([], [], color=UNCOUPLED_COLOR, linewidth=1.5, linestyle=":",
-                           label="not shown coupled")]
+                    Line2D([], [], color=UNCOUPLED_COLOR, linewidth=1.5,
+                           linestyle=":", label="tested, not shown coupled"),
+                    Line2D([], [], color=UNTESTABLE_COLOR, linewidth=1.5,
+                           linestyle="-.", label="untestable (too few surrogates)")]
     handles.append(Line2D([], [], color="0.4", linewidth=width_scale * weight,
                           label=f"weight {weight:g} (width ∝ weight)"))
     return handles
@@ -254,9 +265,10 @@ def plot_network(
         ``edge:SOURCE->TARGET:KIND``, black when directed and red when bidirectional; an edge
         of a degenerate pair is grey and dashed, with gid ``edge:SOURCE->TARGET:KIND:degenerate``.
         For a network with evidence (:func:`edge_evidence`), each edge's gid ends with its
-        pair's reading (``edge:RP->AP:directed:coupled``), and an edge whose pair the coupling
-        test does not show coupled (:data:`NO_COUPLING_EVIDENCE`) is dotted and pale (grey when
-        directed, pale red when bidirectional); without evidence columns nothing changes.
+        pair's reading (``edge:RP->AP:directed:coupled``), an edge whose pair the coupling
+        test did not show coupled (:data:`NO_COUPLING_EVIDENCE`) is dotted and pale (grey when
+        directed, pale red when bidirectional), and one whose test could not have
+        (``untestable``) dash-dotted and paler; without evidence columns nothing changes.
 
     References
     ----------
@@ -298,6 +310,9 @@ def plot_network(
         if reading in NO_COUPLING_EVIDENCE:
             color = UNCOUPLED_BIDIRECTIONAL_COLOR if bidirectional else UNCOUPLED_COLOR
             style = UNCOUPLED_STYLE
+        elif reading == UNTESTABLE:
+            color = UNTESTABLE_BIDIRECTIONAL_COLOR if bidirectional else UNTESTABLE_COLOR
+            style = UNTESTABLE_STYLE
         if edge.degenerate:
             color, style = DEGENERATE_COLOR, "--"
         arrow = FancyArrowPatch(

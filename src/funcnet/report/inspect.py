@@ -88,9 +88,12 @@ READING_AN_ARROW = (
     "(bidirectional) edge means |diff| < μ: mutual coupling or no coupling at all. Where the "
     "evidence columns are shown, 'coupled' means the joint-recurrence test rejected "
     "independence (time-shift surrogates, Benjamini-Hochberg across the pairs), "
-    "'coupled-directed' that the direction index agrees, and 'asymmetry-only' that the arrow "
-    "stands on an asymmetry the dependence test could not tell from chance. Compare arrows "
-    "between phases of the same trace, not between traces with other signals or parameters."
+    "'coupled-directed' that the direction index agrees, 'asymmetry-only' that the arrow "
+    "stands on an asymmetry the dependence test could not tell from chance, 'not-coupled' "
+    "that the test found nothing, and 'untestable' that the window left the test too few "
+    "surrogates to reject whatever the data (evidence_reason says how few): an untestable "
+    "pair is neither coupled nor uncoupled, only unread. Compare arrows between phases of the "
+    "same trace, not between traces with other signals or parameters."
 )
 
 _MOTION = ("standstill",)
@@ -435,10 +438,28 @@ def _summary_html(ins: TraceInspection) -> str:
                  + (f" ({len(ins.errors)} could not be computed: see "
                     "<a href=\"#problems\">problems</a>)" if ins.errors else "")
                  + (", each with its evidence columns" if ins.evidence and n_net else "")
+                 + _evidence_count(ins)
                  + (f"; {escape(', '.join(ins.resampled))} were interpolated onto the "
                     f"{ins.sample_period * 1e3:g} ms grid (recorded coarser)" if ins.resampled
                     else "") + ".</p>")
     return "".join(lines)
+
+
+def _evidence_count(ins: TraceInspection) -> str:
+    """``" (pairs: 3 coupled, 117 untestable ...)"``: the evidence labels over all windows."""
+    labels = [label for net in ins.networks.values() if "evidence" in net.pairs.columns
+              for label in net.pairs["evidence"]]
+    if not labels:
+        return ""
+    counts = pd.Series(labels).value_counts()
+    text = ", ".join(f"{n} {label}" for label, n in counts.items())
+    blind = [net.pairs.loc[net.pairs["evidence"] == "untestable", "surrogates"]
+             for net in ins.networks.values() if "evidence" in net.pairs.columns]
+    k = pd.concat(blind) if blind else pd.Series(dtype=float)
+    span = "" if not len(k) else str(k.min()) if k.min() == k.max() else f"{k.min()}–{k.max()}"
+    note = (f"; untestable: the windows leave the test {span} surrogates, too few to reject "
+            "whatever the data" if span else "")
+    return f" (pairs over the windows: {text}{note})"
 
 
 def _lost_motion_item(ins: TraceInspection) -> str:
@@ -482,8 +503,9 @@ def _network_tables(ins: TraceInspection) -> str:
         dropped = net.window.get("dropped") if net.window else ()
         note = f"; left out (constant): {', '.join(dropped)}" if dropped else ""
         columns = [c for c in ("x", "y", "kind", "weight", "c_diff", "t_diff", "degenerate",
-                               "evidence", "coupling_p", "direction", "c_diff_low",
-                               "c_diff_high") if c in net.pairs.columns]
+                               "evidence", "coupling_p", "surrogates", "direction",
+                               "c_diff_low", "c_diff_high", "evidence_reason")
+                   if c in net.pairs.columns]
         frame = net.pairs[columns].assign(kind=net.pairs["kind"].map(
             lambda k: f"{ARROWS.get(k, '')} {k}"))
         parts.append(f"<details><summary>{escape(w.label)} ({span}, {net.n_samples} samples"
@@ -521,8 +543,11 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
     add(3, "evidence", figure_evidence,
         "Figure 4 — pairs × windows: the arrow of each pair (→ X → Y, ← Y → X, ↔ "
         "bidirectional, × conflict, – left out), the cell coloured by what the evidence says "
-        "about it" + (" (coupling test and direction index of funcnet.evidence)."
-                      if ins.evidence else " (evidence not computed: coloured by kind)."))
+        "about it" + (" (coupling test and direction index of funcnet.evidence). A near-white "
+                      "cell with a grey arrow is untestable: its window left the test too few "
+                      "surrogates to reject at α whatever the data; the arrow is the rule's, "
+                      "not a finding." if ins.evidence
+                      else " (evidence not computed: coloured by kind)."))
     add(4, "lost-motion", figure_lost_motion,
         "Figure 5 — motor minus arm position (MP − AP, arcsec) around the start of the move "
         "after each direction change; the dotted line is where the set-point starts it. The "

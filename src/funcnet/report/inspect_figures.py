@@ -27,7 +27,11 @@ __all__ = ["figure_motion", "figure_networks", "figure_timeline", "figure_eviden
 ARROWS = {"x->y": "→", "y->x": "←", "bidirectional": "↔", "conflict": "×"}
 _EVIDENCE_COLORS = {"coupled-directed": "#1b7837", "coupled": "#7fbf7b",
                     "asymmetry-only": "#f1a340", "not-coupled": "#d9d9d9",
-                    "degenerate": "#9e9e9e", "left out": "#ffffff"}
+                    "untestable": "#f7f7f7", "degenerate": "#9e9e9e", "left out": "#ffffff"}
+#: The legend's words for the evidence readings (what each colour says).
+_EVIDENCE_LEGEND = {"asymmetry-only": "asymmetry-only (tested, not coupled)",
+                    "not-coupled": "not-coupled (tested)",
+                    "untestable": "untestable (too few surrogates)"}
 _MAX_MOVE_COLUMNS = 6  # the motion figure zooms into at most this many moves
 
 
@@ -152,7 +156,7 @@ def figure_networks(inspection: TraceInspection) -> Any:
     moves = sorted({_move_of(inspection, w) for w in inspection.windows}) or [0]
     cols = max(len(kinds), 1)
     fig = Figure(figsize=(2.6 * cols + 0.6, 2.7 * len(moves) + 1.0), layout="constrained")
-    degenerate = dropped = False
+    degenerate = dropped = with_evidence = False
     for w in inspection.windows:
         r, c = moves.index(_move_of(inspection, w)), kinds.index(str(w.phase))
         ax = fig.add_subplot(len(moves), cols, r * cols + c + 1)
@@ -168,10 +172,11 @@ def figure_networks(inspection: TraceInspection) -> Any:
         ax.set_yticks([])
         degenerate |= bool(plot.network_edges(net)["degenerate"].any())
         dropped |= bool(net.window and net.window.get("dropped"))
-    legend = plot.add_network_legend(fig, degenerate=degenerate)
+        with_evidence |= "evidence" in net.pairs.columns
+    legend = plot.add_network_legend(fig, degenerate=degenerate, evidence=with_evidence)
     if dropped:
         legend.remove()
-        handles = [*plot.network_legend_handles(degenerate=degenerate),
+        handles = [*plot.network_legend_handles(degenerate=degenerate, evidence=with_evidence),
                    Line2D([], [], color="0.2", linestyle="--", marker="o", markersize=9,
                           markerfacecolor="white", linewidth=0,
                           label="dashed node: left out (constant in the window)")]
@@ -229,7 +234,9 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     Returns
     -------
     matplotlib.figure.Figure
-        Without evidence columns, cells are coloured by edge kind instead.
+        Without evidence columns, cells are coloured by edge kind instead. An untestable pair
+        (its test could not have rejected) is near white, its arrow grey: the arrow is the
+        rule's, not a finding.
     """
     from matplotlib.colors import to_rgb
     from matplotlib.figure import Figure
@@ -263,13 +270,13 @@ def figure_evidence(inspection: TraceInspection) -> Any:
             used[key] = colour
             image[r, c] = to_rgb(colour)
             ax.text(c, r, ARROWS.get(str(row["kind"]), "?"), ha="center", va="center",
-                    fontsize=10)
+                    fontsize=10, color="0.55" if key == "untestable" else "black")
     ax.imshow(image, aspect="auto", interpolation="nearest")
     ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
     ax.set_yticks(range(len(pairs)), [f"{a}–{b}" for a, b in pairs], fontsize=9)
     ax.set_ylabel("pair X–Y (arrow: → X drives Y in the rule's sense)", fontsize=9)
-    handles = [Patch(facecolor=colour, edgecolor="0.5", label=key) for key, colour in
-               used.items()]
+    handles = [Patch(facecolor=colour, edgecolor="0.5", label=_EVIDENCE_LEGEND.get(key, key))
+               for key, colour in used.items()]
     fig.legend(handles=handles, loc="outside right upper", fontsize=9, frameon=False,
                title="evidence" if inspection.evidence else "edge kind", title_fontsize=9)
     return fig

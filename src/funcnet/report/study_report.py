@@ -178,46 +178,78 @@ def evidence_counts(rows: pd.DataFrame, alpha: float = 0.05) -> pd.DataFrame:
     rows : pandas.DataFrame
         The rows of one parameter set, with the evidence columns.
     alpha : float
-        The study's ``[evidence] alpha`` (for :func:`funcnet.paper.coupling.untestable`).
+        The study's ``[evidence] alpha`` (for :func:`funcnet.evidence.untestable`).
 
     Returns
     -------
     pandas.DataFrame
         ``window, pairs, coupled`` (``coupled`` and ``coupled-directed``),
-        ``coupled-directed, asymmetry-only`` (the paper's arrow, nothing supports coupling),
-        ``not-coupled, untestable`` (among the pairs not shown coupled: too few surrogates to
-        reject at ``alpha``), ``surrogates`` (their range), windows in order of first start.
+        ``coupled-directed, asymmetry-only`` (tested, the paper's arrow, nothing supports
+        coupling), ``not-coupled`` (tested, no arrow), ``untestable`` (the test could not have
+        rejected at ``alpha``: too few surrogates), ``surrogates`` (their range), windows in
+        order of first start. Rows written before the ``untestable`` label are read as a new
+        network's: ``untestable`` from each network's surrogates.
 
     Examples
     --------
     >>> rows = pd.DataFrame({"window": ["cruise"] * 3, "start": [1.0] * 3,
-    ...                      "evidence": ["coupled", "asymmetry-only", "not-coupled"],
+    ...                      "evidence": ["coupled", "asymmetry-only", "untestable"],
     ...                      "coupled": [True, False, False], "coupling_p": [0.01, 0.3, 0.5],
-    ...                      "surrogates": [100, 12, 100]})
+    ...                      "surrogates": [299, 299, 12]})
     >>> evidence_counts(rows).iloc[0].to_dict()  # doctest: +NORMALIZE_WHITESPACE
     {'window': 'cruise', 'pairs': 3, 'coupled': 1, 'coupled-directed': 0,
-     'asymmetry-only': 1, 'not-coupled': 1, 'untestable': 1, 'surrogates': '12–100'}
+     'asymmetry-only': 1, 'not-coupled': 0, 'untestable': 1, 'surrogates': '12–299'}
     """
-    from funcnet.paper.coupling import untestable
+    from funcnet.evidence import untestable
 
     rows = rows[rows["evidence"].notna()]
+    # Whether a pair was untestable depends on its network's other pairs (the adjustment).
+    networks = [c for c in _WINDOW_KEYS if c in rows.columns]
+    blind = pd.Series(False, index=rows.index)
+    for _, network in rows.groupby(networks, sort=False, dropna=False):
+        blind[network.index] = untestable(network["surrogates"].to_numpy(dtype=float), alpha) \
+            & ~network["coupled"].astype(bool).to_numpy()
     out = []
     for window, group in rows.sort_values("start", kind="stable").groupby("window", sort=False):
         label = group["evidence"].astype(str)
-        blind = [not bool(c) and untestable(k, p, alpha) for c, k, p in
-                 zip(group["coupled"], group["surrogates"], group["coupling_p"], strict=True)]
+        tested = ~blind[group.index]
         k = group["surrogates"].astype(float)
         out.append({"window": str(window), "pairs": len(group),
                     "coupled": int(label.isin(["coupled", "coupled-directed"]).sum()),
                     "coupled-directed": int((label == "coupled-directed").sum()),
-                    "asymmetry-only": int((label == "asymmetry-only").sum()),
-                    "not-coupled": int((label == "not-coupled").sum()),
-                    "untestable": int(sum(blind)),
+                    "asymmetry-only": int(((label == "asymmetry-only") & tested).sum()),
+                    "not-coupled": int(((label == "not-coupled") & tested).sum()),
+                    "untestable": int(blind[group.index].sum()),
                     "surrogates": f"{k.min():g}–{k.max():g}" if k.min() != k.max()
                     else f"{k.min():g}"})
     return pd.DataFrame(out, columns=["window", "pairs", "coupled", "coupled-directed",
                                       "asymmetry-only", "not-coupled", "untestable",
                                       "surrogates"])
+
+
+def _read_labels(rows: pd.DataFrame, alpha: float, networks: Sequence[str]) -> pd.DataFrame:
+    """Rows with evidence written before the ``untestable`` label, labelled as a network with
+    evidence is now (:func:`funcnet.network.evidence.with_readings`, per network)."""
+    if not has_evidence(rows):
+        return rows
+    stale = rows["evidence"].notna()
+    if "evidence_reason" in rows.columns:
+        stale &= rows["evidence_reason"].isna()
+    if not stale.any():
+        return rows
+    from funcnet.network.evidence import with_readings
+
+    rows = rows.copy()
+    if "evidence_reason" not in rows.columns:
+        rows.insert(rows.columns.get_loc("evidence") + 1, "evidence_reason",
+                    pd.Series(pd.NA, index=rows.index, dtype="object"))
+    keys = [c for c in networks if c in rows.columns]
+    for _, network in rows[stale].groupby(keys, sort=False, dropna=False):
+        read = with_readings(network, alpha)
+        rows.loc[network.index, "evidence"] = read["evidence"].to_numpy(dtype=object)
+        rows.loc[network.index, "evidence_reason"] = read["evidence_reason"].to_numpy(
+            dtype=object)
+    return rows
 
 
 def _consensus_figure(table_: pd.DataFrame) -> Any:
@@ -338,6 +370,7 @@ def write_report(
     run = document.get("run", {})
     alpha = float(((document.get("study") or {}).get("evidence") or {}).get("alpha", 0.05))
     parameters = [c for c in PARAMETER_COLUMNS.values() if c in rows.columns]
+    rows = _read_labels(rows, alpha, [*_WINDOW_KEYS, "signals", *parameters])
     varying = [c for c in parameters if rows[c].astype(str).nunique() > 1]
     settings = list(rows.groupby(varying, sort=False, dropna=False)) if varying else [((), rows)]
     n_networks = rows.groupby([*_WINDOW_KEYS, *parameters], dropna=False).ngroups
@@ -375,7 +408,8 @@ def write_report(
                                  "Black arrow: directed; red: bidirectional (mutual or no "
                                  "coupling); width ∝ weight (Eq. 13)."
                                  + (" Dotted, pale: the coupling test does not show the pair "
-                                    "coupled (asymmetry-only or not-coupled)."
+                                    "coupled (asymmetry-only or not-coupled); dash-dotted, "
+                                    "paler: untestable (the test could not have rejected)."
                                     if has_evidence(mine) else "")))
         if len(windows) >= 3:
             step(progress, 3 * k + 2, steps, f"report: {label}: timeline")
@@ -388,9 +422,11 @@ def write_report(
             parts += ["<h4>Coupling evidence</h4>",
                       "<p>Per window label, over the recordings: pairs the joint-recurrence "
                       f"test shows coupled (α = {alpha:g}, Benjamini–Hochberg over each "
-                      "network's pairs), arrows without coupling evidence (asymmetry-only), and "
-                      "pairs the test could not have shown coupled (untestable: with K "
-                      "surrogates no p-value is below 1/(K+1); short windows hold few). "
+                      "network's pairs), tested arrows without coupling evidence "
+                      "(asymmetry-only), tested pairs without an arrow (not-coupled), and pairs "
+                      "the test could not have shown coupled whatever the data (untestable: "
+                      "with K surrogates no p-value is below 1/(K+1), and the adjustment over "
+                      "the network's pairs never lowers it; short windows hold few). "
                       "Untestable is not uncoupled. The pairs tables below have every "
                       "evidence column.</p>", table(evidence_counts(group, alpha))]
         sections.append("".join(parts))
