@@ -67,7 +67,8 @@ Evidence = Annotated[
         "recurrences against time-shift surrogates (coupling_p, Benjamini-Hochberg adjusted; "
         "coupled), intervals of C_diff and T_diff, a direction index, and the reading "
         "'evidence' (coupled-directed, coupled, not-coupled, asymmetry-only = an arrow "
-        "without coupling evidence). Off: the paper's network only.",
+        "without coupling evidence, untestable = too few surrogates to reject at alpha "
+        "whatever the data) with its evidence_reason. Off: the paper's network only.",
     ),
 ]
 Surrogates = Annotated[
@@ -285,9 +286,10 @@ _PAIRS_CAPTION = (
 )
 _DEGENERATE_CAPTION = {"drop": "no edges", "keep": "flagged edges"}
 _EVIDENCE_CAPTION = (
-    "coupling_p: the coupling test's adjusted p-value (it cannot be below 1/(surrogates+1): "
-    "with few surrogates a pair is untestable, not uncoupled); asymmetry-only = an arrow "
-    "without coupling evidence"
+    "coupling_p: the coupling test's adjusted p-value (it cannot be below 1/(surrogates+1)); "
+    "untestable = the test could not have rejected whatever the data (few surrogates: not "
+    "uncoupled, evidence_reason says why); asymmetry-only = a tested arrow without coupling "
+    "evidence"
 )
 
 

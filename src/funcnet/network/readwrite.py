@@ -38,7 +38,7 @@ import pandas as pd
 
 from funcnet._io import atomic_path, write_text_atomic
 from funcnet.errors import ParameterError
-from funcnet.network.evidence import with_readings
+from funcnet.network.edge_evidence import with_readings
 from funcnet.network.rule import edges_from_pairs
 from funcnet.network.schema import EDGE_COLUMNS, edges_frame, pairs_frame
 from funcnet.parameters import NetworkParameters

@@ -229,7 +229,7 @@ def evidence_counts(rows: pd.DataFrame, alpha: float = 0.05) -> pd.DataFrame:
 
 def _read_labels(rows: pd.DataFrame, alpha: float, networks: Sequence[str]) -> pd.DataFrame:
     """Rows with evidence written before the ``untestable`` label, labelled as a network with
-    evidence is now (:func:`funcnet.network.evidence.with_readings`, per network)."""
+    evidence is now (:func:`funcnet.network.edge_evidence.with_readings`, per network)."""
     if not has_evidence(rows):
         return rows
     stale = rows["evidence"].notna()
@@ -237,7 +237,7 @@ def _read_labels(rows: pd.DataFrame, alpha: float, networks: Sequence[str]) -> p
         stale &= rows["evidence_reason"].isna()
     if not stale.any():
         return rows
-    from funcnet.network.evidence import with_readings
+    from funcnet.network.edge_evidence import with_readings
 
     rows = rows.copy()
     if "evidence_reason" not in rows.columns:
