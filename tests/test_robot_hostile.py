@@ -205,9 +205,13 @@ def test_records_after_the_frame_end(tmp_path):
 
 def test_csv_with_nan_or_text(tmp_path):
     good = "time,RP,AC\n0.000,1,2\n0.002,1.5,2\n"
-    expect(tmp_path, good + "0.004,,3\n", TraceFormatError, "line 4: column 'RP' holds ''", "c.csv")
-    expect(tmp_path, good + "0.004,NaN,3\n", TraceFormatError, "line 4.*'RP'.*'NaN'", "c.csv")
+    # A missing value is a gap (tests/test_robot_formats.py); text where a number belongs is not.
     expect(tmp_path, good + "0.004,1,volts\n", TraceFormatError, "line 4.*'AC'.*'volts'", "c.csv")
+    expect(tmp_path, good + "0.004,1,3\n0.006,,4\n0.008,x1,4\n", TraceFormatError,
+           "line 6.*'RP'.*'x1'", "c.csv")
+    expect(tmp_path, good + "0.004,1,inf\n", TraceFormatError, "line 4.*'AC'.*'inf'", "c.csv")
+    expect(tmp_path, good + ",1,3\n", TraceFormatError, "line 4: time is missing",
+           "c.csv")
     expect(tmp_path, good + "0.002,1,2\n", TraceFormatError, "line 4.*does not increase", "c.csv")
     expect(tmp_path, good + "0.005,1,2\n", TraceFormatError, "line 4.*not on the", "c.csv")
     expect(tmp_path, "RP,AC\n1,2\n", TraceFormatError, "one 'time' column", "c.csv")

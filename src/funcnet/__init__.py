@@ -55,6 +55,7 @@ _EXPORTS = {
     "ThresholdWarning": "funcnet.errors",
     "DegenerateWarning": "funcnet.errors",
     "StaircaseWarning": "funcnet.errors",
+    "RecordingWarning": "funcnet.errors",
 }
 
 __getattr__, _dir, _names = attach(__name__, _EXPORTS)

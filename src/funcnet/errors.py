@@ -23,6 +23,7 @@ __all__ = [
     "ThresholdWarning",
     "DegenerateWarning",
     "StaircaseWarning",
+    "RecordingWarning",
 ]
 
 
@@ -137,3 +138,10 @@ class DegenerateWarning(ThresholdWarning):
 
 class StaircaseWarning(FuncnetWarning):
     """A network is computed on a signal held constant between coarser native samples."""
+
+
+class RecordingWarning(FuncnetWarning):
+    """A recording was read, but part of it is not usable as it stands; the message names the
+    file and what was done. ``problem`` is ``"gap"`` (missing values: the recording is split
+    into segments), ``"constant"`` (a channel constant over the whole recording, left out) or
+    ``"duplicate"`` (a column name given twice, both left out); ``signals`` names them."""

@@ -14,6 +14,12 @@ as written. An entry a user supplies (a dict or a TOML file, not one of the defa
 a signal of the trace it is applied to: :func:`check_entries` refuses one that matches none, so
 an entry written the wrong way round (``RC = "nckServoDataCmdCurr32"``) or naming a signal the
 trace lacks is an error, not silently ignored.
+
+Files that store signals as named arrays (MATLAB, HDF5) name a signal by its path: a struct's
+field ``rec.ref_pos_deg``, a dataset ``/rec/ref_pos``. An entry names it by the whole path or by
+any tail of it (``ref_pos_deg``, ``"rec.ref_pos_deg"``; :func:`resolve_fields`). The role
+``time`` marks the file's time signal; a ``[units]`` table gives units to signals whose file does
+not state them (``act_torque_abs_nm = "N m"``).
 """
 
 from __future__ import annotations
@@ -38,6 +44,9 @@ __all__ = [
     "channel_map",
     "check_entries",
     "select_axis",
+    "field_keys",
+    "resolve_fields",
+    "TIME_ROLE",
 ]
 
 #: The five signals the paper records (section 3.2), in the paper's order.
@@ -47,6 +56,8 @@ _SIGNAL_NAME = re.compile(
     r"^\s*(?P<path>.*/)?(?P<base>[^/\[\]]*?)\s*(?:\[\s*u(?P<unit>\d+)\s*,\s*(?P<axis>\d+)\s*\])?\s*$"
 )
 _ROLE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+#: The role of a file's time signal (seconds), in any case.
+TIME_ROLE = "time"
 
 
 @dataclass(frozen=True)
@@ -66,12 +77,16 @@ class SignalInfo:
     interval : float
         The native interval in seconds: a value can change at most this often. A signal whose
         interval is coarser than the recording's grid is a staircase on that grid.
+    unit : str or None
+        The physical unit (``"deg"``, ``"N m"``) where the file or the channel map states it;
+        a torque standing in the role of the current AC shows its unit here.
     """
 
     name: str
     units_type: str | None
     data_type: str | None
     interval: float
+    unit: str | None = None
 
 
 @dataclass(frozen=True)
@@ -130,9 +145,12 @@ class ChannelMap:
     ----------
     roles : Mapping[str, str]
         Signal name (without suffix) -> role. Roles are identifiers; the paper's are
-        :data:`ROLES`, in any case (``"ap"`` is stored as ``"AP"``).
+        :data:`ROLES`, in any case (``"ap"`` is stored as ``"AP"``), and :data:`TIME_ROLE`
+        (stored as ``"time"``) marks a file's time signal.
     origin : str, optional
         The TOML file the map was read from, named in errors.
+    units : Mapping[str, str], optional
+        Signal name -> its unit, for files that do not state it.
 
     Examples
     --------
@@ -147,6 +165,7 @@ class ChannelMap:
 
     roles: Mapping[str, str] = field(default_factory=dict)
     origin: str | None = None
+    units: Mapping[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         clean: dict[str, str] = {}
@@ -156,8 +175,19 @@ class ChannelMap:
                     f"channels: {key!r} -> {role!r}; a role must be an identifier such as 'RP'"
                 )
             parts = parse_signal_name(key)
-            clean[parts.path + parts.base] = role.upper() if role.upper() in ROLES else role
+            if role.upper() in ROLES:
+                role = role.upper()
+            elif role.lower() == TIME_ROLE:
+                role = TIME_ROLE
+            clean[parts.path + parts.base] = role
+        units: dict[str, str] = {}
+        for key, unit in dict(self.units).items():
+            if not isinstance(key, str) or not isinstance(unit, str) or not unit.strip():
+                raise ParameterError(f"units: {key!r} -> {unit!r}; a unit is a text such as 'N m'")
+            parts = parse_signal_name(key)
+            units[parts.path + parts.base] = unit.strip()
         object.__setattr__(self, "roles", MappingProxyType(clean))
+        object.__setattr__(self, "units", MappingProxyType(units))
 
     def role_of(self, name: str) -> str | None:
         """Return the role of the signal ``name`` (full controller name), or None."""
@@ -171,12 +201,21 @@ class ChannelMap:
         """Return the column name for the signal ``name``: its role, else its base name."""
         return self.role_of(name) or parse_signal_name(name).base
 
-    def updated(self, roles: Mapping[str, str], *, origin: str | None = None) -> ChannelMap:
-        """Return this map with ``roles`` added; a role given in ``roles`` replaces its old keys."""
-        new = ChannelMap(roles)
+    def updated(
+        self,
+        roles: Mapping[str, str],
+        *,
+        origin: str | None = None,
+        units: Mapping[str, str] | None = None,
+    ) -> ChannelMap:
+        """Return this map with ``roles`` (and ``units``) added; a role given in ``roles``
+        replaces its old keys."""
+        new = ChannelMap(roles, units=units or {})
         new_roles = set(new.roles.values())
         kept = {key: role for key, role in self.roles.items() if role not in new_roles}
-        return ChannelMap({**kept, **new.roles}, origin=origin or self.origin)
+        return ChannelMap(
+            {**kept, **new.roles}, origin=origin or self.origin, units={**self.units, **new.units}
+        )
 
 
 #: SINUMERIK defaults (paper section 3.2; ``../shared/data/sinumerik/README.md``).
@@ -203,13 +242,23 @@ def channel_map(
         None gives :data:`DEFAULT_CHANNEL_MAP`. A dict ``{signal name: role}`` is applied over the
         defaults (a role it names replaces the default signal for that role). A TOML file holds
         the same pairs in a ``[channels]`` table, and ``defaults = false`` at top level to start
-        from an empty map instead of the defaults. The paper's roles are case-insensitive. Each
-        entry that is not one of the defaults must match a signal of the trace it is used on
-        (see :func:`check_entries`)::
+        from an empty map instead of the defaults; an optional ``[units]`` table gives signals
+        their units. The paper's roles are case-insensitive. Each entry that is not one of the
+        defaults must match a signal of the trace it is used on (see :func:`check_entries`)::
 
             defaults = true
             [channels]
             nckServoDataCmdCurr32Set = "RC"
+
+        A MATLAB file (``examples/kuka-kr300-channels.toml``)::
+
+            defaults = false
+            [channels]
+            "rec.time_cont" = "time"
+            ref_pos_deg = "RP"
+            act_torque_abs_nm = "AC"
+            [units]
+            act_torque_abs_nm = "N m"
 
     Returns
     -------
@@ -248,23 +297,26 @@ def channel_map(
     except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
         raise ChannelError(path, f"cannot read the channel map: {exc}") from exc
     table = document.get("channels", {})
+    units = document.get("units", {})
     use_defaults = document.get("defaults", True)
-    unknown = set(document) - {"channels", "defaults"}
+    unknown = set(document) - {"channels", "defaults", "units"}
     if (
         not isinstance(table, dict)
+        or not isinstance(units, dict)
         or not isinstance(use_defaults, bool)
         or unknown
         or not all(isinstance(role, str) for role in table.values())
     ):
         raise ChannelError(
             path,
-            "a channel map is a [channels] table of 'signal name = \"ROLE\"' pairs and an "
-            "optional top-level 'defaults = true|false'"
+            "a channel map is a [channels] table of 'signal name = \"ROLE\"' pairs, an "
+            "optional [units] table of 'signal name = \"unit\"' pairs and an optional "
+            "top-level 'defaults = true|false'"
             + (f"; unknown keys {sorted(unknown)}" if unknown else ""),
         )
     try:
         start = DEFAULT_CHANNEL_MAP if use_defaults else ChannelMap()
-        return start.updated(table, origin=str(path))
+        return start.updated(table, origin=str(path), units=units)
     except ParameterError as exc:
         raise ChannelError(path, str(exc)) from exc
 
@@ -300,6 +352,20 @@ def check_entries(cmap: ChannelMap, names: Iterable[str], path: object) -> None:
     """  # noqa: E501
     parts = [parse_signal_name(name) for name in names]
     present = {p.base for p in parts} | {p.path + p.base for p in parts}
+    _refuse_unmatched(cmap, present, sorted({p.base for p in parts}), path)
+
+
+def _refuse_unmatched(
+    cmap: ChannelMap, present: set[str], signals: list[str], path: object
+) -> None:
+    """The check of :func:`check_entries`, given the keys that match a signal."""
+    for key in cmap.units:
+        if key not in present:
+            where = "channel map " + cmap.origin if cmap.origin else "units"
+            raise ChannelError(
+                path, f"{where}: unit of {key!r} given, but no signal is called so; its signals "
+                f"are {signals}"
+            )
     for key, role in cmap.roles.items():
         if key in present or DEFAULT_CHANNEL_MAP.roles.get(key) == role:
             continue
@@ -312,8 +378,85 @@ def check_entries(cmap: ChannelMap, names: Iterable[str], path: object) -> None:
                 f'; entries are "signal name" = "ROLE": did you mean {role!r} = {key.upper()!r}?'
             )
         else:
-            message += f"; its signals are {sorted({p.base for p in parts})}"
+            message += f"; its signals are {signals}"
         raise ChannelError(path, message)
+
+
+def field_keys(name: str, separator: str) -> list[str]:
+    """The channel-map keys that name a signal stored at a path, the most specific first.
+
+    Parameters
+    ----------
+    name : str
+        The signal's path in its file: ``rec.ref_pos_deg`` (MATLAB, ``separator="."``) or
+        ``/rec/ref_pos`` (HDF5, ``separator="/"``).
+    separator : str
+
+    Returns
+    -------
+    list of str
+        The whole path, then each shorter tail of it.
+
+    Examples
+    --------
+    >>> field_keys("rec.ref_pos_deg", ".")
+    ['rec.ref_pos_deg', 'ref_pos_deg']
+    >>> field_keys("/run/rec/ref_pos", "/")
+    ['/run/rec/ref_pos', 'run/rec/ref_pos', 'rec/ref_pos', 'ref_pos']
+    """
+    parts = name.strip(separator).split(separator)
+    tails = [separator.join(parts[i:]) for i in range(len(parts))]
+    return list(dict.fromkeys([name, *tails]))
+
+
+def resolve_fields(
+    cmap: ChannelMap, names: Iterable[str], separator: str, path: object
+) -> tuple[dict[str, str], dict[str, str]]:
+    """Roles and units of signals named by their path in a file of arrays.
+
+    Parameters
+    ----------
+    cmap : ChannelMap
+    names : iterable of str
+        Every signal's path (see :func:`field_keys`).
+    separator : str
+        ``"."`` for MATLAB structs, ``"/"`` for HDF5 groups.
+    path : path-like
+        The file, named in errors.
+
+    Returns
+    -------
+    roles : dict
+        Signal path -> role, for the signals an entry names (the most specific entry wins).
+    units : dict
+        Signal path -> unit, for the signals the ``[units]`` table names.
+
+    Raises
+    ------
+    ChannelError
+        An entry (not one of the defaults) or a unit names no signal of the file.
+
+    Examples
+    --------
+    >>> cmap = ChannelMap({"ref_pos_deg": "RP", "rec.time_cont": "time"}, units={"tau": "N m"})
+    >>> resolve_fields(cmap, ["rec.time_cont", "rec.ref_pos_deg", "rec.tau"], ".", "r.mat")
+    ({'rec.time_cont': 'time', 'rec.ref_pos_deg': 'RP'}, {'rec.tau': 'N m'})
+    """
+    names = list(names)
+    keys = {name: field_keys(name, separator) for name in names}
+
+    def lookup(table: Mapping[str, str]) -> dict[str, str]:
+        found = {}
+        for name in names:
+            for key in keys[name]:
+                if key in table:
+                    found[name] = table[key]
+                    break
+        return found
+
+    present = {key for options in keys.values() for key in options}
+    _refuse_unmatched(cmap, present, names, path)
+    return lookup(cmap.roles), lookup(cmap.units)
 
 
 def select_axis(

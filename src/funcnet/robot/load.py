@@ -10,8 +10,12 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import replace
+
+import pandas as pd
 
 from funcnet.errors import ParameterError
+from funcnet.robot.axes import qualified, split_qualified
 from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import DERIVED_SIGNALS, add_derived_signals
 from funcnet.robot.preprocess import resample as resampled
@@ -80,12 +84,16 @@ def read_recording(
     resample : {"decimate", "interpolate"}, optional
         Bring the signals onto one grid without staircases (:func:`~funcnet.robot.resample`
         with its default period); the derived signals are then recomputed from the resampled
-        inputs, so that V is the velocity of the decimated or interpolated AP.
+        inputs, so that V is the velocity of the decimated or interpolated AP. ``"interpolate"``
+        also puts time stamps that are off their grid onto it (``off_grid="interpolate"`` of
+        :func:`~funcnet.robot.read_trace`).
 
     Returns
     -------
     Recording
-        With the derived signals as its last columns.
+        With the derived signals as its last columns. In a recording of several axes (columns
+        ``A1.RP``, ...) a derived signal is named with its axis (``A1.V``) and computed from
+        that axis's inputs; none is derived unless named.
 
     Raises
     ------
@@ -115,13 +123,45 @@ def read_recording(
         raise ParameterError.of(
             "resample", f"must be one of {', '.join(RESAMPLE_METHODS)}; got {resample!r}"
         )
-    recording = read_trace(path, channels=channels, axis=axis)
-    derived = derived_signals_needed(signals, recording.data.columns)
+    off_grid = "interpolate" if resample == "interpolate" else "error"
+    recording = read_trace(path, channels=channels, axis=axis, off_grid=off_grid)
+    if recording.axes:
+        derived = tuple(
+            name for name in signals or ()
+            if split_qualified(name)[1] in DERIVED_SIGNALS and name not in recording.data
+        )
+    else:
+        derived = derived_signals_needed(signals, recording.data.columns)
     if derived:
-        recording = add_derived_signals(recording, list(derived))
+        recording = _derive(recording, list(derived))
     if resample is None:
         return recording
     # Every derived column (added here or stored in the file by an earlier run) is recomputed
     # from the resampled inputs; a column that is a role is the controller's, kept as recorded.
-    again = [c for c in recording.data.columns if c in DERIVED_SIGNALS and c not in recording.roles]
-    return add_derived_signals(resampled(recording, method=resample), again)
+    again = [
+        c for c in recording.data.columns
+        if split_qualified(c)[1] in DERIVED_SIGNALS and c not in recording.roles
+    ]
+    return _derive(resampled(recording, method=resample), again)
+
+
+def _derive(recording: Recording, names: list[str]) -> Recording:
+    """:func:`add_derived_signals`, per axis for the qualified names of a multi-axis recording."""
+    if not recording.axes:
+        return add_derived_signals(recording, names)
+    per_axis: dict[int, list[str]] = {}
+    for name in names:
+        number, base = split_qualified(name)
+        if number is None or number not in recording.axes:
+            # Not derivable on its own: the same error as a one-axis recording gives.
+            return add_derived_signals(recording, names)
+        per_axis.setdefault(number, []).append(base)
+    columns = {}
+    signals = dict(recording.signals)
+    for number, bases in per_axis.items():
+        one = add_derived_signals(recording.for_axis(number), bases)
+        for base in bases:
+            columns[qualified(number, base)] = one.data[base]
+            signals[qualified(number, base)] = one.signals[base]
+    data = pd.concat([recording.data, pd.DataFrame(columns)], axis=1)
+    return replace(recording, data=data, signals=signals)

@@ -1,8 +1,11 @@
-"""A recording of one robot axis: signals on a uniform time grid, with their metadata.
+"""A recording of robot axes: signals on a uniform time grid, with their metadata.
 
 :func:`read_trace` reads SINUMERIK trace XML (:mod:`funcnet.robot.sinumerik`), CSV and Parquet
-into a :class:`Recording`; :meth:`Recording.to_parquet` and :meth:`Recording.from_parquet` store
-it without loss, metadata included.
+tables (:mod:`funcnet.robot.tables`), MATLAB and HDF5 files (:mod:`funcnet.robot.arrays`) into a
+:class:`Recording`; :meth:`Recording.to_parquet` and :meth:`Recording.from_parquet` store it
+without loss, metadata included. Whatever the format, a channel constant over the whole
+recording is left out and the stretches with missing values are the recording's gaps, each said
+in one :class:`~funcnet.RecordingWarning`.
 """
 
 from __future__ import annotations
@@ -10,6 +13,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
@@ -19,16 +23,27 @@ import numpy as np
 import pandas as pd
 
 from funcnet._io import atomic_path
-from funcnet.errors import ChannelError, ParameterError, TraceError, TraceFormatError, WindowError
+from funcnet.errors import (
+    ChannelError,
+    ParameterError,
+    RecordingWarning,
+    TraceError,
+    TraceFormatError,
+    WindowError,
+)
+from funcnet.robot.arrays import ARRAY_SUFFIXES, read_array_file
+from funcnet.robot.axes import axes_of, split_qualified
 from funcnet.robot.channels import (
+    ROLES,
     ChannelMap,
     SignalInfo,
     channel_map,
     check_entries,
     parse_signal_name,
-    select_axis,
 )
+from funcnet.robot.grid import OFF_GRID, GridSignals, find_gaps, segments_between
 from funcnet.robot.sinumerik import read_sinumerik
+from funcnet.robot.tables import read_csv_table, table_signals
 
 if TYPE_CHECKING:
     import pyarrow as pa
@@ -70,7 +85,12 @@ class Recording:
     sample_period : float
         The grid interval in seconds (the finest native interval; 0.002 on a SINUMERIK servo).
     axis : int or None
-        The axis read.
+        The axis read; None for a recording of several axes, whose columns are qualified by
+        their axis (``A1.RP``, ``A2.MP``: :mod:`funcnet.robot.axes`).
+    gaps : tuple of (float, float)
+        The spans ``[start, stop)`` in seconds where a signal has no value after its first one
+        (missing values in the file): they split the recording into :attr:`segments`, and no
+        window spans one.
 
     Examples
     --------
@@ -94,6 +114,7 @@ class Recording:
     start_time: str | None = None
     sample_period: float = 0.002
     axis: int | None = None
+    gaps: tuple[tuple[float, float], ...] = ()
 
     def __post_init__(self) -> None:
         index = self.data.index
@@ -116,9 +137,80 @@ class Recording:
             else column
             for column in self.data.columns
         )
+        segments = f", segments={len(self.segments)}" if self.gaps else ""
         return (
             f"Recording(source={self.source!r}, duration={self.duration:g} s, "
-            f"sample_period={self.sample_period:g} s, axis={self.axis}, columns=[{columns}])"
+            f"sample_period={self.sample_period:g} s, axis={self.axis}{segments}, "
+            f"columns=[{columns}])"
+        )
+
+    @property
+    def segments(self) -> list[tuple[float, float]]:
+        """The spans ``[start, stop)`` (seconds) of the recording between its :attr:`gaps`.
+
+        Examples
+        --------
+        >>> import numpy as np, pandas as pd
+        >>> data = pd.DataFrame({"RP": np.arange(5.0)},
+        ...                     index=pd.Index(np.arange(5) * 0.5, name="time"))
+        >>> rec = Recording(data, {}, {"RP": SignalInfo("RP", None, None, 0.5)},
+        ...                 sample_period=0.5, gaps=((1.0, 1.5),))
+        >>> rec.segments
+        [(0.0, 1.0), (1.5, 2.5)]
+        """
+        if len(self.data.index) == 0:
+            return []
+        t0 = float(self.data.index[0])
+        return segments_between(self.gaps, t0, round(t0 + self.duration, 9))
+
+    @property
+    def axes(self) -> tuple[int, ...]:
+        """The axes of a multi-axis recording (its columns ``A<n>.<name>``); () for one axis."""
+        return axes_of(self.data.columns)
+
+    def for_axis(self, axis: int) -> Recording:
+        """One axis of a multi-axis recording, its columns named without the axis (``RP``).
+
+        Signals common to every axis (columns not qualified by an axis) are kept; the gaps are
+        those of the columns kept.
+
+        Raises
+        ------
+        ParameterError
+            ``axis`` is not one of :attr:`axes`.
+
+        Examples
+        --------
+        >>> import numpy as np, pandas as pd
+        >>> data = pd.DataFrame({"A1.RP": [0.0, 1.0], "A2.RP": [2.0, 3.0]},
+        ...                     index=pd.Index([0.0, 0.004], name="time"))
+        >>> info = SignalInfo("ref", None, None, 0.004)
+        >>> rec = Recording(data, {"A1.RP": "ref(axis 1)", "A2.RP": "ref(axis 2)"},
+        ...                 {"A1.RP": info, "A2.RP": info}, sample_period=0.004)
+        >>> rec.axes, rec.for_axis(2).data["RP"].tolist(), rec.for_axis(2).roles
+        ((1, 2), [2.0, 3.0], {'RP': 'ref(axis 2)'})
+        """
+        if axis not in self.axes:
+            raise ParameterError.of("axis", f"must be one of {list(self.axes)}, got {axis!r}")
+        names: dict[str, str] = {}
+        for column in self.data.columns:
+            owner, name = split_qualified(column)
+            if owner in (None, axis) and name not in names.values():
+                names[column] = name
+        data = self.data[list(names)].set_axis(list(names.values()), axis=1)
+        ticks, _ = find_gaps(data.to_numpy(dtype=np.float64))
+        index = data.index
+        gaps = tuple(
+            (float(index[a]), round(float(index[b - 1]) + self.sample_period, 9))
+            for a, b in ticks
+        )
+        return replace(
+            self,
+            data=data,
+            roles={names[c]: name for c, name in self.roles.items() if c in names},
+            signals={names[c]: info for c, info in self.signals.items() if c in names},
+            axis=axis,
+            gaps=gaps,
         )
 
     @property
@@ -148,6 +240,14 @@ class Recording:
                 f"{self._where()}window [{start:g}, {stop:g}) s is not inside the recording "
                 f"[{t0:g}, {end:g}) s"
             )
+        for gap_start, gap_stop in self.gaps:
+            if gap_start < stop and gap_stop > start:
+                spans = ", ".join(f"[{a:g}, {b:g})" for a, b in self.segments)
+                raise WindowError(
+                    f"{self._where()}window [{start:g}, {stop:g}) s spans the gap "
+                    f"[{gap_start:g}, {gap_stop:g}) s where values are missing; a window lies "
+                    f"within one segment: {spans} s"
+                )
         first = math.ceil((start - t0) / self.sample_period - _GRID_TOLERANCE)
         last = math.ceil((stop - t0) / self.sample_period - _GRID_TOLERANCE)
         if last <= first:
@@ -175,6 +275,7 @@ class Recording:
             "start_time": self.start_time,
             "sample_period": self.sample_period,
             "axis": self.axis,
+            "gaps": [list(gap) for gap in self.gaps],
         }
         schema_metadata = {**(table.schema.metadata or {}), _PARQUET_KEY: json.dumps(metadata)}
         table = table.replace_schema_metadata(schema_metadata)
@@ -209,6 +310,7 @@ class Recording:
                 start_time=meta["start_time"],
                 sample_period=float(meta["sample_period"]),
                 axis=meta["axis"],
+                gaps=tuple((float(a), float(b)) for a, b in meta.get("gaps", [])),
             )
         except (ValueError, KeyError, TypeError) as exc:
             raise TraceFormatError(path, f"recording metadata is unusable: {exc}") from exc
@@ -218,30 +320,22 @@ def _read_parquet_table(path: str | os.PathLike[str]) -> pa.Table:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    try:
-        return pq.read_table(path)
-    except (pa.ArrowException, ValueError) as exc:
+    try:  # ParquetFile rather than read_table: it keeps a column name given twice, to be said
+        return pq.ParquetFile(path).read()
+    except (pa.ArrowException, ValueError, OSError) as exc:
         raise TraceFormatError(path, f"not a readable Parquet file: {exc}") from exc
 
 
-def _assemble(
-    path: Path,
-    infos: Sequence[SignalInfo],
-    values: np.ndarray,
-    *,
-    cmap: ChannelMap,
-    sample_period: float,
-    start_time: str | None,
-    axis: int | None,
-    t0: float = 0.0,
-) -> Recording:
-    """Name the columns by role (else by base name) and wrap everything in a Recording."""
-    check_entries(cmap, (info.name for info in infos), path)
+def _named_columns(path: Path, grid: GridSignals, cmap: ChannelMap) -> tuple[list[str], dict]:
+    """Column names (by role, else by base name) and roles of a reader's signals."""
+    if grid.columns is not None:
+        return list(grid.columns), dict(grid.roles or {})
+    check_entries(cmap, (info.name for info in grid.signals), path)
     columns: list[str] = []
     roles: dict[str, str] = {}
     origin: dict[str, str] = {}
     known_roles = set(cmap.roles.values())
-    for info in infos:
+    for info in grid.signals:
         role = cmap.role_of(info.name)
         column = role or cmap.column_of(info.name)
         if column in origin:
@@ -251,117 +345,81 @@ def _assemble(
             )
         origin[column] = info.name
         columns.append(column)
-        if role or column in known_roles:
+        # A column named A<n>.<role> (a multi-axis recording written out) keeps its role.
+        if role or column in known_roles or split_qualified(column)[1] in ROLES:
             roles[column] = info.name
-    data = pd.DataFrame(
-        values, index=_time_index(len(values), sample_period, t0), columns=columns, copy=False
-    )
+    return columns, roles
+
+
+def _listed(names: Sequence[str], limit: int = 8) -> str:
+    shown = ", ".join(names[:limit])
+    return shown + (f" and {len(names) - limit} more" if len(names) > limit else "")
+
+
+def _assemble(path: Path, grid: GridSignals, cmap: ChannelMap) -> Recording:
+    """A reader's signals -> a Recording: constant channels left out, gaps found; both said."""
+    columns, roles = _named_columns(path, grid, cmap)
+    values = grid.values
+    infos = list(grid.signals)
+    # fmin/fmax skip NaN without copying the table; a column without any value compares False.
+    low, high = np.fmin.reduce(values, axis=0), np.fmax.reduce(values, axis=0)
+    # One tick says nothing about constancy.
+    constant = ~(high > low) if len(values) > 1 else np.zeros(len(columns), dtype=bool)
+    if constant.all():
+        raise TraceFormatError(
+            path, f"every signal is constant over the whole recording ({_listed(columns)})"
+        )
+    if constant.any():
+        dropped = [c for c, flat in zip(columns, constant, strict=True) if flat]
+        detail = [
+            f"{c} = {low[j]:g}" if np.isfinite(low[j]) else f"{c} (no value)"
+            for j, c in enumerate(columns) if constant[j]
+        ]
+        warnings.warn(
+            RecordingWarning(
+                f"{path}: constant over the whole recording, left out: {_listed(detail, 12)}",
+                problem="constant", signals=tuple(dropped),
+            ),
+            stacklevel=3,
+        )
+        keep = np.flatnonzero(~constant)
+        values = values[:, keep]
+        columns = [columns[j] for j in keep]
+        infos = [infos[j] for j in keep]
+        roles = {c: name for c, name in roles.items() if c in columns}
+    index = _time_index(len(values), grid.sample_period, grid.t0)
+    ticks, missing = find_gaps(values)
+    gaps = tuple(_gap_span(index, grid.sample_period, a, b) for a, b in ticks)
+    if gaps:
+        where = [
+            f"{a:g}-{b:g} s ({_listed([columns[j] for j in which], 4)})"
+            for (a, b), which in zip(gaps, missing, strict=True)
+        ]
+        warnings.warn(
+            RecordingWarning(
+                f"{path}: missing values at {_listed(where, 4)}: the recording is split into "
+                f"{len(gaps) + 1} segments and no window spans a gap",
+                problem="gap",
+                signals=tuple(dict.fromkeys(columns[j] for which in missing for j in which)),
+            ),
+            stacklevel=3,
+        )
+    data = pd.DataFrame(values, index=index, columns=columns, copy=False)
     return Recording(
         data=data,
         roles=roles,
         signals=dict(zip(columns, infos, strict=True)),
         source=str(path),
-        start_time=start_time,
-        sample_period=sample_period,
-        axis=axis,
+        start_time=grid.start_time,
+        sample_period=grid.sample_period,
+        axis=grid.axis,
+        gaps=gaps,
     )
 
 
-def _from_table(
-    path: Path, table: pd.DataFrame, cmap: ChannelMap, axis: int | None, *, line_offset: int
-) -> Recording:
-    """A table with a ``time`` column (CSV, plain Parquet) -> Recording.
-
-    ``line_offset`` turns a row position into a line of the file (2 for a CSV with a header);
-    0 for Parquet, which has no lines: errors then name the row.
-    """
-
-    def where(row: int) -> str:
-        return f"line {row + line_offset}" if line_offset else f"row {row}"
-
-    names = [str(c) for c in table.columns]
-    time_columns = [c for c in names if c.strip().lower() == "time"]
-    if len(time_columns) != 1:
-        raise TraceFormatError(path, f"needs exactly one 'time' column; it has {names}")
-    time_name = time_columns[0]
-    if len(table) == 0:
-        raise TraceFormatError(path, "has no rows")
-    numeric: dict[str, np.ndarray] = {}
-    for name in names:
-        column = table[name]
-        converted = pd.to_numeric(column, errors="coerce").to_numpy(dtype=np.float64)
-        bad = ~np.isfinite(converted)
-        if name != time_name:  # empty before a signal's first value: not recorded yet (NaN),
-            # as the XML reader leaves it, so that a CSV written from rec.data reads back
-            empty = (column.isna() | column.astype(str).str.strip().eq("")).to_numpy()
-            bad &= ~np.cumprod(empty).astype(bool)
-        if bad.any():
-            row = int(np.argmax(bad))
-            raise TraceFormatError(
-                path, f"{where(row)}: column {name!r} holds {column.iloc[row]!r}, not a number"
-            )
-        numeric[name] = converted
-    time = numeric.pop(time_name)
-    steps = np.diff(time)
-    if (steps <= 0).any():
-        row = int(np.argmax(steps <= 0)) + 1
-        raise TraceFormatError(path, f"{where(row)}: time {float(time[row])!r} does not increase")
-    if len(time) < 2:
-        raise TraceFormatError(path, "needs at least two rows to know its sample period")
-    period = float(np.round(steps.min(), 9))
-    position = (time - time[0]) / period
-    ticks = np.round(position).astype(np.int64)
-    off = np.abs(position - ticks) > _GRID_TOLERANCE
-    if off.any():
-        row = int(np.argmax(off))
-        raise TraceFormatError(
-            path, f"{where(row)}: time {float(time[row])!r} is not on the {period:g} s grid"
-        )
-    signal_names = list(numeric)
-    keep, axis = select_axis(signal_names, axis, path)
-    signal_names = [name for name, kept in zip(signal_names, keep, strict=True) if kept]
-    if not signal_names:
-        raise TraceFormatError(path, "has a time column but no signal column")
-    # Rows left out of the file (a sparse export) carry the previous row forward.
-    present = np.zeros(int(ticks[-1]) + 1, dtype=bool)
-    present[ticks] = True
-    row_of_tick = np.cumsum(present) - 1
-    values = np.column_stack([numeric[name][row_of_tick] for name in signal_names])
-    infos = [SignalInfo(name, None, None, period) for name in signal_names]
-    return _assemble(
-        path,
-        infos,
-        values,
-        cmap=cmap,
-        sample_period=period,
-        start_time=None,
-        axis=axis,
-        t0=float(np.round(time[0], 9)),
-    )
-
-
-def _read_csv(path: Path, cmap: ChannelMap, axis: int | None) -> Recording:
-    try:
-        table = pd.read_csv(path, skip_blank_lines=False, dtype=str, keep_default_na=False)
-    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
-        if path.stat().st_size == 0:
-            raise TraceFormatError(path, "empty file: not a trace") from None
-        raise TraceFormatError(path, f"not a readable CSV file: {exc}") from exc
-    # Text is converted here, not by pandas, so that 'NaN', '' and 'abc' are all reported
-    # with their line.
-    return _from_table(path, table, cmap, axis, line_offset=2)
-
-
-def _read_parquet(path: Path, cmap: ChannelMap, axis: int | None) -> Recording:
-    table = _read_parquet_table(path)
-    if _PARQUET_KEY in (table.schema.metadata or {}):
-        recording = Recording.from_parquet(path)
-        check_entries(cmap, (info.name for info in recording.signals.values()), path)
-        return recording
-    frame = table.to_pandas()
-    if frame.index.name is not None:
-        frame = frame.reset_index()
-    return _from_table(path, frame, cmap, axis, line_offset=0)
+def _gap_span(index: pd.Index, period: float, first: int, stop: int) -> tuple[float, float]:
+    """Ticks ``[first, stop)`` as seconds ``[start, end)``."""
+    return float(index[first]), float(round(float(index[stop - 1]) + period, 9))
 
 
 def read_trace(
@@ -369,6 +427,7 @@ def read_trace(
     *,
     channels: ChannelMap | Mapping[str, str] | str | os.PathLike[str] | None = None,
     axis: int | None = None,
+    off_grid: str = "error",
 ) -> Recording:
     """Read a controller trace into a :class:`Recording`.
 
@@ -376,32 +435,44 @@ def read_trace(
     ----------
     path : path-like
         ``.xml``: SINUMERIK Solution Line trace (see :mod:`funcnet.robot.sinumerik`).
-        ``.csv``: a header row, a ``time`` column in seconds and one column per signal; every
-        cell a finite number (a signal's cells may be empty before its first value: NaN
-        there); rows on a uniform grid (the smallest time step), rows left out
-        carry the previous row's values forward. ``.parquet``/``.pq``: a file written by
+        ``.csv``: a header row, a ``time`` column in seconds and one column per signal
+        (:mod:`funcnet.robot.tables`). ``.parquet``/``.pq``: a file written by
         :meth:`Recording.to_parquet` (returned as written), or a table like the CSV.
+        ``.mat`` (MAT 5 or MAT 7.3), ``.h5``/``.hdf5``: signals as named arrays beside a time
+        array (:mod:`funcnet.robot.arrays`).
     channels : ChannelMap, dict, TOML path or None
         Signal name -> role (see :func:`funcnet.robot.channels.channel_map`); None uses the
         SINUMERIK defaults. Columns are named by role, other signals by their base name.
     axis : int, optional
-        The axis to read when the trace holds several.
+        The axis to read when the trace holds several (1-based). A MATLAB or HDF5 file with one
+        row per axis read without it is one recording of every axis, its columns qualified
+        by axis (``A1.RP``; :mod:`funcnet.robot.axes`).
+    off_grid : {"error", "interpolate"}
+        Time stamps of a table or array file off the grid of their smallest step: an error
+        (which offers this), or every signal interpolated linearly onto a grid of the median
+        step (:func:`funcnet.robot.grid.time_grid`).
 
     Returns
     -------
     Recording
+        A channel constant over the whole recording (an encoder not fitted reads all zeros) is
+        left out; missing values after a signal's first one are the recording's ``gaps``. Each
+        is said by one :class:`~funcnet.RecordingWarning`.
 
     Raises
     ------
     TraceError
         There is no such file (the message names it).
     TraceFormatError
-        The file is not a readable trace of its kind; the message has the path, and the line or
-        the signal where it helps.
+        The file is not a readable trace of its kind; text where a number belongs; time that is
+        not a number, does not increase, or is off its grid; every signal constant. The message
+        has the path, and the line (sample) or the signal where it helps.
     ChannelError
         A channel is missing, duplicated, or two signals claim one role; several axes and no
-        ``axis``; an entry of ``channels`` that is not a default matches no signal of the trace
-        (see :func:`funcnet.robot.channels.check_entries`).
+        ``axis`` (SINUMERIK, tables); an entry of ``channels`` that is not a default matches no
+        signal of the trace (see :func:`funcnet.robot.channels.check_entries`).
+    ParameterError
+        ``off_grid`` is not one of its values.
 
     References
     ----------
@@ -409,23 +480,30 @@ def read_trace(
 
     Examples
     --------
-    >>> import pathlib, tempfile
+    >>> import pathlib, tempfile, warnings
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "tiny.csv"
-    >>> _ = path.write_text('time,"measPos2 [u1, 1]","aaStat [u1, 1]"\\n'
-    ...                     "0.000,1.0,4\\n0.002,1.5,4\\n0.006,2.0,4\\n")
-    >>> rec = read_trace(path)
+    >>> _ = path.write_text('time,"measPos2 [u1, 1]","aaStat [u1, 1]","aaTyp [u1, 1]"\\n'
+    ...                     "0.000,1.0,4,0\\n0.002,1.5,5,0\\n0.006,2.0,4,0\\n")
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     rec = read_trace(path)
+    >>> print(caught[0].message)
+    /.../tiny.csv: constant over the whole recording, left out: aaTyp = 0
     >>> rec.data
               AP  aaStat
     time
     0.000  1.0     4.0
-    0.002  1.5     4.0
-    0.004  1.5     4.0
+    0.002  1.5     5.0
+    0.004  1.5     5.0
     0.006  2.0     4.0
     >>> rec.roles, rec.axis, rec.sample_period
     ({'AP': 'measPos2 [u1, 1]'}, 1, 0.002)
     """
     path = Path(path)
     cmap = channel_map(channels)
+    if off_grid not in OFF_GRID:
+        raise ParameterError.of("off_grid", f"must be one of {', '.join(OFF_GRID)}; "
+                                f"got {off_grid!r}")
     if path.is_dir():
         raise TraceFormatError(path, "is a directory, not a trace file")
     if not path.exists():  # a FuncnetError naming the file, as every other unreadable trace
@@ -433,17 +511,32 @@ def read_trace(
     suffix = path.suffix.lower()
     if suffix == ".xml":
         trace = read_sinumerik(path, axis=axis)
-        return _assemble(
-            path,
-            trace.signals,
-            trace.values,
-            cmap=cmap,
+        grid = GridSignals(
+            signals=trace.signals,
+            values=trace.values,
             sample_period=trace.sample_period,
             start_time=trace.start_time,
             axis=trace.axis,
         )
-    if suffix == ".csv":
-        return _read_csv(path, cmap, axis)
-    if suffix in (".parquet", ".pq"):
-        return _read_parquet(path, cmap, axis)
-    raise TraceFormatError(path, f"unknown trace format {suffix!r}; use .xml, .csv or .parquet")
+    elif suffix == ".csv":
+        if path.stat().st_size == 0:
+            raise TraceFormatError(path, "empty file: not a trace")
+        grid = read_csv_table(path, cmap, axis, off_grid=off_grid)
+    elif suffix in (".parquet", ".pq"):
+        table = _read_parquet_table(path)
+        if _PARQUET_KEY in (table.schema.metadata or {}):
+            recording = Recording.from_parquet(path)
+            check_entries(cmap, (info.name for info in recording.signals.values()), path)
+            return recording
+        frame = table.to_pandas()
+        if frame.index.name is not None:
+            frame = frame.reset_index()
+        grid = table_signals(path, frame, cmap, axis, line_offset=0, off_grid=off_grid)
+    elif suffix in ARRAY_SUFFIXES:
+        grid = read_array_file(path, cmap, axis, off_grid=off_grid)
+    else:
+        raise TraceFormatError(
+            path, f"unknown trace format {suffix!r}; use .xml, .csv, .parquet, "
+            f"{', '.join(ARRAY_SUFFIXES)}"
+        )
+    return _assemble(path, grid, cmap)
