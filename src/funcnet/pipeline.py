@@ -41,7 +41,7 @@ from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import NetworkParameters, resolve
 from funcnet.robot.preprocess import staircase_signals
 from funcnet.robot.recording import Recording
-from funcnet.robot.windows import PAPER_NODES, Window, phase_windows
+from funcnet.robot.windows import Window, paper_nodes, phase_windows
 
 __all__ = ["window_networks", "window_evidence", "window_warnings", "CONSTANT_POLICIES"]
 
@@ -226,7 +226,7 @@ def window_networks(
     if duplicated:
         raise WindowError(f"{where}: window labels {duplicated} occur more than once")
     if signals is None:
-        signals = [name for name in PAPER_NODES if name in recording.data.columns]
+        signals = paper_nodes(recording.data.columns)
     signals = list(signals)
     missing = [name for name in signals if name not in recording.data.columns]
     if missing or not signals:

@@ -72,7 +72,7 @@ from funcnet.cli.network_helpers import (
     _write_network,
 )
 from funcnet.cli.stability_command import register as _register_stability
-from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError
+from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError, RecordingWarning
 from funcnet.parameters import NetworkParameters
 
 __all__ = ["app", "main"]
@@ -188,7 +188,10 @@ def _reported_errors(*, summarized: bool = False, verbose: bool = False) -> Iter
     problems: dict[str, int] = {}
 
     def collect(message: Any, *_: Any, **__: Any) -> None:
-        if isinstance(message, FuncnetWarning) and not verbose:
+        # What the reader left out or split is said in full: it is about the file, not a pair.
+        if isinstance(message, FuncnetWarning) and not verbose and not isinstance(
+            message, RecordingWarning
+        ):
             problem = message.problem or type(message).__name__
             problems[problem] = problems.get(problem, 0) + 1
             return
@@ -200,6 +203,7 @@ def _reported_errors(*, summarized: bool = False, verbose: bool = False) -> Iter
         warnings.simplefilter("always")
         if summarized:
             warnings.simplefilter("ignore", FuncnetWarning)
+            warnings.simplefilter("always", RecordingWarning)
         warnings.showwarning = collect
         try:
             yield
@@ -369,7 +373,8 @@ def _file_identity(path: Path) -> tuple[int, int, int] | None:
 
 @app.command(cls=_PlainUsageCommand)
 def network(
-    trace: Annotated[Path, typer.Argument(help="Trace file: SINUMERIK XML, CSV or Parquet.")],
+    trace: Annotated[Path, typer.Argument(
+        help="Trace file: SINUMERIK XML, CSV, Parquet, MATLAB (.mat) or HDF5 (.h5).")],
     signals: Annotated[
         str | None,
         typer.Option(
@@ -578,7 +583,7 @@ def network(
                 )
             _check_signals(names, recording, trace)
             if list_phases:
-                _print_phases(recording)
+                _print_phases(recording, trace)
                 return
             chosen = _chosen_windows(recording, trace, phase, whole, bounds)
             _check_cost(recording, chosen, names, parameters, force)
@@ -611,7 +616,8 @@ def backlash(
         list[Path],
         typer.Argument(
             metavar="TRACE",
-            help="Traces of one axis (SINUMERIK XML, CSV or Parquet), oldest first for a trend.",
+            help="Traces of one axis (SINUMERIK XML, CSV, Parquet, MATLAB, HDF5), oldest first "
+            "for a trend.",
         ),
     ],
     channels: Channels = None,
@@ -673,8 +679,8 @@ def _backlash_numbers(result: Any) -> str:
 @app.command(cls=_PlainUsageCommand)
 def inspect(
     traces: Annotated[
-        list[Path], typer.Argument(metavar="TRACE", help="Trace files: SINUMERIK XML, CSV or "
-                                   "Parquet.")
+        list[Path], typer.Argument(metavar="TRACE", help="Trace files: SINUMERIK XML, CSV, "
+                                   "Parquet, MATLAB (.mat) or HDF5 (.h5).")
     ],
     out: Annotated[
         Path, typer.Option("--out", "-o", help="Report folder (one sub-folder per trace when "

@@ -54,10 +54,16 @@ def _spelled_as_options() -> Iterator[None]:
 
 Channels = Annotated[
     Path | None,
-    typer.Option("--channels", help="Channel map TOML (controller signal names -> roles)."),
+    typer.Option("--channels", help="Channel map TOML: a [channels] table of 'signal name = "
+                 "\"ROLE\"' pairs (a MATLAB field bare or with its struct path, quoted; the "
+                 "role time names a MATLAB or HDF5 file's time), optional [units]. E.g. "
+                 "examples/kuka-kr300-channels.toml."),
 ]
 Axis = Annotated[
-    int | None, typer.Option("--axis", help="Axis to read from a trace of several axes.")
+    int | None,
+    typer.Option("--axis", help="Axis to read (1-based) from a trace of several axes. Without "
+                 "it a MATLAB or HDF5 file with one row per axis is read whole, its nodes "
+                 "named A1.RP, A2.MP, ..."),
 ]
 Evidence = Annotated[
     bool,
@@ -135,7 +141,13 @@ def _window_request(phase: str | None, window: str | None
 def _chosen_windows(recording: Any, trace: Path, phase: str | None, whole: bool,
                     bounds: tuple[float, float] | None) -> list[Any]:
     """The windows asked for: ``--window all`` one window where every signal has a value,
-    ``--phase``/``--window START:STOP`` that one, neither every phase of a move."""
+    ``--phase``/``--window START:STOP`` that one, neither every phase of a move (for a
+    recording of several axes, whose phases are each axis's own, the whole recording)."""
+    if recording.axes:
+        if phase is not None:
+            _one_axis_for_phases(recording, trace)
+        if bounds is None:
+            return [_select_window(recording, None, None, trace)]
     if whole:
         return [_select_window(recording, None, None, trace)]
     if phase is None and bounds is None:
@@ -197,9 +209,21 @@ def _phase_windows(recording: Any) -> list[Any]:
     return list(phase_windows(detect_phases(recording), include=PHASES))
 
 
-def _print_phases(recording: Any) -> None:
+def _one_axis_for_phases(recording: Any, trace: Path) -> None:
+    """Phases are those of one axis: asking for them on a recording of several is an error."""
+    if recording.axes:
+        axes = recording.axes
+        raise WindowError(
+            f"{trace}: holds axes {axes[0]}-{axes[-1]}; the phases are each axis's own: "
+            f"give --axis N (one of {', '.join(map(str, axes))}), or --window"
+        )
+
+
+def _print_phases(recording: Any, trace: Path) -> None:
     """The detected phases as plain text: label, phase, start, stop (seconds)."""
     import pandas as pd
+
+    _one_axis_for_phases(recording, trace)
 
     table = pd.DataFrame(
         [(w.label, w.phase, w.start, w.stop) for w in _phase_windows(recording)],
@@ -370,12 +394,11 @@ def _check_cost(recording: Any, windows: Sequence[Any], names: Sequence[str] | N
                 parameters: Any, force: bool) -> None:
     """Refuse, before computing, a network forecast over a minute or 4 GiB (unless --force)."""
     from funcnet.recurrence import estimate_cost
-    from funcnet.robot import PAPER_NODES
+    from funcnet.robot import paper_nodes
 
     if force:
         return
-    columns = list(recording.data.columns)
-    nodes = len(names) if names is not None else sum(n in columns for n in PAPER_NODES)
+    nodes = len(names) if names is not None else len(paper_nodes(recording.data.columns))
     dt = recording.sample_period
     for window in windows:
         n_samples = int(round((window.stop - window.start) / dt))

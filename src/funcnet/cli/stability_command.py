@@ -132,7 +132,8 @@ def _command(reported_errors: Callable[..., Any]) -> Callable[..., None]:
     """The command, with the command line's error handling."""
 
     def stability(
-        trace: Annotated[Path, typer.Argument(help="Trace file: SINUMERIK XML, CSV or Parquet.")],
+        trace: Annotated[Path, typer.Argument(
+        help="Trace file: SINUMERIK XML, CSV, Parquet, MATLAB (.mat) or HDF5 (.h5).")],
         signals: Annotated[
             str | None,
             typer.Option("--signals", help="Comma-separated nodes, e.g. RP,AP,MP,V,RC,AC. "
@@ -251,7 +252,7 @@ def _command(reported_errors: Callable[..., Any]) -> Callable[..., None]:
                 check_grid(grid, parameters)  # every value checked before the trace is read
             whole, bounds = _window_request(phase, window)
             names = _signal_list(signals)
-            from funcnet.robot import PAPER_NODES, read_recording
+            from funcnet.robot import paper_nodes, read_recording
 
             with _spelled():
                 recording = read_recording(trace, signals=names, channels=channels, axis=axis,
@@ -260,10 +261,10 @@ def _command(reported_errors: Callable[..., Any]) -> Callable[..., None]:
             if list_phases:
                 from funcnet.cli.network_helpers import _print_phases
 
-                _print_phases(recording)
+                _print_phases(recording, trace)
                 return
             chosen = _chosen_windows(recording, trace, phase, whole, bounds)
-            nodes = names or [n for n in PAPER_NODES if n in recording.data.columns]
+            nodes = names or paper_nodes(recording.data.columns)
             _check_cost(recording, chosen, nodes, parameters, force)
             frames, results, labels = _compute(recording, chosen, nodes, parameters, grid,
                                                full, trace, drop_constant)

@@ -34,6 +34,7 @@ _EXPORTS = {
     "Turn": "funcnet.robot.phases",
     "phase_table": "funcnet.robot.phases",
     "PAPER_NODES": "funcnet.robot.windows",
+    "paper_nodes": "funcnet.robot.windows",
     "Window": "funcnet.robot.windows",
     "phase_windows": "funcnet.robot.windows",
     "fixed_windows": "funcnet.robot.windows",

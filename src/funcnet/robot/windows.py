@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import pandas as pd
 
 from funcnet.errors import ParameterError, WindowError
+from funcnet.robot.axes import axes_of, qualified
 from funcnet.robot.phases import PHASES, phase_table
 from funcnet.robot.recording import Recording
 
@@ -26,6 +27,7 @@ __all__ = [
     "FIXED_LENGTHS",
     "REVERSAL_SHIFTS",
     "PAPER_NODES",
+    "paper_nodes",
     "span_window",
     "complete_span",
     "phase_windows",
@@ -42,6 +44,27 @@ REVERSAL_SHIFTS = (-0.04, -0.02, 0.0, 0.02, 0.04)
 #: The paper's nodes (section 4.1, Fig. 9), the default signals of
 #: :func:`funcnet.window_networks`.
 PAPER_NODES = ("RP", "AP", "MP", "V", "RC", "AC")
+
+
+def paper_nodes(columns: Iterable[str]) -> list[str]:
+    """The paper's nodes among a recording's columns: the default nodes of a network.
+
+    In a recording of several axes, every axis's (``A1.RP``, ``A1.AP``, ..., ``A2.RP``, ...),
+    grouped per axis.
+
+    Examples
+    --------
+    >>> paper_nodes(["AC", "RP", "aaStat", "V"])
+    ['RP', 'V', 'AC']
+    >>> paper_nodes(["A1.RP", "A2.RP", "A1.MP", "time_disc"])
+    ['A1.RP', 'A1.MP', 'A2.RP']
+    """
+    present = list(columns)
+    axes = axes_of(present)
+    if not axes:
+        return [name for name in PAPER_NODES if name in present]
+    return [qualified(a, name) for a in axes for name in PAPER_NODES
+            if qualified(a, name) in present]
 
 
 @dataclass(frozen=True)

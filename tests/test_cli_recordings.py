@@ -1,0 +1,89 @@
+"""``funcnet network`` on recordings of several axes: the KUKA KR 300 runs with a channel map."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pandas as pd
+import pytest
+from typer.testing import CliRunner
+
+from funcnet.cli import app
+
+ROOT = Path(__file__).resolve().parents[1]
+RUN = ROOT.parent / "shared" / "data" / "kuka-kr300" / "kr300-run-A.mat"
+KUKA_MAP = ROOT / "examples" / "kuka-kr300-channels.toml"
+
+runner = CliRunner()
+
+
+def _library_pairs(signals, window, axis=None) -> pd.DataFrame:
+    from funcnet import window_networks
+    from funcnet.robot import Window, read_recording
+
+    recording = read_recording(RUN, channels=KUKA_MAP, axis=axis, signals=signals)
+    chosen = Window("w", *window)
+    return window_networks(recording, [chosen], signals=signals)["w"].pairs
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_network_of_every_axis_with_qualified_nodes(tmp_path):
+    out = tmp_path / "net.csv"
+    nodes = "A1.RP,A1.MP,A2.RP,A2.V"
+    result = runner.invoke(app, ["network", str(RUN), "--channels", str(KUKA_MAP),
+                                 "--signals", nodes, "--window", "2:3", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    pairs = pd.read_csv(out)
+    expected = _library_pairs(nodes.split(","), (2.0, 3.0))
+    assert list(pairs["x"]) == list(expected["x"]) and list(pairs["y"]) == list(expected["y"])
+    pd.testing.assert_series_equal(pairs["c_diff"], expected["c_diff"], check_names=False,
+                                   rtol=0, atol=1e-15)
+    # The constant channels the reader left out are said in one line, not merely counted.
+    said = [line for line in result.stderr.splitlines() if "constant over the whole" in line]
+    assert len(said) == 1 and "A4.AP = 0" in said[0]
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_network_default_nodes_of_a_multi_axis_file_are_every_axis_roles(tmp_path):
+    out = tmp_path / "net.csv"
+    result = runner.invoke(app, ["network", str(RUN), "--channels", str(KUKA_MAP),
+                                 "--window", "1:1.6", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    pairs = pd.read_csv(out)
+    nodes = list(dict.fromkeys([*pairs["x"], *pairs["y"]]))
+    # RP, MP and the torque of six axes, AP of axes 1-3: 21 nodes, grouped per axis.
+    assert nodes == ["A1.RP", "A1.AP", "A1.MP", "A1.AC", "A2.RP", "A2.AP", "A2.MP", "A2.AC",
+                     "A3.RP", "A3.AP", "A3.MP", "A3.AC", "A4.RP", "A4.MP", "A4.AC",
+                     "A5.RP", "A5.MP", "A5.AC", "A6.RP", "A6.MP", "A6.AC"]
+    assert len(pairs) == 21 * 20 // 2
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_network_of_one_axis_is_a_one_axis_network(tmp_path):
+    out = tmp_path / "net.csv"
+    result = runner.invoke(app, ["network", str(RUN), "--channels", str(KUKA_MAP), "--axis", "2",
+                                 "--window", "2:3", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    pairs = pd.read_csv(out)
+    expected = _library_pairs(None, (2.0, 3.0), axis=2)
+    assert set(pairs["x"]) | set(pairs["y"]) == {"RP", "AP", "MP", "V", "AC"}
+    pd.testing.assert_series_equal(pairs["t_diff"], expected["t_diff"], check_names=False,
+                                   rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize(
+    ("options", "needles"),
+    [
+        (["--phase", "cruise"], ["holds axes 1-6", "give --axis N"]),
+        (["--list-phases"], ["holds axes 1-6", "give --axis N"]),
+        (["--axis", "8"], ["axis 8 is not in the file; it holds axes 1-6"]),
+        (["--signals", "A1.RP,A7.MP"], ["--signals: A7.MP not in kr300-run-A.mat"]),
+    ],
+)
+def test_network_multi_axis_errors_are_one_line(options, needles):
+    result = runner.invoke(app, ["network", str(RUN), "--channels", str(KUKA_MAP), *options])
+    assert result.exit_code == 2, result.output
+    errors = [line for line in result.stderr.splitlines() if line.startswith("funcnet: error:")]
+    assert len(errors) == 1 and "Traceback" not in result.output
+    for needle in needles:
+        assert needle in errors[0]
