@@ -40,13 +40,16 @@ def test_a_csv_written_from_rec_data_reads_back(tmp_path):
     pd.testing.assert_frame_equal(again.data, rec.data, check_names=False)
 
 
-def test_an_empty_cell_after_a_signals_first_value_is_still_an_error(tmp_path):
-    from funcnet.errors import TraceFormatError
+def test_an_empty_cell_after_a_signals_first_value_is_a_gap_and_text_an_error(tmp_path):
+    from funcnet.errors import RecordingWarning, TraceFormatError
     from funcnet.robot import read_trace
 
     path = tmp_path / "holes.csv"
-    path.write_text("time,RP,AP\n0.000,0.0,1\n0.002,0.1,\n")
-    with pytest.raises(TraceFormatError, match="line 3: column 'AP' holds ''"):
+    path.write_text("time,RP,AP\n0.000,0.0,1\n0.002,0.1,\n0.004,0.2,2\n")
+    with pytest.warns(RecordingWarning, match="missing values at 0.002-0.004 s"):
+        assert read_trace(path).gaps == ((0.002, 0.004),)
+    path.write_text("time,RP,AP\n0.000,0.0,1\n0.002,0.1,n.a.\n")
+    with pytest.raises(TraceFormatError, match="line 3: column 'AP' holds 'n.a.'"):
         read_trace(path)
 
 

@@ -331,9 +331,11 @@ def test_cli_constant_signal_is_an_error_or_dropped(trace, tmp_path) -> None:
     from funcnet.cli import app
 
     data = pd.read_csv(trace)
-    data["MP"] = 1.0
+    data["MP"] = 1.0  # constant in the window; not over the whole recording (the reader's rule)
+    data.loc[data.index[-1], "MP"] = 2.0
     data.to_csv(trace, index=False)
-    arguments = ["stability", str(trace), "--signals", "RP,AC,RC,MP", "--window", "all",
+    window = f"{data['time'].iloc[0]}:{data['time'].iloc[-1]}"
+    arguments = ["stability", str(trace), "--signals", "RP,AC,RC,MP", "--window", window,
                  "--delay", "2", "--vary", "mu=0.1"]
     failed = CliRunner().invoke(app, arguments)
     assert failed.exit_code == 2 and "'MP' is constant" in failed.stderr
