@@ -88,14 +88,14 @@ def _synthetic():
 
 @pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 def test_inspect_recording_summarizes_the_motion_without_evidence():
-    from funcnet.report.inspect import inspect_recording
+    from funcnet.inspection import inspect_recording
 
     calls = []
     ins = inspect_recording(_synthetic(), evidence=False, backlash=False,
                             progress=lambda *a: calls.append(a))
     assert list(ins.moves["move"]) == [1]
     assert ins.signals == ("RP", "AP", "V", "AC")
-    assert set(ins.networks) == {w.label for w in ins.windows} - set(ins.errors)
+    assert set(ins.networks) == {w.label for w in ins.windows} - set(ins.failed("network"))
     assert {w.phase for w in ins.windows} <= {"early spin-up", "late spin-up", "cruise",
                                               "braking"}
     assert ins.moves["peak speed"].iloc[0] > 0 and ins.moves["peak |FE|"].iloc[0] > 0
@@ -112,7 +112,7 @@ def test_inspect_trace_needs_a_path_and_checks_parameters_first(tmp_path):
 
 @pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 def test_inspect_recording_takes_detrended_nodes():
-    from funcnet.report.inspect import inspect_recording
+    from funcnet.inspection import inspect_recording
 
     rec = _synthetic()
     ins = inspect_recording(rec, signals=["FE", "V", "AC"], evidence=False, backlash=False)
@@ -128,7 +128,7 @@ def test_inspect_command_detrended_option(tmp_path):
     from typer.testing import CliRunner
 
     from funcnet.cli import app
-    from funcnet.report.inspect import DETRENDED_NODES
+    from funcnet.inspection import DETRENDED_NODES
 
     runner = CliRunner()
     assert "--detrended" in runner.invoke(app, ["inspect", "--help"]).stdout
@@ -144,7 +144,7 @@ def test_inspect_takes_the_evidence_options_of_funcnet_network(tmp_path):
     from typer.testing import CliRunner
 
     from funcnet.cli import app
-    from funcnet.report.inspect import inspect_recording
+    from funcnet.inspection import inspect_recording
 
     ins = inspect_recording(_synthetic(), evidence=True, backlash=False,
                             evidence_options={"surrogates": 9, "resamples": 0, "seed": 2})
@@ -154,3 +154,29 @@ def test_inspect_takes_the_evidence_options_of_funcnet_network(tmp_path):
         assert net.pairs["c_diff_low"].isna().all()  # no intervals asked
     bad = CliRunner().invoke(app, ["inspect", str(tmp_path / "t.csv"), "--alpha", "1.5"])
     assert bad.exit_code == 2 and len(bad.stderr.splitlines()) == 1 and "--alpha" in bad.stderr
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_a_phase_too_short_for_part_of_its_evidence_is_left_out_of_it_not_an_error(tmp_path):
+    from funcnet.inspection import inspect_recording
+    from funcnet.report.inspect import write_inspection
+
+    options = {"surrogates": 9, "resamples": 10}
+    # delay 10: the early spin-up's 46 samples give 26 states, enough for its network, but the
+    # intervals' smaller subsamples keep one block of 6 states (an embedding needs 7)
+    ins = inspect_recording(_synthetic(), backlash=False, evidence_options=options, delay=10)
+    assert [(f.window, f.part) for f in ins.failures] == [("early spin-up", "intervals")]
+    assert "got shape (6, 3)" in ins.failures[0].message
+    short = ins.networks["early spin-up"]
+    assert short.pairs["c_diff_low"].isna().all() and short.evidence["resamples"] == 0
+    assert all(net.pairs["c_diff_low"].notna().all() for label, net in ins.networks.items()
+               if label != "early spin-up")
+    text = write_inspection(ins, tmp_path / "a").read_text(encoding="utf-8")
+    assert "1 without part of them, too short for it" in text
+    assert "without its intervals" in text and "got shape (6, 3)" in text
+    # delay 20: 6 states, no network at all; the other windows keep theirs
+    ins = inspect_recording(_synthetic(), backlash=False, evidence_options=options, delay=20)
+    assert [(f.window, f.part) for f in ins.failures] == [("early spin-up", "network")]
+    assert set(ins.networks) == {w.label for w in ins.windows} - {"early spin-up"}
+    text = write_inspection(ins, tmp_path / "b").read_text(encoding="utf-8")
+    assert "(1 could not be computed: see" in text and "why no network" in text

@@ -27,6 +27,7 @@ from funcnet.network import FunctionalNetwork, functional_network
 from funcnet.parameters import NetworkParameters
 from funcnet.pipeline import (
     CONSTANT_POLICIES,
+    WindowFailure,
     window_evidence,
     window_networks,
     window_warnings,
@@ -193,6 +194,60 @@ def test_window_evidence_equals_each_windows_network_computed_with_evidence(synt
         assert got.window == plain[window.label].window  # the window's record is kept
         assert got.pairs.equals(direct.pairs) and got.edges.equals(direct.edges)
         assert got.evidence == direct.evidence and got.label == window.label
+
+
+# 25 samples, dim 3, delay 1: 23 states, enough for the network; the smaller subsamples of the
+# asymmetry intervals keep one block of ceil(sqrt(23)) = 5 states, fewer than an embedding needs.
+SHORT = Window("short", 2.0, 2.05, phase="braking")
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_collect_leaves_out_a_window_without_network_and_says_why(synthetic):
+    windows = [STILL, MOVING[0], SHORT]  # AC is constant in STILL: no network there
+    found = window_networks(synthetic, windows, errors="collect", dim=3, delay=1)
+    assert list(found) == ["w0", "short"]
+    with pytest.raises(SignalError) as raised:  # the error the raising path gives that window
+        window_networks(synthetic, [STILL], dim=3, delay=1)
+    assert found.failures == (WindowFailure("still", "network", str(raised.value)),)
+    # the windows that have a network have the one each gets alone
+    for window in (MOVING[0], SHORT):
+        alone = window_networks(synthetic, [window], dim=3, delay=1)[window.label]
+        assert found[window.label] == alone
+    assert window_networks(synthetic, [MOVING[0]], dim=3, delay=1).failures == ()
+    with pytest.raises(ParameterError, match="errors must be one of raise, collect"):
+        window_networks(synthetic, windows, errors="ignore")
+    with pytest.raises(ParameterError, match="dim"):  # the call's own errors are raised
+        window_networks(synthetic, windows, errors="collect", dim=0)
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_collect_leaves_out_the_intervals_of_a_window_too_short_for_them(synthetic):
+    windows = [MOVING[0], SHORT]
+    plain = window_networks(synthetic, windows, dim=3, delay=1)
+    settings = {"surrogates": 19, "resamples": 20, "seed": 3}
+    # the network works, its evidence does not: the intervals' subsamples are too short
+    with pytest.raises(SignalError, match=r"M >= 7 states.*got shape \(5, 3\)"):
+        window_evidence(synthetic, plain, windows, **settings)
+    found = window_evidence(synthetic, plain, windows, errors="collect", **settings)
+    [failure] = found.failures
+    assert (failure.window, failure.part) == ("short", "intervals")
+    assert failure.message.startswith("/data/synthetic.csv: window 'short' [2, 2.05) s: ")
+    assert "got shape (5, 3)" in failure.message
+    # the long window: its full evidence, as if computed alone
+    whole = window_evidence(synthetic, {"w0": plain["w0"]}, [MOVING[0]], **settings)["w0"]
+    assert found["w0"] == whole
+    # the short one: the coupling test without the intervals, as functional_network gives it
+    part = synthetic.window(SHORT.start, SHORT.stop).data
+    direct = functional_network(part, dim=3, delay=1, label="short", warn=False, evidence=True,
+                                surrogates=19, resamples=0, seed=3)
+    short = found["short"]
+    assert short.pairs.equals(direct.pairs) and short.edges.equals(direct.edges)
+    assert short.pairs["c_diff_low"].isna().all() and "coupling_p" in short.pairs
+    assert short.evidence is not None and short.evidence["resamples"] == 0
+    assert short.window == plain["short"].window
+    # a bad setting is the caller's: raised before any window, not collected
+    with pytest.raises(ParameterError, match="alpha"):
+        window_evidence(synthetic, plain, windows, errors="collect", alpha=2.0)
 
 
 def test_errors_inside_a_window_name_file_window_and_span(synthetic):

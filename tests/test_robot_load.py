@@ -8,7 +8,7 @@ import pytest
 
 from funcnet.errors import ChannelError, ParameterError
 from funcnet.robot import read_recording
-from funcnet.robot.load import derived_signals_needed
+from funcnet.robot.load import derived_signals_needed, prepare_recording
 from funcnet.robot.preprocess import add_derived_signals, resample, staircase_signals, velocity
 from funcnet.robot.recording import read_trace
 
@@ -54,6 +54,18 @@ def test_resampled_derived_signals_come_from_resampled_inputs(real_trace, raw, m
     if method == "decimate":
         assert recording.sample_period == 0.004
         assert staircase_signals(recording, ["RP", "AP", "V", "FE"]) == []
+
+
+def test_prepare_recording_is_read_recording_after_the_read(real_trace, raw):
+    # the interpolated positions first, then V and FE from them (as the inspection did it)
+    prepared = prepare_recording(raw, signals=["V", "FE"], resample="interpolate")
+    expected = add_derived_signals(resample(raw, method="interpolate"), ["V", "FE"])
+    pd.testing.assert_frame_equal(prepared.data, expected.data)
+    assert prepared.signals == expected.signals
+    again = read_recording(real_trace, signals=["V", "FE"], resample="interpolate")
+    pd.testing.assert_frame_equal(prepared.data, again.data)
+    with pytest.raises(ParameterError, match="resample"):
+        prepare_recording(raw, resample="nearest")
 
 
 def test_a_derived_column_stored_in_the_file_is_recomputed_after_resampling(

@@ -5,6 +5,15 @@ its :class:`~funcnet.network.FunctionalNetwork` with one :class:`~funcnet.Networ
 and says, once per kind of problem for the whole call, what the networks' pairs tables flag.
 The warnings are built from those flags (:func:`window_warnings`), not caught from the
 computation, so that several calls may run at once in threads.
+
+A window that fails (too short for the embedding, a signal not recorded in it, too short for
+the asymmetry intervals of its evidence) raises its error, located; with
+``errors="collect"`` it is recorded instead (:class:`WindowFailure`, in the result's
+``failures``) and the other windows go on: the one way to compute many windows when some may
+fail.
+
+Length: over 600 lines because the batched and the per-window paths, their failures and the
+one summary of their warnings belong together.
 """
 
 from __future__ import annotations
@@ -15,6 +24,7 @@ import sys
 import warnings
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -37,17 +47,24 @@ from funcnet.network import (
     functional_network,
     pair_kinds,
 )
+from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import NetworkParameters, resolve
 from funcnet.robot.preprocess import staircase_signals
 from funcnet.robot.recording import Recording
 from funcnet.robot.windows import Window, paper_nodes, phase_windows
 
-__all__ = ["window_networks", "window_evidence", "window_warnings", "CONSTANT_POLICIES"]
+__all__ = ["window_networks", "window_evidence", "window_warnings", "WindowNetworks",
+           "WindowFailure", "CONSTANT_POLICIES", "ERROR_POLICIES", "FAILURE_PARTS"]
 
 #: What :func:`window_networks` does with a signal constant inside a window: raise, or leave it
 #: out of that window's network.
 CONSTANT_POLICIES = ("error", "drop")
+#: What :func:`window_networks` and :func:`window_evidence` do with a window that fails: raise
+#: its error, or record it (:class:`WindowFailure`) and go on with the other windows.
+ERROR_POLICIES = ("raise", "collect")
+#: The parts of a window's result a :class:`WindowFailure` can name.
+FAILURE_PARTS = ("network", "evidence", "intervals")
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
@@ -71,8 +88,60 @@ _SUMMARIES: dict[str, tuple[str, str]] = {
 }
 
 
+@dataclass(frozen=True)
+class WindowFailure:
+    """A window without its network, or without a part of its evidence (``errors="collect"``).
+
+    Attributes
+    ----------
+    window : str
+        The window's label.
+    part : str
+        What the window lacks (:data:`FAILURE_PARTS`): ``"network"`` (it has none),
+        ``"evidence"`` (its network has no evidence columns) or ``"intervals"`` (its evidence
+        has no asymmetry intervals, ``c_diff_low`` ... NaN: the subsamples of the intervals are
+        too short, while the coupling test ran).
+    message : str
+        The error's message, after the recording's file, the window's label and its span.
+    """
+
+    window: str
+    part: str
+    message: str
+
+
+class WindowNetworks(dict[str, FunctionalNetwork]):
+    """Window label -> FunctionalNetwork, in window order, and the windows that failed.
+
+    What :func:`window_networks` and :func:`window_evidence` return: a dict, with
+    ``failures`` (a tuple of :class:`WindowFailure`, in window order) empty unless they were
+    called with ``errors="collect"``.
+
+    Examples
+    --------
+    >>> found = WindowNetworks({}, [WindowFailure("cruise 1", "network", "too short")])
+    >>> dict(found), found.failures[0].part
+    ({}, 'network')
+    """
+
+    def __init__(self, networks: Mapping[str, FunctionalNetwork] | None = None,
+                 failures: Sequence[WindowFailure] = ()) -> None:
+        super().__init__(networks or {})
+        self.failures: tuple[WindowFailure, ...] = tuple(failures)
+
+
+def _collects(errors: str) -> bool:
+    if errors not in ERROR_POLICIES:
+        raise ParameterError.of(
+            "errors", f"must be one of {', '.join(ERROR_POLICIES)}; got {errors!r}"
+        )
+    return errors == "collect"
+
+
 def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwork],
-                    windows: Sequence[Window], **settings: Any) -> dict[str, FunctionalNetwork]:
+                    windows: Sequence[Window], *, errors: str = "raise",
+                    progress: Callable[[int, int, str], None] | None = None,
+                    **settings: Any) -> WindowNetworks:
     """Each window's network with the evidence columns (:func:`funcnet.network.add_evidence`:
     the measures are not computed again).
 
@@ -84,27 +153,73 @@ def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwo
         :func:`window_networks`' result (or part of it), by window label.
     windows : sequence of Window
         The windows, among them one per label of ``networks``.
+    errors : {"raise", "collect"}
+        A window whose evidence fails (too short for the subsamples of the asymmetry
+        intervals, say): ``"raise"`` its error; ``"collect"`` keeps what could be computed and
+        records what could not (``failures``): without the intervals (``resamples=0``, part
+        ``"intervals"``) when the coupling test still runs, else its plain network (part
+        ``"evidence"``). The settings are checked before any window either way.
+    progress : callable, optional
+        Called as ``progress(done, total, label)`` after each window.
     **settings
         ``evidence=True``'s settings of :func:`funcnet.network.functional_network`
         (``surrogates``, ``alpha``, ``seed``, ``resamples``, ``edge_rule``, ...).
 
     Returns
     -------
-    dict of str to FunctionalNetwork
+    WindowNetworks
         By label; each keeps its label and its window's record.
 
     Raises
     ------
     KeyError
         A label of ``networks`` without its window.
+    ParameterError
+        A bad setting (before any window), or ``errors`` not one of :data:`ERROR_POLICIES`.
+    FuncnetError
+        With ``errors="raise"``: any error of :func:`~funcnet.network.add_evidence` on a
+        window.
     """
+    collect = _collects(errors)
+    if collect:  # a bad setting is the caller's, not a window's: it is raised, never collected
+        check_evidence_settings(**settings)
     spans = {w.label: w for w in windows}
-    found = {}
-    for label, net in networks.items():
+    where = recording.source or "<recording>"
+    found = WindowNetworks()
+    failures = []
+    for done, (label, net) in enumerate(networks.items(), start=1):
         span = spans[label]
         part = recording.window(span.start, span.stop).data[list(net.nodes)]
-        found[label] = add_evidence(net, part, **settings)
+        try:
+            found[label] = add_evidence(net, part, **settings)
+        except FuncnetError as error:
+            if not collect:
+                raise
+            failure = _evidence_failure(net, part, settings, error, where, span)
+            found[label] = failure[0]
+            failures.append(failure[1])
+        if progress is not None:
+            progress(done, len(networks), label)
+    found.failures = tuple(failures)
     return found
+
+
+def _evidence_failure(net: FunctionalNetwork, part: pd.DataFrame, settings: Mapping[str, Any],
+                      error: FuncnetError, where: str,
+                      window: Window) -> tuple[FunctionalNetwork, WindowFailure]:
+    """What is left of a window's evidence that failed: the coupling test without the
+    intervals when that runs (the intervals' subsamples are shorter than the window), else the
+    plain network; and the failure, located."""
+    message = f"{where}: window {window.label!r} {_span(window)}: {error}"
+    # Without intervals the "interval" edge rule has nothing to decide on: no fallback there.
+    if settings.get("resamples") != 0 and settings.get("edge_rule") != "interval":
+        try:
+            without = add_evidence(net, part, **{**settings, "resamples": 0})
+        except FuncnetError:
+            pass
+        else:
+            return without, WindowFailure(window.label, "intervals", message)
+    return net, WindowFailure(window.label, "evidence", message)
 
 
 def window_networks(
@@ -114,9 +229,10 @@ def window_networks(
     signals: Sequence[str] | None = None,
     parameters: NetworkParameters | None = None,
     constant: str = "error",
+    errors: str = "raise",
     progress: Callable[[int, int, str], None] | None = None,
     **overrides: Any,
-) -> dict[str, FunctionalNetwork]:
+) -> WindowNetworks:
     """One functional network per window of a recording.
 
     Parameters
@@ -142,6 +258,12 @@ def window_networks(
         raises :class:`~funcnet.errors.SignalError`; ``"drop"`` leaves it out of that window's
         network (listed in its ``window["dropped"]``). Without normalization
         (``normalize=None``) nothing is dropped.
+    errors : {"raise", "collect"}
+        A window that has no network (its error is one of those listed under ``WindowError``
+        and ``FuncnetError`` below): ``"raise"`` its error; ``"collect"`` records it (the
+        result's ``failures``, part ``"network"``) and computes the other windows, whose
+        warnings are then summarized together. Errors of the call itself (a bad parameter, a
+        signal that is not a column, duplicate labels) are raised either way.
     progress : callable, optional
         Called as ``progress(done, total, label)`` after each window's network.
     **overrides
@@ -149,17 +271,18 @@ def window_networks(
 
     Returns
     -------
-    dict
-        Window label -> FunctionalNetwork (labelled so), in window order. Each network's
+    WindowNetworks
+        A dict: window label -> FunctionalNetwork (labelled so), in window order. Each network's
         ``window`` says where it comes from: the window's ``label``, ``start``, ``stop``
         (seconds), ``phase`` and ``offset``, the ``source`` (the recording's file) and
-        ``dropped`` (a tuple of the signals left out).
+        ``dropped`` (a tuple of the signals left out). Its ``failures`` are the windows left
+        out (``errors="collect"``).
 
     Raises
     ------
     ParameterError
-        A bad network parameter (before any window is computed), or ``constant`` not one of
-        :data:`CONSTANT_POLICIES`.
+        A bad network parameter (before any window is computed), ``constant`` not one of
+        :data:`CONSTANT_POLICIES` or ``errors`` not one of :data:`ERROR_POLICIES`.
     WindowError
         A window outside the recording, with a signal not recorded (NaN) in it, with fewer than
         two signals left after dropping constant ones, or a duplicate label; the message names
@@ -212,12 +335,18 @@ def window_networks(
     Traceback (most recent call last):
         ...
     funcnet.errors.SignalError: trace.csv: window 'still' [0.2, 0.8) s: signal 'AC' is constant ...
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore")
+    ...     found = window_networks(rec, windows, errors="collect", delay=5)
+    >>> list(found), found.failures[0].window, found.failures[0].part
+    (['moving'], 'still', 'network')
     """
     p = resolve(parameters, overrides)
     if constant not in CONSTANT_POLICIES:
         raise ParameterError.of(
             "constant", f"must be one of {', '.join(CONSTANT_POLICIES)}; got {constant!r}"
         )
+    collect = _collects(errors)
     if isinstance(windows, pd.DataFrame):
         windows = phase_windows(windows)
     windows = list(windows)
@@ -249,18 +378,26 @@ def window_networks(
             stacklevel=_caller_stacklevel(),
         )
     drop = constant == "drop" and p.normalize is not None
-    networks: dict[str, FunctionalNetwork] = {}
+    networks = WindowNetworks()
+    failures = []
     batched = _batched_networks(recording, windows, signals, p)
     for done, window in enumerate(windows, start=1):
-        networks[window.label] = (
-            batched[0][done - 1] if batched is not None
-            else _window_network(recording, window, signals, p, drop, where)
-        )
+        if batched is not None:
+            networks[window.label] = batched[0][done - 1]
+        else:
+            try:
+                networks[window.label] = _window_network(recording, window, signals, p, drop,
+                                                         where)
+            except FuncnetError as error:
+                if not collect or isinstance(error, ParameterError):
+                    raise
+                failures.append(WindowFailure(window.label, "network", str(error)))
         if progress is not None:
             progress(done, len(windows), window.label)
     found = batched[1] if batched is not None else window_warnings(networks)
     for warning in _summarized(found, where, len(windows)):
         warnings.warn(warning, stacklevel=_caller_stacklevel())
+    networks.failures = tuple(failures)
     return networks
 
 

@@ -731,7 +731,8 @@ def inspect(
     """
     with _reported_errors(verbose=verbose):
         names = _signal_list(signals)
-        from funcnet.report.inspect import DETRENDED_NODES, inspect_trace
+        from funcnet.inspection import DETRENDED_NODES
+        from funcnet.report.inspect import inspect_trace
 
         if detrended:
             if names is not None:

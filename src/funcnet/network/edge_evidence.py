@@ -9,6 +9,7 @@ again.
 from __future__ import annotations
 
 import dataclasses
+import inspect
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
@@ -31,7 +32,8 @@ from funcnet.parameters import NetworkParameters
 if TYPE_CHECKING:
     from funcnet.network.functional import FunctionalNetwork
 
-__all__ = ["add_evidence", "check_edge_rule", "evidence_columns", "with_readings"]
+__all__ = ["add_evidence", "check_edge_rule", "check_evidence_settings", "evidence_columns",
+           "with_readings"]
 
 
 def check_edge_rule(edge_rule: Any, evidence: bool) -> None:
@@ -51,6 +53,38 @@ def check_edge_rule(edge_rule: Any, evidence: bool) -> None:
                                 f"{edge_rule!r}")
     if edge_rule == "interval" and not evidence:
         raise ParameterError.of("edge_rule", "'interval' needs evidence=True")
+
+
+def check_evidence_settings(**settings: Any) -> None:
+    """Check the evidence keywords of :func:`add_evidence` before any data is read.
+
+    Parameters
+    ----------
+    **settings
+        ``surrogates``, ``alpha``, ``seed``, ``resamples``, ``surrogate_method``,
+        ``edge_rule``; those not given take :func:`add_evidence`'s defaults.
+
+    Raises
+    ------
+    ParameterError
+        The first bad value, as :func:`add_evidence` says it.
+    TypeError
+        A keyword :func:`add_evidence` does not take.
+
+    Examples
+    --------
+    >>> check_evidence_settings(alpha=0.01, resamples=0)
+    >>> check_evidence_settings(edge_rule="interval", alpha=2.0)
+    Traceback (most recent call last):
+        ...
+    funcnet.errors.ParameterError: alpha must be in (0, 1), got 2.0
+    """
+    bound = inspect.signature(add_evidence).bind(None, None, **settings)
+    bound.apply_defaults()
+    given = bound.arguments
+    check_edge_rule(given["edge_rule"], evidence=True)
+    check_evidence_arguments(given["surrogates"], given["alpha"], given["resamples"],
+                             given["surrogate_method"])
 
 
 def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkParameters, *,
@@ -206,8 +240,8 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     >>> full.pairs.loc[0, "evidence"]
     'coupled'
     """
-    check_edge_rule(edge_rule, evidence=True)
-    check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
+    check_evidence_settings(surrogates=surrogates, alpha=alpha, resamples=resamples,
+                            surrogate_method=surrogate_method, edge_rule=edge_rule)
     if network.evidence is not None:
         raise ParameterError.of("network", "already has evidence columns")
     channels = network.channels or {node: (node,) for node in network.nodes}

@@ -278,7 +278,7 @@ def _analyse(name: str, path: Any, recording: Any,
              signals: Sequence[str], parameters: NetworkParameters,
              warned: dict[str, int]) -> TrialAnalysis:
     """Detect a trial's phases, build its windows and compute one network per window."""
-    from funcnet.pipeline import window_networks
+    from funcnet.pipeline import WindowNetworks, window_networks
     from funcnet.robot import detect_phases
     from funcnet.robot.preprocess import staircase_signals
 
@@ -290,23 +290,15 @@ def _analyse(name: str, path: Any, recording: Any,
         return TrialAnalysis(name, str(path), data,
                              pd.DataFrame(columns=["phase", "start", "stop"]), {}, {},
                              {"windows": str(exc)})
-    networks: dict[Any, Any] = {}
-    errors: dict[Any, str] = {}
     try:
         # One call for the whole trial: its warnings are summarized once, not per window.
         by_label = window_networks(recording, list(windows.values()), signals=signals,
-                                   parameters=parameters, constant="drop")
-        networks = {key: by_label[w.label] for key, w in windows.items()}
-    except FuncnetError:
-        # Some window has no network: compute them one by one to say which and why.
-        for key, window in windows.items():
-            try:
-                (networks[key],) = window_networks(recording, [window], signals=signals,
-                                                   parameters=parameters,
-                                                   constant="drop").values()
-            except FuncnetError as exc:
-                networks[key] = None
-                errors[key] = str(exc)
+                                   parameters=parameters, constant="drop", errors="collect")
+        failed = {f.window: f.message for f in by_label.failures}
+    except FuncnetError as exc:  # the trial itself (a signal it lacks): no window has one
+        by_label, failed = WindowNetworks(), {w.label: str(exc) for w in windows.values()}
+    networks: dict[Any, Any] = {key: by_label.get(w.label) for key, w in windows.items()}
+    errors = {key: failed[w.label] for key, w in windows.items() if w.label in failed}
     dropped = {key: tuple(net.window["dropped"]) for key, net in networks.items()
                if net is not None and net.window and net.window.get("dropped")}
     problems = network_problems(networks, staircases=staircase_signals(recording, signals))

@@ -31,9 +31,7 @@ _EXPORTS = {
     "write_report": "funcnet.report.study_report",
     "save_figure": "funcnet.report.html",
     "inspect_trace": "funcnet.report.inspect",
-    "inspect_recording": "funcnet.report.inspect",
     "write_inspection": "funcnet.report.inspect",
-    "TraceInspection": "funcnet.report.inspect",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

@@ -5,18 +5,10 @@ from the top: a plain summary of the motion (moves, phases with their times, spe
 currents, following error, lost motion at the direction changes where both encoders exist),
 then the functional network of every phase of every move with its evidence, the edge timeline,
 the backlash diagnosis, and what an arrow does and does not say. Several traces get an index
-page. :func:`inspect_recording` is the computation alone (a :class:`TraceInspection`);
-:func:`write_inspection` the page.
+page. The computation is :func:`funcnet.inspection.inspect_recording` (a
+:class:`~funcnet.inspection.TraceInspection`); :func:`write_inspection` renders it.
 
-Defaults chosen for a real trace: the paper's nodes the trace has (:data:`PAPER_NODES`, V
-derived from AP), one window per detected phase of every move (standstill is summarized, not
-networked: the set-point is constant there), signals sampled coarser than the grid (the 4 ms
-IPO positions on the 2 ms servo grid) interpolated so that no node is a staircase, signals
-constant in a window left out of that window, and the evidence columns of
-:func:`funcnet.functional_network` (``evidence=True``).
-
-The figures are in :mod:`funcnet.report.inspect_figures`. Length: over 600 lines because the
-computation, the summary and the page of one report read best together.
+The figures are in :mod:`funcnet.report.inspect_figures`.
 
 References
 ----------
@@ -26,13 +18,10 @@ References
 
 from __future__ import annotations
 
-import dataclasses
 import datetime as _dt
 import os
 import sys
-import time
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -40,10 +29,9 @@ import numpy as np
 import pandas as pd
 
 from funcnet._io import write_text_atomic
-from funcnet.errors import FuncnetError, ParameterError
-from funcnet.network import FunctionalNetwork, functional_network
+from funcnet.errors import ParameterError
+from funcnet.inspection import TraceInspection, inspect_recording
 from funcnet.parameters import NetworkParameters, resolve
-from funcnet.pipeline import window_networks, window_warnings
 from funcnet.report.html import (
     PACKAGES,
     Progress,
@@ -63,20 +51,9 @@ from funcnet.report.inspect_figures import (
     figure_networks,
     figure_timeline,
 )
-from funcnet.robot import (
-    PAPER_NODES,
-    Recording,
-    Window,
-    add_derived_signals,
-    detect_phases,
-    phase_windows,
-    read_trace,
-    resample,
-)
-from funcnet.robot.preprocess import DERIVED_SIGNALS, staircase_signals, velocity
+from funcnet.robot import read_trace
 
-__all__ = ["DETRENDED_NODES", "TraceInspection", "inspect_recording", "inspect_trace",
-           "write_inspection", "READING_AN_ARROW"]
+__all__ = ["inspect_trace", "write_inspection", "READING_AN_ARROW"]
 
 #: What the report says about reading an arrow (paper section 2.4; README "Direction").
 READING_AN_ARROW = (
@@ -95,308 +72,6 @@ READING_AN_ARROW = (
     "pair is neither coupled nor uncoupled, only unread. Compare arrows between phases of the "
     "same trace, not between traces with other signals or parameters."
 )
-
-_MOTION = ("standstill",)
-
-#: Detrended nodes (``funcnet inspect --detrended``): the positions' ramps replaced by the
-#: following error FE = RP - AP and the torsion TORSION = MP - AP, with V and the currents.
-#: In cruise the positions are ramps, which time-shift surrogates cannot treat as stationary
-#: (issue 10, item 5; docs/evidence.md).
-DETRENDED_NODES = ("FE", "TORSION", "V", "RC", "AC")
-
-
-@dataclass(frozen=True)
-class TraceInspection:
-    """What :func:`inspect_recording` found in one trace.
-
-    Attributes
-    ----------
-    source : str
-        The trace's file (as given) or ``"<recording>"``.
-    duration, sample_period : float
-        Seconds.
-    signals : tuple of str
-        The nodes of the networks.
-    phases : pandas.DataFrame
-        :func:`funcnet.robot.detect_phases` with ``move`` (0 for standstill, else the move's
-        number) and ``duration``.
-    moves : pandas.DataFrame
-        One row per move: ``move, start, stop, duration, direction, distance, peak speed``
-        (set-point, unit/s), ``peak V`` (arm side), ``peak |AC|``, ``peak |FE|`` (RP - AP),
-        ``final |FE|`` (at the move's end); columns whose signal is missing are left out.
-    windows : tuple of Window
-        One per phase of a move, labelled as the networks.
-    networks : dict
-        Window label -> FunctionalNetwork (with the evidence columns when ``evidence``).
-    errors : dict
-        Window label -> why it has no network.
-    problems : pandas.DataFrame
-        The networks' flagged problems, counted: ``problem, windows, of, which, pairs``.
-    backlash : Any
-        The :class:`funcnet.diagnosis.BacklashResult`, or None.
-    backlash_error : str
-        Why there is no diagnosis ("" when there is one).
-    parameters : NetworkParameters
-    evidence : bool
-    resampled : tuple of str
-        The signals interpolated onto the grid (they were staircases).
-    elapsed : float
-        Seconds of computation.
-    recording : Recording
-        The recording the networks were computed on (interpolated, with V).
-    """
-
-    source: str
-    duration: float
-    sample_period: float
-    signals: tuple[str, ...]
-    phases: pd.DataFrame
-    moves: pd.DataFrame
-    windows: tuple[Window, ...]
-    networks: dict[str, FunctionalNetwork]
-    errors: dict[str, str]
-    problems: pd.DataFrame
-    backlash: Any
-    backlash_error: str
-    parameters: NetworkParameters
-    evidence: bool
-    resampled: tuple[str, ...]
-    elapsed: float
-    recording: Recording = dataclasses.field(repr=False)
-
-
-# --------------------------------------------------------------------------------------------
-# computation
-
-
-def _numbered_moves(phases: pd.DataFrame) -> pd.DataFrame:
-    """``phases`` with ``move`` (consecutive non-standstill rows form one move) and duration."""
-    moving = (phases["phase"] != "standstill").to_numpy()
-    starts = moving & ~np.concatenate([[False], moving[:-1]])
-    move = np.where(moving, np.cumsum(starts), 0)
-    return phases.assign(move=move, duration=(phases["stop"] - phases["start"]).round(6))
-
-
-def _peak(values: np.ndarray) -> float:
-    finite = values[np.isfinite(values)]
-    return float(np.abs(finite).max()) if finite.size else float("nan")
-
-
-def motion_summary(recording: Recording, phases: pd.DataFrame) -> pd.DataFrame:
-    """One row per move of a recording: times, direction, distance, speeds, currents, errors.
-
-    Parameters
-    ----------
-    recording : Recording
-        With RP (the set-point); AP, V, AC optional.
-    phases : pandas.DataFrame
-        :func:`_numbered_moves` of :func:`funcnet.robot.detect_phases`.
-
-    Returns
-    -------
-    pandas.DataFrame
-        See :attr:`TraceInspection.moves`.
-
-    Examples
-    --------
-    >>> import numpy as np, pandas as pd
-    >>> from funcnet.robot import Recording, SignalInfo
-    >>> t = np.arange(0, 2, 0.002)
-    >>> rp = np.clip(t - 0.5, 0, 1) * 90.0
-    >>> data = pd.DataFrame({"RP": rp}, index=pd.Index(t, name="time"))
-    >>> rec = Recording(data, {}, {"RP": SignalInfo("RP", "posn", None, 0.002)})
-    >>> phases = _numbered_moves(pd.DataFrame({"phase": ["standstill", "cruise", "standstill"],
-    ...                                        "start": [0.0, 0.5, 1.5],
-    ...                                        "stop": [0.5, 1.5, 2.0]}))
-    >>> motion_summary(rec, phases)[["move", "direction", "distance"]].round(1)
-       move direction  distance
-    0     1         +      89.8
-    """
-    data = recording.data
-    t = data.index.to_numpy(dtype=float)
-    rp = data["RP"].to_numpy(dtype=float)
-    set_speed = np.abs(velocity(rp, recording.sample_period))
-    rows = []
-    for move, group in phases[phases["move"] > 0].groupby("move"):
-        start, stop = float(group["start"].min()), float(group["stop"].max())
-        inside = (t >= start) & (t < stop)
-        first, last = np.flatnonzero(inside)[[0, -1]]
-        distance = float(rp[last] - rp[first])
-        row: dict[str, Any] = {"move": int(move), "start": start, "stop": stop,
-                               "duration": round(stop - start, 6),
-                               "direction": "+" if distance >= 0 else "−",
-                               "distance": distance,
-                               "peak speed": _peak(set_speed[inside])}
-        if "V" in data:
-            row["peak V"] = _peak(data["V"].to_numpy(dtype=float)[inside])
-        if "AC" in data:
-            row["peak |AC|"] = _peak(data["AC"].to_numpy(dtype=float)[inside])
-        if "AP" in data:
-            fe = rp - data["AP"].to_numpy(dtype=float)
-            row["peak |FE|"] = _peak(fe[inside])
-            row["final |FE|"] = _peak(fe[last:last + 1])
-        rows.append(row)
-    return pd.DataFrame(rows)
-
-
-def _problems(networks: Mapping[str, FunctionalNetwork]) -> pd.DataFrame:
-    """The flagged problems of the networks, one row per problem with its windows counted."""
-    groups: dict[str, dict[str, Any]] = {}
-    for warning in window_warnings(networks):
-        key = str(warning.problem)
-        entry = groups.setdefault(key, {"windows": [], "pairs": {}})
-        entry["windows"].append(str(warning.window))
-        for pair in warning.pairs:
-            entry["pairs"][pair] = entry["pairs"].get(pair, 0) + 1
-    rows = [{"problem": problem, "windows": len(entry["windows"]), "of": len(networks),
-             "which": ", ".join(entry["windows"]),
-             "pairs (windows)": ", ".join(f"{x}–{y} ({n})" for (x, y), n in
-                                          entry["pairs"].items())}
-            for problem, entry in groups.items()]
-    return pd.DataFrame(rows, columns=["problem", "windows", "of", "which", "pairs (windows)"])
-
-
-def inspect_recording(
-    recording: Recording,
-    *,
-    signals: Sequence[str] | None = None,
-    parameters: NetworkParameters | None = None,
-    evidence: bool = True,
-    interpolate: bool = True,
-    backlash: bool = True,
-    progress: Progress = None,
-    evidence_options: Mapping[str, Any] | None = None,
-    **overrides: Any,
-) -> TraceInspection:
-    """Summarize a recording's motion and compute a functional network per phase of each move.
-
-    Parameters
-    ----------
-    recording : Recording
-        As :func:`funcnet.robot.read_trace` returns it (with RP; V is derived from AP here).
-    signals : sequence of str, optional
-        The nodes; default the paper's (RP, AP, MP, V, RC, AC) that the recording has. Derived
-        signals named here (FE = RP - AP, TORSION = MP - AP, :data:`DETRENDED_NODES`) are
-        computed from the recording.
-    parameters : NetworkParameters, optional
-        Network parameters (default :class:`~funcnet.NetworkParameters`'s).
-    evidence : bool
-        Add the evidence columns (coupling test, intervals, direction) to every network.
-    interpolate : bool
-        Interpolate signals coarser than the grid (staircases) onto it
-        (:func:`funcnet.robot.resample` with ``method="interpolate"``) before the networks.
-    backlash : bool
-        Run :func:`funcnet.diagnosis.diagnose_recording` on the recording as read.
-    progress : callable, optional
-        ``progress(done, total, description)``.
-    evidence_options : mapping, optional
-        The evidence keywords of :func:`funcnet.functional_network` (``surrogates``,
-        ``alpha``, ``seed``, ``resamples``, ``surrogate_method``, ``edge_rule``); default its
-        defaults.
-    **overrides
-        Network parameters by name (``rr=0.1``).
-
-    Returns
-    -------
-    TraceInspection
-
-    Raises
-    ------
-    ParameterError
-        A bad network parameter (before anything is computed).
-    ChannelError
-        No RP, or a signal that is not in the recording.
-    """
-    started = time.perf_counter()
-    p = resolve(parameters, overrides)
-    where = recording.source or "<recording>"
-    raw = recording
-    step(progress, 0, 4, "phases")
-    phases = _numbered_moves(detect_phases(raw))
-    if interpolate:
-        coarse = tuple(staircase_signals(raw))
-        rec = resample(raw, method="interpolate") if coarse else raw
-    else:
-        coarse, rec = (), raw
-    # V always (when AP is there); FE and TORSION (the detrended nodes) when asked for, from
-    # the interpolated positions
-    derived = [name for name in ("V", *(signals or ())) if name in DERIVED_SIGNALS
-               and name not in rec.data.columns
-               and all(c in rec.data.columns for c in DERIVED_SIGNALS[name][0])]
-    if derived:
-        rec = add_derived_signals(rec, list(dict.fromkeys(derived)))
-    if signals is None:
-        signals = [s for s in PAPER_NODES if s in rec.data.columns]
-    signals = list(signals)
-    moves = motion_summary(rec, phases)
-    windows = tuple(w for w in phase_windows(phases[["phase", "start", "stop"]])
-                    if w.phase not in _MOTION)
-    total = 2 + len(windows) * (2 if evidence else 1)
-    done = 1
-
-    def tick(description: str) -> None:
-        nonlocal done
-        done += 1
-        step(progress, done, total, description)
-
-    networks: dict[str, FunctionalNetwork] = {}
-    errors: dict[str, str] = {}
-    try:  # one call: its warnings come once per problem for the whole trace
-        networks = window_networks(rec, windows, signals=signals, parameters=p,
-                                   constant="drop",
-                                   progress=lambda k, n, label: tick(f"network {label}"))
-    except ParameterError:
-        raise
-    except FuncnetError:
-        # a bad window (too short for the embedding) must not cost the others their network
-        done = 1
-        for window in windows:
-            try:
-                networks.update(window_networks(rec, [window], signals=signals, parameters=p,
-                                                constant="drop"))
-            except FuncnetError as error:
-                if isinstance(error, ParameterError):
-                    raise
-                errors[window.label] = str(error).removeprefix(f"{where}: ")
-            tick(f"network {window.label}")
-    if evidence:
-        for label, net in list(networks.items()):
-            span = next(w for w in windows if w.label == label)
-            part = rec.window(span.start, span.stop).data[list(net.nodes)]
-            full = functional_network(part, parameters=net.parameters, label=label, warn=False,
-                                      evidence=True, **dict(evidence_options or {}))
-            networks[label] = dataclasses.replace(full, window=net.window)
-            tick(f"evidence {label}")
-    diagnosis, diagnosis_error = None, ""
-    if backlash:
-        try:
-            from funcnet.diagnosis import diagnose_recording
-
-            diagnosis = diagnose_recording(raw)
-        except FuncnetError as error:
-            diagnosis_error = str(error)
-    tick("backlash diagnosis")
-    index = rec.data.index
-    return TraceInspection(
-        source=where,
-        duration=round(float(index[-1] - index[0]) + rec.sample_period, 6),
-        sample_period=rec.sample_period,
-        signals=tuple(signals),
-        phases=phases,
-        moves=moves,
-        windows=windows,
-        networks=networks,
-        errors=errors,
-        problems=_problems(networks),
-        backlash=diagnosis,
-        backlash_error=diagnosis_error,
-        parameters=p,
-        evidence=evidence,
-        resampled=coarse,
-        elapsed=time.perf_counter() - started,
-        recording=rec,
-    )
-
 
 # --------------------------------------------------------------------------------------------
 # the page
@@ -434,11 +109,14 @@ def _summary_html(ins: TraceInspection) -> str:
                      + escape(", ".join(f"{k} ×{n}" for k, n in kinds.items())) + "</li>"
                      + _lost_motion_item(ins) + "</ul>")
     n_net = len(ins.networks)
+    errors, partial = _why(ins, "network"), _partial_evidence(ins)
     lines.append(f"<p>{n_net} of {len(ins.windows)} phase windows have a network"
-                 + (f" ({len(ins.errors)} could not be computed: see "
-                    "<a href=\"#problems\">problems</a>)" if ins.errors else "")
+                 + (f" ({len(errors)} could not be computed: see "
+                    "<a href=\"#problems\">problems</a>)" if errors else "")
                  + (", each with its evidence columns" if ins.evidence and n_net else "")
                  + _evidence_count(ins)
+                 + (f" ({len(partial)} without part of them, too short for it: see "
+                    "<a href=\"#problems\">problems</a>)" if len(partial) else "")
                  + (f"; {escape(', '.join(ins.resampled))} were interpolated onto the "
                     f"{ins.sample_period * 1e3:g} ms grid (recorded coarser)" if ins.resampled
                     else "") + ".</p>")
@@ -460,6 +138,20 @@ def _evidence_count(ins: TraceInspection) -> str:
     note = (f"; untestable: the windows leave the test {span} surrogates, too few to reject "
             "whatever the data" if span else "")
     return f" (pairs over the windows: {text}{note})"
+
+
+def _why(ins: TraceInspection, part: str) -> dict[str, str]:
+    """Window label -> why it lacks ``part``, the trace's file left out of the message."""
+    return {label: message.removeprefix(f"{ins.source}: ")
+            for label, message in ins.failed(part).items()}
+
+
+def _partial_evidence(ins: TraceInspection) -> pd.DataFrame:
+    """The windows whose network lacks its evidence or part of it: window, left out, why."""
+    rows = [{"window": f.window, "left out": f.part,
+             "why": f.message.removeprefix(f"{ins.source}: ")}
+            for f in ins.failures if f.part != "network"]
+    return pd.DataFrame(rows, columns=["window", "left out", "why"])
 
 
 def _lost_motion_item(ins: TraceInspection) -> str:
@@ -493,15 +185,19 @@ def _backlash_html(ins: TraceInspection) -> str:
 
 def _network_tables(ins: TraceInspection) -> str:
     parts = []
+    errors = _why(ins, "network")
+    partial = {f.window: f.part for f in ins.failures if f.part != "network"}
     for w in ins.windows:
         net = ins.networks.get(w.label)
         span = f"{w.start:.3f}–{w.stop:.3f} s"
         if net is None:
             parts.append(f"<p><b>{escape(w.label)}</b> ({span}): no network — "
-                         f"{escape(ins.errors.get(w.label, ''))}</p>")
+                         f"{escape(errors.get(w.label, ''))}</p>")
             continue
         dropped = net.window.get("dropped") if net.window else ()
         note = f"; left out (constant): {', '.join(dropped)}" if dropped else ""
+        if w.label in partial:
+            note += f"; without its {partial[w.label]} (too short: see problems)"
         columns = [c for c in ("x", "y", "kind", "weight", "c_diff", "t_diff", "degenerate",
                                "evidence", "coupling_p", "surrogates", "direction",
                                "c_diff_low", "c_diff_high", "evidence_reason")
@@ -606,9 +302,15 @@ def write_inspection(
         "<code>rate_exceeded</code>: ties pushed a rate above its target; "
         "<code>degenerate</code>: too few distinct states, no edge drawn).</p>"
         + table(problems))
-    if ins.errors:
-        problem_html += table(pd.DataFrame({"window": list(ins.errors),
-                                            "why no network": list(ins.errors.values())}))
+    errors, partial = _why(ins, "network"), _partial_evidence(ins)
+    if errors:
+        problem_html += table(pd.DataFrame({"window": list(errors),
+                                            "why no network": list(errors.values())}))
+    if len(partial):
+        problem_html += ("<p>Windows too short for part of their evidence, which is left out "
+                         "of their pairs tables (<code>intervals</code>: the asymmetry "
+                         "intervals, whose subsamples are shorter than the window; "
+                         "<code>evidence</code>: all of it).</p>" + table(partial))
     body = [
         f"<h1>What the axis does — {escape(name)}</h1>",
         f"<section id=\"summary\"><h2>Summary</h2>{_summary_html(ins)}</section>",

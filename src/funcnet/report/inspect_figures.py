@@ -1,7 +1,7 @@
 """The figures of the inspect report (:mod:`funcnet.report.inspect`): motion, networks per
 phase, edge timeline, evidence, lost motion.
 
-Each takes a :class:`~funcnet.report.inspect.TraceInspection` and returns a matplotlib figure
+Each takes a :class:`~funcnet.inspection.TraceInspection` and returns a matplotlib figure
 (or None when the trace lacks what it draws); phases are shaded in
 :data:`funcnet.plot.PHASE_COLORS`, the same colour for the same kind of phase everywhere; every
 text is at least 9 pt at the figure's native size (100 dpi), the size the report shows.
@@ -10,15 +10,13 @@ text is at least 9 pt at the figure's native size (100 dpi), the size the report
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
+from funcnet.inspection import TraceInspection
 from funcnet.robot import Window
-
-if TYPE_CHECKING:
-    from funcnet.report.inspect import TraceInspection
 
 __all__ = ["figure_motion", "figure_networks", "figure_timeline", "figure_evidence",
            "figure_lost_motion", "ARROWS"]

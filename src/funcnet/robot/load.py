@@ -21,7 +21,7 @@ from funcnet.robot.preprocess import DERIVED_SIGNALS, add_derived_signals
 from funcnet.robot.preprocess import resample as resampled
 from funcnet.robot.recording import Recording, read_trace
 
-__all__ = ["read_recording", "derived_signals_needed", "RESAMPLE_METHODS"]
+__all__ = ["read_recording", "prepare_recording", "derived_signals_needed", "RESAMPLE_METHODS"]
 
 #: The ``resample`` methods of :func:`read_recording` (:func:`funcnet.robot.resample`'s).
 RESAMPLE_METHODS = ("decimate", "interpolate")
@@ -119,12 +119,63 @@ def read_recording(
     >>> read_recording(path, signals=["RP", "FE"]).data["FE"].tolist()
     [0.0, 0.0, -1.0, -3.0]
     """
+    _check_resample(resample)
+    off_grid = "interpolate" if resample == "interpolate" else "error"
+    recording = read_trace(path, channels=channels, axis=axis, off_grid=off_grid)
+    return prepare_recording(recording, signals=signals, resample=resample)
+
+
+def _check_resample(resample: str | None) -> None:
     if resample is not None and resample not in RESAMPLE_METHODS:
         raise ParameterError.of(
             "resample", f"must be one of {', '.join(RESAMPLE_METHODS)}; got {resample!r}"
         )
-    off_grid = "interpolate" if resample == "interpolate" else "error"
-    recording = read_trace(path, channels=channels, axis=axis, off_grid=off_grid)
+
+
+def prepare_recording(
+    recording: Recording,
+    *,
+    signals: Sequence[str] | None = None,
+    resample: str | None = None,
+) -> Recording:
+    """A recording already read, with the derived signals a selection needs, on one grid.
+
+    What :func:`read_recording` does after reading the file.
+
+    Parameters
+    ----------
+    recording : Recording
+        As :func:`~funcnet.robot.read_trace` returns it.
+    signals, resample
+        As :func:`read_recording`.
+
+    Returns
+    -------
+    Recording
+        With the derived signals as its last columns (per axis in a recording of several axes,
+        as :func:`read_recording`).
+
+    Raises
+    ------
+    ParameterError
+        ``resample`` is not one of :data:`RESAMPLE_METHODS`, or a derived signal is unknown.
+    ChannelError
+        A derived signal's input is not in the recording.
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot import Recording, SignalInfo
+    >>> data = pd.DataFrame({"RP": [0.0, 1.0, 2.0, 3.0], "AP": [0.0, 0.0, 2.0, 2.0]},
+    ...                     index=pd.Index([0.0, 0.002, 0.004, 0.006], name="time"))
+    >>> info = {"RP": SignalInfo("RP", None, None, 0.002),
+    ...         "AP": SignalInfo("AP", None, None, 0.004)}
+    >>> ready = prepare_recording(Recording(data, {}, info), signals=["RP", "FE"],
+    ...                           resample="interpolate")
+    >>> ready.data["AP"].tolist(), ready.data["FE"].tolist()
+    ([0.0, 1.0, 2.0, 2.0], [0.0, 0.0, 0.0, 1.0])
+    """
+    _check_resample(resample)
     if recording.axes:
         derived = tuple(
             name for name in signals or ()

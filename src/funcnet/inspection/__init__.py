@@ -1,0 +1,29 @@
+"""The inspection of a controller trace: what is the axis doing?
+
+:mod:`~funcnet.inspection.motion` reads the moves of a recording (times, direction, distance,
+speeds, currents, following error); :mod:`~funcnet.inspection.trace` computes everything the
+engineer's report (:mod:`funcnet.report.inspect`) shows of one trace: the moves, a functional
+network per phase of every move with its evidence, the windows or parts that could not be
+computed, and the backlash diagnosis (:func:`inspect_recording`, a :class:`TraceInspection`).
+Names are imported lazily.
+
+Examples
+--------
+>>> from funcnet.inspection import DETRENDED_NODES
+>>> DETRENDED_NODES[:2]
+('FE', 'TORSION')
+"""
+
+from __future__ import annotations
+
+from funcnet._lazy import attach
+
+_EXPORTS = {
+    "numbered_moves": "funcnet.inspection.motion",
+    "motion_summary": "funcnet.inspection.motion",
+    "TraceInspection": "funcnet.inspection.trace",
+    "inspect_recording": "funcnet.inspection.trace",
+    "DETRENDED_NODES": "funcnet.inspection.trace",
+}
+
+__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

@@ -1,0 +1,111 @@
+"""The moves of a recording: consecutive moving phases, and per move what an engineer reads
+first (times, direction, distance, peak speeds and currents, following error).
+
+References
+----------
+.. [1] El Dabett, Hansen & Geier, "Functional network analysis of robot dynamics", section 4
+   (phases), Eq. 11-12 (speed).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from funcnet.robot import Recording
+from funcnet.robot.preprocess import velocity
+
+__all__ = ["numbered_moves", "motion_summary"]
+
+
+def numbered_moves(phases: pd.DataFrame) -> pd.DataFrame:
+    """A phase table with each phase's move and duration.
+
+    Parameters
+    ----------
+    phases : pandas.DataFrame
+        :func:`funcnet.robot.detect_phases` (``phase``, ``start``, ``stop``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``phases`` with ``move`` (consecutive non-standstill rows form one move, numbered from
+        1; 0 for standstill) and ``duration`` (seconds, rounded to the microsecond).
+
+    Examples
+    --------
+    >>> phases = pd.DataFrame({"phase": ["standstill", "cruise", "braking", "standstill"],
+    ...                        "start": [0.0, 0.5, 1.0, 1.5], "stop": [0.5, 1.0, 1.5, 2.0]})
+    >>> numbered_moves(phases)["move"].tolist()
+    [0, 1, 1, 0]
+    """
+    moving = (phases["phase"] != "standstill").to_numpy()
+    starts = moving & ~np.concatenate([[False], moving[:-1]])
+    move = np.where(moving, np.cumsum(starts), 0)
+    return phases.assign(move=move, duration=(phases["stop"] - phases["start"]).round(6))
+
+
+def _peak(values: np.ndarray) -> float:
+    finite = values[np.isfinite(values)]
+    return float(np.abs(finite).max()) if finite.size else float("nan")
+
+
+def motion_summary(recording: Recording, phases: pd.DataFrame) -> pd.DataFrame:
+    """One row per move of a recording: times, direction, distance, speeds, currents, errors.
+
+    Parameters
+    ----------
+    recording : Recording
+        With RP (the set-point); AP, V, AC optional.
+    phases : pandas.DataFrame
+        :func:`numbered_moves` of :func:`funcnet.robot.detect_phases`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per move: ``move, start, stop, duration, direction, distance, peak speed``
+        (set-point, unit/s, Eq. 11-12), ``peak V`` (arm side), ``peak |AC|``, ``peak |FE|``
+        (RP - AP), ``final |FE|`` (at the move's end); columns whose signal is missing are left
+        out.
+
+    Examples
+    --------
+    >>> from funcnet.robot import Recording, SignalInfo
+    >>> t = np.arange(0, 2, 0.002)
+    >>> rp = np.clip(t - 0.5, 0, 1) * 90.0
+    >>> data = pd.DataFrame({"RP": rp}, index=pd.Index(t, name="time"))
+    >>> rec = Recording(data, {}, {"RP": SignalInfo("RP", "posn", None, 0.002)})
+    >>> phases = numbered_moves(pd.DataFrame({"phase": ["standstill", "cruise", "standstill"],
+    ...                                       "start": [0.0, 0.5, 1.5],
+    ...                                       "stop": [0.5, 1.5, 2.0]}))
+    >>> motion_summary(rec, phases)[["move", "direction", "distance"]].round(1)
+       move direction  distance
+    0     1         +      89.8
+    """
+    data = recording.data
+    t = data.index.to_numpy(dtype=float)
+    rp = data["RP"].to_numpy(dtype=float)
+    set_speed = np.abs(velocity(rp, recording.sample_period))
+    rows = []
+    for move, group in phases[phases["move"] > 0].groupby("move"):
+        start, stop = float(group["start"].min()), float(group["stop"].max())
+        inside = (t >= start) & (t < stop)
+        first, last = np.flatnonzero(inside)[[0, -1]]
+        distance = float(rp[last] - rp[first])
+        row: dict[str, Any] = {"move": int(move), "start": start, "stop": stop,
+                               "duration": round(stop - start, 6),
+                               "direction": "+" if distance >= 0 else "−",
+                               "distance": distance,
+                               "peak speed": _peak(set_speed[inside])}
+        if "V" in data:
+            row["peak V"] = _peak(data["V"].to_numpy(dtype=float)[inside])
+        if "AC" in data:
+            row["peak |AC|"] = _peak(data["AC"].to_numpy(dtype=float)[inside])
+        if "AP" in data:
+            fe = rp - data["AP"].to_numpy(dtype=float)
+            row["peak |FE|"] = _peak(fe[inside])
+            row["final |FE|"] = _peak(fe[last:last + 1])
+        rows.append(row)
+    return pd.DataFrame(rows)
