@@ -198,15 +198,20 @@ def inspect_recording(
     --------
     >>> import numpy as np
     >>> from funcnet.robot import SignalInfo
+    >>> import warnings
     >>> t = np.arange(0, 3, 0.002)
-    >>> rp = np.interp(t, [0.5, 2.5], [0.0, 40.0])
+    >>> rp = 20 * (1 - np.cos(np.pi * np.clip((t - 0.5) / 2, 0, 1)))  # one smooth move
     >>> ap = rp - 0.01 * np.sin(40 * t) * (rp > 0)
     >>> data = pd.DataFrame({"RP": rp, "AP": ap}, index=pd.Index(t, name="time"))
     >>> info = {c: SignalInfo(c, "posn", "double", 0.002) for c in data}
-    >>> found = inspect_recording(Recording(data, {}, info, sample_period=0.002),
-    ...                           evidence=False, backlash=False, delay=5)
-    >>> found.signals, len(found.moves), [f.part for f in found.failures]
-    (('RP', 'AP', 'V'), 1, [])
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore")
+    ...     found = inspect_recording(Recording(data, {}, info, sample_period=0.002),
+    ...                               evidence=False, backlash=False, delay=5)
+    >>> found.signals, len(found.moves), list(found.networks)
+    (('RP', 'AP', 'V'), 1, ['late spin-up', 'cruise', 'braking'])
+    >>> [(f.window, f.part) for f in found.failures]  # 4 samples: too short for a network
+    [('early spin-up', 'network')]
     """
     started = time.perf_counter()
     p = resolve(parameters, overrides)
