@@ -9,8 +9,8 @@ from AP), one window per detected phase of every move (standstill is summarized,
 networked: the set-point is constant there), signals sampled coarser than the grid (the 4 ms
 IPO positions on the 2 ms servo grid) interpolated so that no node is a staircase
 (:func:`funcnet.robot.load.prepare_recording`), signals constant in a window left out of that
-window, and the evidence columns of :func:`funcnet.pipeline.window_evidence`. A window too short for its
-network, or for a part of its evidence, is left out of that part and listed in
+window, and the evidence columns of :func:`funcnet.pipeline.window_evidence`. A window too short
+for its network, or for a part of its evidence, is left out of that part and listed in
 :attr:`TraceInspection.failures`: it never stops the inspection.
 
 References
