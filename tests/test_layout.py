@@ -49,6 +49,7 @@ LAYERS: dict[str, tuple[str, float]] = {
     "funcnet.robot.sim": ("robot.sim", 1.5),
     "funcnet.recurrence": ("recurrence", 2),
     "funcnet.measures": ("measures", 3),
+    "funcnet.kinds": ("measures", 3),
     "funcnet.batch": ("batch", 3.25),
     "funcnet.evidence": ("evidence", 3.5),
     "funcnet.network": ("network", 4),

@@ -42,6 +42,7 @@ _EXPORTS = {
     "edge_stability": "funcnet.network",
     "window_networks": "funcnet.pipeline",
     "window_evidence": "funcnet.pipeline",
+    "repetition_evidence": "funcnet.evidence.repetitions",
     "inspect_trace": "funcnet.report.inspect",
     "Study": "funcnet.study",
     "load_study": "funcnet.study",

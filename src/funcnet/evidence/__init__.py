@@ -13,6 +13,8 @@ module             what it holds
 ``pairs``          :func:`pairwise_evidence` over a set of signals, and the reading of a pair
 ``reading``        whether a pair's test could have rejected at all (:func:`untestable`),
                    the labels of a network's pairs and why (:func:`evidence_readings`)
+``repetitions``    :func:`repetition_evidence`: coupling beyond the command, tested across
+                   aligned repetitions of one motion (repetition-shuffled pairings)
 =================  ==========================================================================
 
 This package sits above the measures and below the network (it never imports
@@ -55,6 +57,11 @@ from funcnet.evidence.pairs import (
     pairwise_evidence,
 )
 from funcnet.evidence.reading import evidence_readings, smallest_p_values, untestable
+from funcnet.evidence.repetitions import (
+    repetition_evidence,
+    repetition_tests,
+    repetitions_needed,
+)
 from funcnet.evidence.surrogates import TwinPlan, twin_groups, twin_plan
 
 __all__ = [
@@ -78,6 +85,9 @@ __all__ = [
     "interval_from",
     "interval_kind",
     "pairwise_evidence",
+    "repetition_evidence",
+    "repetition_tests",
+    "repetitions_needed",
     "resampled_differences",
     "shift_plan",
     "smallest_p_values",

@@ -181,3 +181,28 @@ def _index_windows(a_x: Array, a_y: Array, indices: Array, theiler: Int) -> Arra
         out[k, 1] = xy
         out[k, 2] = yx
     return out
+
+
+@njit(cache=True, parallel=True)
+def _repetition_counts(a_y: Array, pairs_x: Array, offsets_x: Array, pairs_y: Array,
+                       offsets_y: Array, length: Int, theiler: Int) -> Array:
+    """:func:`_window_counts` of X of every repetition against Y of every repetition.
+
+    ``a_y`` stacks Y's dense matrices, shape (R, L, L); ``pairs_x[offsets_x[i]:offsets_x[i +
+    1]]`` are the recurrent pairs of X in repetition ``i`` (``pairs_y`` likewise). Returns shape
+    (R, R, 3): row ``i``, column ``j`` pairs X of repetition ``i`` with Y of repetition ``j``
+    over the whole window.
+    """
+    r = a_y.shape[0]
+    out = np.empty((r, r, 3), dtype=np.float64)
+    for k in prange(r * r):
+        i = k // r
+        j = k % r
+        phi, xy, yx = _window_counts(
+            a_y[j], pairs_x[offsets_x[i]:offsets_x[i + 1]],
+            pairs_y[offsets_y[j]:offsets_y[j + 1]], 0, 0, length, theiler,
+        )
+        out[i, j, 0] = phi
+        out[i, j, 1] = xy
+        out[i, j, 2] = yx
+    return out

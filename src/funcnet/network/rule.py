@@ -37,6 +37,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet.errors import ParameterError
+from funcnet.kinds import combine_kinds, combined_kinds, edge_kind, measure_kinds
 from funcnet.network.schema import PAIR_COLUMNS, PAIR_DTYPES, edges_frame
 from funcnet.parameters import NetworkParameters, resolve
 
@@ -44,92 +45,6 @@ __all__ = ["edge_kind", "combine_kinds", "pair_kinds", "kinds_for", "edges_from_
 
 #: The parameters the rule depends on (what :func:`pair_kinds` accepts as overrides).
 RULE_FIELDS = ("mu", "mu_c", "mu_t", "measure")
-
-
-def edge_kind(diff: float, mu: float) -> str:
-    """Kind of one asymmetry measure under the threshold ``mu`` (section 2.4).
-
-    Parameters
-    ----------
-    diff : float
-        ``C_diff`` or ``T_diff`` of the pair (X, Y) (Eq. 10).
-    mu : float
-        Bidirectionality threshold, ``>= 0``.
-
-    Returns
-    -------
-    str
-        ``"x->y"`` if ``diff <= -mu``, ``"y->x"`` if ``diff >= mu``, else ``"bidirectional"``
-        (which covers "no coupling" too); a difference of exactly 0 (or NaN) is bidirectional.
-
-    References
-    ----------
-    Eq. 10 and section 2.4 of the paper; the README's "Direction" section for the sign.
-
-    Examples
-    --------
-    >>> edge_kind(-0.08, 0.05), edge_kind(0.05, 0.05), edge_kind(0.01, 0.05)
-    ('x->y', 'y->x', 'bidirectional')
-    """
-    if diff < 0 and diff <= -mu:
-        return "x->y"
-    if diff > 0 and diff >= mu:
-        return "y->x"
-    return "bidirectional"
-
-
-def combine_kinds(c_kind: str, t_kind: str) -> str:
-    """Intersect the clustering and transitivity kinds of a pair (section 2.4).
-
-    Parameters
-    ----------
-    c_kind, t_kind : {"x->y", "y->x", "bidirectional"}
-        Kinds from ``C_diff`` and ``T_diff`` (:func:`edge_kind`).
-
-    Returns
-    -------
-    str
-        The common kind; a direction where the other measure is bidirectional; ``"conflict"``
-        (no edge) for opposite directions.
-
-    References
-    ----------
-    Section 2.4 of the paper (the intersection is what the code the paper ran does).
-
-    Examples
-    --------
-    >>> combine_kinds("x->y", "bidirectional"), combine_kinds("x->y", "y->x")
-    ('x->y', 'conflict')
-    """
-    if c_kind == t_kind:
-        return c_kind
-    if c_kind == "bidirectional":
-        return t_kind
-    if t_kind == "bidirectional":
-        return c_kind
-    return "conflict"
-
-
-def _diff_kinds(diffs: np.ndarray, mu: float) -> np.ndarray:
-    """:func:`edge_kind` of every element (the same float64 comparisons)."""
-    return np.select(
-        [(diffs < 0) & (diffs <= -mu), (diffs > 0) & (diffs >= mu)],
-        ["x->y", "y->x"],
-        "bidirectional",
-    ).astype(object)
-
-
-def _combined(c_kinds: np.ndarray, t_kinds: np.ndarray) -> np.ndarray:
-    """:func:`combine_kinds` of every element."""
-    return np.where(
-        c_kinds == t_kinds,
-        c_kinds,
-        np.where(
-            c_kinds == "bidirectional",
-            t_kinds,
-            np.where(t_kinds == "bidirectional", c_kinds, "conflict"),
-        ),
-    ).astype(object)
 
 
 def _require(pairs: Any, columns: Iterable[str], what: str) -> None:
@@ -186,7 +101,7 @@ def kinds_for(pairs: pd.DataFrame, measure: str) -> pd.Series:
     elif measure == "transitivity":
         values = pairs["t_kind"].to_numpy(dtype=object)
     else:
-        values = _combined(
+        values = combined_kinds(
             pairs["c_kind"].to_numpy(dtype=object), pairs["t_kind"].to_numpy(dtype=object)
         )
     return pd.Series(values, index=pairs.index, dtype="str", name="kind")
@@ -234,14 +149,7 @@ def pair_kinds(pairs: pd.DataFrame, parameters: NetworkParameters | None = None,
     _require(pairs, ("c_diff", "t_diff"), "the edge rule")
     c_diff = pairs["c_diff"].to_numpy(dtype=np.float64)
     t_diff = pairs["t_diff"].to_numpy(dtype=np.float64)
-    c_kinds = _diff_kinds(c_diff, p.mu_clustering)
-    t_kinds = _diff_kinds(t_diff, p.mu_transitivity)
-    if p.measure == "clustering":
-        kinds = c_kinds
-    elif p.measure == "transitivity":
-        kinds = t_kinds
-    else:
-        kinds = _combined(c_kinds, t_kinds)
+    c_kinds, t_kinds, kinds = measure_kinds(c_diff, t_diff, p)
     out = pairs.copy()
     for name, values in (("c_kind", c_kinds), ("t_kind", t_kinds), ("kind", kinds)):
         out[name] = pd.Series(values, index=pairs.index, dtype="str")

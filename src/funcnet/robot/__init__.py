@@ -42,6 +42,8 @@ _EXPORTS = {
     "sliding_windows": "funcnet.robot.windows",
     "span_window": "funcnet.robot.windows",
     "complete_span": "funcnet.robot.windows",
+    "Repetitions": "funcnet.robot.repeats",
+    "find_repetitions": "funcnet.robot.repeats",
     "AxisParameters": "funcnet.robot.sim.axis",
     "SimulatedTrial": "funcnet.robot.sim.axis",
     "simulate_trial": "funcnet.robot.sim.axis",
