@@ -86,8 +86,8 @@ from funcnet.evidence.dependence import benjamini_hochberg, default_surrogates
 from funcnet.evidence.pairs import _check_alpha
 from funcnet.evidence.reading import evidence_readings
 from funcnet.kinds import measure_kinds
-from funcnet.parameters import NetworkParameters, resolve
 from funcnet.normalization import normalize
+from funcnet.parameters import NetworkParameters, resolve
 from funcnet.recurrence import _signal_thresholds, auto_recurrence
 
 __all__ = ["REPETITION_COLUMNS", "repetition_evidence", "repetition_tests", "repetitions_needed",
