@@ -87,3 +87,26 @@ def test_network_multi_axis_errors_are_one_line(options, needles):
     assert len(errors) == 1 and "Traceback" not in result.output
     for needle in needles:
         assert needle in errors[0]
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_backlash_of_every_axis_is_each_axis_on_its_own(tmp_path):
+    import json
+
+    from funcnet.diagnosis import diagnose_backlash
+
+    every = diagnose_backlash(RUN, channels=KUKA_MAP)
+    assert [r.axis for r in every] == [1, 2, 3, 4, 5, 6]
+    for result in every[::2]:
+        (alone,) = diagnose_backlash(RUN, channels=KUKA_MAP, axis=result.axis)
+        assert alone.axis is None
+        assert {**result.to_dict(), "axis": None} == alone.to_dict()
+    assert [r.lost_motion is None for r in every] == [False] * 3 + [True] * 3  # AP on 1-3 only
+    out = tmp_path / "b.json"
+    result = runner.invoke(app, ["backlash", str(RUN), "--channels", str(KUKA_MAP), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.splitlines()
+    assert [line.split(": ")[0] for line in lines if line.startswith(str(RUN))] == [
+        f"{RUN} axis {n}" for n in range(1, 7)]
+    entries = json.loads(out.read_text())["traces"]
+    assert [entry["axis"] for entry in entries] == [1, 2, 3, 4, 5, 6]

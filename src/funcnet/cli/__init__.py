@@ -617,7 +617,7 @@ def backlash(
         typer.Argument(
             metavar="TRACE",
             help="Traces of one axis (SINUMERIK XML, CSV, Parquet, MATLAB, HDF5), oldest first "
-            "for a trend.",
+            "for a trend; a file of several axes without --axis: each axis on its own.",
         ),
     ],
     channels: Channels = None,
@@ -652,7 +652,8 @@ def backlash(
         if output is not None:
             write_results(results, output)
     for result in results:
-        typer.echo(f"{result.path}: {_one_line(result.message)}")
+        where = result.path if result.axis is None else f"{result.path} axis {result.axis}"
+        typer.echo(f"{where}: {_one_line(result.message)}")
         typer.echo(f"  {_backlash_numbers(result)}")
     if output is not None:
         typer.echo(f"wrote {output}")

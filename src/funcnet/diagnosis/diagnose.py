@@ -16,7 +16,7 @@ import json
 import math
 import os
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -164,6 +164,8 @@ class BacklashResult:
         Why ``lost_motion`` is None: no AP, or no direction change (None when there is one).
     gear : GearFit or None
         With AP and continuous changes: the gear's fit over the recording (:func:`.fit_gear`).
+    axis : int or None
+        The axis diagnosed, when the trace held several (one result per axis).
     """
 
     path: str
@@ -178,6 +180,7 @@ class BacklashResult:
     reading_reason: str | None = None
     lost_motion_reason: str | None = None
     gear: GearFit | None = None
+    axis: int | None = None
 
     @property
     def score_unit(self) -> str:
@@ -187,7 +190,7 @@ class BacklashResult:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready (the names other tools read: path, backlash_score, lost_motion, ...)."""
         return {
-            "path": self.path,
+            "path": self.path, "axis": self.axis,
             "backlash_score": self.backlash_score,
             "score_indicator": self.score_indicator,
             "score_unit": self.score_unit,
@@ -433,8 +436,8 @@ def diagnose_backlash(
     Returns
     -------
     list of BacklashResult
-        One per path, in order. A trace without a direction change is a result (``message``
-        says so; ``backlash_score`` None), not an error.
+        One per path (per axis of a file of several read without ``axis``), in order. A trace
+        without a direction change is a result (``message`` says so), not an error.
 
     Raises
     ------
@@ -464,14 +467,11 @@ def diagnose_backlash(
     if not paths:
         raise ParameterError.of("paths", "give at least one trace")
     cal = load_calibration() if calibration is None else calibration
+    recordings = [(path, read_trace(path, channels=channels, axis=axis)) for path in paths]
     return [
-        diagnose_recording(
-            read_trace(path, channels=channels, axis=axis),
-            str(path),
-            calibration=cal,
-            max_dwell=max_dwell,
-        )
-        for path in paths
+        replace(diagnose_recording(rec if n is None else rec.for_axis(n), str(path),
+                                   calibration=cal, max_dwell=max_dwell), axis=n)
+        for path, rec in recordings for n in rec.axes or (None,)
     ]
 
 
