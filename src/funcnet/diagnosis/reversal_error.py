@@ -108,7 +108,7 @@ class GearFit:
     samples: int
     torque: str
 
-    def to_dict(self) -> dict[str, float | int | str]:
+    def to_dict(self) -> dict[str, float | int | str | None]:
         """JSON-ready."""
         return {
             "compliance": self.compliance,
@@ -121,8 +121,17 @@ class GearFit:
         }
 
 
-def _design(d_torque: np.ndarray, vm: np.ndarray) -> np.ndarray:
-    return np.column_stack([np.ones_like(vm), d_torque, vm, np.sign(vm)])
+def _design(torque: np.ndarray, vm: np.ndarray) -> np.ndarray:
+    """Offset, wind-up, skew and hysteresis."""
+    return np.column_stack([np.ones_like(vm), torque, vm, np.sign(vm)])
+
+
+def _fit_rows(vm: np.ndarray, d: np.ndarray, torque: np.ndarray, min_speed: float) -> np.ndarray:
+    """The samples fitted: the motor faster than ``min_speed`` (or half its peak speed, if
+    that is less: a slow recording), every value finite."""
+    fast = min(min_speed, 0.5 * float(np.nanmax(np.abs(vm)))) if np.isfinite(vm).any() else 0.0
+    return np.flatnonzero((np.abs(vm) > fast) & np.isfinite(d) & np.isfinite(torque)
+                          & np.isfinite(vm))  # fmt: skip
 
 
 def _solve(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -138,7 +147,8 @@ def fit_gear(rec: Recording, *, min_speed: float = FIT_SPEED) -> GearFit | None:
     rec : Recording
         With MP, AP and AC (or RC), on the positions' own grid.
     min_speed : float
-        deg/s the motor speed must exceed for a sample to be fitted.
+        deg/s the motor speed must exceed for a sample to be fitted (or half its peak speed
+        where that is less: a slow recording).
 
     Returns
     -------
@@ -173,8 +183,8 @@ def fit_gear(rec: Recording, *, min_speed: float = FIT_SPEED) -> GearFit | None:
     if not (min_speed >= 0 and math.isfinite(min_speed)):
         raise ParameterError.of("min_speed", f"must be a speed >= 0 in deg/s, got {min_speed!r}")
     _, d, vm, torque = _columns(rec)
-    use = (np.abs(vm) > min_speed) & np.isfinite(d) & np.isfinite(torque) & np.isfinite(vm)
-    if use.sum() < 20:
+    use = _fit_rows(vm, d, torque, min_speed)
+    if use.size < 20:
         return None
     x = _design(torque[use], vm[use])
     coef = _solve(x, d[use])
@@ -185,7 +195,7 @@ def fit_gear(rec: Recording, *, min_speed: float = FIT_SPEED) -> GearFit | None:
         offset=float(coef[0]),
         hysteresis=float(2 * coef[3]),
         rms=rms,
-        samples=int(use.sum()),
+        samples=int(use.size),
         torque=torque_column(rec),
     )
 
@@ -391,7 +401,7 @@ def reversal_error(
         return float(old * (rest[b].mean() - rest[a].mean()))
 
     point = step(gear.compliance, gear.skew, before, after)
-    fitted = np.flatnonzero((np.abs(vm) > FIT_SPEED) & np.isfinite(d) & np.isfinite(torque))
+    fitted = _fit_rows(vm, d, torque, FIT_SPEED)
     rng = np.random.default_rng(seed)
     block = max(1, round(_BLOCK / rec.sample_period))
     draws = []

@@ -28,6 +28,7 @@ import pandas as pd
 from scipy.stats import rankdata
 
 from funcnet.diagnosis.indicators import INDICATORS, reversal_indicators
+from funcnet.diagnosis.reversal_error import fit_gear, reversal_error
 from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
 from funcnet.errors import ParameterError, TraceError
 from funcnet.robot.channels import SignalInfo
@@ -133,6 +134,8 @@ def trial_indicators(
         "sensors": trial.sensors or "paper",
         "arm_model": p.arm_model,
         "position_feedback": p.position_feedback,
+        "arm_load": p.arm_load,
+        "profile": trial.profile or "step",
         "true_lost_motion": sim.truth["lost_motion"],
     }
     # the speed the set-point reaches (a short step at a high speed never cruises): what a
@@ -146,11 +149,19 @@ def _first_reversal(recording: Recording, networks: bool, evidence: bool, interv
                     ) -> dict[str, Any]:  # fmt: skip
     """The indicators at a recording's first reversal (NaN without one)."""
     rec = motor_side_recording(recording)
-    changes = [c for c in find_direction_changes(rec) if c.kind == "reversal"]
+    found = find_direction_changes(rec)
+    changes = [c for c in found if c.kind == "reversal"]
     if changes:
         return reversal_indicators(rec, changes[0], networks=networks, evidence=evidence,
                                    intervals=intervals)  # fmt: skip
-    return dict.fromkeys(("turn_time", *INDICATORS), math.nan)
+    row = dict.fromkeys(("turn_time", *INDICATORS), math.nan)
+    turns = [c for c in found if c.kind == "continuous"]
+    if turns and "AP" in rec.data.columns:  # continuous motion: the mean reversal error
+        gear = fit_gear(rec)
+        errors = [reversal_error(rec, c, gear, resamples=0).lost_motion for c in turns]
+        turn = turns[0].turn if turns[0].turn is not None else turns[0].stop
+        row.update(turn_time=turn, lost_motion=float(np.mean(errors)))
+    return row
 
 
 def trace_indicators(

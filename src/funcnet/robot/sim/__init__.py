@@ -34,6 +34,7 @@ _EXPORTS = {
     "MANIFEST_COLUMNS": "funcnet.robot.sim.plan",
     "real_axis_parameters": "funcnet.robot.sim.axis",
     "backlash_sweep_plan": "funcnet.robot.sim.plan",
+    "continuous_sweep_plan": "funcnet.robot.sim.plan",
     "named_plan": "funcnet.robot.sim.plan",
     "NAMED_PLANS": "funcnet.robot.sim.plan",
     "ARCMIN": "funcnet.robot.sim.plan",

@@ -57,7 +57,9 @@ def axis_kernel(
     except the motor's own quantities). ``extra`` holds the optional parts: the elastic arm's
     tip inertia, link stiffness and damping (a rigid arm when the stiffness is 0), whether the
     position loop reads the motor encoder (1.0) instead of the arm encoder (0.0), and the
-    cogging ripple's amplitude (N m) and periods per motor turn. Returns the log, the states
+    cogging ripple's amplitude (N m) and periods per motor turn, and a gravity load on the arm
+    (N m, joint side; the axis starts at rest with the gear and the motor holding it). Returns
+    the log, the states
     (gear torque, torsion, arm (hub) and motor velocity, tip velocity) and the truth events.
     """
     per_speed, per_log, n_start, n_reverse = steps
@@ -65,7 +67,7 @@ def axis_kernel(
     m_coul, m_stat, m_visc, m_strib, a_coul, a_stat, a_visc, a_strib = friction
     i_max, kp_i, ki_i, kp_v, ki_v, kv, ffw = control
     q_m, q_a, q_i = sensors
-    j_tip, k_link, c_link, motor_feedback, ripple, ripple_periods = extra
+    j_tip, k_link, c_link, motor_feedback, ripple, ripple_periods, load = extra
     elastic = k_link > 0.0
     th_t = w_t = 0.0
     n_steps = sp_pos.shape[0] * per_speed
@@ -76,6 +78,11 @@ def axis_kernel(
     th_m = w_m = th_a = w_a = cur = 0.0
     u_next = u_now = integ_i = integ_v = i_cmd = 0.0
     enc_m_prev = enc_m = enc_a = 0.0
+    if load != 0.0:  # at rest under the load: the gear wound up on its flank, the motor holding
+        th_m = ratio * (load / k + half_b)
+        enc_m_prev = round(th_m / q_m) * q_m
+        cur = i_cmd = integ_v = load / (ratio * kt)
+        integ_i = u_next = u_now = r * cur
     decay = math.exp(-dt * r / l_ind)
     t_speed = dt * per_speed
     # the lost motion is the change of the torsion theta_m / N - theta_a (MP - AP) from the
@@ -129,11 +136,12 @@ def axis_kernel(
         w_m_new = _friction_step(w_m, drive, j_m, dt, m_coul, m_stat, m_visc, m_strib)
         if elastic:  # the arm's hub (on the gear, with the bearing's friction) and its tip
             link = k_link * (th_a - th_t) + c_link * (w_a - w_t)
-            w_a_new = _friction_step(w_a, tau - link, j_a, dt, a_coul, a_stat, a_visc, a_strib)
+            w_a_new = _friction_step(w_a, tau - link - load, j_a, dt, a_coul, a_stat, a_visc,
+                                     a_strib)  # fmt: skip
             w_t += dt / j_tip * link
             th_t += w_t * dt
         else:
-            w_a_new = _friction_step(w_a, tau, j_a, dt, a_coul, a_stat, a_visc, a_strib)
+            w_a_new = _friction_step(w_a, tau - load, j_a, dt, a_coul, a_stat, a_visc, a_strib)
         if w_m > 0.0 and np.isnan(events[2]):  # still moving forward: not yet the turning point
             d_max, t_d_max = delta, n * dt
         if w_a == 0.0 and w_a_new != 0.0:

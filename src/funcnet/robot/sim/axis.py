@@ -96,6 +96,7 @@ __all__ = [
     "SimulatedTrial",
     "effective_parameters",
     "setpoint_profile",
+    "reversal_error_truth",
     "simulate_trial",
     "trial_duration",
     "FAULT_KNOBS",
@@ -253,6 +254,11 @@ class AxisParameters:
         The encoder the position loop reads: ``"arm"`` (default, the direct encoder as in the
         paper's robot) or ``"motor"`` (a robot without the second encoder): RC, AC and MP then
         carry no arm-side feedback.
+    arm_load : float
+        N m, a constant load torque on the arm against the forward direction: gravity on an arm
+        that carries its weight (axes 2 and 3 of a six-axis robot). The gear torque then keeps
+        its sign unless the motion overcomes the load, and the gear stays on one flank through a
+        direction change. 0 by default (the base axis); the axis starts at rest holding it.
 
     References
     ----------
@@ -316,6 +322,7 @@ class AxisParameters:
     link_stiffness: float = 1.6e6
     link_damping: float = 1.6e3
     position_feedback: str = "arm"
+    arm_load: float = 0.0
 
     def __post_init__(self) -> None:
         for name, allowed in _CHOICES.items():
@@ -340,6 +347,7 @@ class AxisParameters:
             "current_drift",
             "cogging_torque",
             "link_damping",
+            "arm_load",
         }
         nonnegative |= {
             f.name
@@ -540,8 +548,9 @@ def _move(
 
 
 def setpoint_profile(
-    t: np.ndarray, step: float, speed: float, reverse: bool, params: AxisParameters
-) -> tuple[np.ndarray, np.ndarray, dict[str, float]]:
+    t: np.ndarray, step: float, speed: float, reverse: bool, params: AxisParameters,
+    profile: str = "step",
+) -> tuple[np.ndarray, np.ndarray, dict[str, float]]:  # fmt: skip
     """Reference position and velocity of a trial's jerk-limited set-point generator.
 
     Parameters
@@ -556,6 +565,10 @@ def setpoint_profile(
         Whether the axis goes back to its start after the forward move (and ``dwell_time``).
     params : AxisParameters
         Ramp durations (``acceleration_time``, ``deceleration_time``) and ``jerk_fraction``.
+    profile : {"step", "smooth"}
+        ``"smooth"``: out by ``step`` and back twice along ``step (1 - cos(4 pi u)) / 2`` (``u``
+        from 0 to 1 over the motion), peaking at ``speed``: three direction changes without a
+        rest, as a robot's smooth trajectories (``reverse`` does not apply).
 
     Returns
     -------
@@ -581,6 +594,17 @@ def setpoint_profile(
     """
     t = np.asarray(t, dtype=np.float64)
     start = params.lead_time
+    if profile == "smooth":
+        turns = 2  # out and back twice
+        duration = abs(step) * math.pi * turns / (speed / 60.0)
+        u = np.clip((t - start) / duration, 0.0, 1.0)
+        inside = (t > start) & (t < start + duration)
+        pos = step * (1.0 - np.cos(2 * math.pi * turns * u)) / 2
+        vel = np.where(inside, step * math.pi * turns / duration
+                       * np.sin(2 * math.pi * turns * u), 0.0)  # fmt: skip
+        end = start + duration
+        return pos, vel, {"motion_start": start, "forward_end": end, "reverse_start": math.nan,
+                          "motion_end": end}  # fmt: skip
     pos, vel, duration = _move(t - start, step, speed / 60.0, params)
     forward_end = start + duration
     timing = {
@@ -659,7 +683,8 @@ def trial_duration(trial: Trial, params: AxisParameters | None = None) -> float:
     funcnet.errors.ParameterError: Trial slow: the trace would span 6e+04 s (about 17 h) ...
     """
     p = effective_parameters(trial, params)
-    _, _, timing = setpoint_profile(np.zeros(1), trial.step, trial.speed, trial.reverse, p)
+    _, _, timing = setpoint_profile(np.zeros(1), trial.step, trial.speed, trial.reverse, p,
+                                    trial.profile or "step")  # fmt: skip
     duration = timing["motion_end"] + p.settle_time
     if not duration <= MAX_TRIAL_DURATION:
         raise ParameterError(
@@ -669,6 +694,63 @@ def trial_duration(trial: Trial, params: AxisParameters | None = None) -> float:
             "the speed or shorten the step"
         )
     return duration
+
+
+#: s of each stretch beside a continuous turn over which the reversal error is taken (as
+#: :func:`funcnet.diagnosis.reversal_error.reversal_error`'s window)
+TRUTH_WINDOW = 0.25
+
+
+def reversal_error_truth(
+    states: pd.DataFrame, setpoint_speed: np.ndarray, stiffness: float,
+    window: float = TRUTH_WINDOW,
+) -> list[float]:  # fmt: skip
+    """The true reversal error at each continuous turn of the set-point, from noise-free states.
+
+    At a turn in continuous motion the arm follows the motor through the gear; the reversal error
+    is the step of the torsion ``theta_m / N - theta_a`` (MP - AP) that the gear torque does not
+    explain, ``torsion - gear_torque / stiffness``, from the stretch before the turn to the one
+    after (``window`` s each beyond the bracket where the set-point moves slower than 1 deg/s,
+    or half its peak speed if that is less), in the old direction's sign: the dead zone where the
+    gear torque changes sign there, about 0 where a load keeps it on one flank.
+
+    Parameters
+    ----------
+    states : DataFrame
+        :attr:`SimulatedTrial.states` (``torsion`` in deg, ``gear_torque`` in N m).
+    setpoint_speed : ndarray
+        deg/min, the set-point's speed on the states' grid.
+    stiffness : float
+        N m per deg, the gear's.
+    window : float
+        s.
+
+    Returns
+    -------
+    list of float
+        deg, one per turn.
+
+    Examples
+    --------
+    >>> from funcnet.robot.sim.trial import Trial
+    >>> sim = simulate_trial(Trial("s", "s", speed=175, tcp=1.6, step=1, profile="smooth",
+    ...                            backlash=2 / 60), seed=1)
+    >>> abs(sim.truth["lost_motion"] * 60 - 2) < 0.1  # arcmin: the dead zone, at each turn
+    True
+    """
+    t = states.index.to_numpy()
+    v = np.asarray(setpoint_speed, dtype=np.float64) / 60.0
+    fast = min(1.0, 0.5 * float(np.abs(v).max()))
+    rest = (states["torsion"] - states["gear_torque"] / stiffness).to_numpy()
+    sign = np.where(v > fast, 1, np.where(v < -fast, -1, 0))
+    moving = np.flatnonzero(sign)
+    errors = []
+    for a, b in zip(moving, moving[1:], strict=False):
+        if sign[a] != sign[b]:  # a stretch ends at a, the next (other way) starts at b
+            before = (t >= t[a + 1] - window) & (t < t[a + 1])
+            after = (t >= t[b]) & (t < t[b] + window)
+            errors.append(float(sign[a] * (rest[before].mean() - rest[after].mean())))
+    return errors
 
 
 def simulate_trial(
@@ -724,11 +806,13 @@ def simulate_trial(
     per_log = round(p.log_period * p.current_loop_rate)
     t_speed = 1.0 / p.speed_loop_rate
     duration = trial_duration(trial, p)  # refuses an overlong trial before allocating
-    _, _, timing = setpoint_profile(np.zeros(1), trial.step, trial.speed, trial.reverse, p)
+    profile = trial.profile or "step"
+    _, _, timing = setpoint_profile(np.zeros(1), trial.step, trial.speed, trial.reverse, p,
+                                    profile)  # fmt: skip
     n_log = math.ceil(duration / p.log_period) + 1
     n_speed = n_log * (per_log // per_speed)
     t = np.arange(n_speed) * t_speed
-    sp_pos, sp_vel, _ = setpoint_profile(t, trial.step, trial.speed, trial.reverse, p)
+    sp_pos, sp_vel, _ = setpoint_profile(t, trial.step, trial.speed, trial.reverse, p, profile)
     rng = np.random.default_rng(_trial_seed(seed, trial.name))
     noise = rng.standard_normal(n_speed * per_speed) * (p.current_noise * p.noise_scale)
     if p.current_drift > 0:  # drawn after the white noise: without drift nothing changes
@@ -739,7 +823,7 @@ def simulate_trial(
     rad = math.pi / 180.0
     fs, ks = p.friction_scale, p.stiffness_scale
     omega_i = 2 * math.pi * p.current_bandwidth
-    n_reverse = round(timing["forward_end"] / dt) if trial.reverse else -1
+    n_reverse = round(timing["forward_end"] / dt) if trial.reverse and profile == "step" else -1
     steps = (per_speed, per_log, round(timing["motion_start"] / dt), n_reverse)
     elastic = p.arm_model == "elastic"
     tip = p.arm_tcp_mass * trial.tcp**2
@@ -757,7 +841,7 @@ def simulate_trial(
                p.current_resolution)  # fmt: skip
     extra = (tip, p.link_stiffness if elastic else 0.0, p.link_damping,
              1.0 if p.position_feedback == "motor" else 0.0, p.cogging_torque * p.noise_scale,
-             p.cogging_periods)  # fmt: skip
+             p.cogging_periods, p.arm_load)  # fmt: skip
     log, states, events = axis_kernel(
         sp_pos * rad, sp_vel * rad, noise, dt, steps,
         *(tuple(map(float, group)) for group in (mechanics, friction, control, sensors, extra)),
@@ -800,6 +884,10 @@ def simulate_trial(
         "windup_forward": float(events[4] * deg),
         "windup_reverse": float(events[5] * deg),
     }
+    if profile == "smooth":  # the reversal error at each continuous turn, its mean the truth
+        errors = reversal_error_truth(hidden, sp_vel[:: per_log // per_speed][:n_log] * 60.0,
+                                      p.gear_stiffness * ks * rad)  # fmt: skip
+        truth["lost_motion"] = float(np.mean(errors)) if errors else math.nan
     return SimulatedTrial(
         trial=trial, params=p, seed=int(seed), data=data, states=hidden, truth=truth
     )

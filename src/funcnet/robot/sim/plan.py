@@ -84,6 +84,7 @@ __all__ = [
     "Trial",
     "paper_plan",
     "backlash_sweep_plan",
+    "continuous_sweep_plan",
     "named_plan",
     "NAMED_PLANS",
     "read_plan",
@@ -145,7 +146,7 @@ SWEEP_GRID: dict[str, tuple[float, ...]] = {
 
 
 _LETTERS = (("backlash", "b"), ("friction_scale", "f"), ("stiffness_scale", "k"),
-            ("noise_scale", "n"))  # fmt: skip
+            ("noise_scale", "n"), ("arm_load", "g"))  # fmt: skip
 
 
 def _trial_name(group: str, speed: float, tcp: float, step: float, knobs: dict[str, float],
@@ -245,10 +246,47 @@ def backlash_sweep_plan(
     return _expand(group, speeds, tcps, (1.0,), True, knobs, [int(s) for s in seeds], options)
 
 
+def continuous_sweep_plan(
+    *,
+    backlash_arcmin: Sequence[float] = SWEEP_GRID["backlash_arcmin"],
+    arm_loads: Sequence[float] = (0.0, 1000.0),
+    speeds: Sequence[float] = SWEEP_GRID["speeds"],
+    tcps: Sequence[float] = SWEEP_GRID["tcps"],
+    friction_scales: Sequence[float] = SWEEP_GRID["friction_scale"],
+    seeds: Sequence[int] = (1,),
+    group: str = "smooth",
+) -> list[Trial]:
+    """Trials in continuous motion: smooth multi-reversal set-points, with and without a load.
+
+    Every trial goes out by 1 deg and back twice along smooth curves (``profile="smooth"``:
+    three direction changes without a rest, as a real robot's trajectories), over backlash x
+    gravity load on the arm (``arm_load`` N m: 0, and 1000 -- more than the arm's inertia and
+    friction torques at these speeds, so the gear torque keeps its sign through every turn, as
+    on a robot's axes 2 and 3) x speed x TCP x friction, the real trace's sensors, stiffness and
+    noise at their nominal values: 216 trials by default. The truth is the reversal error at
+    each turn (:func:`funcnet.robot.sim.axis.reversal_error_truth`), its mean the manifest's
+    ``lost_motion``.
+
+    Examples
+    --------
+    >>> plan = continuous_sweep_plan()
+    >>> len(plan), plan[0].profile, plan[-1].name
+    (216, 'smooth', 'smooth-v175-p20-s1-b0.0666667-f1.4-g1000-r1')
+    """
+    knobs = {
+        "backlash": [b * ARCMIN for b in backlash_arcmin],
+        "friction_scale": [float(v) for v in friction_scales],
+        "arm_load": [float(v) for v in arm_loads],
+    }
+    options = {"sensors": "real", "profile": "smooth"}
+    return _expand(group, speeds, tcps, (1.0,), False, knobs, [int(s) for s in seeds], options)
+
+
 #: Plans known by name (``funcnet simulate --plan NAME``; :func:`named_plan`).
 NAMED_PLANS: dict[str, Callable[[], list[Trial]]] = {
     "paper": lambda: paper_plan(),
     "backlash-sweep": lambda: backlash_sweep_plan(),
+    "continuous-sweep": lambda: continuous_sweep_plan(),
 }
 
 
@@ -427,11 +465,12 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
     return trials
 
 
-_LATER_TRIAL_FIELDS = ("noise_scale", "sensors", "arm_model", "position_feedback", "seed")
+_LATER_TRIAL_FIELDS = ("noise_scale", "sensors", "arm_model", "position_feedback", "seed",
+                       "arm_load", "profile")  # fmt: skip
 _LATER_AXIS_FIELDS = ("position_log_period", "noise_scale", "current_drift",
                       "current_drift_frequency", "cogging_torque", "cogging_periods",
                       "arm_model", "link_stiffness", "link_damping",
-                      "position_feedback")  # fmt: skip
+                      "position_feedback", "arm_load")  # fmt: skip
 
 
 def _fingerprint(trial: Trial, params: AxisParameters, seed: int) -> str:

@@ -16,16 +16,19 @@ from funcnet.errors import ParameterError
 __all__ = ["Trial", "FAULT_KNOBS", "NAME_PATTERN", "OPTIONS"]
 
 #: Fields of :class:`~funcnet.robot.sim.axis.AxisParameters` a :class:`Trial` may override.
-FAULT_KNOBS = ("backlash", "friction_scale", "stiffness_scale", "noise_scale")
+FAULT_KNOBS = ("backlash", "friction_scale", "stiffness_scale", "noise_scale", "arm_load")
 
 #: Worded options of a :class:`Trial` and their words (the first is what None means): the
 #: sensors and logging (``"paper"``: the default :class:`~funcnet.robot.sim.axis.AxisParameters`;
 #: ``"real"``: :func:`~funcnet.robot.sim.axis.real_axis_parameters`), the arm model and the
-#: encoder the position loop reads.
+#: encoder the position loop reads, and the set-point's profile (``"step"``: a jerk-limited step
+#: and back if ``reverse``; ``"smooth"``: out and back twice along ``(1 - cos) / 2`` curves, three
+#: direction changes without a rest, as a robot's smooth trajectories).
 OPTIONS = {
     "sensors": ("paper", "real"),
     "arm_model": ("rigid", "elastic"),
     "position_feedback": ("arm", "motor"),
+    "profile": ("step", "smooth"),
 }
 
 #: A trial's or a plan group's name: safe as a file name.
@@ -51,10 +54,10 @@ class Trial:
         Step size in deg (non-zero; the sign is the direction of the forward move).
     reverse : bool
         Whether the axis returns to its start right after the forward move (same trace).
-    backlash, friction_scale, stiffness_scale, noise_scale : float or None
+    backlash, friction_scale, stiffness_scale, noise_scale, arm_load : float or None
         Fault knobs overriding :class:`~funcnet.robot.sim.axis.AxisParameters` (None keeps
-        the axis's value).
-    sensors, arm_model, position_feedback : str or None
+        the axis's value; ``arm_load`` is a gravity load on the arm, N m).
+    sensors, arm_model, position_feedback, profile : str or None
         Options (:data:`OPTIONS`); None keeps the axis's own.
     seed : int or None
         The trial's own noise seed (a plan group's ``seeds``); None: the plan's seed.
@@ -79,6 +82,8 @@ class Trial:
     arm_model: str | None = None
     position_feedback: str | None = None
     seed: int | None = None
+    arm_load: float | None = None
+    profile: str | None = None
 
     def __post_init__(self) -> None:
         for option, words in OPTIONS.items():
@@ -116,7 +121,7 @@ class Trial:
                 or not isinstance(value, int | float)
                 or not math.isfinite(value)
                 or value < 0
-                or (value == 0 and knob not in ("backlash", "noise_scale"))
+                or (value == 0 and knob not in ("backlash", "noise_scale", "arm_load"))
             ):
                 raise ParameterError(f"Trial {self.name}: {knob} out of range: {value!r}")
             if value is not None:
