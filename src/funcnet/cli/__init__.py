@@ -323,7 +323,9 @@ def simulate(
         typer.Option(
             "--plan",
             help="'paper' (the 36 trials of the paper's Table 1), 'backlash-sweep' (reversal "
-            "trials over backlash widths, speeds, TCPs and nuisances) or a plan TOML file.",
+            "trials over backlash widths, speeds, TCPs and nuisances), 'continuous-sweep' "
+            "(smooth set-points turning without a rest, with and without a gravity load) or a "
+            "plan TOML file.",
         ),
     ] = "paper",
     seed: Annotated[int, typer.Option("--seed", min=0, help="Seed of the noise.")] = 0,
