@@ -176,10 +176,9 @@ def _scan_row(
     counts: Array, packed: Array, band_keys: Array, band_index: Array, at: int,
 ) -> int:
     """Pack key < lo of row i, count #key < lo and #key <= hi, and append the band pairs
-    lo <= key <= hi (key, flat index i * n + j) to the band buffers from ``at`` on while they
-    have room. Returns the new band position (beyond the buffer size on overflow)."""
+    lo <= key <= hi (key, and position ``(i << 32) | j``) to the band buffers from ``at`` on
+    while they have room. Returns the new band position (beyond the buffer size on overflow)."""
     _padded_row_keys(a, i, bt, start, metric, keys)
-    n_cols = bt.shape[1]
     below: Int = 0
     upto: Int = 0
     for w in range(start // 64, packed.shape[1]):
@@ -197,7 +196,7 @@ def _scan_row(
             if at < band_keys.size:
                 j = w * 64 + np.int64(_lowest_bit(band))
                 band_keys[at] = keys[j]
-                band_index[at] = i * n_cols + j
+                band_index[at] = (i << 32) | j
             at += 1
             band &= band - np.uint64(1)
     counts[i, 0] = below
@@ -210,12 +209,13 @@ def _collect_row(
     a: Array, i: Int, bt: Array, start: int, metric: int, lo: float, hi: float, keys: Array,
     position: int, band_keys: Array, band_index: Array,
 ) -> None:
-    """Write key and flat index of every lo <= key <= hi of row i from ``position`` on."""
+    """Write key and position ``(i << 32) | j`` of every lo <= key <= hi of row i from
+    ``position`` on."""
     n = _row_keys(a, i, bt, start, metric, keys)
     for t in range(n):
         if lo <= keys[t] <= hi:
             band_keys[position] = keys[t]
-            band_index[position] = i * bt.shape[1] + start + t
+            band_index[position] = (i << 32) | (start + t)
             position += 1
 
 
@@ -268,7 +268,7 @@ def _collect_band(
     a: Array, bt: Array, auto: bool, theiler: int, metric: int, lo: float, hi: float,
     offsets: Array, band_keys: Array, band_index: Array,
 ) -> None:
-    """Pass 2 when a band buffer overflowed: keys and flat indices of lo <= key <= hi, row i
+    """Pass 2 when a band buffer overflowed: keys and positions of lo <= key <= hi, row i
     from offsets[i] on."""
     n_rows = a.shape[0]
     for r in prange(_n_iterations(n_rows, auto)):
@@ -280,6 +280,22 @@ def _collect_band(
                 _collect_row(
                     a, i, bt, start, metric, lo, hi, keys, offsets[i], band_keys, band_index
                 )
+
+
+@njit(cache=True)
+def _compact_band(chunk_keys: Array, chunk_index: Array, filled: Array) -> int:
+    """Move the filled part of every chunk to the front of the buffers (flattened), in chunk
+    order, without a new array; return the number of band pairs."""
+    keys = chunk_keys.reshape(-1)
+    index = chunk_index.reshape(-1)
+    capacity = chunk_keys.shape[1]
+    at = 0
+    for c in range(filled.size):
+        for t in range(c * capacity, c * capacity + filled[c]):  # never behind ``at``
+            keys[at] = keys[t]
+            index[at] = index[t]
+            at += 1
+    return at
 
 
 @njit(cache=True)
@@ -311,15 +327,13 @@ def _count_keys(a: Array, bt: Array, auto: bool, theiler: int, metric: int,
 
 
 @njit(cache=True)
-def _add_band_bits(
-    packed: Array, n_cols: int, band_keys: Array, band_index: Array, bound: float
-) -> int:
+def _add_band_bits(packed: Array, band_keys: Array, band_index: Array, bound: float) -> int:
     """Set the bits of the band pairs with key <= bound; return how many were set."""
     count = 0
     for t in range(band_keys.size):
         if band_keys[t] <= bound:
-            i = band_index[t] // n_cols
-            j = band_index[t] - i * n_cols
+            i = band_index[t] >> 32
+            j = band_index[t] & 0xFFFFFFFF
             packed[i, j >> 6] |= np.uint64(1) << np.uint64(j & 63)
             count += 1
     return count

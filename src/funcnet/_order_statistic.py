@@ -26,6 +26,7 @@ import numpy as np
 from funcnet._isrn_kernels import (
     _add_band_bits,
     _collect_band,
+    _compact_band,
     _count_keys,
     _pack_rows,
     _sample_keys,
@@ -227,21 +228,24 @@ def _rate_rows(
         below_lo, upto_hi = (int(c) for c in counts.sum(axis=0))
         overflow = not (filled <= capacity).all()
     if not overflow:
-        band_keys = np.concatenate([chunk_keys[c, : filled[c]] for c in range(n_chunks)])
-        band_index = np.concatenate([chunk_index[c, : filled[c]] for c in range(n_chunks)])
+        # The band in place, at the front of the chunk buffers (a copy would cost a page
+        # fault per 4 KiB of it).
+        n_band = _compact_band(chunk_keys, chunk_index, filled)
+        band_keys = chunk_keys.reshape(-1)[:n_band]
+        band_index = chunk_index.reshape(-1)[:n_band]
     else:
+        del chunk_keys, chunk_index
         inside = counts[:, 1] - counts[:, 0]
         offsets = np.zeros(inside.size, dtype=np.int64)
         np.cumsum(inside[:-1], out=offsets[1:])
         band_keys = np.empty(int(inside.sum()), dtype=np.float64)
         band_index = np.empty(band_keys.size, dtype=np.int64)
         _collect_band(a, bt, auto, theiler, metric, lo, hi, offsets, band_keys, band_index)
-    del chunk_keys, chunk_index
     position = rank - below_lo - 1
     eps = _key_distance(float(np.partition(band_keys, position)[position]), metric)
     bound = _key_bound(eps, strict, metric)
     if lo <= bound <= hi:
-        return eps, packed, below_lo + _add_band_bits(packed, n_cols, band_keys, band_index, bound)
+        return eps, packed, below_lo + _add_band_bits(packed, band_keys, band_index, bound)
     # Strict comparison at lo, or distinct keys with the same square root across a bracket end.
     del packed
     packed, n_recurrent = _pack_rows(a, bt, auto, theiler, metric, bound)
