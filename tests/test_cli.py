@@ -16,7 +16,8 @@ import pytest
 from typer.testing import CliRunner
 
 from funcnet import cli
-from funcnet.cli import app, network_helpers
+from funcnet.cli import app, messages, network_output, selection
+from funcnet.cli import options as cli_options
 
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 
@@ -192,7 +193,7 @@ def test_network_phase_and_drawings(trial: Path, tmp_path: Path) -> None:
 
 
 def test_network_rich_table_on_a_terminal(trial: Path, monkeypatch) -> None:
-    monkeypatch.setattr(network_helpers, "_is_terminal", lambda stream: True)
+    monkeypatch.setattr(network_output, "is_terminal", lambda stream: True)
     result = runner.invoke(
         app, ["network", str(trial), "--window", "0.5:1.1"], env={"COLUMNS": "200"}
     )
@@ -205,7 +206,7 @@ def test_network_rich_table_on_a_terminal(trial: Path, monkeypatch) -> None:
 
 
 def test_network_table_says_what_became_of_degenerate_pairs(trial: Path, monkeypatch) -> None:
-    monkeypatch.setattr(network_helpers, "_is_terminal", lambda stream: True)
+    monkeypatch.setattr(network_output, "is_terminal", lambda stream: True)
     arguments = ["network", str(trial), "--window", "0.5:0.8", "--signals", "RP,AP"]
     for options, words in (([], "degenerate pairs are no edges"),
                            (["--keep-degenerate"], "degenerate pairs are flagged edges")):
@@ -215,7 +216,7 @@ def test_network_table_says_what_became_of_degenerate_pairs(trial: Path, monkeyp
 
 
 def test_network_table_on_a_narrow_terminal(trial: Path, monkeypatch) -> None:
-    monkeypatch.setattr(network_helpers, "_is_terminal", lambda stream: True)
+    monkeypatch.setattr(network_output, "is_terminal", lambda stream: True)
     result = runner.invoke(
         app, ["network", str(trial), "--window", "0.5:1.1"], env={"COLUMNS": "80"}
     )
@@ -269,16 +270,17 @@ def test_network_help_shows_the_defaults_of_network_parameters() -> None:
     assert "chebyshev" in helps["metric"] and "cityblock" in helps["metric"]
 
 
-def test_network_has_an_option_for_every_network_parameter() -> None:
+@pytest.mark.parametrize("command_name", ["network", "stability", "inspect"])
+def test_an_option_for_every_network_parameter(command_name: str) -> None:
     import typer.main
 
     from funcnet import NetworkParameters
 
-    command = typer.main.get_command(app).commands["network"]  # type: ignore[attr-defined]
-    options = {opt for param in command.params for opt in param.opts}
+    command = typer.main.get_command(app).commands[command_name]  # type: ignore[attr-defined]
+    flags = {opt for param in command.params for opt in param.opts}
     for name in NetworkParameters.names():
-        if name not in cli._NO_OPTION:
-            assert cli._FLAGS[name] in options, name
+        if name not in cli_options.NO_OPTION:
+            assert cli_options.FLAGS[name] in flags, name
 
 
 def test_study_help_shows_the_default_workers() -> None:
@@ -295,7 +297,7 @@ def test_terminal_columns_are_pairs_columns() -> None:
     from funcnet.network.schema import PAIR_COLUMNS
 
     for narrow in (False, True):
-        columns = network_helpers._shown_columns(narrow)
+        columns = network_output._shown_columns(narrow)
         assert set(columns) <= set(PAIR_COLUMNS) and "degenerate" in columns
 
 
@@ -440,7 +442,7 @@ def test_network_resample_removes_the_staircases(real_trace, tmp_path: Path, met
 def test_network_progress_only_on_a_terminal_unless_quiet(
     trial: Path, tmp_path: Path, monkeypatch, terminal: bool, quiet: bool, drawn: bool
 ) -> None:
-    monkeypatch.setattr(cli, "_is_terminal", lambda stream: terminal)
+    monkeypatch.setattr(messages, "is_terminal", lambda stream: terminal)
     out = tmp_path / "net.json"
     arguments = ["network", str(trial), "--window", "0.5:0.8", "--signals", "RP,AP", "-o", str(out)]
     # rich draws on the captured stream as on a terminal (its documented overrides).
@@ -759,7 +761,7 @@ def test_network_without_phases_says_how_to_give_a_window(tmp_path: Path) -> Non
 
 def test_network_refuses_a_forecast_over_the_limit_unless_forced(trial: Path, tmp_path: Path,
                                                                  monkeypatch) -> None:
-    monkeypatch.setattr(network_helpers, "COST_LIMIT_SECONDS", 1e-6)
+    monkeypatch.setattr(selection, "COST_LIMIT_SECONDS", 1e-6)
     arguments = ["network", str(trial), "--window", "0.5:1.1", "--signals", "RP,AP,AC"]
     refused = runner.invoke(app, arguments)
     _assert_one_error_line(refused, "over a minute or 4 GiB", "--force", "states")

@@ -298,6 +298,17 @@ class NetworkParameters:
         """Every parameter's default (for help texts and documentation)."""
         return {f.name: f.default for f in dataclasses.fields(cls) if f.init}
 
+    @classmethod
+    def descriptions(cls) -> dict[str, str]:
+        """Every parameter's one-line description (the command line's help texts).
+
+        Examples
+        --------
+        >>> NetworkParameters.descriptions()["dim"]
+        'Embedding dimension m (Eq. 1).'
+        """
+        return dict(_DESCRIPTIONS)
+
     def replace(self, **changes: Any) -> NetworkParameters:
         """A copy with ``changes`` (validated); unknown names raise :class:`ParameterError`."""
         _check_names(changes)
@@ -327,6 +338,27 @@ eps, metric, rule, theiler, mu, mu_c, mu_t, normalize, measure, degenerate)
         _check_names(mapping)
         values = {key: _tuples(value) for key, value in mapping.items()}
         return dataclasses.replace(base or cls(), **values)
+
+
+# One line per parameter, for the entry points' help texts (the class docstring is the reference).
+_DESCRIPTIONS = {
+    "dim": "Embedding dimension m (Eq. 1).",
+    "delay": "Embedding delay tau in samples (Eq. 1).",
+    "rr": "Recurrence rate in each signal, fixes eps_X (Eq. 5).",
+    "cr": "Cross-recurrence rate, fixes eps_XY (Eq. 3).",
+    "eps": "Explicit thresholds (auto, cross) instead of the rates.",
+    "metric": "Distance: euclidean, supremum (alias chebyshev) or manhattan (alias cityblock).",
+    "rule": "Threshold rule: funcnet or pyunicorn.",
+    "theiler": "Theiler window: exclude pairs with |i-j| <= THEILER (0 excludes only the "
+               "diagonal, as pyrqa's theiler=1).",
+    "mu": "Edge threshold on C_diff and T_diff (section 2.4).",
+    "mu_c": "Edge threshold on C_diff alone.",
+    "mu_t": "Edge threshold on T_diff alone.",
+    "normalize": "Per-window normalization: minmax, zscore or none (signals as recorded).",
+    "measure": "Edges from both, clustering or transitivity.",
+    "degenerate": "Keep pairs with a degenerate recurrence structure (too few distinct states) "
+                  "as edges, flagged degenerate; by default they are in the pairs table only.",
+}
 
 
 def _tuples(value: Any) -> Any:

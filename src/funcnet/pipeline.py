@@ -36,7 +36,6 @@ from funcnet.errors import (
     FuncnetError,
     FuncnetWarning,
     ParameterError,
-    StaircaseWarning,
     WindowError,
 )
 from funcnet.measures import CrossMeasures, threshold_warnings
@@ -50,7 +49,7 @@ from funcnet.network import (
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import NetworkParameters, resolve
-from funcnet.robot.preprocess import staircase_signals
+from funcnet.robot.preprocess import staircase_warning
 from funcnet.robot.recording import Recording
 from funcnet.robot.windows import Window, paper_nodes, phase_windows
 
@@ -364,19 +363,9 @@ def window_networks(
             f"signals {missing or signals} are not columns of the recording; it "
             f"has {list(recording.data.columns)}",
         )
-    staircases = staircase_signals(recording, signals)
-    if staircases:
-        coarsest = max(recording.signals[s].interval for s in staircases)
-        warnings.warn(
-            StaircaseWarning(
-                f"{where}: {staircases} change at most every {coarsest * 1e3:g} ms but are "
-                f"analysed on the {recording.sample_period * 1e3:g} ms grid (staircases); "
-                "funcnet.robot.resample decimates or interpolates them",
-                problem="staircase",
-                signals=tuple(staircases),
-            ),
-            stacklevel=_caller_stacklevel(),
-        )
+    staircase = staircase_warning(recording, signals, where)
+    if staircase is not None:
+        warnings.warn(staircase, stacklevel=_caller_stacklevel())
     drop = constant == "drop" and p.normalize is not None
     networks = WindowNetworks()
     failures = []

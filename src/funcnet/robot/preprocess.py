@@ -14,7 +14,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from funcnet.errors import ChannelError, ParameterError, SignalError
+from funcnet.errors import ChannelError, ParameterError, SignalError, StaircaseWarning
 from funcnet.robot.channels import SignalInfo
 from funcnet.robot.recording import Recording
 
@@ -25,6 +25,7 @@ __all__ = [
     "trim",
     "resample",
     "staircase_signals",
+    "staircase_warning",
     "DERIVED_SIGNALS",
 ]
 
@@ -287,6 +288,39 @@ def staircase_signals(recording: Recording, columns: Sequence[str] | None = None
         if column in recording.signals
         and recording.signals[column].interval > period * (1 + _TICK_TOLERANCE)
     ]
+
+
+def staircase_warning(recording: Recording, columns: Sequence[str] | None = None,
+                      where: str | None = None) -> StaircaseWarning | None:
+    """The warning that ``columns`` are staircases on the grid (:func:`staircase_signals`), in
+    the one wording the library, the study and the command line give it; ``None`` if none is.
+
+    ``where`` names the recording (default: its source).
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from funcnet.robot.recording import Recording, SignalInfo
+    >>> data = pd.DataFrame({"RP": [0.0, 1.0], "AP": [0.0, 0.0]},
+    ...                     index=pd.Index([0.0, 0.002], name="time"))
+    >>> info = {"RP": SignalInfo("RP", None, None, 0.002),
+    ...         "AP": SignalInfo("AP", None, None, 0.004)}
+    >>> print(staircase_warning(Recording(data, {}, info), where="t.xml"))
+    t.xml: AP change at most every 4 ms but are analysed on the 2 ms grid (staircases); \
+funcnet.robot.resample decimates or interpolates them
+    """
+    staircases = staircase_signals(recording, columns)
+    if not staircases:
+        return None
+    where = (recording.source or "<recording>") if where is None else where
+    coarsest = max(recording.signals[s].interval for s in staircases)
+    return StaircaseWarning(
+        f"{where}: {', '.join(staircases)} change at most every {coarsest * 1e3:g} ms but are "
+        f"analysed on the {recording.sample_period * 1e3:g} ms grid (staircases); "
+        "funcnet.robot.resample decimates or interpolates them",
+        problem="staircase",
+        signals=tuple(staircases),
+    )
 
 
 def _ticks(interval: float, period: float, name: str) -> int:

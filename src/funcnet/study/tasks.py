@@ -369,16 +369,12 @@ def task_warnings(networks: Mapping[str, Any], recording: Any, signals: Sequence
         (``"eps_order"``, ``"rate_exceeded"``, ``"degenerate"``, ``"staircase"``).
     """
     from funcnet.pipeline import window_warnings
-    from funcnet.robot.preprocess import staircase_signals
+    from funcnet.robot.preprocess import staircase_warning
 
     found: dict[str, tuple[int, str]] = {}
-    staircases = staircase_signals(recording, list(signals))
-    if staircases:
-        found["staircase"] = (
-            len(staircases),
-            f"{where}: {', '.join(staircases)} change more slowly than the sampling grid "
-            "(staircases); funcnet.robot.resample decimates or interpolates them",
-        )
+    staircase = staircase_warning(recording, list(signals), where)
+    if staircase is not None:
+        found["staircase"] = (len(staircase.signals), str(staircase))
     for warning in window_warnings(networks):
         problem = str(warning.problem)
         count, message = found.get(problem, (0, f"{where}: {warning}"))
