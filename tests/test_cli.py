@@ -857,3 +857,70 @@ def test_help_shows_no_python_types(command: str) -> None:
     assert "list[" not in result.stdout and "Path]" not in result.stdout
     if command in ("backlash", "inspect"):
         assert "TRACE <path>..." in result.stdout
+
+
+def test_inspect_passes_the_network_options(trial: Path, tmp_path: Path, monkeypatch) -> None:
+    import funcnet.report.inspect
+    from funcnet import NetworkParameters
+
+    calls: list[dict] = []
+
+    def recorded(*paths, **keywords):
+        calls.append(keywords)
+        return tmp_path / "index.html"
+
+    monkeypatch.setattr(funcnet.report.inspect, "inspect_trace", recorded)
+    options = ["--rr", "0.1", "--mu-c", "0.2", "--normalize", "none", "--metric", "chebyshev",
+               "--keep-degenerate"]
+    result = runner.invoke(app, ["inspect", str(trial), "-o", str(tmp_path), *options])
+    assert result.exit_code == 0, result.output
+    (keywords,) = calls
+    assert keywords["parameters"] == NetworkParameters(
+        rr=0.1, mu_c=0.2, normalize=None, metric="supremum", degenerate="keep"
+    )
+    plain = runner.invoke(app, ["inspect", str(trial), "-o", str(tmp_path)])
+    assert plain.exit_code == 0 and calls[1]["parameters"] == NetworkParameters()
+    # A bad value is one line naming the option, before any trace is read.
+    _assert_one_error_line(runner.invoke(app, ["inspect", "missing.xml", "--dim", "0"]),
+                           "--dim must be >= 1, got 0")
+    assert len(calls) == 2
+
+
+def test_the_staircase_warning_has_one_wording(real_trace: Path) -> None:
+    # The library's warning, the study's summary and the command line's line say the same.
+    import warnings
+
+    from funcnet import window_networks
+    from funcnet.errors import StaircaseWarning
+    from funcnet.robot import read_recording, span_window
+    from funcnet.study.tasks import task_warnings
+
+    recording = read_recording(real_trace, signals=["RP", "AP", "MP"])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        networks = window_networks(recording, [span_window(7.0, 7.3)], signals=["RP", "AP"])
+    (library,) = [str(w.message) for w in caught if isinstance(w.message, StaircaseWarning)]
+    assert library.startswith(f"{real_trace}: AP change at most every 4 ms but are analysed "
+                              "on the 2 ms grid (staircases)")
+    found = {p: m for p, _, m in task_warnings(networks, recording, ["RP", "AP"], str(real_trace))}
+    assert found["staircase"] == library
+    cli_line = library.replace("funcnet.robot.resample decimates or interpolates them",
+                               "--resample decimate or --resample interpolate brings them "
+                               "onto one grid")
+    for command in ("network", "stability"):
+        arguments = [command, str(real_trace), "--window", "7:7.3", "--signals", "RP,AP",
+                     "--verbose"]
+        if command == "stability":
+            arguments += ["--vary", "mu=0.1"]
+        result = runner.invoke(app, arguments)
+        assert result.exit_code == 0, result.output
+        assert f"funcnet: warning: {cli_line}" in result.stderr.splitlines(), result.stderr
+
+
+@pytest.mark.parametrize("module", ["funcnet", "funcnet.cli"])
+def test_python_m_runs_the_command_line(module: str) -> None:
+    import funcnet
+
+    result = subprocess.run([sys.executable, "-m", module, "--version"], capture_output=True,
+                            text=True, timeout=120, check=False)
+    assert (result.returncode, result.stdout) == (0, f"funcnet {funcnet.__version__}\n")
