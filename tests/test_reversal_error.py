@@ -205,3 +205,15 @@ def test_a_reading_outside_the_calibrated_speeds_is_null_with_the_reason(tmp_pat
 def test_a_direction_change_dataclass_keeps_its_fields():
     change = DirectionChange(1.0, 1.2, 0.2, -1, "reversal")
     assert change.turn is None and change.to_dict()["kind"] == "reversal"
+
+
+def test_the_command_line_says_why_there_is_no_lost_motion(tmp_path):
+    from typer.testing import CliRunner
+
+    from funcnet.cli import app
+
+    sim = simulate_trial(Trial("fwd", "s", speed=350, tcp=1.2, step=1, sensors="real", seed=1))
+    path = write_trace(tmp_path / "fwd.xml", sim.data, intervals={"AP": 0.004, "MP": 0.004})
+    result = CliRunner().invoke(app, ["backlash", str(path)])
+    assert result.exit_code == 0, result.output
+    assert "lost_motion none (no direction change)" in result.output

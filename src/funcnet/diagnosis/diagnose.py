@@ -362,8 +362,9 @@ def diagnose_recording(
     if not changes:
         message = "no direction change: the axis moves one way only; no backlash indicator"
     elif n_rev == 0:
-        found = (f"{n_cont} in continuous motion (the arm never rests), "
-                 f"{len(changes) - n_cont} after a standstill" if n_cont
+        rest = len(changes) - n_cont
+        found = (f"{n_cont} in continuous motion (the arm never rests)"
+                 + (f", {rest} after a standstill" if rest else "") if n_cont
                  else f"{len(changes)} direction change(s) after a standstill")  # fmt: skip
         message = (
             f"no reversal (a direction change within {max_dwell:g} s): {found}; the motor-side "
@@ -374,10 +375,8 @@ def diagnose_recording(
         message = f"{n_rev} reversal(s); " + (
             reading["text"] if reading else f"no reading ({reason})" if reason else "no score"
         )
-    lost_reason = None
-    if not losses:
-        lost_reason = ("no AP" if not has_ap else "no direction change" if not changes
-                       else "the arm does not restart")  # fmt: skip
+    lost_reason = (None if losses else "no AP" if not has_ap else "no direction change"
+                   if not changes else "the arm does not restart")  # fmt: skip
     return BacklashResult(
         path=str(where),
         score_indicator=indicator,
