@@ -1,5 +1,6 @@
 """The moves of a recording: consecutive moving phases, and per move what an engineer reads
-first (times, direction, distance, peak speeds and currents, following error).
+first (times, directions and the direction changes within, distance, peak speeds and currents,
+following error).
 
 References
 ----------
@@ -9,12 +10,14 @@ References
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from funcnet.robot import Recording
+from funcnet.robot.phases import Turn, direction_changes
 from funcnet.robot.preprocess import velocity
 
 __all__ = ["numbered_moves", "motion_summary"]
@@ -52,8 +55,14 @@ def _peak(values: np.ndarray) -> float:
     return float(np.abs(finite).max()) if finite.size else float("nan")
 
 
-def motion_summary(recording: Recording, phases: pd.DataFrame) -> pd.DataFrame:
-    """One row per move of a recording: times, direction, distance, speeds, currents, errors.
+def _sign(value: float) -> str:
+    return "+" if value >= 0 else "−"
+
+
+def motion_summary(
+    recording: Recording, phases: pd.DataFrame, turns: Sequence[Turn] | None = None
+) -> pd.DataFrame:
+    """One row per move of a recording: times, directions, distance, speeds, currents, errors.
 
     Parameters
     ----------
@@ -61,14 +70,18 @@ def motion_summary(recording: Recording, phases: pd.DataFrame) -> pd.DataFrame:
         With RP (the set-point); AP, V, AC optional.
     phases : pandas.DataFrame
         :func:`numbered_moves` of :func:`funcnet.robot.detect_phases`.
+    turns : sequence of Turn, optional
+        The set-point's direction changes; default :func:`funcnet.robot.direction_changes` of
+        ``recording``.
 
     Returns
     -------
     pandas.DataFrame
-        One row per move: ``move, start, stop, duration, direction, distance, peak speed``
-        (set-point, unit/s, Eq. 11-12), ``peak V`` (arm side), ``peak |AC|``, ``peak |FE|``
-        (RP - AP), ``final |FE|`` (at the move's end); columns whose signal is missing are left
-        out.
+        One row per move: ``move, start, stop, duration``, ``direction`` (``+`` or ``−``; one
+        sign per stretch, ``+−+``, when the move changes direction without a rest),
+        ``direction changes`` (within the move), ``distance`` (net), ``peak speed`` (set-point,
+        unit/s, Eq. 11-12), ``peak V`` (arm side), ``peak |AC|``, ``peak |FE|`` (RP - AP),
+        ``final |FE|`` (at the move's end); columns whose signal is missing are left out.
 
     Examples
     --------
@@ -83,7 +96,20 @@ def motion_summary(recording: Recording, phases: pd.DataFrame) -> pd.DataFrame:
     >>> motion_summary(rec, phases)[["move", "direction", "distance"]].round(1)
        move direction  distance
     0     1         +      89.8
+
+    Out and back without a rest:
+
+    >>> rp = 45 * (1 - np.cos(2 * np.pi * t / 2))
+    >>> rec = Recording(pd.DataFrame({"RP": rp}, index=pd.Index(t, name="time")), {},
+    ...                 {"RP": SignalInfo("RP", "posn", None, 0.002)})
+    >>> phases = numbered_moves(pd.DataFrame({"phase": ["cruise"], "start": [0.0],
+    ...                                       "stop": [2.0]}))
+    >>> motion_summary(rec, phases)[["direction", "direction changes"]]
+      direction  direction changes
+    0        +−                  1
     """
+    if turns is None:
+        turns = direction_changes(recording)
     data = recording.data
     t = data.index.to_numpy(dtype=float)
     rp = data["RP"].to_numpy(dtype=float)
@@ -94,9 +120,13 @@ def motion_summary(recording: Recording, phases: pd.DataFrame) -> pd.DataFrame:
         inside = (t >= start) & (t < stop)
         first, last = np.flatnonzero(inside)[[0, -1]]
         distance = float(rp[last] - rp[first])
+        within = [turn.direction for turn in turns if start <= turn.time < stop]
+        direction = _sign(distance) if not within else _sign(-within[0]) + "".join(
+            _sign(d) for d in within)
         row: dict[str, Any] = {"move": int(move), "start": start, "stop": stop,
                                "duration": round(stop - start, 6),
-                               "direction": "+" if distance >= 0 else "−",
+                               "direction": direction,
+                               "direction changes": len(within),
                                "distance": distance,
                                "peak speed": _peak(set_speed[inside])}
         if "V" in data:

@@ -37,6 +37,7 @@ from funcnet.parameters import NetworkParameters, resolve
 from funcnet.pipeline import WindowFailure, window_evidence, window_networks, window_warnings
 from funcnet.robot import PAPER_NODES, Recording, Window, detect_phases, phase_windows
 from funcnet.robot.load import prepare_recording
+from funcnet.robot.phases import Turn, direction_changes
 from funcnet.robot.preprocess import DERIVED_SIGNALS, staircase_signals
 
 __all__ = ["TraceInspection", "inspect_recording", "DETRENDED_NODES"]
@@ -68,6 +69,9 @@ class TraceInspection:
         number) and ``duration`` (:func:`~funcnet.inspection.motion.numbered_moves`).
     moves : pandas.DataFrame
         :func:`~funcnet.inspection.motion.motion_summary`: one row per move.
+    turns : tuple of Turn
+        The set-point's direction changes (:func:`funcnet.robot.direction_changes`), within a
+        move (continuous motion) or after a rest.
     windows : tuple of Window
         One per phase of a move, labelled as the networks.
     networks : dict
@@ -100,6 +104,7 @@ class TraceInspection:
     signals: tuple[str, ...]
     phases: pd.DataFrame
     moves: pd.DataFrame
+    turns: tuple[Turn, ...]
     windows: tuple[Window, ...]
     networks: dict[str, FunctionalNetwork]
     failures: tuple[WindowFailure, ...]
@@ -221,6 +226,7 @@ def inspect_recording(
     raw = recording
     _step(progress, 0, 4, "phases")
     phases = numbered_moves(detect_phases(raw))
+    turns = tuple(direction_changes(raw))
     coarse = tuple(staircase_signals(raw)) if interpolate else ()
     # V always (the motion's speed), FE and TORSION (the detrended nodes) when asked for, from
     # the interpolated positions
@@ -229,7 +235,7 @@ def inspect_recording(
     if signals is None:
         signals = [s for s in PAPER_NODES if s in rec.data.columns]
     signals = list(signals)
-    moves = motion_summary(rec, phases)
+    moves = motion_summary(rec, phases, turns)
     windows = tuple(w for w in phase_windows(phases[["phase", "start", "stop"]])
                     if w.phase not in _NOT_NETWORKED)
     total = 2 + len(windows) * (2 if evidence else 1)
@@ -262,6 +268,7 @@ def inspect_recording(
         signals=tuple(signals),
         phases=phases,
         moves=moves,
+        turns=turns,
         windows=windows,
         networks=dict(networks),
         failures=tuple(sorted(failures, key=lambda f: order[f.window])),

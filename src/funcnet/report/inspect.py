@@ -85,6 +85,18 @@ def _fmt(value: Any, digits: int = 3) -> str:
     return str(value)
 
 
+def _turns_sentence(ins: TraceInspection) -> str:
+    """How often the set-point changes direction, and where."""
+    if not ins.turns:
+        return "It never changes direction." if len(ins.moves) else ""
+    within = int(ins.moves["direction changes"].sum()) if len(ins.moves) else 0
+    times = ", ".join(f"{turn.time:.2f}" for turn in ins.turns)
+    parts = [f"{within} within a move (no rest at the turn)" if within else "",
+             f"{len(ins.turns) - within} after a rest" if len(ins.turns) > within else ""]
+    return (f"It changes direction {len(ins.turns)} time(s), at {times} s: "
+            + ", ".join(p for p in parts if p) + ".")
+
+
 def _summary_html(ins: TraceInspection) -> str:
     moves = ins.moves
     moving = float(moves["duration"].sum()) if len(moves) else 0.0
@@ -93,13 +105,16 @@ def _summary_html(ins: TraceInspection) -> str:
              f"{ins.sample_period * 1e3:g} ms; signals used as nodes: "
              f"{escape(', '.join(ins.signals))}. The axis moves {len(moves)} time(s), "
              f"{moving:.1f} s in all, and stands still the other "
-             f"{ins.duration - moving:.1f} s.</p>"]
+             f"{ins.duration - moving:.1f} s. {escape(_turns_sentence(ins))}</p>"]
     if len(moves):
         facts = []
         facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} °/s "
                      f"({moves['peak speed'].max() * 60:.4g} °/min)")
         if "peak |AC|" in moves:
-            facts.append(f"peak current |AC| {moves['peak |AC|'].max():.3g} A")
+            info = ins.recording.signals.get("AC")
+            unit = info.unit if info is not None and info.unit else "A"
+            what = "current" if unit.endswith("A") else "torque" if "N" in unit else "value"
+            facts.append(f"peak {what} |AC| {moves['peak |AC|'].max():.3g} {unit}")
         if "peak |FE|" in moves:
             facts.append(f"peak following error |RP − AP| {moves['peak |FE|'].max():.3g}° "
                          f"({moves['peak |FE|'].max() * 60:.3g} arcmin), "
