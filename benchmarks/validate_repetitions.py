@@ -17,7 +17,7 @@ Coupled pairs: RC-AC, AC-MP and MP-AP within set A and within set B.
 Each draw is one call of :func:`funcnet.evidence.repetitions.repetition_tests` on the 8
 columns (A.AP ... B.AC), unadjusted p-values (each test at alpha on its own).
 
-    PYTHONPATH=src python benchmarks/validate_repetitions.py [--draws 26] [--cache DIR]
+    PYTHONPATH=src python benchmarks/validate_repetitions.py [--draws 80] [--cache DIR] [--raw]
 """
 
 from __future__ import annotations
@@ -89,7 +89,7 @@ def phase_spans(run: np.ndarray, length: int = LENGTH) -> dict[str, tuple[int, i
 
 
 def draw_tests(runs: Sequence[np.ndarray], span: tuple[int, int], r: int,
-               rng: np.random.Generator
+               rng: np.random.Generator, residuals: bool = True
                ) -> tuple[list[bool], dict[tuple[str, str], list[bool]], list[int]]:
     """One draw of 2R runs: the null decisions, the coupled links' decisions, the runs."""
     chosen = rng.choice(len(runs), size=2 * r, replace=False)
@@ -100,7 +100,8 @@ def draw_tests(runs: Sequence[np.ndarray], span: tuple[int, int], r: int,
         for i in range(r)
     ])
     names = [f"A.{s}" for s in TESTED] + [f"B.{s}" for s in TESTED]
-    tests = repetition_tests(stack, signals=names, seed=int(rng.integers(2**31)))
+    tests = repetition_tests(stack, signals=names, seed=int(rng.integers(2**31)),
+                             residuals=residuals)
     rejected = dict(zip(zip(tests.x, tests.y, strict=True), tests.p_value <= ALPHA,
                         strict=True))
     null = [bool(v) for (x, y), v in rejected.items() if x[0] != y[0]]
@@ -114,12 +115,14 @@ def draw_tests(runs: Sequence[np.ndarray], span: tuple[int, int], r: int,
 
 def main(argv: Sequence[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--draws", type=int, default=26, help="draws per cell (R <= 20)")
-    parser.add_argument("--draws-50", type=int, default=6, help="draws per cell at R = 50")
-    parser.add_argument("--pool", type=int, default=100, help="runs per speed")
+    parser.add_argument("--draws", type=int, default=80, help="draws per cell (R <= 20)")
+    parser.add_argument("--draws-50", type=int, default=10, help="draws per cell at R = 50")
+    parser.add_argument("--pool", type=int, default=150, help="runs per speed")
     parser.add_argument("--cache", type=Path, default=None, help="keep simulated runs here")
     parser.add_argument("--speeds", type=float, nargs="*", default=list(SYSTEMS))
     parser.add_argument("--repetitions", type=int, nargs="*", default=[5, 10, 20, 50])
+    parser.add_argument("--raw", action="store_true",
+                        help="test the raw signals instead of the residuals")
     args = parser.parse_args(argv)
     if args.cache is not None:
         args.cache.mkdir(parents=True, exist_ok=True)
@@ -136,7 +139,7 @@ def main(argv: Sequence[str] | None = None) -> None:
                 links: dict[tuple[str, str], list[bool]] = {}
                 used: set[int] = set()
                 for _ in range(draws):
-                    found, coupled, chosen = draw_tests(runs, span, r, rng)
+                    found, coupled, chosen = draw_tests(runs, span, r, rng, not args.raw)
                     used.update(chosen)
                     null += found
                     per_draw.append(float(np.mean(found)))

@@ -122,6 +122,20 @@ def test_untestable_with_too_few_repetitions_says_how_many_are_needed() -> None:
     assert four.coupling_p.item() >= 1 / 24
 
 
+def test_a_command_the_same_in_every_repetition_carries_nothing() -> None:
+    values = _runs(6, seed=2, coupling=0.5)
+    command = np.sin(np.linspace(0, 3 * np.pi, 200)) * 5 + 0.1
+    stack = np.concatenate([np.broadcast_to(command[None, :, None], (6, 200, 1)), values],
+                           axis=2)
+    table = repetition_tests(stack, signals=["RP", "x", "y"])
+    assert table.coupling_statistic.tolist()[:2] == [0.0, 0.0]
+    assert table.p_value.tolist()[:2] == [1.0, 1.0]
+    # On the raw signals too: the same recurrences in every repetition pair alike with Y.
+    raw = repetition_tests(stack, signals=["RP", "x", "y"], residuals=False)
+    assert abs(raw.coupling_statistic.iloc[0]) < 1e-12
+    assert table.coupling_statistic.iloc[2] > 0 and table.p_value.iloc[2] <= 0.05
+
+
 def test_two_repetitions_residuals_carry_nothing() -> None:
     # With R = 2 each residual is the other's negative: the same recurrences, D = 0.
     two = repetition_tests(_runs(2, seed=0, coupling=1.0), signals=["x", "y"])
@@ -195,3 +209,35 @@ def test_bad_input_is_named() -> None:
 
 def test_exported_at_the_top_level() -> None:
     assert funcnet.repetition_evidence is repetition_evidence
+
+
+def test_false_positives_and_power_on_simulated_repetitions() -> None:
+    # docs/evidence.md, "Repetitions", on a fixed small seed set: 40 runs of one move (175
+    # deg/min, the real trace's sensors), a 300-sample cruise window logged every 4 ms; 8 draws
+    # of R = 10 runs for set A and 10 others for set B. Null: X from A_i, Y from B_i (16 pairs
+    # a draw); coupled: RC-AC, AC-MP, MP-AP within A and within B. The validation's cells
+    # (1280 tests each) spread 0.03-0.07 around 0.05; tests of one draw share their runs, so
+    # the bound allows three standard errors of 8 draws (0.04): at most 21 of 128.
+    from funcnet.robot.sim import Trial, simulate_trial
+
+    trial = Trial("validate", "repetitions", speed=175, tcp=1.6, step=10.0, sensors="real")
+    columns = ["AP", "MP", "RC", "AC"]
+    runs = [simulate_trial(trial, seed=s).data[columns].to_numpy()[::2][445:745]
+            for s in range(1, 41)]
+    rng = np.random.default_rng(0)
+    names = [f"A.{c}" for c in columns] + [f"B.{c}" for c in columns]
+    null, links = [], {("RC", "AC"): 0, ("AC", "MP"): 0, ("MP", "AP"): 0}
+    for _ in range(8):
+        chosen = rng.choice(40, size=20, replace=False)
+        stack = np.stack([np.hstack([runs[chosen[i]], runs[chosen[10 + i]]]) for i in range(10)])
+        tests = repetition_tests(stack, signals=names, seed=int(rng.integers(1000)))
+        rejected = {(x, y): p <= 0.05 for x, y, p in zip(tests.x, tests.y, tests.p_value,
+                                                         strict=True)}
+        null += [v for (x, y), v in rejected.items() if x[0] != y[0]]
+        for u, v in links:
+            for side in "AB":
+                key = tuple(sorted((f"{side}.{u}", f"{side}.{v}"), key=names.index))
+                links[(u, v)] += rejected[key]
+    assert len(null) == 128 and sum(null) <= 21
+    assert links[("RC", "AC")] >= 15  # of 16 (the validation: 160 of 160)
+    assert links[("AC", "MP")] >= 14 and links[("MP", "AP")] >= 14

@@ -93,6 +93,9 @@ from funcnet.recurrence import _signal_thresholds, auto_recurrence
 __all__ = ["REPETITION_COLUMNS", "repetition_evidence", "repetition_tests", "repetitions_needed",
            "smallest_p_value", "EXHAUSTIVE_MAX"]
 
+#: A residual whose range is at most this fraction of its signal's range is constant.
+_ROUNDING = 1e-12
+
 #: Up to this many repetitions every permutation is a surrogate (7! = 5040).
 EXHAUSTIVE_MAX = 7
 
@@ -211,36 +214,46 @@ def _permutations(r: int, surrogates: int, seed: int) -> np.ndarray:
 
 
 def _recurrences(stack: np.ndarray, p: NetworkParameters, residuals: bool, names: list[str]
-                 ) -> tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray], int]:
-    """Per node: dense recurrence matrices (R, M, M), their recurrent pairs, the pairs' offsets."""
+                 ) -> tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray], int, set[int]]:
+    """Per node: dense recurrence matrices (R, M, M), their recurrent pairs, the pairs' offsets;
+    the states' number; the nodes constant in every repetition."""
     values = stack - stack.mean(axis=0) if residuals else stack
     r, _, n = values.shape
     thresholds, _ = _signal_thresholds(p, n)
     dense, pairs, offsets = [], [], []
+    constants: set[int] = set()
     length = 0
     for s in range(n):
         rate, eps = thresholds[s]
+        # A residual within rounding of the signal's own range is nothing beyond the mean (a
+        # set-point the same in every repetition leaves float noise of its mean).
+        flat = _ROUNDING * float(np.ptp(stack[:, :, s]))
         mats, lists = [], []
+        flat_repetitions = 0
         for i in range(r):
             signal = values[i, :, s]
+            constant = float(np.ptp(signal)) <= flat
             states = signal_states(
-                signal if np.ptp(signal) == 0 or p.normalize is None
+                signal if constant or p.normalize is None
                 else normalize(signal, p.normalize, names=names[s]),
                 parameters=p, name=f"{names[s]} (repetition {i})")
-            if np.ptp(signal) == 0:
-                # Nothing beyond the mean: every state recurs, phi is 0 against any Y.
+            if constant:
+                # Every state recurs: phi is 0 against any Y, so is D, and p is 1.
                 matrix = np.ones((len(states), len(states)), dtype=np.uint8)
                 np.fill_diagonal(matrix, 0)
+                flat_repetitions += 1
             else:
                 matrix = auto_recurrence(states, rr=rate, eps=eps, parameters=p,
                                          name=names[s]).to_dense().astype(np.uint8)
             mats.append(matrix)
             lists.append(np.argwhere(np.triu(matrix, 1)).astype(np.int64))
             length = len(states)
+        if flat_repetitions == r:
+            constants.add(s)
         dense.append(np.ascontiguousarray(np.stack(mats)))
         pairs.append(np.ascontiguousarray(np.concatenate(lists)))
         offsets.append(np.concatenate([[0], np.cumsum([len(x) for x in lists])]).astype(np.int64))
-    return dense, pairs, offsets, length
+    return dense, pairs, offsets, length, constants
 
 
 def _excess(values: np.ndarray, perms: np.ndarray) -> tuple[float, np.ndarray]:
@@ -340,12 +353,16 @@ def _tests(stack: np.ndarray, names: list[str], p: NetworkParameters, seed: int,
     r, _, n = stack.shape
     perms = _permutations(r, surrogates, seed)
     k = int(perms.shape[0])
-    dense, pairs, offsets, length = _recurrences(stack, p, residuals, names)
+    dense, pairs, offsets, length, constants = _recurrences(stack, p, residuals, names)
     rows = []
     for a in range(n):
         for b in range(a + 1, n):
-            counts = _repetition_counts(dense[b], pairs[a], offsets[a], pairs[b], offsets[b],
-                                        length, p.theiler)
+            if a in constants or b in constants:
+                # phi is 0 in every pairing (the kernel's value); no direction to read either.
+                counts = np.zeros((r, r, 3))
+            else:
+                counts = _repetition_counts(dense[b], pairs[a], offsets[a], pairs[b],
+                                            offsets[b], length, p.theiler)
             observed, null = _excess(counts[:, :, 0], perms)
             p_value = (1 + int(np.count_nonzero(null >= observed))) / (k + 1)
             d_observed, d_null = _excess(counts[:, :, 1] - counts[:, :, 2], perms)
