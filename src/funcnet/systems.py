@@ -120,18 +120,41 @@ def henon_pair(n: int, coupling: float = 0.0, *, seed: Seed = 0,
     n = _check_n(n)
     seeds, single = _seeds(seed)
     start = np.array([np.random.default_rng(s).uniform(0.0, 0.5, 4) for s in seeds])
-    x, x_prev, y, y_prev = start.T
-    out = np.empty((n, len(seeds), 2))
+
+    def update(x: np.ndarray, x_prev: np.ndarray, y: np.ndarray,
+               y_prev: np.ndarray) -> tuple[np.ndarray, ...]:
+        return (1.4 - x * x + 0.3 * x_prev, x,
+                1.4 - (coupling * x + (1.0 - coupling) * y) * y + 0.3 * y_prev, y)
+
+    return _shape(_iterate(update, tuple(start.T), n, transient, (0, 2)), single)
+
+
+def _iterate(update: Callable[..., tuple[np.ndarray, ...]], state: tuple[np.ndarray, ...],
+             n: int, transient: int, observed: tuple[int, int]) -> np.ndarray:
+    """A map iterated on every realization at once: ``(n, realizations, 2)``, the two
+    ``observed`` components of the state after ``transient`` iterations."""
+    out = np.empty((n, len(state[0]), 2))
     for i in range(transient + n):
         if i >= transient:
-            out[i - transient, :, 0], out[i - transient, :, 1] = x, y
-        x, x_prev, y, y_prev = (
-            1.4 - x * x + 0.3 * x_prev,
-            x,
-            1.4 - (coupling * x + (1.0 - coupling) * y) * y + 0.3 * y_prev,
-            y,
-        )
-    return _shape(out, single)
+            out[i - transient, :, 0] = state[observed[0]]
+            out[i - transient, :, 1] = state[observed[1]]
+        state = update(*state)
+    return out
+
+
+def _integrate(field: Callable[[np.ndarray], np.ndarray], state: np.ndarray, n: int,
+               step: float, every: int, transient: float) -> np.ndarray:
+    """Two oscillators of three variables each integrated on every realization at once
+    (fixed-step RK4): ``(n, realizations, 2)``, their x components every ``every`` steps
+    after ``transient`` time units."""
+    for _ in range(round(transient / step)):
+        state = _rk4(field, state, step)
+    out = np.empty((n, len(state), 2))
+    for i in range(n):
+        out[i] = state[:, [0, 3]]
+        for _ in range(every):
+            state = _rk4(field, state, step)
+    return out
 
 
 def _rk4(field: Callable[[np.ndarray], np.ndarray], state: np.ndarray,
@@ -201,14 +224,7 @@ def rossler_pair(n: int, coupling: float = 0.0, w_x: float = 1.015, w_y: float =
             axis=1,
         )
 
-    for _ in range(round(transient / step)):
-        state = _rk4(field, state, step)
-    out = np.empty((n, len(seeds), 2))
-    for i in range(n):
-        out[i] = state[:, [0, 3]]
-        for _ in range(every):
-            state = _rk4(field, state, step)
-    return _shape(out, single)
+    return _shape(_integrate(field, state, n, step, every, transient), single)
 
 
 def lorenz_pair(n: int, *, seed: Seed = 0, step: float = 0.01, every: int = 5,
@@ -260,14 +276,7 @@ def lorenz_pair(n: int, *, seed: Seed = 0, step: float = 0.01, every: int = 5,
             out[:, k + 2] = x * y - 8.0 / 3.0 * z
         return out
 
-    for _ in range(round(transient / step)):
-        state = _rk4(field, state, step)
-    out = np.empty((n, len(seeds), 2))
-    for i in range(n):
-        out[i] = state[:, [0, 3]]
-        for _ in range(every):
-            state = _rk4(field, state, step)
-    return _shape(out, single)
+    return _shape(_integrate(field, state, n, step, every, transient), single)
 
 
 def logistic_pair(n: int, r_x: float = 3.7, r_y: float = 4.0, coupling: float = 0.0, *,
@@ -307,17 +316,15 @@ def logistic_pair(n: int, r_x: float = 3.7, r_y: float = 4.0, coupling: float = 
     """
     n = _check_n(n)
     seeds, single = _seeds(seed)
-    x, y = np.array([np.random.default_rng(s).uniform(0.1, 0.9, 2) for s in seeds]).T
-    out = np.empty((n, len(seeds), 2))
-    for i in range(transient + n):
-        if i >= transient:
-            out[i - transient, :, 0], out[i - transient, :, 1] = x, y
+    start = np.array([np.random.default_rng(s).uniform(0.1, 0.9, 2) for s in seeds])
+
+    def update(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, ...]:
         if coupling == 0.0:
-            x, y = r_x * x * (1.0 - x), r_y * y * (1.0 - y)
-        else:
-            u = (1.0 - coupling) * y + coupling * x
-            x, y = r_x * x * (1.0 - x), r_y * u * (1.0 - u)
-    return _shape(out, single)
+            return r_x * x * (1.0 - x), r_y * y * (1.0 - y)
+        u = (1.0 - coupling) * y + coupling * x
+        return r_x * x * (1.0 - x), r_y * u * (1.0 - u)
+
+    return _shape(_iterate(update, tuple(start.T), n, transient, (0, 1)), single)
 
 
 def low_pass(x: np.ndarray, alpha: float = 0.9) -> np.ndarray:
@@ -499,17 +506,11 @@ def common_driver(n: int, coupling: float = 0.4, *, seed: Seed = 0,
     n = _check_n(n)
     seeds, single = _seeds(seed)
     start = np.array([np.random.default_rng(s).uniform(0.0, 0.5, 6) for s in seeds])
-    z, z_prev, x, x_prev, y, y_prev = start.T
-    out = np.empty((n, len(seeds), 2))
-    for i in range(transient + n):
-        if i >= transient:
-            out[i - transient, :, 0], out[i - transient, :, 1] = x, y
-        z, z_prev, x, x_prev, y, y_prev = (
-            1.4 - z * z + 0.3 * z_prev,
-            z,
-            1.4 - (coupling * z + (1.0 - coupling) * x) * x + 0.3 * x_prev,
-            x,
-            1.4 - (coupling * z + (1.0 - coupling) * y) * y + 0.3 * y_prev,
-            y,
-        )
-    return _shape(out, single)
+
+    def update(z: np.ndarray, z_prev: np.ndarray, x: np.ndarray, x_prev: np.ndarray,
+               y: np.ndarray, y_prev: np.ndarray) -> tuple[np.ndarray, ...]:
+        return (1.4 - z * z + 0.3 * z_prev, z,
+                1.4 - (coupling * z + (1.0 - coupling) * x) * x + 0.3 * x_prev, x,
+                1.4 - (coupling * z + (1.0 - coupling) * y) * y + 0.3 * y_prev, y)
+
+    return _shape(_iterate(update, tuple(start.T), n, transient, (2, 4)), single)
