@@ -38,7 +38,7 @@ from funcnet._isrn_kernels import _METRIC_CODE
 from funcnet._order_statistic import _pyunicorn_rank, _rank_from_rate
 from funcnet.embedding import MIN_STATES
 from funcnet.errors import FuncnetError, ParameterError, SignalError
-from funcnet.measures import CrossMeasures, _pair_parameters, pairwise_cross_measures
+from funcnet.measures import CrossMeasures, pairwise_cross_measures
 from funcnet.normalization import normalize as normalize_signals
 from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
 
@@ -120,7 +120,7 @@ class BatchPairs:
             fields = {name: columns[name][q] for name in RESULT_FIELDS}
             found[(x, y)] = CrossMeasures(
                 **fields, m_x=states, m_y=states,
-                parameters=_pair_parameters(p, position[x], position[y]),
+                parameters=p.for_pair(position[x], position[y]),
             )
         return found
 

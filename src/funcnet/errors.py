@@ -8,6 +8,8 @@ value, ``OSError`` is left to the operating system).
 
 from __future__ import annotations
 
+import os
+import sys
 from typing import Any
 
 __all__ = [
@@ -24,7 +26,29 @@ __all__ = [
     "DegenerateWarning",
     "StaircaseWarning",
     "RecordingWarning",
+    "caller_stacklevel",
 ]
+
+# The package's folder: frames there are funcnet's own, the first frame outside is the user's.
+_PACKAGE = sys.modules[__name__.partition(".")[0]]
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(str(_PACKAGE.__file__))) + os.sep
+
+
+def caller_stacklevel() -> int:
+    """``stacklevel`` of the first frame outside funcnet, seen from this function's caller.
+
+    A warning given with it points at the user's line, whether funcnet was called directly or
+    through a network, a study or the command line.
+
+    Examples
+    --------
+    >>> caller_stacklevel()  # called from outside the package: the caller's own frame
+    1
+    """
+    frame, level = sys._getframe(1), 1
+    while frame.f_back is not None and frame.f_code.co_filename.startswith(_PACKAGE_DIR):
+        frame, level = frame.f_back, level + 1
+    return level
 
 
 class FuncnetError(Exception):

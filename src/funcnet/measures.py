@@ -43,8 +43,6 @@ Length: over 600 lines because of the numpydoc of seven public names; the code i
 
 from __future__ import annotations
 
-import os
-import sys
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -68,6 +66,7 @@ from funcnet.errors import (
     ParameterError,
     SignalError,
     ThresholdWarning,
+    caller_stacklevel,
 )
 from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
 from funcnet.recurrence import (
@@ -437,24 +436,9 @@ def threshold_warnings(
     return found
 
 
-_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
-
-
-def _caller_stacklevel() -> int:
-    """``stacklevel`` of the first frame outside funcnet, seen from this function's caller.
-
-    A warning then points at the user's call, whether it reached the measures directly or
-    through :func:`funcnet.network.functional_network` or a study.
-    """
-    frame, level = sys._getframe(1), 1
-    while frame.f_back is not None and frame.f_code.co_filename.startswith(_PACKAGE_DIR):
-        frame, level = frame.f_back, level + 1
-    return level
-
-
 def _warn(results: Mapping[tuple[Any, Any], CrossMeasures]) -> None:
     for warning in threshold_warnings(results):
-        warnings.warn(warning, stacklevel=_caller_stacklevel())
+        warnings.warn(warning, stacklevel=caller_stacklevel())
 
 
 # --------------------------------------------------------------------------------------------
@@ -624,16 +608,6 @@ def _short_pair(x: Any, y: Any, p: NetworkParameters) -> CrossMeasures | None:
     )
 
 
-def _pair_parameters(p: NetworkParameters, i: int, j: int) -> NetworkParameters:
-    """``p`` restricted to the pair (i, j): per-signal rates and thresholds become pairs."""
-    changes: dict[str, Any] = {}
-    if isinstance(p.rr, tuple):
-        changes["rr"] = (p.rr[i], p.rr[j])
-    if p.eps is not None and isinstance(p.eps[0], tuple):
-        changes["eps"] = ((p.eps[0][i], p.eps[0][j]), p.eps[1])
-    return p.replace(**changes) if changes else p
-
-
 def pairwise_cross_measures(
     signals: Sequence[Any] | np.ndarray,
     *,
@@ -746,7 +720,7 @@ def pairwise_cross_measures(
                 names=(called[i], called[j]),
             )
             result = isrn_measures(
-                autos[i], autos[j], cr_ij, parameters=_pair_parameters(p, i, j),
+                autos[i], autos[j], cr_ij, parameters=p.for_pair(i, j),
                 names=(labels[i], labels[j]),
             )
             # One pair's cross structure at a time (M^2 / 8 bytes each): free it before the

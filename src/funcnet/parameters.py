@@ -314,6 +314,25 @@ class NetworkParameters:
         _check_names(changes)
         return dataclasses.replace(self, **changes)
 
+    def for_pair(self, i: int, j: int) -> NetworkParameters:
+        """The parameters as the measures of the pair of signals ``i`` and ``j`` hold them:
+        per-signal rates (``rr``) and thresholds (``eps``) become that pair's two.
+
+        Examples
+        --------
+        >>> NetworkParameters(rr=(0.05, 0.1, 0.2)).for_pair(0, 2).rr
+        (0.05, 0.2)
+        >>> p = NetworkParameters(rr=0.1)
+        >>> p.for_pair(0, 1) is p
+        True
+        """
+        changes: dict[str, Any] = {}
+        if isinstance(self.rr, tuple):
+            changes["rr"] = (self.rr[i], self.rr[j])
+        if self.eps is not None and isinstance(self.eps[0], tuple):
+            changes["eps"] = ((self.eps[0][i], self.eps[0][j]), self.eps[1])
+        return self.replace(**changes) if changes else self
+
     def to_dict(self) -> dict[str, Any]:
         """The parameters as a plain dict (tuples for ``rr``/``eps``), e.g. for JSON."""
         return {name: getattr(self, name) for name in self.names()}

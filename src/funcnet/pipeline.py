@@ -19,8 +19,6 @@ one summary of their warnings belong together.
 from __future__ import annotations
 
 import dataclasses
-import os
-import sys
 import warnings
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
@@ -37,6 +35,7 @@ from funcnet.errors import (
     FuncnetWarning,
     ParameterError,
     WindowError,
+    caller_stacklevel,
 )
 from funcnet.measures import CrossMeasures, threshold_warnings
 from funcnet.network import (
@@ -65,7 +64,6 @@ ERROR_POLICIES = ("raise", "collect")
 #: The parts of a window's result a :class:`WindowFailure` can name.
 FAILURE_PARTS = ("network", "evidence", "intervals")
 
-_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
 # How a summary names a problem (what is wrong, what to read); the pairs follow the first part.
 _SUMMARIES: dict[str, tuple[str, str]] = {
@@ -365,7 +363,7 @@ def window_networks(
         )
     staircase = staircase_warning(recording, signals, where)
     if staircase is not None:
-        warnings.warn(staircase, stacklevel=_caller_stacklevel())
+        warnings.warn(staircase, stacklevel=caller_stacklevel())
     drop = constant == "drop" and p.normalize is not None
     networks = WindowNetworks()
     failures = []
@@ -385,7 +383,7 @@ def window_networks(
             progress(done, len(windows), window.label)
     found = batched[1] if batched is not None else window_warnings(networks)
     for warning in _summarized(found, where, len(windows)):
-        warnings.warn(warning, stacklevel=_caller_stacklevel())
+        warnings.warn(warning, stacklevel=caller_stacklevel())
     networks.failures = tuple(failures)
     return networks
 
@@ -508,18 +506,6 @@ def _without(p: NetworkParameters, kept: Sequence[bool]) -> NetworkParameters:
 # warnings, from the flags of the pairs tables
 
 
-def _pair_parameters(p: NetworkParameters, nodes: Sequence[str], x: str,
-                     y: str) -> NetworkParameters:
-    """``p`` as the measures of the pair (x, y) hold it: per-signal values become pairs."""
-    i, j = nodes.index(x), nodes.index(y)
-    changes: dict[str, Any] = {}
-    if isinstance(p.rr, tuple):
-        changes["rr"] = (p.rr[i], p.rr[j])
-    if p.eps is not None and isinstance(p.eps[0], tuple):
-        changes["eps"] = ((p.eps[0][i], p.eps[0][j]), p.eps[1])
-    return p.replace(**changes) if changes else p
-
-
 def _pair_results(network: FunctionalNetwork) -> dict[tuple[str, str], CrossMeasures]:
     """The pairs table's rows as the cross measures they were made from."""
     p = network.parameters
@@ -531,7 +517,7 @@ def _pair_results(network: FunctionalNetwork) -> dict[tuple[str, str], CrossMeas
             **{name: row[name] for name in RESULT_COLUMNS},
             m_x=states,
             m_y=states,
-            parameters=_pair_parameters(p, network.nodes, x, y),
+            parameters=p.for_pair(network.nodes.index(x), network.nodes.index(y)),
         )
     return results
 
@@ -598,18 +584,6 @@ def _summarized(found: Sequence[FuncnetWarning], where: str,
             )
         )
     return summary
-
-
-def _caller_stacklevel() -> int:
-    """``stacklevel`` of the first frame outside funcnet, seen from this function's caller.
-
-    A warning then points at the user's line, whether the pipeline was called directly or
-    through a study or the command line.
-    """
-    frame, level = sys._getframe(1), 1
-    while frame.f_back is not None and frame.f_code.co_filename.startswith(_PACKAGE_DIR):
-        frame, level = frame.f_back, level + 1
-    return level
 
 
 def _locate(error: FuncnetError, where: str, window: Window) -> None:

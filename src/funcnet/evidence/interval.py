@@ -133,6 +133,22 @@ class AsymmetryInterval:
     c_rate: float = 0.5
     t_rate: float = 0.5
 
+    @classmethod
+    def without_resamples(cls, c_diff: float, t_diff: float,
+                          level: float = 0.95) -> AsymmetryInterval:
+        """The differences alone (``resamples=0``): bounds and sign fractions NaN.
+
+        Examples
+        --------
+        >>> iv = AsymmetryInterval.without_resamples(0.1, -0.2)
+        >>> iv.c_diff, iv.resamples, bool(np.isnan(iv.c_diff_low))
+        (0.1, 0, True)
+        """
+        nan = float("nan")
+        return cls(c_diff=float(c_diff), t_diff=float(t_diff), c_diff_low=nan, c_diff_high=nan,
+                   t_diff_low=nan, t_diff_high=nan, c_sign_fraction=nan, t_sign_fraction=nan,
+                   level=level, resamples=0)
+
 
 def half_samples(n_states: int, resamples: int, *, block: int | None = None,
                  seed: int = 0) -> np.ndarray:

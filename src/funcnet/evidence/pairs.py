@@ -43,8 +43,8 @@ from funcnet.evidence.dependence import (
     dependence_test,
     surrogate_plan,
 )
-from funcnet.evidence.interval import asymmetry_intervals
-from funcnet.measures import _pair_parameters, isrn_measures
+from funcnet.evidence.interval import AsymmetryInterval, asymmetry_intervals
+from funcnet.measures import isrn_measures
 from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
 from funcnet.recurrence import (
     _signal_thresholds,
@@ -176,24 +176,6 @@ def check_evidence_arguments(surrogates: Any, alpha: Any, resamples: Any,
     check_surrogate_method(surrogate_method)
 
 
-@dataclass(frozen=True)
-class _NoInterval:
-    """The interval fields of a pair when ``resamples=0``: the differences, the rest NaN."""
-
-    c_diff: float
-    t_diff: float
-    c_diff_low: float = np.nan
-    c_diff_high: float = np.nan
-    t_diff_low: float = np.nan
-    t_diff_high: float = np.nan
-    c_sign_fraction: float = np.nan
-    t_sign_fraction: float = np.nan
-
-
-def _no_interval(c_diff: float, t_diff: float) -> _NoInterval:
-    return _NoInterval(c_diff=float(c_diff), t_diff=float(t_diff))
-
-
 def pairwise_evidence(
     signals: Sequence[Any],
     *,
@@ -302,7 +284,7 @@ def pairwise_evidence(
             cr_ij = cross_recurrence(states[i], states[j], cr=cr, eps=cross_eps, parameters=p,
                                      names=(called[i], called[j]))
             measures = isrn_measures(autos[i], autos[j], cr_ij,
-                                     parameters=_pair_parameters(p, i, j))
+                                     parameters=p.for_pair(i, j))
             try:
                 plan = surrogate_plan(
                     surrogate_method, dense[j], k,
@@ -331,7 +313,8 @@ def pairwise_evidence(
             e["interval"] = interval
     else:
         for e in raw:
-            e["interval"] = _no_interval(*e["observed"])
+            c_diff, t_diff = e["observed"]
+            e["interval"] = AsymmetryInterval.without_resamples(c_diff, t_diff, level=level)
     coupling_p = benjamini_hochberg([e["p"] for e in raw])
     direction_p = benjamini_hochberg([e["index_p"] for e in raw])
     out: dict[tuple[Any, Any], PairEvidence] = {}
