@@ -55,9 +55,8 @@ from funcnet.plot.network_diagram import _network_nodes as _network_nodes
 from funcnet.plot.network_diagram import _node_radius as _node_radius
 from funcnet.plot.network_diagram import _trim as _trim
 from funcnet.plot.recurrence_plot import plot_graph, plot_recurrence
-from funcnet.plot.signals import _mark_spans as _mark_spans
 from funcnet.plot.signals import _spans as _spans
-from funcnet.plot.signals import add_signal_legend, plot_signals
+from funcnet.plot.signals import add_signal_legend, plot_signals, shade_spans
 from funcnet.plot.stability_heatmap import plot_stability
 from funcnet.plot.style import _BIDIRECTIONAL as _BIDIRECTIONAL
 from funcnet.plot.style import _CONFLICT as _CONFLICT
@@ -102,6 +101,7 @@ __all__ = [
     "plot_recurrence",
     "plot_graph",
     "plot_signals",
+    "shade_spans",
     "plot_edge_timeline",
     "plot_stability",
     "network_title",

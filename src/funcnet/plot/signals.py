@@ -13,26 +13,58 @@ from matplotlib.lines import Line2D
 
 from funcnet.plot.style import _new_axes, phase_color, signal_color
 
-__all__ = ["plot_signals", "add_signal_legend"]
+__all__ = ["plot_signals", "add_signal_legend", "shade_spans"]
 
 
-def _mark_spans(ax: Axes, spans: Sequence[tuple[str, float, float]], prefix: str,
-                label: bool = True) -> None:
-    for k, (name, start, stop) in enumerate(spans):
-        patch = ax.axvspan(start, stop, color=phase_color(name, k), alpha=0.7,
-                           zorder=0, linewidth=0)
-        patch.set_gid(f"{prefix}:{name}")
-        if label:  # alternate heights so that the names of short phases do not overlap
+def shade_spans(ax: Axes, spans: Any, *, prefix: str | None = "phase", alpha: float = 0.7,
+                names: bool = False, within: tuple[float, float] | None = None) -> None:
+    """Shade spans of time (phases, windows) in their phases' colours, behind what is drawn.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    spans : phase table, sequence of Window, or sequence of (name, start, stop)
+        A phase table (``phase, start, stop``: each row shaded as its phase), windows (each
+        shaded as its label names it) or explicit triples.
+    prefix : str or None
+        Each patch's gid is ``{prefix}:{name}``; None sets none.
+    alpha : float
+        Opacity of the shading.
+    names : bool
+        Write each span's name above the axes (at alternate heights, so that the names of
+        short spans do not overlap).
+    within : (float, float), optional
+        Shade only the spans that overlap this range, clipped to it.
+
+    Examples
+    --------
+    >>> ax = Figure().add_subplot()
+    >>> shade_spans(ax, [("cruise", 0.0, 1.0), ("braking", 1.0, 2.0)], within=(0.5, 1.5))
+    >>> [(p.get_gid(), p.get_facecolor() == ax.patches[0].get_facecolor()) for p in ax.patches]
+    [('phase:cruise', True), ('phase:braking', True)]
+    """
+    for k, (name, start, stop) in enumerate(_spans(spans)):
+        if within is not None:
+            if not (stop > within[0] and start < within[1]):
+                continue
+            start, stop = max(start, within[0]), min(stop, within[1])
+        patch = ax.axvspan(start, stop, color=phase_color(name, k), alpha=alpha, zorder=0,
+                           linewidth=0)
+        if prefix is not None:
+            patch.set_gid(f"{prefix}:{name}")
+        if names:
             ax.annotate(str(name), ((start + stop) / 2, 1.0), xycoords=ax.get_xaxis_transform(),
                         xytext=(0, 2 + 11 * (k % 2)), textcoords="offset points", fontsize=9,
                         ha="center", va="bottom")
 
 
 def _spans(phases: Any) -> list[tuple[str, float, float]]:
-    """(name, start, stop) from a phase table (phase, start, stop) or a sequence of Windows."""
+    """(name, start, stop) from a phase table (phase, start, stop), a sequence of Windows or
+    of (name, start, stop)."""
     if isinstance(phases, pd.DataFrame):
         return [(str(r.phase), float(r.start), float(r.stop)) for r in phases.itertuples()]
-    return [(str(w.label), float(w.start), float(w.stop)) for w in phases]
+    return [(str(w[0]), float(w[1]), float(w[2])) if isinstance(w, tuple)
+            else (str(w.label), float(w.start), float(w.stop)) for w in phases]
 
 
 def plot_signals(
@@ -76,7 +108,7 @@ def plot_signals(
     """
     ax = _new_axes(ax, (6.0, 2.5))
     if spans is not None:
-        _mark_spans(ax, _spans(spans), span_prefix)
+        shade_spans(ax, spans, prefix=span_prefix, names=True)
     for name in data.columns:
         values = data[name].to_numpy(dtype=float)
         if normalize:

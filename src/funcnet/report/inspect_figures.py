@@ -13,7 +13,6 @@ from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
 from funcnet.inspection import TraceInspection
 from funcnet.robot import Window
@@ -44,15 +43,6 @@ def _phase_legend(fig: Any, kinds: Sequence[str]) -> None:
     legend = fig.legend(handles=handles, loc="outside upper center", ncol=len(handles),
                         fontsize=9, frameon=False, title="phase (shading)", title_fontsize=9)
     legend.set_gid("legend:phases")
-
-
-def _shade(ax: Any, phases: pd.DataFrame, lo: float, hi: float) -> None:
-    from funcnet import plot
-
-    for row in phases.itertuples():
-        if row.stop > lo and row.start < hi:
-            ax.axvspan(max(row.start, lo), min(row.stop, hi), color=plot.phase_color(row.phase),
-                       alpha=0.8, zorder=0, linewidth=0).set_gid(f"phase:{row.phase}")
 
 
 def figure_motion(inspection: TraceInspection) -> Any:
@@ -88,7 +78,7 @@ def figure_motion(inspection: TraceInspection) -> Any:
     grid = fig.add_gridspec(1 + len(panels), cols, height_ratios=[1.0] + [1.0] * len(panels))
     top = fig.add_subplot(grid[0, :])
     t = data.index.to_numpy(dtype=float)
-    _shade(top, phases, t[0], t[-1])
+    plot.shade_spans(top, phases, alpha=0.8, within=(t[0], t[-1]))
     top.plot(t, data["RP"].to_numpy(dtype=float), color=plot.signal_color("RP"), linewidth=1)
     top.set_ylabel("RP [°]", fontsize=9)
     top.set_xlabel("time [s]", fontsize=9)
@@ -104,7 +94,7 @@ def figure_motion(inspection: TraceInspection) -> Any:
         tt = part.index.to_numpy(dtype=float)
         for row, (ylabel, columns) in enumerate(panels, start=1):
             ax = fig.add_subplot(grid[row, k])
-            _shade(ax, phases, lo, hi)
+            plot.shade_spans(ax, phases, alpha=0.8, within=(lo, hi))
             for column in columns:
                 values = (fe.loc[part.index] if column == "FE" and fe is not None
                           else part[column]).to_numpy(dtype=float)
@@ -211,9 +201,8 @@ def figure_timeline(inspection: TraceInspection) -> Any:
     fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.5), 4.6), layout="constrained")
     ax = fig.add_subplot()
     by_label = {w.label: w for w in inspection.windows}
-    for k, label in enumerate(labels):
-        ax.axvspan(k - 0.5, k + 0.5, color=plot.phase_color(by_label[label].phase), alpha=0.8,
-                   zorder=0, linewidth=0)
+    plot.shade_spans(ax, [(str(by_label[label].phase), k - 0.5, k + 0.5)
+                          for k, label in enumerate(labels)], alpha=0.8)
     plot.plot_edge_timeline({float(k): inspection.networks[label]
                              for k, label in enumerate(labels)}, ax=ax)
     ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
@@ -309,7 +298,7 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
         hi = change.start + 0.3
         part = data.loc[(data.index >= lo) & (data.index <= hi)]
         ax = fig.add_subplot(1, len(changes), k + 1)
-        _shade(ax, inspection.phases, lo, hi)
+        plot.shade_spans(ax, inspection.phases, alpha=0.8, within=(lo, hi))
         t = part.index.to_numpy(dtype=float)
         ax.plot(t, (part["MP"] - part["AP"]).to_numpy(dtype=float) * 3600,
                 color=plot.signal_color("TORSION"), linewidth=1)
