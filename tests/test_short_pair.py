@@ -172,3 +172,15 @@ def test_keyword_parameters_are_checked_on_every_call() -> None:
         warnings.simplefilter("always")
         cross_measures(np.zeros(150), y)
     assert [type(w.message) for w in caught] == [ThresholdWarning, DegenerateWarning]
+
+
+def test_repeated_warnings_point_at_the_call_each_time() -> None:
+    x, y = _pair(150)
+    for _ in range(2):  # the second call reuses the pair's warnings
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            result = cross_measures(x, y, dim=DIM, delay=DELAY, metric="supremum",
+                                    rule="pyunicorn")
+        assert not result.eps_ordered and not result.degenerate
+        assert [w.message.problem for w in caught] == ["eps_order"]  # type: ignore[union-attr]
+        assert caught[0].filename == __file__

@@ -526,8 +526,19 @@ def cross_measures(
         a_x, a_y, cr_xy = _isrn_blocks(x, y, p)
         result = isrn_measures(a_x, a_y, cr_xy, parameters=p)
     if warn and (not result.eps_ordered or result.rate_exceeded or result.degenerate):
-        _warn({("x", "y"): result})
+        if result.degenerate:  # its message names the rates and thresholds
+            _warn({("x", "y"): result})
+        else:
+            # The pair's other warnings depend on its two flags only: built once each.
+            flags = (result.eps_ordered, result.rate_exceeded)
+            if flags not in _PAIR_WARNINGS:
+                _PAIR_WARNINGS[flags] = threshold_warnings({("x", "y"): result})
+            for warning in _PAIR_WARNINGS[flags]:
+                warnings.warn(warning, stacklevel=caller_stacklevel())
     return result
+
+
+_PAIR_WARNINGS: dict[tuple[bool, bool], list[FuncnetWarning]] = {}
 
 
 def _short_pair(x: Any, y: Any, p: NetworkParameters) -> CrossMeasures | None:
