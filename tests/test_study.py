@@ -820,3 +820,33 @@ def test_example_evidence_study_loads() -> None:
     settings = dict(study.evidence)
     assert settings["resamples"] == 0 and settings["edge_rule"] == "paper"
     assert study.stability == ()
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_a_tasks_rows_read_back_as_its_network():
+    from funcnet.network import functional_network
+    from funcnet.study import network_from_rows
+    from funcnet.study.store import rows_table
+
+    rng = np.random.default_rng(3)
+    # a signal with three values: a degenerate pair, kept as an edge under degenerate="keep"
+    data = pd.DataFrame({"RP": np.sin(np.arange(300) / 9), "AC": rng.normal(size=300),
+                         "MP": np.repeat([0.0, 1.0, 0.5], 100)})
+    net = functional_network(data, delay=2, degenerate="keep", mu_c=0.02, eps=(None, None),
+                             evidence=True, surrogates=9, resamples=0, warn=False)
+    assert net.pairs["degenerate"].any()
+    identity = {"recording": "r.csv", "trial": "t", "source_sha256": "", "window": "cruise 1",
+                "phase": "cruise", "offset": 0.0, "start": 1.0, "stop": 1.6,
+                "signals": ",".join(net.nodes), "constant": "drop", "dropped": "V"}
+    rows = rows_table(identity, net.parameters, net.pairs).to_pandas()
+    again = network_from_rows(rows)
+    assert again.parameters == net.parameters and again.nodes == net.nodes
+    assert again.pairs.equals(net.pairs) and again.edges.equals(net.edges)
+    assert again.edges["degenerate"].any()  # the rows' own policy, not a guess
+    assert again.window == {"label": "cruise 1", "start": 1.0, "stop": 1.6, "phase": "cruise",
+                            "offset": 0.0, "source": "r.csv", "dropped": ("V",)}
+    # rows of older results without the policy column, NaN where the flag was not written
+    old = rows.drop(columns=["degenerate_policy"]).assign(degenerate=np.nan)
+    plain = network_from_rows(old)
+    assert plain.parameters.degenerate == NetworkParameters().degenerate
+    assert not plain.pairs["degenerate"].any()

@@ -42,7 +42,7 @@ from funcnet.report.html import (
     step,
     table,
 )
-from funcnet.study import PARAMETER_COLUMNS, load_results, package_versions
+from funcnet.study import PARAMETER_COLUMNS, load_results, network_from_rows, package_versions
 
 __all__ = ["write_report", "consensus", "problem_counts", "evidence_counts"]
 
@@ -283,8 +283,7 @@ def _consensus_figure(table_: pd.DataFrame) -> Any:
     return fig
 
 
-def _network_grid(windows: Sequence[tuple[tuple[Any, ...], pd.DataFrame]], policy: str,
-                  name: str) -> Any:
+def _network_grid(windows: Sequence[tuple[tuple[Any, ...], pd.DataFrame]], name: str) -> Any:
     from matplotlib.figure import Figure
 
     from funcnet import plot
@@ -297,11 +296,12 @@ def _network_grid(windows: Sequence[tuple[tuple[Any, ...], pd.DataFrame]], polic
         ax = fig.add_subplot(-(-len(chunk) // cols), cols, j + 1)
         # sliding windows are labelled by their span already
         title = label if str(label).endswith(" s") else f"{label}\n{t0:.2f}–{t1:.2f} s"
-        plot.plot_network(pairs, ax, title=title, fontsize=9, legend=False, degenerate=policy)
+        net = network_from_rows(pairs)  # its edges under its own degenerate policy
+        plot.plot_network(net, ax, title=title, fontsize=9, legend=False)
         ax.set_facecolor(plot.phase_color(label, 99))
-        edges = plot.network_edges(pairs, degenerate=policy)
+        edges = plot.network_edges(net)
         degenerate |= bool(edges["degenerate"].any())
-        evidence |= plot.edge_evidence(pairs, edges) is not None
+        evidence |= plot.edge_evidence(net, edges) is not None
     plot.add_network_legend(fig, degenerate=degenerate, evidence=evidence)
     fig.suptitle(name, fontsize=10)
     return fig
@@ -395,14 +395,11 @@ def write_report(
                              "plan.")]
         first = group["name"].iloc[0]
         mine = group[group["name"] == first]
-        policy = str(mine[PARAMETER_COLUMNS["degenerate"]].iloc[0]) \
-            if PARAMETER_COLUMNS["degenerate"] in mine else "drop"
-        policy = policy if policy in ("drop", "keep") else "drop"
         windows = sorted(mine.groupby(_WINDOW_KEYS[1:], sort=False),
                          key=lambda item: (item[0][1], item[0][2]))
         step(progress, 3 * k + 1, steps, f"report: {label}: example networks")
         parts.append(figure_html(out, f"{slug}-networks-0",
-                                 _network_grid(windows, policy, f"{first} ({label})"),
+                                 _network_grid(windows, f"{first} ({label})"),
                                  f"Example: the networks of recording {first} ({label}), "
                                  f"{min(len(windows), _GRID)} of its {len(windows)} windows. "
                                  "Black arrow: directed; red: bidirectional (mutual or no "
@@ -413,8 +410,10 @@ def write_report(
                                     if has_evidence(mine) else "")))
         if len(windows) >= 3:
             step(progress, 3 * k + 2, steps, f"report: {label}: timeline")
-            centred = mine.assign(time=(mine["start"] + mine["stop"]) / 2)
-            timeline = plot.plot_edge_timeline(centred)
+            # keyed by window: each network placed at its window's centre
+            timeline = plot.plot_edge_timeline(
+                {key: network_from_rows(part)
+                 for key, part in mine.groupby(_WINDOW_KEYS[1:], sort=False)})
             parts.append(figure_html(out, f"{slug}-timeline", timeline.figure,
                                      f"Example: edge kind and weight per window centre, "
                                      f"recording {first} ({label})."))

@@ -26,7 +26,7 @@ from typing import Any
 from funcnet.study.provenance import package_versions
 from funcnet.study.run import StudyResult, TaskFailure, run_study
 from funcnet.study.spec import WINDOW_KINDS, Study, WindowSpec, load_study, parameter_grid
-from funcnet.study.store import PARAMETER_COLUMNS, load_results
+from funcnet.study.store import PARAMETER_COLUMNS, load_results, network_from_rows
 
 __all__ = [
     "PARAMETER_COLUMNS",
@@ -37,6 +37,7 @@ __all__ = [
     "WindowSpec",
     "package_versions",
     "load_results",
+    "network_from_rows",
     "load_study",
     "parameter_grid",
     "run_study",

@@ -27,10 +27,11 @@ from __future__ import annotations
 import contextlib
 import fcntl
 import json
+import math
 import os
 from collections.abc import Iterator, Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pandas as pd
 import pyarrow as pa
@@ -39,6 +40,9 @@ import pyarrow.parquet as pq
 from funcnet._io import atomic_path, write_text_atomic
 from funcnet.errors import StudyError
 from funcnet.parameters import NetworkParameters
+
+if TYPE_CHECKING:
+    from funcnet.network import FunctionalNetwork
 
 __all__ = [
     "IDENTITY_SCHEMA",
@@ -52,6 +56,7 @@ __all__ = [
     "done",
     "select_current",
     "load_results",
+    "network_from_rows",
 ]
 
 #: The columns that say which task a row belongs to.
@@ -335,3 +340,77 @@ def load_results(out_dir: str | os.PathLike[str]) -> pd.DataFrame:
     order = ["recording", "start", "stop", "window", "signals",
              *(c for c in PARAMETER_COLUMNS.values() if c in frame.columns)]
     return frame.sort_values(order, na_position="first", kind="stable").reset_index(drop=True)
+
+
+def network_from_rows(rows: pd.DataFrame) -> FunctionalNetwork:
+    """The functional network of one task's rows (one recording, window and parameter set).
+
+    The inverse of :func:`rows_table`, so that what draws and evaluates networks takes a
+    study's results as networks.
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        The rows of one task, as :func:`load_results` returns them (one per pair).
+
+    Returns
+    -------
+    FunctionalNetwork
+        Its nodes (the ``signals`` column), its parameters (:data:`PARAMETER_COLUMNS`; a column
+        missing from older results takes its default), its pairs table (the rows without the
+        identity and parameter columns; ``degenerate`` False where older rows hold none), its
+        edges under its own ``degenerate`` policy, labelled by the window, whose record
+        (label, start, stop, phase, offset, source, dropped) it keeps. The rows do not record
+        the window's length: ``n_samples`` is 0. With evidence columns, ``evidence`` is an
+        empty mapping (the settings are the study's, not the rows').
+
+    Examples
+    --------
+    >>> from funcnet.network import functional_network
+    >>> from funcnet.systems import henon_pair
+    >>> net = functional_network(henon_pair(300, 0.6, seed=0), names=["x", "y"], delay=1,
+    ...                          warn=False)
+    >>> identity = {"recording": "r.csv", "trial": "", "source_sha256": "", "window": "w",
+    ...             "phase": None, "offset": 0.0, "start": 0.0, "stop": 0.6, "signals": "x,y",
+    ...             "constant": "error", "dropped": ""}
+    >>> rows = rows_table(identity, net.parameters, net.pairs).to_pandas()
+    >>> again = network_from_rows(rows)
+    >>> again.parameters == net.parameters, again.pairs.equals(net.pairs)
+    (True, True)
+    >>> again.edges.equals(net.edges), again.nodes, again.label
+    (True, ('x', 'y'), 'w')
+    """
+    from funcnet.network import FunctionalNetwork, edges_from_pairs
+
+    first = rows.iloc[0]
+    values = {}
+    for name, column in PARAMETER_COLUMNS.items():
+        if column not in rows.columns:
+            continue
+        value = first[column]
+        value = value.item() if hasattr(value, "item") else value
+        if value is None or (isinstance(value, float) and math.isnan(value)):
+            value = None
+        elif name not in _PARAMETER_TYPES:
+            value = json.loads(value)
+        values[name] = value
+    parameters = NetworkParameters.from_mapping(values)
+    known = {field.name for field in IDENTITY_SCHEMA} | set(PARAMETER_COLUMNS.values())
+    pairs = rows[[c for c in rows.columns if c not in known]].reset_index(drop=True)
+    if "degenerate" in pairs.columns:
+        # Rows of older results mixed with newer ones hold NaN there: not degenerate.
+        pairs = pairs.assign(degenerate=pairs["degenerate"].eq(True).astype(bool))
+    signals = str(first.get("signals") or "")
+    nodes = tuple(signals.split(",")) if signals else tuple(
+        dict.fromkeys(str(n) for n in [*pairs["x"], *pairs["y"]]))
+    dropped = str(first.get("dropped") or "")
+    window = {"label": first.get("window"), "start": first.get("start"),
+              "stop": first.get("stop"), "phase": first.get("phase"),
+              "offset": first.get("offset"), "source": first.get("recording"),
+              "dropped": tuple(dropped.split(",")) if dropped else ()}
+    return FunctionalNetwork(
+        nodes=nodes, pairs=pairs,
+        edges=edges_from_pairs(pairs, degenerate=parameters.degenerate),
+        parameters=parameters, n_samples=0, label=first.get("window"), window=window,
+        evidence={} if "evidence" in pairs.columns else None,
+    )
