@@ -81,7 +81,9 @@ def inspect(
     following error, lost motion at direction changes when both encoders are recorded), then
     one functional network per phase of every move with its evidence, the edge timeline, the
     backlash diagnosis, and what an arrow does and does not say. The path of the page to open
-    is printed.
+    is printed. A file of several axes (MATLAB, HDF5) without --axis: the robot's page (each
+    axis summarized and linked to its own report, one network of all axes with its pairs told
+    apart within and between axes); --axis N: the report of axis N.
     """
     with reported_errors(verbose=verbose):
         names = signal_list(signals)

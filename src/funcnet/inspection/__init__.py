@@ -4,7 +4,9 @@
 speeds, currents, following error); :mod:`~funcnet.inspection.trace` computes everything the
 engineer's report (:mod:`funcnet.report.inspect`) shows of one trace: the moves, a functional
 network per phase of every move with its evidence, the windows or parts that could not be
-computed, and the backlash diagnosis (:func:`inspect_recording`, a :class:`TraceInspection`).
+computed, and the backlash diagnosis (:func:`inspect_recording`, a :class:`TraceInspection`);
+:mod:`~funcnet.inspection.robot` does it for each axis of a recording of several axes and adds
+the robot-wide network, its pairs told apart within and between axes (:func:`inspect_robot`).
 Names are imported lazily.
 
 Examples
@@ -24,6 +26,9 @@ _EXPORTS = {
     "TraceInspection": "funcnet.inspection.trace",
     "inspect_recording": "funcnet.inspection.trace",
     "DETRENDED_NODES": "funcnet.inspection.trace",
+    "RobotInspection": "funcnet.inspection.robot",
+    "inspect_robot": "funcnet.inspection.robot",
+    "pair_scope": "funcnet.inspection.robot",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

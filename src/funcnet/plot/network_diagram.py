@@ -9,7 +9,7 @@ Edges of degenerate pairs (kept only with ``degenerate="keep"``) are drawn dashe
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -221,6 +221,7 @@ def plot_network(
     fontsize: float = 10.0,
     legend: bool = True,
     degenerate: str = "drop",
+    groups: Mapping[str, Sequence[str]] | None = None,
 ) -> Axes:
     """Draw a functional network in a circular layout (paper section 3.4, Fig. 9-11).
 
@@ -256,6 +257,11 @@ def plot_network(
     degenerate : {"drop", "keep"}
         For a pairs table only: draw degenerate pairs as edges (``"keep"``) or not (see
         :func:`network_edges`); a network's own edges say it themselves.
+    groups : mapping of str to sequence of str, optional
+        Nodes grouped (the axes of a robot: ``{"A1": ["A1.RP", ...], ...}``): each group
+        placed together on the circle, a gap between groups, its name outside the circle and
+        its nodes labelled without the ``"<group>."`` prefix; an edge within a group is then a
+        short chord of its sector, one between groups crosses the circle. Replaces ``nodes``.
 
     Returns
     -------
@@ -286,19 +292,39 @@ def plot_network(
     """
     ax = _new_axes(ax)
     present = _network_nodes(net)
-    nodes = list(present) if nodes is None else [*nodes, *(n for n in present if n not in nodes)]
+    label = {name: str(name) for name in present}
+    slots: list[Any] = []  # the circle's places in order; None is a gap between groups
+    if groups is not None:
+        for group, members in groups.items():
+            slots += [*members, None]
+            label.update({m: str(m).removeprefix(f"{group}.") for m in members})
+        nodes = [n for n in slots if n is not None]
+        nodes += [n for n in present if n not in nodes]
+        slots += [n for n in present if n not in slots]
+    else:
+        nodes = list(present) if nodes is None else [
+            *nodes, *(n for n in present if n not in nodes)]
+        slots = list(nodes)
     # Clockwise from the top, as networkx.circular_layout places them in the paper's figures.
-    angles = np.pi / 2 - 2 * np.pi * np.arange(len(nodes)) / max(len(nodes), 1)
-    position = {name: (np.cos(a), np.sin(a)) for name, a in zip(nodes, angles, strict=True)}
-    radius = {name: _node_radius(name, node_size) for name in nodes}
+    angle = {name: np.pi / 2 - 2 * np.pi * k / max(len(slots), 1)
+             for k, name in enumerate(slots) if name is not None}
+    position = {name: (np.cos(angle[name]), np.sin(angle[name])) for name in nodes}
+    radius = {name: _node_radius(label.get(name, str(name)), node_size) for name in nodes}
     for name in nodes:
         circle = Circle(position[name], radius[name], facecolor=node_color, edgecolor="0.2",
                         linewidth=0.8, zorder=3,
                         linestyle="-" if name in present else "--")
         circle.set_gid(f"node:{name}")
         ax.add_patch(circle)
-        ax.text(*position[name], str(name), ha="center", va="center", zorder=4,
-                fontsize=fontsize * min(1.0, 4.0 / max(len(str(name)), 1)) ** 0.5)
+        text = label.get(name, str(name))
+        ax.text(*position[name], text, ha="center", va="center", zorder=4,
+                fontsize=fontsize * min(1.0, 4.0 / max(len(text), 1)) ** 0.5)
+    for group, members in (groups or {}).items():
+        placed = [angle[m] for m in members if m in angle]
+        if placed:
+            middle = float(np.mean(placed))
+            ax.text(1.2 * np.cos(middle), 1.2 * np.sin(middle), str(group), ha="center",
+                    va="center", fontsize=fontsize + 1, fontweight="bold", gid=f"group:{group}")
     edges = network_edges(net, degenerate=degenerate)
     readings = edge_evidence(net, edges)
     for k, edge in enumerate(edges.itertuples(index=False)):

@@ -6,7 +6,11 @@ currents, following error, lost motion at the direction changes where both encod
 then the functional network of every phase of every move with its evidence, the edge timeline,
 the backlash diagnosis, and what an arrow does and does not say. Several traces get an index
 page. The computation is :func:`funcnet.inspection.inspect_recording` (a
-:class:`~funcnet.inspection.TraceInspection`); :func:`write_inspection` renders it.
+:class:`~funcnet.inspection.TraceInspection`); :func:`write_inspection` renders it. A file of
+several axes read without ``axis`` is :func:`funcnet.inspection.inspect_robot`'s, rendered by
+:func:`write_robot_inspection`: the robot's page (a summary per axis, the robot network with
+its nodes grouped per axis and its pairs told apart within and between axes) and each axis's
+own page in ``axis-N/``.
 
 The figures are in :mod:`funcnet.report.inspect_figures`.
 
@@ -27,11 +31,14 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
+from matplotlib.figure import Figure
 
 from funcnet._io import write_text_atomic
 from funcnet.errors import ParameterError
 from funcnet.inspection import TraceInspection, inspect_recording
+from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection, inspect_robot
 from funcnet.parameters import NetworkParameters, resolve
+from funcnet.plot import plot_network
 from funcnet.report.html import (
     PACKAGES,
     Progress,
@@ -40,6 +47,7 @@ from funcnet.report.html import (
     figure_html,
     mapping_table,
     page,
+    pairs_table,
     step,
     table,
 )
@@ -52,8 +60,9 @@ from funcnet.report.inspect_figures import (
     figure_timeline,
 )
 from funcnet.robot import read_trace
+from funcnet.robot.axes import split_qualified
 
-__all__ = ["inspect_trace", "write_inspection", "READING_AN_ARROW"]
+__all__ = ["inspect_trace", "write_inspection", "write_robot_inspection", "READING_AN_ARROW"]
 
 #: What the report says about reading an arrow (paper section 2.4; README "Direction").
 READING_AN_ARROW = (
@@ -349,6 +358,127 @@ def write_inspection(
     return write_text_atomic(out / "index.html", page(f"funcnet inspect — {name}", body))
 
 
+# --- a recording of several axes: the robot's page and one page per axis
+
+
+def _axis_rows(ins: RobotInspection) -> pd.DataFrame:
+    rows = []
+    for axis in ins.recording.axes:
+        one = ins.axes.get(axis)
+        if one is None:
+            rows.append({"axis": axis, "moves": None, "networks": None,
+                         "backlash": ins.axis_errors.get(axis, ""), "lost motion [arcmin]": None})
+            continue
+        result = one.backlash
+        lost = None if result is None or result.lost_motion is None else 60 * result.lost_motion
+        rows.append({
+            "axis": axis, "moves": len(one.moves), "networks": len(one.networks),
+            "backlash": result.message if result is not None else one.backlash_error,
+            "lost motion [arcmin]": None if lost is None else round(lost, 3),
+        })
+    return pd.DataFrame(rows)
+
+
+def _groups(nodes: tuple[str, ...]) -> dict[str, list[str]]:
+    groups: dict[str, list[str]] = {}
+    for name in nodes:
+        axis, _ = split_qualified(name)
+        groups.setdefault("common" if axis is None else f"A{axis}", []).append(name)
+    return groups
+
+
+def _figure(ins: RobotInspection, label: str) -> Any:
+    fig = Figure(figsize=(9, 9.6), dpi=100, layout="constrained")
+    ax = fig.add_subplot()
+    plot_network(ins.networks[label], ax, groups=_groups(ins.signals), node_size=0.09,
+                 fontsize=9, title=label)
+    return fig
+
+
+def _scope_counts(pairs: pd.DataFrame) -> str:
+    edges = pairs[pairs["kind"].isin(["x->y", "y->x", "bidirectional"])]
+    if "degenerate" in edges:
+        edges = edges[~edges["degenerate"].astype(bool)]
+    within = int((edges["scope"] == WITHIN_AXIS).sum())
+    between = int((edges["scope"] == BETWEEN_AXES).sum())
+    return (f"{len(edges)} edges of {len(pairs)} pairs: {within} within an axis, {between} "
+            "between axes")
+
+
+def write_robot_inspection(
+    inspection: RobotInspection,
+    out_dir: str | os.PathLike[str],
+    *,
+    progress: Progress = None,
+) -> Path:
+    """Write the robot's page (``index.html``) and each axis's page (``axis-N/index.html``).
+
+    Parameters
+    ----------
+    inspection : RobotInspection
+    out_dir : path-like
+    progress : callable, optional
+        ``progress(done, total, description)``.
+
+    Returns
+    -------
+    pathlib.Path
+        The robot's ``index.html``.
+    """
+    ins = inspection
+    out = Path(out_dir)
+    for axis, one in ins.axes.items():
+        write_inspection(one, out / f"axis-{axis}", progress=progress)
+    rows = _axis_rows(ins)
+    links = "".join(
+        f'<li><a href="axis-{a}/index.html">axis {a}</a></li>' for a in ins.axes)
+    name = Path(ins.source).name
+    network_parts = []
+    for k, window in enumerate(ins.windows):
+        label = window.label
+        if label not in ins.networks:
+            why = [f.message for f in ins.failures if f.window == label and f.part == "network"]
+            network_parts.append(f"<p>{escape(label)}: no network ({escape('; '.join(why))})"
+                                 "</p>")
+            continue
+        pairs = ins.pairs[label]
+        caption = (f"The robot network of {label}: every axis's signals, grouped per axis "
+                   "(each axis a sector, its name outside the circle); an edge within a sector "
+                   "is within an axis, one across the circle between axes. Black arrow: "
+                   "directed; red: bidirectional; width ∝ weight (Eq. 13).")
+        network_parts.append(figure_html(out, f"robot-network-{k + 1}", _figure(ins, label),
+                                         caption))
+        network_parts.append(f"<p>{escape(_scope_counts(pairs))}.</p>")
+        shown = pairs_table(pairs)
+        scope = table(pairs[["x", "y", "axis_x", "axis_y", "scope", "kind", "weight"]])
+        network_parts.append("<details><summary>pairs with their scope</summary>" + scope
+                             + "</details><details><summary>every column</summary>" + shown
+                             + "</details>")
+    provenance = {
+        "trace": name,
+        "date (UTC)": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+        "command": " ".join([Path(sys.argv[0]).name, *sys.argv[1:]]),
+        "computation time [s]": f"{ins.elapsed:.1f}",
+        "segments": ", ".join(f"{a:g}-{b:g} s" for a, b in ins.recording.segments),
+        "packages": ", ".join(PACKAGES),
+    }
+    body = [
+        f"<h1>What the robot does — {escape(name)}</h1>",
+        f"<section id=\"axes\"><h2>Each axis</h2><p>{len(ins.recording.axes)} axes, "
+        f"{ins.recording.duration:.1f} s sampled every {ins.recording.sample_period * 1000:g} "
+        "ms. Each axis's own report (moves, a network per phase, evidence, backlash): </p>"
+        f"<ul>{links}</ul>{table(rows)}</section>",
+        "<section id=\"robot\"><h2>The robot as one network</h2>",
+        f"<p>Nodes: {escape(', '.join(ins.signals))}.</p>", *network_parts, "</section>",
+        f"<section id=\"arrows\"><h2>Reading an arrow</h2><p>{escape(READING_AN_ARROW)}</p>"
+        "</section>",
+        "<section id=\"parameters\"><h2>Parameters and provenance</h2>",
+        mapping_table(ins.parameters.to_dict(), "parameter"),
+        mapping_table(provenance, "item"), "</section>",
+    ]
+    return write_text_atomic(out / "index.html", page(f"funcnet inspect — {name}", body))
+
+
 def _slug(path: Path, taken: set[str]) -> str:
     base = "".join(ch if ch.isalnum() or ch in "-_" else "-" for ch in path.stem) or "trace"
     slug, k = base, 1
@@ -383,7 +513,9 @@ def inspect_trace(
     signals, parameters, evidence, evidence_options
         As :func:`inspect_recording`.
     channels, axis
-        As :func:`funcnet.robot.read_trace`.
+        As :func:`funcnet.robot.read_trace`. A file of several axes without ``axis`` gets the
+        robot's page and one page per axis (:func:`write_robot_inspection`); ``signals`` then
+        names the robot network's nodes (``A1.RP``, ...).
     progress : callable, optional
         ``progress(done, total, description)``.
     **overrides
@@ -412,25 +544,40 @@ def inspect_trace(
         raise ParameterError.of("paths", "must name at least one trace file")
     p = resolve(parameters, overrides)
     out = Path(out_dir)
+
+    def inspected(path: Any, folder: Path) -> TraceInspection | RobotInspection:
+        recording = read_trace(path, channels=channels, axis=axis)
+        found: TraceInspection | RobotInspection
+        if recording.axes:
+            found = inspect_robot(recording, signals=signals, parameters=p, evidence=evidence,
+                                  progress=progress, evidence_options=evidence_options)
+            write_robot_inspection(found, folder, progress=progress)
+        else:
+            found = inspect_recording(recording, signals=signals, parameters=p,
+                                      evidence=evidence, progress=progress,
+                                      evidence_options=evidence_options)
+            write_inspection(found, folder, progress=progress)
+        return found
+
     if len(paths) == 1:
-        recording = read_trace(paths[0], channels=channels, axis=axis)
-        ins = inspect_recording(recording, signals=signals, parameters=p, evidence=evidence,
-                                progress=progress, evidence_options=evidence_options)
-        return write_inspection(ins, out, progress=progress)
+        inspected(paths[0], out)
+        return out / "index.html"
     taken: set[str] = set()
     rows = []
     for path in map(Path, paths):
         slug = _slug(path, taken)
-        recording = read_trace(path, channels=channels, axis=axis)
-        ins = inspect_recording(recording, signals=signals, parameters=p, evidence=evidence,
-                                progress=progress, evidence_options=evidence_options)
-        write_inspection(ins, out / slug, progress=progress)
-        moves = ins.moves
+        ins = inspected(path, out / slug)
+        if isinstance(ins, RobotInspection):  # the axes' moves and diagnoses are on its page
+            duration, moves = f"{ins.recording.duration:.1f}", ""
+            networks, backlash = len(ins.networks), f"{len(ins.axes)} axes: see its page"
+        else:
+            duration, moves = f"{ins.duration:.1f}", str(len(ins.moves))
+            networks = len(ins.networks)
+            backlash = ins.backlash.message if ins.backlash else ins.backlash_error
         rows.append(f"<tr><td><a href=\"{escape(slug)}/index.html\">{escape(path.name)}</a>"
-                    f"</td><td class=\"num\">{ins.duration:.1f}</td><td class=\"num\">"
-                    f"{len(moves)}</td><td class=\"num\">{len(ins.networks)}</td><td>"
-                    f"{escape(ins.backlash.message if ins.backlash else ins.backlash_error)}"
-                    "</td></tr>")
+                    f"</td><td class=\"num\">{duration}</td><td class=\"num\">"
+                    f"{moves}</td><td class=\"num\">{networks}</td><td>"
+                    f"{escape(backlash)}</td></tr>")
     index = ("<h1>funcnet inspect — traces</h1><table><thead><tr><th>trace</th>"
              "<th>duration [s]</th><th>moves</th><th>networks</th><th>backlash</th></tr>"
              f"</thead><tbody>{''.join(rows)}</tbody></table>")

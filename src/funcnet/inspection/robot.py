@@ -1,0 +1,212 @@
+"""The inspection of a recording of several axes: each axis on its own, and the robot as one
+network.
+
+A file of several axes read without choosing one (:mod:`funcnet.robot.axes`: columns ``A1.RP``,
+``A2.MP``, ...) is inspected twice over. Each axis is inspected as a one-axis trace
+(:func:`funcnet.inspection.inspect_recording` of :meth:`Recording.for_axis`): its moves, a
+network per phase of every move, its backlash diagnosis. And the whole robot is one functional
+network over each segment of the recording (the whole of it when nothing is missing) whose nodes
+are every axis's signals, grouped per axis -- the multilayer view the paper names as future work
+(section 6), each axis a layer. Its pairs table says of every pair whether it lies within one
+axis or between two (:func:`pair_scope`): an edge within an axis is the axis's own dynamics, one
+between axes a coupling of their motions (a common trajectory, the arm's inertia and weight
+felt by the other axis).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import pandas as pd
+
+from funcnet.inspection.trace import TraceInspection, inspect_recording
+from funcnet.network import FunctionalNetwork
+from funcnet.network.edge_evidence import check_evidence_settings
+from funcnet.parameters import NetworkParameters, resolve
+from funcnet.pipeline import WindowFailure, window_evidence, window_networks
+from funcnet.robot import Recording, Window, paper_nodes
+from funcnet.robot.axes import split_qualified
+
+__all__ = ["RobotInspection", "inspect_robot", "pair_scope", "WITHIN_AXIS", "BETWEEN_AXES"]
+
+#: The ``scope`` of a pair of one axis's signals.
+WITHIN_AXIS = "within-axis"
+#: The ``scope`` of a pair of two axes' signals.
+BETWEEN_AXES = "between-axes"
+
+
+def pair_scope(pairs: pd.DataFrame) -> pd.DataFrame:
+    """A pairs table with the axis of each node and whether the pair lies within one axis.
+
+    Parameters
+    ----------
+    pairs : DataFrame
+        With ``x`` and ``y`` named ``A<axis>.<signal>`` (a signal common to every axis has no
+        axis).
+
+    Returns
+    -------
+    DataFrame
+        A copy with ``axis_x``, ``axis_y`` (nullable integers) and ``scope``:
+        :data:`WITHIN_AXIS`, :data:`BETWEEN_AXES`, or ``"common"`` when a node belongs to no
+        axis.
+
+    Examples
+    --------
+    >>> pairs = pd.DataFrame({"x": ["A1.RP", "A1.RP", "A1.MP"], "y": ["A1.MP", "A2.RP", "t"]})
+    >>> pair_scope(pairs)[["axis_x", "axis_y", "scope"]].values.tolist()
+    [[1, 1, 'within-axis'], [1, 2, 'between-axes'], [1, <NA>, 'common']]
+    """
+    out = pairs.copy()
+    axis_x = [split_qualified(str(x))[0] for x in out["x"]]
+    axis_y = [split_qualified(str(y))[0] for y in out["y"]]
+    out["axis_x"] = pd.array(axis_x, dtype="Int64")
+    out["axis_y"] = pd.array(axis_y, dtype="Int64")
+    out["scope"] = [
+        "common" if a is None or b is None else WITHIN_AXIS if a == b else BETWEEN_AXES
+        for a, b in zip(axis_x, axis_y, strict=True)
+    ]
+    return out
+
+
+@dataclass(frozen=True)
+class RobotInspection:
+    """What :func:`inspect_robot` found in a recording of several axes.
+
+    Attributes
+    ----------
+    source : str
+        The file.
+    axes : dict
+        Axis -> its :class:`~funcnet.inspection.TraceInspection`.
+    axis_errors : dict
+        Axis -> why it could not be inspected (e.g. an axis that never moves).
+    signals : tuple of str
+        The robot network's nodes, grouped per axis.
+    windows : tuple of Window
+        The robot network's windows: one per segment of the recording.
+    networks : dict
+        Window label -> the robot network (its pairs table with the evidence columns when
+        asked for).
+    pairs : dict
+        Window label -> the network's pairs table with ``axis_x``, ``axis_y``, ``scope``
+        (:func:`pair_scope`).
+    failures : tuple of WindowFailure
+        Windows without their robot network or a part of its evidence.
+    parameters : NetworkParameters
+    evidence : bool
+    elapsed : float
+        Seconds.
+    recording : Recording
+    """
+
+    source: str
+    axes: dict[int, TraceInspection]
+    axis_errors: dict[int, str]
+    signals: tuple[str, ...]
+    windows: tuple[Window, ...]
+    networks: dict[str, FunctionalNetwork]
+    pairs: dict[str, pd.DataFrame]
+    failures: tuple[WindowFailure, ...]
+    parameters: NetworkParameters
+    evidence: bool
+    elapsed: float
+    recording: Recording = dataclasses.field(repr=False)
+
+
+def inspect_robot(
+    recording: Recording,
+    *,
+    signals: Sequence[str] | None = None,
+    parameters: NetworkParameters | None = None,
+    evidence: bool = True,
+    backlash: bool = True,
+    progress: Callable[[int, int, str], None] | None = None,
+    evidence_options: Mapping[str, Any] | None = None,
+    **overrides: Any,
+) -> RobotInspection:
+    """Inspect each axis of a recording of several axes, and the robot as one network.
+
+    Parameters
+    ----------
+    recording : Recording
+        Of several axes (:attr:`Recording.axes`), as :func:`funcnet.robot.read_trace` reads a
+        MATLAB or HDF5 file without ``axis``.
+    signals : sequence of str, optional
+        The robot network's nodes (``A1.RP``, ...); default every axis's paper nodes
+        (:func:`funcnet.robot.paper_nodes`: RP, AP, MP, RC, AC as recorded). Each axis's own
+        inspection takes its defaults.
+    parameters, evidence, backlash, evidence_options, **overrides
+        As :func:`~funcnet.inspection.inspect_recording`, for every network.
+    progress : callable, optional
+        ``progress(done, total, description)``.
+
+    Returns
+    -------
+    RobotInspection
+
+    Raises
+    ------
+    ParameterError
+        The recording has no axes, or a bad parameter (before anything is computed).
+    ChannelError
+        A signal that is not in the recording.
+    """
+    from funcnet.errors import FuncnetError, ParameterError
+    from funcnet.robot.windows import span_window
+
+    started = time.perf_counter()
+    if not recording.axes:
+        raise ParameterError.of("recording", "holds one axis: use inspect_recording")
+    p = resolve(parameters, overrides)
+    if evidence:
+        check_evidence_settings(**dict(evidence_options or {}))
+    nodes = list(signals) if signals is not None else paper_nodes(recording.data.columns)
+    windows = tuple(
+        dataclasses.replace(span_window(a, b), label=f"whole recording {a:g}-{b:g} s")
+        for a, b in recording.segments
+    )
+    total = len(recording.axes) + 2
+    _step(progress, 0, total, "robot network")
+    networks = window_networks(recording, windows, signals=nodes, parameters=p,
+                               constant="drop", errors="collect")
+    failures = list(networks.failures)
+    if evidence:
+        networks = window_evidence(recording, networks, windows, errors="collect",
+                                   **dict(evidence_options or {}))
+        failures += networks.failures
+    axes: dict[int, TraceInspection] = {}
+    errors: dict[int, str] = {}
+    for k, axis in enumerate(recording.axes):
+        _step(progress, 1 + k, total, f"axis {axis}")
+        try:
+            axes[axis] = inspect_recording(
+                recording.for_axis(axis), parameters=p, evidence=evidence, backlash=backlash,
+                evidence_options=evidence_options)
+        except FuncnetError as error:
+            errors[axis] = str(error)
+    _step(progress, total, total, "done")
+    return RobotInspection(
+        source=recording.source or "<recording>",
+        axes=axes,
+        axis_errors=errors,
+        signals=tuple(nodes),
+        windows=windows,
+        networks=dict(networks),
+        pairs={label: pair_scope(net.pairs) for label, net in networks.items()},
+        failures=tuple(failures),
+        parameters=p,
+        evidence=evidence,
+        elapsed=time.perf_counter() - started,
+        recording=recording,
+    )
+
+
+def _step(progress: Callable[[int, int, str], None] | None, done: int, total: int,
+          description: str) -> None:
+    if progress is not None:
+        progress(done, total, description)

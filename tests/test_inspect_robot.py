@@ -1,0 +1,106 @@
+"""Inspection of a recording of several axes: each axis on its own, the robot as one network."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+import scipy.io
+from typer.testing import CliRunner
+
+from funcnet.cli import app
+from funcnet.inspection import inspect_recording, inspect_robot, pair_scope
+from funcnet.robot import read_trace
+
+pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+
+MAP = {"rec.t": "time", "rp": "RP", "ap": "AP", "mp": "MP", "tau": "AC"}
+
+
+@pytest.fixture(scope="module")
+def two_axes(tmp_path_factory) -> Path:
+    """Two axes at 250 Hz, each a smooth move out and back; the arm lags the motor."""
+    t = np.arange(0, 4, 0.004)
+    rng = np.random.default_rng(5)
+    rp = np.vstack([10 * np.sin(np.pi * t / 4) ** 2, -6 * np.sin(np.pi * t / 2) ** 2])
+    mp = rp + 0.001 * rng.standard_normal(rp.shape)
+    ap = mp - 0.01 * np.gradient(rp, t, axis=1) + 0.0005 * rng.standard_normal(rp.shape)
+    tau = np.gradient(np.gradient(rp, t, axis=1), t, axis=1) + 0.05 * rng.standard_normal(
+        rp.shape)
+    path = tmp_path_factory.mktemp("robot") / "two-axes.mat"
+    scipy.io.savemat(path, {"rec": {"t": t, "rp": rp, "ap": ap, "mp": mp, "tau": tau}})
+    return path
+
+
+def test_pair_scope_reads_the_axes_from_the_names():
+    pairs = pd.DataFrame({"x": ["A1.RP", "A1.RP", "A2.MP"], "y": ["A1.AP", "A2.RP", "A10.AC"]})
+    scoped = pair_scope(pairs)
+    assert scoped["scope"].tolist() == ["within-axis", "between-axes", "between-axes"]
+    assert scoped["axis_y"].tolist() == [1, 2, 10]
+    assert list(pairs.columns) == ["x", "y"]  # a copy
+
+
+def test_inspect_robot_is_each_axis_and_one_network(two_axes):
+    recording = read_trace(two_axes, channels=MAP)
+    found = inspect_robot(recording, evidence=False, backlash=False, delay=5)
+    assert sorted(found.axes) == [1, 2] and found.axis_errors == {}
+    # Each axis exactly as its own one-axis inspection.
+    alone = inspect_recording(read_trace(two_axes, channels=MAP, axis=2), evidence=False,
+                              backlash=False, delay=5)
+    assert list(found.axes[2].networks) == list(alone.networks)
+    for label, net in alone.networks.items():
+        pd.testing.assert_frame_equal(found.axes[2].networks[label].pairs, net.pairs)
+    # One robot network over the whole recording, nodes grouped per axis.
+    assert found.signals == ("A1.RP", "A1.AP", "A1.MP", "A1.AC",
+                             "A2.RP", "A2.AP", "A2.MP", "A2.AC")
+    (label,) = found.networks
+    pairs = found.pairs[label]
+    assert len(pairs) == 8 * 7 // 2
+    within = pairs["scope"] == "within-axis"
+    assert within.sum() == 2 * 6 and (~within).sum() == 16
+    assert (pairs.loc[within, "axis_x"] == pairs.loc[within, "axis_y"]).all()
+    assert (pairs.loc[~within, "axis_x"] != pairs.loc[~within, "axis_y"]).all()
+    np.testing.assert_array_equal(pairs["c_diff"], found.networks[label].pairs["c_diff"])
+
+
+def test_inspect_robot_evidence_columns(two_axes):
+    recording = read_trace(two_axes, channels=MAP)
+    nodes = ["A1.RP", "A1.MP", "A2.RP"]
+    found = inspect_robot(recording, signals=nodes, evidence=True, backlash=False, delay=5,
+                          evidence_options={"surrogates": 19, "resamples": 0})
+    (pairs,) = found.pairs.values()
+    assert {"coupling_p", "evidence", "scope"} <= set(pairs.columns)
+    assert pairs["scope"].tolist() == ["within-axis", "between-axes", "between-axes"]
+
+
+def test_inspect_command_on_a_file_of_several_axes(two_axes, tmp_path):
+    out = tmp_path / "report"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = CliRunner().invoke(app, ["inspect", str(two_axes), "--channels",
+                                          _map_file(tmp_path), "--no-evidence", "-o", str(out),
+                                          "--quiet"])
+    assert result.exit_code == 0, result.output
+    robot = (out / "index.html").read_text()
+    assert "What the robot does" in robot and "between-axes" in robot
+    assert 'href="axis-1/index.html"' in robot and (out / "figures/robot-network-1.png").exists()
+    for axis in (1, 2):
+        assert "What the axis does" in (out / f"axis-{axis}" / "index.html").read_text()
+    # --axis N: today's one-axis report of that axis.
+    one = tmp_path / "one"
+    result = CliRunner().invoke(app, ["inspect", str(two_axes), "--channels",
+                                      _map_file(tmp_path), "--axis", "2", "--no-evidence",
+                                      "-o", str(one), "--quiet"])
+    assert result.exit_code == 0, result.output
+    assert "What the axis does" in (one / "index.html").read_text()
+    assert not (one / "axis-2").exists()
+
+
+def _map_file(folder: Path) -> str:
+    path = folder / "map.toml"
+    path.write_text("defaults = false\n[channels]\n"
+                    + "".join(f'"{k}" = "{v}"\n' for k, v in MAP.items()))
+    return str(path)
