@@ -22,12 +22,20 @@ recording does not hold -- the simulator's gear torque (noise-free state) and it
   above is the motor's own torque, inertia and friction, which the current carries and the gear
   does not).
 
+Then the AUC of ">= 0.5 arcmin against none" for the two-encoder estimate and for a motor-side
+reading -- the same estimate with the set-point RP in the arm encoder's place (``MP - RP``: the
+wind-up, the loop's lag, which the speed term takes, and the dead zone) -- on this plan and on
+a held-out plan the sweep does not contain (backlash 0, 0.5, 1, 2 arcmin, load 0 and 1000 N m,
+70 and 120 deg/min, TCP 1.4 and 1.8 m, friction 0.85 and 1.2, seed 11: 64 trials), positives
+by the backlash width and by the truth (the dead zone crossed: a loaded gear never crosses it).
+
     PYTHONPATH=src python benchmarks/validate_continuous.py [--workers 2]
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -103,14 +111,20 @@ def trial_row(trial: Trial) -> dict[str, float | str]:
     estimated = n * (p.torque_constant * _mean(current) - own)
     on_flank = fast[np.abs(estimated[fast]) > 3 * FLANK]
     library = [reversal_error(rec, c, gear, resamples=0).lost_motion for c in turns]
+    motor_rec = dataclasses.replace(rec, data=rec.data.assign(AP=rec.data["RP"]))
+    motor_gear = fit_gear(motor_rec)
+    motor_side = [reversal_error(motor_rec, c, motor_gear, resamples=0).lost_motion
+                  for c in turns]  # fmt: skip
     return {
         "name": trial.name,
         "backlash": p.backlash * 60,
         "load": p.arm_load,
         "friction": p.friction_scale,
+        "speed": trial.speed,
         "truth": sim.truth["lost_motion"] * 60,
         "encoder_step": 360 / p.arm_encoder_counts * 60,
         "library": float(np.mean(library)) * 60,
+        "motor side": float(np.mean(motor_side)) * 60,
         "true torque, linear fit": _step(t, turns, _fitted(d, tau, vm, fast, np.sign(vm))),
         "true torque, dead-zone fit": _step(t, turns, _fitted(d, tau, vm, flank, np.sign(tau))),
         "true torque and stiffness": _step(t, turns, d - tau / stiffness),
@@ -122,6 +136,21 @@ def trial_row(trial: Trial) -> dict[str, float | str]:
         "current x catalogue": _step(
             t, turns, d - p.gear_ratio * p.torque_constant * current / stiffness),
     }
+
+
+def held_out_plan() -> list[Trial]:
+    """Continuous trials on values and a seed the sweep does not contain (64)."""
+    return continuous_sweep_plan(
+        backlash_arcmin=(0, 0.5, 1, 2), speeds=(70, 120), tcps=(1.4, 1.8),
+        friction_scales=(0.85, 1.2), seeds=(11,), group="held-out",
+    )  # fmt: skip
+
+
+def auc(score: pd.Series, positive: pd.Series, negative: pd.Series) -> float:
+    """P(a positive's score > a negative's), ties counted half."""
+    pos = score[positive].to_numpy()[:, None]
+    neg = score[negative].to_numpy()[None, :]
+    return float(np.mean((pos > neg) + 0.5 * (pos == neg)))
 
 
 def main() -> None:
@@ -164,9 +193,38 @@ def main() -> None:
               f"{df[column][(df['backlash'] == 0) & (df['load'] == 0)].median():.2f}, "
               f"4 arcmin without load "
               f"{df[column][(df['backlash'] == 4) & (df['load'] == 0)].median():.2f}")
+    crossings = df[groups["dead zone crossed (within 5 %)"]]
+    within = ((crossings["library"] - crossings["truth"]).abs() <= 0.05 * crossings["truth"])
+    print("\nthe library per speed: crossings within 5 %, no-backlash estimates (arcmin):")
+    for v in sorted(df["speed"].unique()):
+        none = df[(df["backlash"] == 0) & (df["speed"] == v)]["library"]
+        print(f"  {v:g} deg/min: {100 * within[crossings['speed'] == v].mean():.1f} % of "
+              f"{int((crossings['speed'] == v).sum())}; without backlash {none.min():+.3f} "
+              f"to {none.max():+.3f}")
     print("\nmedian truth / estimates per backlash without a load (arcmin):")
     print(df[df["load"] == 0].groupby("backlash")[["truth", *ESTIMATES]].median().round(3)
           .to_string())
+    with ProcessPoolExecutor(args.workers) as pool:
+        held = pd.DataFrame(pool.map(trial_row, held_out_plan(), chunksize=4))
+    print("\nAUC, >= 0.5 arcmin against none (n positive / n negative):")
+    print("| plan | positives | two-encoder | motor side (RP for AP) |")
+    print("|---|---|---|---|")
+    for plan_name, frame in (("sweep", df), ("held-out", held)):
+        none = frame["backlash"] == 0
+        for label, positive in (
+            ("backlash >= 0.5, any load", frame["backlash"] >= 0.5),
+            ("backlash >= 0.5, no load", (frame["backlash"] >= 0.5) & (frame["load"] == 0)),
+            ("truth >= 0.5", frame["truth"] >= 0.5),
+            *((f"truth >= 0.5, {v:g} deg/min", (frame["truth"] >= 0.5) & (frame["speed"] == v))
+              for v in sorted(frame["speed"].unique())),
+        ):
+            negative = none if "no load" not in label else none & (frame["load"] == 0)
+            if "deg/min" in label:
+                negative = none & (frame["speed"] == float(label.split(", ")[1].split()[0]))
+            counts = f"{int(positive.sum())}/{int(negative.sum())}"
+            print(f"| {plan_name} | {label} ({counts}) | "
+                  f"{auc(frame['library'], positive, negative):.3f} | "
+                  f"{auc(frame['motor side'], positive, negative):.3f} |")
 
 
 if __name__ == "__main__":
