@@ -214,11 +214,14 @@ def main() -> None:
         for label, positive in (
             ("backlash >= 0.5, any load", frame["backlash"] >= 0.5),
             ("backlash >= 0.5, no load", (frame["backlash"] >= 0.5) & (frame["load"] == 0)),
+            ("backlash >= 0.5, load", (frame["backlash"] >= 0.5) & (frame["load"] > 0)),
             ("truth >= 0.5", frame["truth"] >= 0.5),
             *((f"truth >= 0.5, {v:g} deg/min", (frame["truth"] >= 0.5) & (frame["speed"] == v))
               for v in sorted(frame["speed"].unique())),
         ):
-            negative = none if "no load" not in label else none & (frame["load"] == 0)
+            negative = none
+            if "load" in label and "any" not in label:
+                negative = none & ((frame["load"] > 0) == label.endswith(", load"))
             if "deg/min" in label:
                 negative = none & (frame["speed"] == float(label.split(", ")[1].split()[0]))
             counts = f"{int(positive.sum())}/{int(negative.sum())}"
