@@ -106,8 +106,9 @@ def trial_row(trial: Trial) -> dict[str, float | str]:
     gear = fit_gear(rec)
     n, fs = p.gear_ratio, p.friction_scale
     motor_speed = np.radians(vm) * n  # rad/s on the motor shaft
-    own = (p.motor_inertia * _mean(np.gradient(motor_speed, rec.sample_period))
-           + fs * (p.motor_coulomb * np.sign(motor_speed) + p.motor_viscous * motor_speed))
+    own = p.motor_inertia * _mean(np.gradient(motor_speed, rec.sample_period)) + fs * (
+        p.motor_coulomb * np.sign(motor_speed) + p.motor_viscous * motor_speed
+    )
     estimated = n * (p.torque_constant * _mean(current) - own)
     on_flank = fast[np.abs(estimated[fast]) > 3 * FLANK]
     library = [reversal_error(rec, c, gear, resamples=0).lost_motion for c in turns]
@@ -129,12 +130,14 @@ def trial_row(trial: Trial) -> dict[str, float | str]:
         "true torque, dead-zone fit": _step(t, turns, _fitted(d, tau, vm, flank, np.sign(tau))),
         "true torque and stiffness": _step(t, turns, d - tau / stiffness),
         "current less motor, dead-zone fit": _step(
-            t, turns, _fitted(d, estimated, vm, on_flank, np.sign(estimated))),
+            t, turns, _fitted(d, estimated, vm, on_flank, np.sign(estimated))
+        ),
         "torque_rms": float(np.sqrt(np.mean((estimated - tau)[fast] ** 2))),
         "compliance_ratio": (gear.compliance if gear else math.nan)
         / (n * p.torque_constant / stiffness),
         "current x catalogue": _step(
-            t, turns, d - p.gear_ratio * p.torque_constant * current / stiffness),
+            t, turns, d - p.gear_ratio * p.torque_constant * current / stiffness
+        ),
     }
 
 
@@ -167,7 +170,8 @@ def main() -> None:
     groups = {
         "dead zone crossed (within 5 %)": crossed,
         "backlash, load on one flank (2 steps)": (df["load"] > 0) & (df["backlash"] > 0),
-        "backlash, torque keeps its sign (2 steps)": (df["load"] == 0) & (df["backlash"] > 0)
+        "backlash, torque keeps its sign (2 steps)": (df["load"] == 0)
+        & (df["backlash"] > 0)
         & ~crossed,
         "no backlash (2 steps)": df["backlash"] == 0,
     }
@@ -182,28 +186,37 @@ def main() -> None:
             cells.append(f"{100 * hit.mean():.1f} %" if mask.any() else "-")
         print(f"| {name} | " + " | ".join(cells) + " |")
     motor = df["current x catalogue"] - df["true torque and stiffness"]
-    print("\nthe motor's own torque's share of the step (current x catalogue less true torque), "
-          "arcmin, median [min, max] per friction scale:")
+    print(
+        "\nthe motor's own torque's share of the step (current x catalogue less true torque), "
+        "arcmin, median [min, max] per friction scale:"
+    )
     for scale, part in motor.groupby(df["friction"]):
         print(f"  friction {scale}: {part.median():+.3f} [{part.min():+.3f}, {part.max():+.3f}]")
-    for column, text in (("compliance_ratio", "fitted compliance / N kt / stiffness"),
-                         ("torque_rms", "gear torque from current less motor, RMS error, N m")):
-        print(f"{text}: median {df[column].median():.2f} [{df[column].min():.2f}, "
-              f"{df[column].max():.2f}]; without backlash and load "
-              f"{df[column][(df['backlash'] == 0) & (df['load'] == 0)].median():.2f}, "
-              f"4 arcmin without load "
-              f"{df[column][(df['backlash'] == 4) & (df['load'] == 0)].median():.2f}")
+    for column, text in (
+        ("compliance_ratio", "fitted compliance / N kt / stiffness"),
+        ("torque_rms", "gear torque from current less motor, RMS error, N m"),
+    ):
+        print(
+            f"{text}: median {df[column].median():.2f} [{df[column].min():.2f}, "
+            f"{df[column].max():.2f}]; without backlash and load "
+            f"{df[column][(df['backlash'] == 0) & (df['load'] == 0)].median():.2f}, "
+            f"4 arcmin without load "
+            f"{df[column][(df['backlash'] == 4) & (df['load'] == 0)].median():.2f}"
+        )
     crossings = df[groups["dead zone crossed (within 5 %)"]]
-    within = ((crossings["library"] - crossings["truth"]).abs() <= 0.05 * crossings["truth"])
+    within = (crossings["library"] - crossings["truth"]).abs() <= 0.05 * crossings["truth"]
     print("\nthe library per speed: crossings within 5 %, no-backlash estimates (arcmin):")
     for v in sorted(df["speed"].unique()):
         none = df[(df["backlash"] == 0) & (df["speed"] == v)]["library"]
-        print(f"  {v:g} deg/min: {100 * within[crossings['speed'] == v].mean():.1f} % of "
-              f"{int((crossings['speed'] == v).sum())}; without backlash {none.min():+.3f} "
-              f"to {none.max():+.3f}")
+        print(
+            f"  {v:g} deg/min: {100 * within[crossings['speed'] == v].mean():.1f} % of "
+            f"{int((crossings['speed'] == v).sum())}; without backlash {none.min():+.3f} "
+            f"to {none.max():+.3f}"
+        )
     print("\nmedian truth / estimates per backlash without a load (arcmin):")
-    print(df[df["load"] == 0].groupby("backlash")[["truth", *ESTIMATES]].median().round(3)
-          .to_string())
+    print(
+        df[df["load"] == 0].groupby("backlash")[["truth", *ESTIMATES]].median().round(3).to_string()
+    )
     with ProcessPoolExecutor(args.workers) as pool:
         held = pd.DataFrame(pool.map(trial_row, held_out_plan(), chunksize=4))
     print("\nAUC, >= 0.5 arcmin against none (n positive / n negative):")
@@ -216,8 +229,10 @@ def main() -> None:
             ("backlash >= 0.5, no load", (frame["backlash"] >= 0.5) & (frame["load"] == 0)),
             ("backlash >= 0.5, load", (frame["backlash"] >= 0.5) & (frame["load"] > 0)),
             ("truth >= 0.5", frame["truth"] >= 0.5),
-            *((f"truth >= 0.5, {v:g} deg/min", (frame["truth"] >= 0.5) & (frame["speed"] == v))
-              for v in sorted(frame["speed"].unique())),
+            *(
+                (f"truth >= 0.5, {v:g} deg/min", (frame["truth"] >= 0.5) & (frame["speed"] == v))
+                for v in sorted(frame["speed"].unique())
+            ),
         ):
             negative = none
             if "load" in label and "any" not in label:
@@ -225,9 +240,11 @@ def main() -> None:
             if "deg/min" in label:
                 negative = none & (frame["speed"] == float(label.split(", ")[1].split()[0]))
             counts = f"{int(positive.sum())}/{int(negative.sum())}"
-            print(f"| {plan_name} | {label} ({counts}) | "
-                  f"{auc(frame['library'], positive, negative):.3f} | "
-                  f"{auc(frame['motor side'], positive, negative):.3f} |")
+            print(
+                f"| {plan_name} | {label} ({counts}) | "
+                f"{auc(frame['library'], positive, negative):.3f} | "
+                f"{auc(frame['motor side'], positive, negative):.3f} |"
+            )
 
 
 if __name__ == "__main__":

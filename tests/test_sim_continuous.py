@@ -72,3 +72,39 @@ def test_the_continuous_sweep_plan_and_its_rows():
     row = trial_indicators(_smooth(2, None), networks=False)
     assert row["profile"] == "smooth" and math.isfinite(row["lost_motion"])
     assert row["true_lost_motion"] * 60 == pytest.approx(2.0, rel=0.05)
+
+
+@pytest.mark.parametrize(
+    ("backlash_arcmin", "load"), [(0, None), (1, None), (4, None), (2, 1000.0)]
+)
+def test_the_truth_is_what_the_encoders_show_with_the_gear_torque_known_and_not_with_the_current(
+    backlash_arcmin, load
+):
+    # docs/backlash.md 5.1: the step of logged MP - AP less the true gear torque's wind-up, at
+    # the diagnosis's own turns and windows, is the truth to two arm-encoder steps; the motor
+    # current in the gear torque's place (the simulator's exact constants) misses it by the
+    # motor's own inertia and friction, which flip with the turn too
+    sim = simulate_trial(_smooth(backlash_arcmin, load))
+    p = sim.params
+    rec = motor_side_recording(simulated_recording(sim))
+    turns = [c for c in find_direction_changes(rec) if c.kind == "continuous"]
+    assert len(turns) == 3
+    t = rec.data.index.to_numpy()
+    d = (rec.data["MP"] - rec.data["AP"]).to_numpy()
+    tau = sim.states["gear_torque"].reindex(rec.data.index, method="nearest").to_numpy()
+    stiffness = p.gear_stiffness * math.pi / 180  # N m per deg
+
+    def mean_step(rest: np.ndarray) -> float:
+        steps = []
+        for c in turns:
+            before = (t >= c.stop - 0.25) & (t < c.stop)
+            after = (t >= c.start) & (t < c.start + 0.25)
+            steps.append(-c.direction * (rest[before].mean() - rest[after].mean()))
+        return float(np.mean(steps))
+
+    encoder_step = 360 / p.arm_encoder_counts
+    truth = sim.truth["lost_motion"]
+    assert abs(mean_step(d - tau / stiffness) - truth) <= 2 * encoder_step
+    current = rec.data["AC"].to_numpy()
+    by_current = mean_step(d - p.gear_ratio * p.torque_constant * current / stiffness)
+    assert by_current - truth < -0.1 / 60  # the motor's own torque: -0.2 arcmin and more
