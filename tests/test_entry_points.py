@@ -93,7 +93,8 @@ def test_window_networks(trace: Path, name: str, value: Any, _text: str) -> None
 
 @pytest.mark.parametrize(("name", "value", "_text"), BAD_VALUES, ids=IDS)
 def test_pair_measures(signals: pd.DataFrame, name: str, value: Any, _text: str) -> None:
-    from funcnet import cross_measures, pairwise_cross_measures
+    from funcnet import cross_measures
+    from funcnet.measures import pairwise_cross_measures
 
     x, y = signals["RP"].to_numpy(), signals["AC"].to_numpy()
     with pytest.raises(ParameterError) as pair:
@@ -113,8 +114,8 @@ def _toml(value: Any) -> str:
 def test_study_file(
     trace: Path, tmp_path: Path, name: str, value: Any, _text: str, grid: bool
 ) -> None:
-    from funcnet import load_study
     from funcnet.errors import StudyError
+    from funcnet.study import load_study
 
     study = (tmp_path / "study.toml").resolve()
     toml_value = _toml(value)

@@ -451,50 +451,81 @@ def test_lazy_names_resolve(package: str, name: str, module: str) -> None:
     assert name in importlib.import_module(package).__all__
 
 
-# Every name funcnet and funcnet.robot exported before issue 8 stays importable from there
-# (except funcnet.robot.phase_networks, which became funcnet.window_networks).
-OLD_NAMES = {
+# The names users and other tools import: they stay where they are.
+KEPT_NAMES = {
     "funcnet": (
-        "__version__ embed recurrence_matrix cross_recurrence_matrix isrn_adjacency "
-        "estimate_delay estimate_dimension signal_states PackedRecurrence auto_recurrence "
-        "cross_recurrence CrossMeasures isrn_measures cross_measures local_cross_clustering "
-        "cross_degree normalize FunctionalNetwork functional_network edge_kind combine_kinds "
-        "edges_from_pairs check_parameters pairwise_cross_measures Study load_study run_study "
-        "load_results FuncnetError ParameterError SignalError TraceError"
+        "NetworkParameters functional_network window_networks cross_measures isrn_measures embed "
+        "auto_recurrence cross_recurrence add_evidence window_evidence inspect_trace "
+        "FunctionalNetwork FuncnetError FuncnetWarning ThresholdWarning DegenerateWarning "
+        "StaircaseWarning __version__"
     ).split(),
-    "funcnet.robot": (
-        "Recording read_trace SignalInfo ChannelMap DEFAULT_CHANNEL_MAP velocity "
-        "add_derived_signals trim resample PHASES detect_phases phase_table PAPER_NODES Window "
-        "phase_windows fixed_windows reversal_windows sliding_windows span_window "
-        "AxisParameters SimulatedTrial simulate_trial write_trace Trial paper_plan read_plan "
-        "write_plan"
-    ).split(),
-}
-NEW_NAMES = {
-    "funcnet": ["NetworkParameters", "window_networks", "DegenerateWarning", "ThresholdWarning",
-                "FuncnetWarning", "StaircaseWarning", "threshold_warnings"],
-    "funcnet.robot": ["read_recording"],
+    "funcnet.recurrence": ["estimate_cost"],
+    "funcnet.robot": ("read_trace read_recording add_derived_signals detect_phases "
+                      "phase_windows sliding_windows").split(),
+    "funcnet.embedding": [], "funcnet.measures": [], "funcnet.network": [],
+    "funcnet.pipeline": [], "funcnet.evidence": [], "funcnet.plot": [],
 }
 
 
 @pytest.mark.parametrize(
-    ("package", "name"),
-    [(package, name) for table in (OLD_NAMES, NEW_NAMES) for package, names in table.items()
-     for name in names],
+    ("module", "name"),
+    [(module, name) for module, names in KEPT_NAMES.items() for name in [None, *names]],
 )
-def test_public_names_stay_importable(package: str, name: str) -> None:
-    module = importlib.import_module(package)
-    assert getattr(module, name) is not None
-    assert name in dir(module)
+def test_kept_names_resolve(module: str, name: str | None) -> None:
+    imported = importlib.import_module(module)
+    if name is not None:
+        assert getattr(imported, name) is not None
+        if _is_package(module):
+            assert name in imported.__all__
 
 
-def test_phase_networks_moved_to_window_networks() -> None:
-    import funcnet
-    import funcnet.robot
+def test_no_export_is_hidden_by_a_module_of_its_name() -> None:
+    # `from funcnet.paper import evaluate` would give the module funcnet.paper.evaluate once it
+    # is imported: a lazily exported name must not be the name of a submodule.
+    hidden = [f"{package}.{name}" for package, name, _ in _tables()
+              if f"{package}.{name}" in modules()]
+    assert not hidden, hidden
 
-    assert callable(funcnet.window_networks)
-    with pytest.raises(AttributeError, match="window_networks"):
-        funcnet.robot.phase_networks  # noqa: B018
+
+_DOTTED = re.compile(r"\bfuncnet(?:\.[A-Za-z_]\w*)+")
+_FROM = re.compile(r"from (funcnet(?:\.\w+)*) import (\([^)]*\)|\w+(?:, \w+)*)")
+
+
+def _documented_names() -> list[tuple[str, str]]:
+    """``(file, dotted name)`` of every funcnet name the README and the docs use."""
+    found = []
+    for path in [SRC.parent / "README.md", *sorted((SRC.parent / "docs").glob("*.md"))]:
+        text = path.read_text(encoding="utf-8")
+        found += [(path.name, match.group(0)) for match in _DOTTED.finditer(text)]
+        for match in _FROM.finditer(text):
+            names = re.findall(r"\w+", match.group(2))
+            found += [(path.name, f"{match.group(1)}.{name}") for name in names]
+    return sorted(set(found))
+
+
+def test_docs_use_only_exported_names() -> None:
+    # Every funcnet.NAME the README and docs teach resolves, and a name taken from a package
+    # (funcnet.X, funcnet.robot.X) is one the package exports.
+    wrong = []
+    for file, dotted in _documented_names():
+        parts = dotted.split(".")
+        depth = len(parts)
+        while ".".join(parts[:depth]) not in modules() and depth > 1:
+            depth -= 1
+        module = ".".join(parts[:depth])
+        rest = parts[depth:]
+        if not rest:
+            continue
+        value: object = importlib.import_module(module)
+        if _is_package(module) and rest[0] not in value.__all__:  # type: ignore[attr-defined]
+            wrong.append(f"{file}: {dotted} ({rest[0]} is not in {module}.__all__)")
+            continue
+        try:
+            for part in rest:
+                value = getattr(value, part)
+        except AttributeError:
+            wrong.append(f"{file}: {dotted} does not resolve")
+    assert not wrong, "\n".join(wrong)
 
 
 def test_the_checks_themselves() -> None:

@@ -17,7 +17,6 @@ from funcnet.errors import ParameterError, SignalError, ThresholdWarning
 from funcnet.measures import CrossMeasures, cross_measures
 from funcnet.network import (
     FunctionalNetwork,
-    check_parameters,
     combine_kinds,
     edge_kind,
     functional_network,
@@ -552,9 +551,9 @@ BAD_VALUES = [
 
 
 @pytest.mark.parametrize(("name", "value", "pattern"), BAD_VALUES)
-def test_check_parameters_rejects_each_bad_value_without_data(name, value, pattern):
+def test_parameters_reject_each_bad_value_without_data(name, value, pattern):
     with pytest.raises(ParameterError, match=pattern) as without_data:
-        check_parameters(**{name: value})
+        NetworkParameters(**{name: value})
     assert name in str(without_data.value)
     # functional_network raises the very same message, before it looks at the data.
     with pytest.raises(ParameterError) as with_data:
@@ -565,12 +564,11 @@ def test_check_parameters_rejects_each_bad_value_without_data(name, value, patte
     assert str(without_signals.value) == str(without_data.value)
 
 
-def test_check_parameters_accepts_the_defaults_and_every_option():
-    assert check_parameters() == NetworkParameters()
-    check_parameters(dim=1, delay=1, rr=0.3, cr=1e-3, mu=0.0, metric="manhattan")
-    check_parameters(normalize=None, measure="transitivity", rule="pyunicorn", theiler=0)
+def test_parameters_accept_every_option():
+    NetworkParameters(dim=1, delay=1, rr=0.3, cr=1e-3, mu=0.0, metric="manhattan")
+    NetworkParameters(normalize=None, measure="transitivity", rule="pyunicorn", theiler=0)
     with pytest.raises(ParameterError, match="theiler must be 0 with rule='pyunicorn'"):
-        check_parameters(rule="pyunicorn", theiler=2)
+        NetworkParameters(rule="pyunicorn", theiler=2)
 
 
 def test_bad_signals_are_named():

@@ -15,7 +15,7 @@ import pytest
 from funcnet.errors import DegenerateWarning, ParameterError, ThresholdWarning
 from funcnet.network import FunctionalNetwork, functional_network
 from funcnet.network.readwrite import VERSION, fields_from_json, read_fields, to_json
-from funcnet.network.schema import EDGE_COLUMNS, MEASURE_COLUMNS, PAIR_COLUMNS, check_pairs
+from funcnet.network.schema import EDGE_COLUMNS, MEASURE_COLUMNS, PAIR_COLUMNS
 from funcnet.parameters import NetworkParameters
 
 V1_FILE = Path(__file__).parent / "data" / "network_v1.json"
@@ -134,24 +134,10 @@ def test_window_and_channels_round_trip():
     assert back.to_json() == text
 
 
-def test_version_1_files_are_read_and_their_degenerate_edges_dropped():
-    old = json.loads(V1_FILE.read_text(encoding="utf-8"))
-    assert old["version"] == 1 and len(old["edges"]["source"]) == 3  # v1 kept them as edges
-    net = FunctionalNetwork.read(V1_FILE)
-    check_pairs(net.pairs)
-    assert net.nodes == ("A", "B", "Q") and net.label == "cruise" and net.n_samples == 120
-    assert net.parameters == NetworkParameters(delay=1)
-    assert net.window == {
-        "window_start": 1.0, "window_stop": 1.6, "phase": "cruise", "source": "trace.xml",
-        "dropped": (),
-    }  # fmt: skip
-    assert list(net.pairs["achieved_rr_x"]) == old["pairs"]["rr_x"]
-    assert list(net.pairs["achieved_cr"]) == old["pairs"]["cr"]
-    assert list(net.pairs["degenerate"]) == [False, True, True]
-    assert net.pairs["degenerate_reason"].str.contains("version-1").tolist() == [False, True, True]
-    assert edge_list(net.edges) == [("A", "B", False)]
-    # A version-1 network re-read and re-written is a version-2 file that reads back equal.
-    assert FunctionalNetwork.from_json(net.to_json()) == net
+def test_version_1_files_are_refused_by_version():
+    # Version 1 was never released: its files are not read (the numbers are, below).
+    with pytest.raises(ParameterError, match="unknown version 1"):
+        FunctionalNetwork.read(V1_FILE)
 
 
 def test_todays_code_reproduces_the_numbers_of_a_version_1_file():

@@ -126,19 +126,8 @@ def test_module_length(path):
         assert "600 lines" in docstring, f"{path.name}: {lines} lines without a reason"
 
 
-OLD_NAMES = (
-    "Recording read_trace SignalInfo ChannelMap DEFAULT_CHANNEL_MAP velocity add_derived_signals "
-    "trim resample PHASES detect_phases phase_table PAPER_NODES Window phase_windows "
-    "fixed_windows reversal_windows sliding_windows span_window AxisParameters SimulatedTrial "
-    "simulate_trial write_trace Trial paper_plan read_plan write_plan"
-).split()
-
-
-def test_every_old_name_is_still_exported():
+def test_the_simulator_is_exported_as_itself():
     import funcnet.robot
 
-    for name in OLD_NAMES:
-        assert name in funcnet.robot.__all__
-        assert getattr(funcnet.robot, name) is not None
     assert funcnet.robot.Trial is importlib.import_module("funcnet.robot.sim").Trial
     assert funcnet.robot.read_recording.__module__ == "funcnet.robot.load"

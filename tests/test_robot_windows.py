@@ -2,9 +2,6 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
-
 import pandas as pd
 import pytest
 
@@ -146,22 +143,3 @@ def test_a_window_holds_the_rows_from_start_to_before_stop(real, phases):
     counts = [len(real.window(w.start, w.stop).data) for w in tiles]
     assert counts == [500, 500, 500]
     assert len(real.window(7.0, 10.0).data) == sum(counts)
-
-
-def test_phase_networks_left_for_the_pipeline():
-    """funcnet.robot no longer has phase_networks, and says where it went without importing
-    the pipeline."""
-    code = (
-        "import sys, funcnet.robot as r\n"
-        "try:\n    r.phase_networks\nexcept AttributeError as e:\n    print(e)\n"
-        "print(sorted(m for m in sys.modules if m in ('funcnet.pipeline', 'funcnet.network')))"
-    )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True).stdout.splitlines()
-    assert "funcnet.window_networks" in out[0]
-    assert out[1] == "[]"
-    import funcnet.robot
-
-    assert "phase_networks" not in funcnet.robot.__all__
-    with pytest.raises(AttributeError, match="funcnet.window_networks"):
-        funcnet.robot.phase_networks  # noqa: B018

@@ -8,7 +8,7 @@ literal table ``_EXPORTS`` (name -> module) and hands it to :func:`attach`.
 from __future__ import annotations
 
 import sys
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from importlib import import_module
 from typing import Any
 
@@ -18,7 +18,7 @@ __all__ = ["attach"]
 def attach(
     package: str,
     exports: Mapping[str, str],
-    moved: Mapping[str, str] | None = None,
+    defined: Sequence[str] = (),
 ) -> tuple[Callable[[str], Any], Callable[[], list[str]], list[str]]:
     """``__getattr__``, ``__dir__`` and ``__all__`` for ``package``'s lazy ``exports``.
 
@@ -28,8 +28,8 @@ def attach(
         The package's ``__name__``.
     exports : mapping of str to str
         Public name -> the module that defines it.
-    moved : mapping of str to str, optional
-        Names that left the package -> where they went (said in the AttributeError).
+    defined : sequence of str, optional
+        Public names the package defines itself (``__version__``), listed in ``__all__`` too.
 
     Returns
     -------
@@ -42,20 +42,17 @@ def attach(
     >>> getattr_("NetworkParameters").__name__, all_
     ('NetworkParameters', ['NetworkParameters'])
     """
-    moved = dict(moved or {})
 
     def __getattr__(name: str) -> Any:
         try:
             module = exports[name]
         except KeyError:
-            if name in moved:
-                raise AttributeError(f"{package}.{name} moved to {moved[name]}") from None
             raise AttributeError(f"module {package!r} has no attribute {name!r}") from None
         value = getattr(import_module(module), name)
         setattr(sys.modules[package], name, value)  # later look-ups skip this function
         return value
 
-    names = list(exports)
+    names = [*defined, *exports]
 
     def __dir__() -> list[str]:
         return sorted(names)

@@ -57,7 +57,6 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
 
 from funcnet.diagnosis.reversals import DirectionChange
 from funcnet.diagnosis.two_encoder import (
@@ -357,7 +356,3 @@ def reversal_indicators(
         result["signature"] = math.nan
     return result
 
-
-def indicator_frame(rows: Sequence[dict[str, Any]]) -> pd.DataFrame:
-    """Rows of indicators as a table with the :data:`INDICATORS` columns (helper)."""
-    return pd.DataFrame(list(rows), columns=["turn_time", *INDICATORS])

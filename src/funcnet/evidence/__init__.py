@@ -28,74 +28,42 @@ Examples
 (299, 'coupled-directed')
 """
 
+
 from __future__ import annotations
 
-from funcnet.evidence.dependence import (
-    SURROGATE_METHODS,
-    DependenceResult,
-    ShiftPlan,
-    benjamini_hochberg,
-    decorrelation_time,
-    default_surrogates,
-    dependence_test,
-    shift_plan,
-    surrogate_plan,
-)
-from funcnet.evidence.interval import (
-    AsymmetryInterval,
-    asymmetry_interval,
-    half_samples,
-    interval_from,
-    interval_kind,
-    resampled_differences,
-)
-from funcnet.evidence.pairs import (
-    EVIDENCE_LABELS,
-    PairEvidence,
-    check_evidence_arguments,
-    evidence_label,
-    pairwise_evidence,
-)
-from funcnet.evidence.reading import evidence_readings, smallest_p_values, untestable
-from funcnet.evidence.repetitions import (
-    repetition_evidence,
-    repetition_tests,
-    repetitions_needed,
-)
-from funcnet.evidence.surrogates import TwinPlan, twin_groups, twin_plan
+from funcnet._lazy import attach
 
-__all__ = [
-    "EVIDENCE_LABELS",
-    "EDGE_RULES",
-    "SURROGATE_METHODS",
-    "AsymmetryInterval",
-    "DependenceResult",
-    "PairEvidence",
-    "ShiftPlan",
-    "TwinPlan",
-    "asymmetry_interval",
-    "benjamini_hochberg",
-    "check_evidence_arguments",
-    "decorrelation_time",
-    "default_surrogates",
-    "dependence_test",
-    "evidence_label",
-    "evidence_readings",
-    "half_samples",
-    "interval_from",
-    "interval_kind",
-    "pairwise_evidence",
-    "repetition_evidence",
-    "repetition_tests",
-    "repetitions_needed",
-    "resampled_differences",
-    "shift_plan",
-    "smallest_p_values",
-    "surrogate_plan",
-    "twin_groups",
-    "twin_plan",
-    "untestable",
-]
+_EXPORTS = {
+    "EVIDENCE_LABELS": "funcnet.evidence.pairs",
+    "EDGE_RULES": "funcnet.evidence.interval",
+    "SURROGATE_METHODS": "funcnet.evidence.dependence",
+    "AsymmetryInterval": "funcnet.evidence.interval",
+    "DependenceResult": "funcnet.evidence.dependence",
+    "PairEvidence": "funcnet.evidence.pairs",
+    "ShiftPlan": "funcnet.evidence.dependence",
+    "TwinPlan": "funcnet.evidence.surrogates",
+    "asymmetry_interval": "funcnet.evidence.interval",
+    "benjamini_hochberg": "funcnet.evidence.dependence",
+    "check_evidence_arguments": "funcnet.evidence.pairs",
+    "decorrelation_time": "funcnet.evidence.dependence",
+    "default_surrogates": "funcnet.evidence.dependence",
+    "dependence_test": "funcnet.evidence.dependence",
+    "evidence_label": "funcnet.evidence.pairs",
+    "evidence_readings": "funcnet.evidence.reading",
+    "half_samples": "funcnet.evidence.interval",
+    "interval_from": "funcnet.evidence.interval",
+    "interval_kind": "funcnet.evidence.interval",
+    "pairwise_evidence": "funcnet.evidence.pairs",
+    "repetition_evidence": "funcnet.evidence.repetitions",
+    "repetition_tests": "funcnet.evidence.repetitions",
+    "repetitions_needed": "funcnet.evidence.repetitions",
+    "resampled_differences": "funcnet.evidence.interval",
+    "shift_plan": "funcnet.evidence.dependence",
+    "smallest_p_values": "funcnet.evidence.reading",
+    "surrogate_plan": "funcnet.evidence.dependence",
+    "twin_groups": "funcnet.evidence.surrogates",
+    "twin_plan": "funcnet.evidence.surrogates",
+    "untestable": "funcnet.evidence.reading",
+}
 
-#: Edge rules: the paper's (``mu`` only, the default) and ``mu`` with the interval.
-EDGE_RULES: tuple[str, ...] = ("paper", "interval")
+__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

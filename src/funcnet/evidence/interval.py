@@ -80,7 +80,10 @@ from funcnet.recurrence import _signal_thresholds, auto_recurrence, cross_recurr
 
 __all__ = ["AsymmetryInterval", "half_samples", "subsamples", "resampled_differences",
            "rate_factor", "interval_from", "asymmetry_interval", "asymmetry_intervals",
-           "interval_kind", "FRACTIONS", "BETA_MIN", "BETA_MAX"]
+           "interval_kind", "FRACTIONS", "BETA_MIN", "BETA_MAX", "EDGE_RULES"]
+
+#: Edge rules: the paper's (``mu`` only, the default) and ``mu`` with the interval.
+EDGE_RULES: tuple[str, ...] = ("paper", "interval")
 
 #: Kept fractions of the two resample sizes (of the blocks; the exact fraction of states is
 #: used in the formulas). Chosen on seeds 5000-5199 among 0.3-0.9 (module notes); the first

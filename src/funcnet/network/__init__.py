@@ -6,7 +6,7 @@ module             what it holds
 ``schema``         the one pairs-table and edges-table schema, the kind vocabulary
 ``rule``           the edge rule as pure functions of a pairs table (section 2.4, Eq. 10, 13)
 ``functional``     :class:`FunctionalNetwork` and :func:`functional_network`
-``evidence``       :func:`add_evidence`: the evidence columns of a network already computed
+``edge_evidence``  :func:`add_evidence`: the evidence columns of a network already computed
 ``readwrite``      JSON, GraphML, networkx
 ``stability``      :func:`edge_stability`: how many settings of a grid keep each pair's kind
 =================  ==========================================================================
@@ -21,41 +21,30 @@ Examples
 (('x->y', 'y->x', 'bidirectional', 'conflict'), ('directed', 'bidirectional'))
 """
 
+
 from __future__ import annotations
 
-from funcnet.network.edge_evidence import add_evidence
-from funcnet.network.functional import FunctionalNetwork, check_parameters, functional_network
-from funcnet.network.rule import combine_kinds, edge_kind, edges_from_pairs, kinds_for, pair_kinds
-from funcnet.network.schema import (
-    EDGE_COLUMNS,
-    EDGE_KINDS,
-    EVIDENCE_COLUMNS,
-    EVIDENCE_LABELS,
-    MEASURE_KINDS,
-    PAIR_COLUMNS,
-    PAIR_KINDS,
-)
-from funcnet.network.stability import EdgeStability, edge_stability
-from funcnet.parameters import MEASURES
+from funcnet._lazy import attach
 
-__all__ = [
-    "MEASURES",
-    "PAIR_KINDS",
-    "MEASURE_KINDS",
-    "EDGE_KINDS",
-    "PAIR_COLUMNS",
-    "EDGE_COLUMNS",
-    "EVIDENCE_COLUMNS",
-    "EVIDENCE_LABELS",
-    "FunctionalNetwork",
-    "functional_network",
-    "add_evidence",
-    "check_parameters",
-    "edge_kind",
-    "combine_kinds",
-    "kinds_for",
-    "pair_kinds",
-    "edges_from_pairs",
-    "EdgeStability",
-    "edge_stability",
-]
+_EXPORTS = {
+    "MEASURES": "funcnet.parameters",
+    "PAIR_KINDS": "funcnet.network.schema",
+    "MEASURE_KINDS": "funcnet.network.schema",
+    "EDGE_KINDS": "funcnet.network.schema",
+    "PAIR_COLUMNS": "funcnet.network.schema",
+    "EDGE_COLUMNS": "funcnet.network.schema",
+    "EVIDENCE_COLUMNS": "funcnet.network.schema",
+    "EVIDENCE_LABELS": "funcnet.network.schema",
+    "FunctionalNetwork": "funcnet.network.functional",
+    "functional_network": "funcnet.network.functional",
+    "add_evidence": "funcnet.network.edge_evidence",
+    "edge_kind": "funcnet.network.rule",
+    "combine_kinds": "funcnet.network.rule",
+    "kinds_for": "funcnet.network.rule",
+    "pair_kinds": "funcnet.network.rule",
+    "edges_from_pairs": "funcnet.network.rule",
+    "EdgeStability": "funcnet.network.stability",
+    "edge_stability": "funcnet.network.stability",
+}
+
+__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

@@ -33,7 +33,7 @@ from funcnet.network.rule import edges_from_pairs, pair_kinds
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import NetworkParameters, resolve
 
-__all__ = ["FunctionalNetwork", "functional_network", "check_parameters"]
+__all__ = ["FunctionalNetwork", "functional_network"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -202,7 +202,7 @@ class FunctionalNetwork:
 
     @classmethod
     def from_json(cls, text: str) -> FunctionalNetwork:
-        """Restore a network written by :meth:`to_json` (also format version 1).
+        """Restore a network written by :meth:`to_json`.
 
         Parameters
         ----------
@@ -321,37 +321,6 @@ def _plain(value: Any) -> Any:
     if isinstance(value, (list, tuple)):
         return tuple(_plain(item) for item in value)
     return value
-
-
-def check_parameters(**parameters: Any) -> NetworkParameters:
-    """The :class:`NetworkParameters` of ``parameters``, validated without any data.
-
-    Kept for callers of the earlier API; ``NetworkParameters(**parameters)`` is the same.
-
-    Parameters
-    ----------
-    **parameters
-        Any of :meth:`NetworkParameters.names`.
-
-    Returns
-    -------
-    NetworkParameters
-
-    Raises
-    ------
-    ParameterError
-        The first bad value or unknown name; the message names the parameter.
-
-    Examples
-    --------
-    >>> check_parameters(rr=0.1, metric="supremum").rr
-    0.1
-    >>> check_parameters(rr=2)
-    Traceback (most recent call last):
-        ...
-    funcnet.errors.ParameterError: rr must be in (0, 1), got 2.0
-    """
-    return resolve(None, parameters)
 
 
 def functional_network(

@@ -7,10 +7,7 @@ and every edge -- in the edges table, as a networkx or a GraphML arc -- carries 
 - **JSON** (:func:`to_json`, :func:`fields_from_json`): the whole network (with its evidence
   columns and settings when it has them), floats bit for bit
   (Python's ``json`` writes each float as its shortest round-tripping ``repr``). Format
-  ``funcnet.FunctionalNetwork`` version 2; version 1 files (before the parameter contract) are
-  read too: their columns ``rr_x``, ``rr_y``, ``cr`` become ``achieved_rr_x``,
-  ``achieved_rr_y``, ``achieved_cr``, window metadata kept in their parameters moves to
-  ``window``, and their edges are rebuilt under ``degenerate="drop"``. A version-2 file with
+  ``funcnet.FunctionalNetwork`` version 2. A version-2 file with
   evidence written before the ``untestable`` label gets its ``evidence`` labels and the
   ``evidence_reason`` column read from its test's columns (the numbers are unchanged).
 - **networkx** (:func:`to_networkx`): every node, one arc per directed edge and two per
@@ -39,7 +36,6 @@ import pandas as pd
 from funcnet._io import atomic_path, write_text_atomic
 from funcnet.errors import ParameterError
 from funcnet.network.edge_evidence import with_readings
-from funcnet.network.rule import edges_from_pairs
 from funcnet.network.schema import EDGE_COLUMNS, edges_frame, pairs_frame
 from funcnet.parameters import NetworkParameters
 
@@ -52,9 +48,6 @@ __all__ = ["FORMAT", "VERSION", "ARC_EVIDENCE", "to_json", "fields_from_json", "
 FORMAT = "funcnet.FunctionalNetwork"
 VERSION = 2
 _SUFFIXES = (".json", ".graphml")
-#: Renamed columns of version 1 files.
-_V1_COLUMNS = {"rr_x": "achieved_rr_x", "rr_y": "achieved_rr_y", "cr": "achieved_cr"}
-_V1_REASON = "flagged degenerate (read from a version-1 file, which kept no reason)"
 
 
 def to_json(network: FunctionalNetwork) -> str:
@@ -110,30 +103,6 @@ def _tuples(value: Any) -> Any:
     return value
 
 
-def _fields_v1(document: Mapping[str, Any]) -> dict[str, Any]:
-    """The fields of a version-1 document (see the module notes)."""
-    stored = dict(document["parameters"])
-    n_samples = int(stored.pop("n_samples"))
-    known = {name: stored.pop(name) for name in list(stored) if name in
-             NetworkParameters.names()}
-    parameters = NetworkParameters.from_mapping(known)
-    columns = {_V1_COLUMNS.get(name, name): values for name, values in document["pairs"].items()}
-    count = len(columns["x"])
-    columns.setdefault("degenerate", [False] * count)
-    columns["degenerate_reason"] = [_V1_REASON if flag else "" for flag in columns["degenerate"]]
-    pairs = pairs_frame(columns)
-    return {
-        "nodes": tuple(document["nodes"]),
-        "pairs": pairs,
-        "edges": edges_from_pairs(pairs, degenerate=parameters.degenerate),
-        "parameters": parameters,
-        "n_samples": n_samples,
-        "label": document["label"],
-        "window": _tuples(stored) or None,
-        "channels": None,
-    }
-
-
 def _pairs_read(document: Mapping[str, Any]) -> pd.DataFrame:
     """The pairs table of a version-2 document; one written before the ``untestable`` label
     and the ``evidence_reason`` column gets both, read from its test's columns."""
@@ -146,7 +115,7 @@ def _pairs_read(document: Mapping[str, Any]) -> pd.DataFrame:
 
 
 def fields_from_json(text: str) -> dict[str, Any]:
-    """The fields of the network a JSON document holds (version 2 or 1).
+    """The fields of the network a JSON document holds.
 
     Parameters
     ----------
@@ -177,8 +146,6 @@ def fields_from_json(text: str) -> dict[str, Any]:
             found = document.get("format") if isinstance(document, dict) else document
             raise ValueError(f"format is {found!r}, not {FORMAT!r}")
         version = document.get("version")
-        if version == 1:
-            return _fields_v1(document)
         if version != VERSION:
             raise ValueError(f"unknown version {version!r}")
         channels = document["channels"]

@@ -25,66 +25,40 @@ Examples
 (0.05, 'bidirectional')
 """
 
+
 from __future__ import annotations
 
-from funcnet.paper.analyses import (
-    PAPER_PARAMETERS,
-    PAPER_SIGNALS,
-    PaperAnalyses,
-    TrialAnalysis,
-    main_move,
-    network_problems,
-    run_paper_analyses,
-)
-from funcnet.paper.claims import (
-    BASELINE,
-    REVERSAL_AT_ZERO,
-    REVERSAL_SEQUENCE,
-    VELOCITY,
-    Claim,
-    Finding,
-    FindingSpec,
-    parse_claim,
-)
-from funcnet.paper.coupling import CouplingEvidence, claims_coupling
-from funcnet.paper.evaluate import (
-    baseline_findings,
-    evaluate,
-    reversal_findings,
-    reversal_sequence,
-    velocity_findings,
-)
-from funcnet.paper.relations import pair_kind, relation, relation_holds
-from funcnet.paper.trends import design_effect, edge_thinning, mean_edge_weight, spearman
+from funcnet._lazy import attach
 
-__all__ = [
-    "BASELINE",
-    "VELOCITY",
-    "REVERSAL_AT_ZERO",
-    "REVERSAL_SEQUENCE",
-    "Claim",
-    "Finding",
-    "FindingSpec",
-    "parse_claim",
-    "pair_kind",
-    "relation",
-    "relation_holds",
-    "evaluate",
-    "baseline_findings",
-    "velocity_findings",
-    "reversal_findings",
-    "reversal_sequence",
-    "mean_edge_weight",
-    "spearman",
-    "edge_thinning",
-    "design_effect",
-    "PAPER_PARAMETERS",
-    "PAPER_SIGNALS",
-    "TrialAnalysis",
-    "PaperAnalyses",
-    "main_move",
-    "network_problems",
-    "run_paper_analyses",
-    "CouplingEvidence",
-    "claims_coupling",
-]
+_EXPORTS = {
+    "BASELINE": "funcnet.paper.claims",
+    "VELOCITY": "funcnet.paper.claims",
+    "REVERSAL_AT_ZERO": "funcnet.paper.claims",
+    "REVERSAL_SEQUENCE": "funcnet.paper.claims",
+    "Claim": "funcnet.paper.claims",
+    "Finding": "funcnet.paper.claims",
+    "FindingSpec": "funcnet.paper.claims",
+    "parse_claim": "funcnet.paper.claims",
+    "pair_kind": "funcnet.paper.relations",
+    "relation": "funcnet.paper.relations",
+    "relation_holds": "funcnet.paper.relations",
+    "baseline_findings": "funcnet.paper.evaluate",
+    "velocity_findings": "funcnet.paper.evaluate",
+    "reversal_findings": "funcnet.paper.evaluate",
+    "reversal_sequence": "funcnet.paper.evaluate",
+    "mean_edge_weight": "funcnet.paper.trends",
+    "spearman": "funcnet.paper.trends",
+    "edge_thinning": "funcnet.paper.trends",
+    "design_effect": "funcnet.paper.trends",
+    "PAPER_PARAMETERS": "funcnet.paper.analyses",
+    "PAPER_SIGNALS": "funcnet.paper.analyses",
+    "TrialAnalysis": "funcnet.paper.analyses",
+    "PaperAnalyses": "funcnet.paper.analyses",
+    "main_move": "funcnet.paper.analyses",
+    "network_problems": "funcnet.paper.analyses",
+    "run_paper_analyses": "funcnet.paper.analyses",
+    "CouplingEvidence": "funcnet.paper.coupling",
+    "claims_coupling": "funcnet.paper.coupling",
+}
+
+__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

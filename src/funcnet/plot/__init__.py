@@ -6,15 +6,16 @@ figures, which compute their data and then draw it with these functions, are in
 :mod:`funcnet.paper.figures`. Single-panel functions take ``ax=`` and return it; figure-level
 helpers take a :class:`matplotlib.figure.Figure`. Everything works on the Agg backend.
 
-==============  ===========================================================================
-module          what it holds
-==============  ===========================================================================
-``style``       the shared conventions: colours of signals, edges, kinds and phases
-``network``     networks in a circular layout, their legend, title and image file
-``recurrence``  recurrence plots and the graphs of adjacency matrices
-``signals``     signals over time with shaded phases or windows, the signals' legend
-``timeline``    every pair's edge kind and weight over sliding windows
-==============  ===========================================================================
+=====================  ====================================================================
+module                 what it holds
+=====================  ====================================================================
+``style``              the shared conventions: colours of signals, edges, kinds and phases
+``network_diagram``    networks in a circular layout, their legend, title and image file
+``recurrence_plot``    recurrence plots and the graphs of adjacency matrices
+``signals``            signals over time with shaded phases or windows, the signals' legend
+``timeline``           every pair's edge kind and weight over sliding windows
+``stability_heatmap``  each pair's stability over a settings grid, as a heatmap
+=====================  ====================================================================
 
 Drawing conventions (README method step 8, paper section 3.4): nodes on a circle, one per signal,
 every node drawn even without edges; directed edges black with an arrow head at the target,
@@ -32,80 +33,38 @@ References
    and Figures 1, 2, 5, 9, 10 and 11.
 """
 
+
 from __future__ import annotations
 
-# Names the single module plot.py had (helpers included), so that no import anywhere changes.
-from funcnet._io import atomic_path as atomic_path
-from funcnet.errors import ParameterError as ParameterError
-from funcnet.network.rule import edges_from_pairs as edges_from_pairs
-from funcnet.network.schema import PAIR_KINDS as PAIR_KINDS
-from funcnet.plot.network_diagram import (
-    NO_COUPLING_EVIDENCE,
-    add_network_legend,
-    edge_evidence,
-    network_edges,
-    network_legend_handles,
-    network_nodes,
-    network_title,
-    plot_network,
-    plot_no_network,
-    save_network,
-)
-from funcnet.plot.network_diagram import _network_nodes as _network_nodes
-from funcnet.plot.network_diagram import _node_radius as _node_radius
-from funcnet.plot.network_diagram import _trim as _trim
-from funcnet.plot.recurrence_plot import plot_graph, plot_recurrence
-from funcnet.plot.signals import _spans as _spans
-from funcnet.plot.signals import add_signal_legend, plot_signals, shade_spans
-from funcnet.plot.stability_heatmap import plot_stability
-from funcnet.plot.style import _BIDIRECTIONAL as _BIDIRECTIONAL
-from funcnet.plot.style import _CONFLICT as _CONFLICT
-from funcnet.plot.style import _OTHER_COLORS as _OTHER_COLORS
-from funcnet.plot.style import _PHASE_SHADES as _PHASE_SHADES
-from funcnet.plot.style import _X_Y as _X_Y
-from funcnet.plot.style import _Y_X as _Y_X
-from funcnet.plot.style import (
-    BIDIRECTIONAL_COLOR,
-    DEGENERATE_COLOR,
-    DIRECTED_COLOR,
-    KIND_COLORS,
-    PHASE_COLORS,
-    SIGNAL_COLORS,
-    SPAN_TITLE_PAD,
-    phase_color,
-    signal_color,
-)
-from funcnet.plot.style import _new_axes as _new_axes
-from funcnet.plot.timeline import _pair_table as _pair_table
-from funcnet.plot.timeline import _reference_weights as _reference_weights
-from funcnet.plot.timeline import _window_time as _window_time
-from funcnet.plot.timeline import plot_edge_timeline
+from funcnet._lazy import attach
 
-__all__ = [
-    "DIRECTED_COLOR",
-    "BIDIRECTIONAL_COLOR",
-    "DEGENERATE_COLOR",
-    "SIGNAL_COLORS",
-    "KIND_COLORS",
-    "SPAN_TITLE_PAD",
-    "PHASE_COLORS",
-    "signal_color",
-    "phase_color",
-    "network_edges",
-    "network_nodes",
-    "network_legend_handles",
-    "add_network_legend",
-    "add_signal_legend",
-    "plot_network",
-    "plot_no_network",
-    "plot_recurrence",
-    "plot_graph",
-    "plot_signals",
-    "shade_spans",
-    "plot_edge_timeline",
-    "plot_stability",
-    "network_title",
-    "save_network",
-    "edge_evidence",
-    "NO_COUPLING_EVIDENCE",
-]
+_EXPORTS = {
+    "DIRECTED_COLOR": "funcnet.plot.style",
+    "BIDIRECTIONAL_COLOR": "funcnet.plot.style",
+    "DEGENERATE_COLOR": "funcnet.plot.style",
+    "SIGNAL_COLORS": "funcnet.plot.style",
+    "KIND_COLORS": "funcnet.plot.style",
+    "SPAN_TITLE_PAD": "funcnet.plot.style",
+    "PHASE_COLORS": "funcnet.plot.style",
+    "signal_color": "funcnet.plot.style",
+    "phase_color": "funcnet.plot.style",
+    "network_edges": "funcnet.plot.network_diagram",
+    "network_nodes": "funcnet.plot.network_diagram",
+    "network_legend_handles": "funcnet.plot.network_diagram",
+    "add_network_legend": "funcnet.plot.network_diagram",
+    "add_signal_legend": "funcnet.plot.signals",
+    "plot_network": "funcnet.plot.network_diagram",
+    "plot_no_network": "funcnet.plot.network_diagram",
+    "plot_recurrence": "funcnet.plot.recurrence_plot",
+    "plot_graph": "funcnet.plot.recurrence_plot",
+    "plot_signals": "funcnet.plot.signals",
+    "shade_spans": "funcnet.plot.signals",
+    "plot_edge_timeline": "funcnet.plot.timeline",
+    "plot_stability": "funcnet.plot.stability_heatmap",
+    "network_title": "funcnet.plot.network_diagram",
+    "save_network": "funcnet.plot.network_diagram",
+    "edge_evidence": "funcnet.plot.network_diagram",
+    "NO_COUPLING_EVIDENCE": "funcnet.plot.network_diagram",
+}
+
+__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

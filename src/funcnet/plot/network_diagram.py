@@ -166,8 +166,6 @@ def network_nodes(net: Any) -> list[str]:
     return list(net.nodes)
 
 
-_network_nodes = network_nodes
-
 
 def edge_evidence(net: Any, edges: pd.DataFrame) -> list[str] | None:
     """The ``evidence`` reading of each edge's pair, or ``None`` for a network without evidence.
@@ -291,7 +289,7 @@ def plot_network(
     ['edge:AP->MP:bidirectional', 'edge:RP->AP:directed', 'edge:RP->MP:directed']
     """
     ax = _new_axes(ax)
-    present = _network_nodes(net)
+    present = network_nodes(net)
     label = {name: str(name) for name in present}
     slots: list[Any] = []  # the circle's places in order; None is a gap between groups
     if groups is not None:

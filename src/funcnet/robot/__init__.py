@@ -57,9 +57,4 @@ _EXPORTS = {
     "write_plan": "funcnet.robot.sim.plan",
 }
 
-# Not an alias for phase_networks: reaching the pipeline from here would import against the flow.
-__getattr__, __dir__, __all__ = attach(
-    __name__, _EXPORTS,
-    moved={"phase_networks": "funcnet.window_networks (funcnet.pipeline), which takes the same "
-           "recording and windows"},
-)
+__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

@@ -19,35 +19,24 @@ Modules, in the order the data flows through them:
 * :mod:`~funcnet.study.run` -- :func:`run_study`.
 """
 
+
 from __future__ import annotations
 
-from typing import Any
+from funcnet._lazy import attach
 
-from funcnet.study.provenance import package_versions
-from funcnet.study.run import StudyResult, TaskFailure, run_study
-from funcnet.study.spec import WINDOW_KINDS, Study, WindowSpec, load_study, parameter_grid
-from funcnet.study.store import PARAMETER_COLUMNS, load_results, network_from_rows
+_EXPORTS = {
+    "PARAMETER_COLUMNS": "funcnet.study.store",
+    "WINDOW_KINDS": "funcnet.study.spec",
+    "Study": "funcnet.study.spec",
+    "StudyResult": "funcnet.study.run",
+    "TaskFailure": "funcnet.study.run",
+    "WindowSpec": "funcnet.study.spec",
+    "package_versions": "funcnet.study.provenance",
+    "load_results": "funcnet.study.store",
+    "network_from_rows": "funcnet.study.store",
+    "load_study": "funcnet.study.spec",
+    "parameter_grid": "funcnet.study.spec",
+    "run_study": "funcnet.study.run",
+}
 
-__all__ = [
-    "PARAMETER_COLUMNS",
-    "WINDOW_KINDS",
-    "Study",
-    "StudyResult",
-    "TaskFailure",
-    "WindowSpec",
-    "package_versions",
-    "load_results",
-    "network_from_rows",
-    "load_study",
-    "parameter_grid",
-    "run_study",
-]
-
-
-def __getattr__(name: str) -> Any:
-    # read_recording moved to funcnet.robot; kept importable from here for existing callers.
-    if name == "read_recording":
-        from funcnet.robot import read_recording
-
-        return read_recording
-    raise AttributeError(f"module 'funcnet.study' has no attribute {name!r}")
+__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)
