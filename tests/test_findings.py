@@ -19,13 +19,13 @@ from funcnet.paper import (
     baseline_findings,
     design_effect,
     edge_thinning,
-    evaluate,
     relation,
     relation_holds,
     reversal_findings,
     reversal_sequence,
     velocity_findings,
 )
+from funcnet.paper.evaluate import evaluate
 
 NODES = ("RP", "AP", "MP", "V", "RC", "AC")
 
