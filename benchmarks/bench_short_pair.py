@@ -97,11 +97,12 @@ def child(kind: str, repeats: int) -> None:
 
         x, y = signal_pair(int(kind[4:]))
         result = cross_measures(x, y, **OPTIONS)
-        walls = []
+        walls, cpus = [], []
         for _ in range(repeats):
-            start = time.perf_counter()
+            cpu, start = time.process_time(), time.perf_counter()
             result = cross_measures(x, y, **OPTIONS)
             walls.append(time.perf_counter() - start)
+            cpus.append(time.process_time() - cpu)
         values: Any = _values(result)
     else:
         from funcnet import window_networks
@@ -110,14 +111,15 @@ def child(kind: str, repeats: int) -> None:
                                                          "metric": "supremum"}
         recording, windows, _ = timeline_windows()
         window_networks(recording, windows[:2], signals=NODES, **options)  # warm-up
-        walls = []
+        walls, cpus = [], []
         for _ in range(repeats):
-            start = time.perf_counter()
+            cpu, start = time.process_time(), time.perf_counter()
             networks = window_networks(recording, windows, signals=NODES, **options)
             walls.append(time.perf_counter() - start)
+            cpus.append(time.process_time() - cpu)
         values = [network.pairs["c_diff"].tolist() + network.pairs["t_diff"].tolist()
                   for network in networks.values()]
-    print(json.dumps({"walls": walls, "values": values}))
+    print(json.dumps({"walls": walls, "cpus": cpus, "values": values}))
 
 
 def run_child(source: Path, kind: str, repeats: int) -> dict[str, Any]:
@@ -129,28 +131,36 @@ def run_child(source: Path, kind: str, repeats: int) -> dict[str, Any]:
     return json.loads(output.strip().splitlines()[-1])
 
 
-def against_checkout(other: Path, repeats: int, timeline: bool) -> None:
+def against_checkout(other: Path, repeats: int, timeline: bool, rounds: int) -> None:
     """Section 2: this checkout and ``other``, alternating fresh interpreters."""
     cases = [("pair150", repeats, "one pair, 150 samples [ms]", 1e3),
              ("pair2000", max(5, repeats // 20), "one pair, 2000 samples [ms]", 1e3)]
     if timeline:
         cases += [("timeline-funcnet", 1, "timeline, rule funcnet [s]", 1.0),
                   ("timeline-pyunicorn", 1, "timeline, rule pyunicorn, supremum [s]", 1.0)]
-    print(f"\n### This checkout against {other} (fresh interpreters, alternating, 3 rounds)\n")
-    print("| case | before (median of rounds) | after | before / after | values |")
-    print("|---|---|---|---|---|")
+    print(f"\n### This checkout against {other} (fresh interpreters, alternating, {rounds} "
+          "rounds)\n")
+    print("| case | before (median of rounds) | after | before / after | CPU before, after "
+          "(all threads) | CPU before / after | values |")
+    print("|---|---|---|---|---|---|---|")
     for kind, count, label, scale in cases:
         before: list[float] = []
         after: list[float] = []
+        cpu_before: list[float] = []
+        cpu_after: list[float] = []
         same = True
-        for _ in range(3):
+        for _ in range(rounds):
             old = run_child(other, kind, count)
             new = run_child(ROOT, kind, count)
             before.append(statistics.median(old["walls"]))
             after.append(statistics.median(new["walls"]))
+            cpu_before.append(statistics.median(old["cpus"]))
+            cpu_after.append(statistics.median(new["cpus"]))
             same = same and old["values"] == new["values"]
         b, a = statistics.median(before), statistics.median(after)
+        cb, ca = statistics.median(cpu_before), statistics.median(cpu_after)
         print(f"| {label} | {b * scale:.3f} | {a * scale:.3f} | {b / a:.2f}x | "
+              f"{cb * scale:.3f}, {ca * scale:.3f} | {cb / ca:.2f}x | "
               f"{'identical' if same else 'DIFFERENT'} |")
 
 
@@ -161,6 +171,8 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--repeats", type=int, default=200)
     parser.add_argument("--sizes", type=int, nargs="*", default=list(SIZES))
     parser.add_argument("--skip-timeline", action="store_true")
+    parser.add_argument("--rounds", type=int, default=3,
+                        help="rounds of fresh interpreters with --against")
     parser.add_argument("--child", default=None, help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.child is not None:
@@ -174,7 +186,8 @@ def main(argv: list[str] | None = None) -> None:
     print(f"- load average before: {load_before[0]:.2f} (1 min), {load_before[1]:.2f} (5 min)")
     against_pyunicorn(tuple(args.sizes), args.repeats)
     if args.against is not None:
-        against_checkout(args.against.resolve(), args.repeats, not args.skip_timeline)
+        against_checkout(args.against.resolve(), args.repeats, not args.skip_timeline,
+                         args.rounds)
     load_after = os.getloadavg()
     print(f"\nload average after: {load_after[0]:.2f} (1 min); total "
           f"{time.perf_counter() - start:.0f} s; command: python -m benchmarks.bench_short_pair"
