@@ -70,6 +70,16 @@ def inspect(
     seed: EvidenceSeed = 0,
     resamples: Resamples = 200,
     surrogate_method: SurrogateMethod = "shift",
+    repeated: Annotated[
+        bool,
+        typer.Option(
+            "--repeated", metavar="",
+            help="Also test every pair across the repetitions of the most repeated motion in "
+            "the traces together (moves of one set-point profile, aligned on the set-point): "
+            "coupling beyond the command, per phase, in repeated.html; with too few "
+            "repetitions it says how many a decision needs.",
+        ),
+    ] = False,
     channels: Channels = None,
     axis: Axis = None,
     verbose: Verbose = False,
@@ -102,5 +112,8 @@ def inspect(
         with progress_bar(quiet, "inspect") as progress:
             page = inspect_trace(*traces, out_dir=out, signals=names, parameters=parameters,
                                  evidence=evidence, channels=channels, axis=axis,
-                                 progress=progress, evidence_options=options)
+                                 progress=progress, evidence_options=options,
+                                 repeated=repeated)
     typer.echo(f"report: {page}")
+    if repeated:
+        typer.echo(f"repetitions: {out / 'repeated.html'}")

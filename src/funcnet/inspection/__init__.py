@@ -7,6 +7,8 @@ network per phase of every move with its evidence, the windows or parts that cou
 computed, and the backlash diagnosis (:func:`inspect_recording`, a :class:`TraceInspection`);
 :mod:`~funcnet.inspection.robot` does it for each axis of a recording of several axes and adds
 the robot-wide network, its pairs told apart within and between axes (:func:`inspect_robot`).
+:mod:`~funcnet.inspection.repeated` reads the repetitions of one motion in the traces together
+(:func:`inspect_repetitions`).
 Names are imported lazily.
 
 Examples
@@ -29,6 +31,8 @@ _EXPORTS = {
     "RobotInspection": "funcnet.inspection.robot",
     "inspect_robot": "funcnet.inspection.robot",
     "pair_scope": "funcnet.inspection.robot",
+    "RepeatedInspection": "funcnet.inspection.repeated",
+    "inspect_repetitions": "funcnet.inspection.repeated",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)
