@@ -1,0 +1,79 @@
+"""The repetitions page of an inspection: one motion repeated in the traces, tested per phase.
+
+:func:`write_repetitions` renders :func:`funcnet.inspection.repeated.inspect_repetitions` of the
+inspected traces as ``repeated.html`` (``funcnet inspect ... --repeated``): the repetitions
+found, per phase the repetition evidence (docs/evidence.md, section 7), or how many repetitions
+a decision needs.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from funcnet._io import write_text_atomic
+from funcnet.inspection import TraceInspection
+from funcnet.inspection.repeated import inspect_repetitions
+from funcnet.report.html import escape, page, table
+
+__all__ = ["REPETITIONS_NOTE", "write_repetitions"]
+
+#: What the repetitions page says about its test (docs/evidence.md, section 7).
+REPETITIONS_NOTE = (
+    "Moves of the same set-point profile, aligned on the set-point, are repetitions of one "
+    "motion. Per phase, each pair is tested for coupling beyond the command: X of one "
+    "repetition with Y of the same repetition against Y of the others (the signals minus their "
+    "mean over the repetitions; coupling_statistic is the excess joint-recurrence correlation "
+    "of the same-repetition pairings). With R repetitions no p-value is below 1/R!: fewer than "
+    "4 leave every pair untestable. kind_share is the share of repetitions whose own network "
+    "gives the pair its most common kind; the c_diff and t_diff intervals come from the spread "
+    "across the repetitions."
+)
+
+
+#: The repetition table's columns on the page (the rest stay in the library's table).
+_REPEATED_COLUMNS = ["x", "y", "coupling_statistic", "coupling_p", "evidence", "kind",
+                     "kind_share", "c_diff_mean", "c_diff_low", "c_diff_high", "t_diff_mean",
+                     "t_diff_low", "t_diff_high"]
+
+
+def write_repetitions(inspections: Sequence[TraceInspection], out_dir: str | os.PathLike[str],
+                      evidence_options: Mapping[str, Any] | None = None) -> Path:
+    """Write ``repeated.html``: the repetitions of the inspected traces, read together.
+
+    Parameters
+    ----------
+    inspections : sequence of TraceInspection
+        Their recordings, nodes and parameters are used (at least one).
+    out_dir : path-like
+    evidence_options : mapping, optional
+        ``alpha`` and ``seed`` are used.
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    options = dict(evidence_options or {})
+    body = ["<h1>funcnet inspect — repetitions</h1>"]
+    if not inspections:
+        body.append("<p>No single-axis trace to read repetitions in.</p>")
+        return write_text_atomic(Path(out_dir) / "repeated.html",
+                                 page("funcnet inspect — repetitions", body))
+    first = inspections[0]
+    found = inspect_repetitions([ins.recording for ins in inspections], first.signals,
+                                parameters=first.parameters,
+                                alpha=float(options.get("alpha", 0.05)),
+                                seed=int(options.get("seed", 0)))
+    body += [f"<p>{escape(found.message)}.</p>", f"<p>{escape(REPETITIONS_NOTE)}</p>"]
+    if len(found.moves):
+        body.append(table(found.moves.round(4)))
+    for label, frame in found.evidence.items():
+        reason = frame.evidence_reason.iloc[0] if len(frame) else ""
+        body += [f"<h2>{escape(label)}</h2>", f"<p>{escape(reason)}</p>",
+                 table(frame[_REPEATED_COLUMNS].round(4))]
+    for label, why in found.failures.items():
+        body.append(f"<h2>{escape(label)}</h2><p>No test: {escape(why)}</p>")
+    return write_text_atomic(Path(out_dir) / "repeated.html",
+                             page("funcnet inspect — repetitions", body))
