@@ -276,3 +276,64 @@ def test_rate_narrows_the_interval_where_maps_converge_fast() -> None:
         plain.append(iv.c_diff_high - iv.c_diff_low)
     assert np.median(widths) < np.median(plain)
     assert cover_c >= 0.75
+
+
+def _one_resample_at_a_time(states: list[np.ndarray], pairs: list[tuple[int, int]],
+                            chosen: np.ndarray, p: NetworkParameters) -> np.ndarray:
+    """The reference: each resample's kept states normalized again per channel, thresholded and
+    measured one pair at a time by the per-window path."""
+    out = np.empty((len(pairs), len(chosen), 2))
+    rates = p.rr if isinstance(p.rr, tuple) else (p.rr,) * len(states)
+    for r, kept in enumerate(chosen):
+        subsets = []
+        for s in states:
+            sub = s[kept].copy()
+            if p.normalize is not None:
+                for c in range(0, sub.shape[1], p.dim):
+                    block = sub[:, c:c + p.dim]
+                    low, span = ((block.min(), block.max() - block.min()) if
+                                 p.normalize == "minmax" else (block.mean(), block.std()))
+                    sub[:, c:c + p.dim] = (block - low) / span if span > 0 else block
+            subsets.append(sub)
+        for k, (i, j) in enumerate(pairs):
+            m = isrn_measures(auto_recurrence(subsets[i], rr=rates[i], parameters=p),
+                              auto_recurrence(subsets[j], rr=rates[j], parameters=p),
+                              cross_recurrence(subsets[i], subsets[j], cr=p.cr, parameters=p))
+            out[k, r] = m.c_diff, m.t_diff
+    return out
+
+
+@pytest.mark.parametrize("changes", [
+    {}, {"metric": "supremum"}, {"metric": "manhattan"},
+    {"rule": "pyunicorn", "metric": "supremum"}, {"theiler": 3}, {"normalize": "zscore"},
+    {"rr": (0.05, 0.1, 0.08, 0.03)}, {"dim": 2, "delay": 3}, {"dim": 4, "delay": 2},
+    {"normalize": None},
+], ids=lambda c: ",".join(f"{k}={v}" for k, v in c.items()) or "defaults")
+def test_all_resamples_in_one_pass_are_one_at_a_time_bit_for_bit(changes) -> None:
+    # resampled_differences takes these through the batched engine's kernel
+    p = NetworkParameters().replace(**changes)
+    rng = np.random.default_rng(4)
+    n = 260
+    raw = np.column_stack([np.cumsum(rng.standard_normal(n)), rng.standard_normal(n),
+                           np.sin(np.arange(n) / 7) + 0.1 * rng.standard_normal(n),
+                           np.round(rng.standard_normal(n), 1)])  # ties
+    values = raw if p.normalize is None else normalize(raw, p.normalize)
+    states = [signal_states(values[:, k], parameters=p) for k in range(4)]
+    pairs = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
+    for fraction in (0.4, 0.75):
+        chosen = subsamples(states[0].shape[0], 6, fraction, seed=2)
+        got = resampled_differences(states, pairs, chosen, parameters=p)
+        expected = _one_resample_at_a_time(states, pairs, chosen, p)
+        assert np.array_equal(got.view(np.int64), expected.view(np.int64))
+
+
+def test_multichannel_nodes_in_resamples_match_one_at_a_time() -> None:
+    # nodes of two channels (states of 2 * dim coordinates): the same numbers
+    p = NetworkParameters(delay=2)
+    rng = np.random.default_rng(5)
+    raw = normalize(rng.standard_normal((200, 4)).cumsum(axis=0), "minmax")
+    states = [signal_states(raw[:, 2 * k:2 * k + 2], parameters=p) for k in range(2)]
+    chosen = subsamples(states[0].shape[0], 4, 0.4, seed=1)
+    got = resampled_differences(states, [(0, 1)], chosen, parameters=p)
+    expected = _one_resample_at_a_time(states, [(0, 1)], chosen, p)
+    assert np.array_equal(got.view(np.int64), expected.view(np.int64))

@@ -269,6 +269,20 @@ def _row_keys(
     """keys[t] = key of state i of x and state start + t of y, t < n (1-D signals, delay
     embedding read in place); accumulated coordinate by coordinate as the per-window path does.
     """
+    if metric == 0 and dim == 3:
+        # The default embedding in one pass: the same operations in the same order,
+        # ((d0 d0 + d1 d1) + d2 d2), without writing the keys back between coordinates
+        # (about twice as fast).
+        a0, a1, a2 = x[i], x[i + delay], x[i + 2 * delay]
+        c0 = y[start : start + n]
+        c1 = y[start + delay : start + delay + n]
+        c2 = y[start + 2 * delay : start + 2 * delay + n]
+        for t in range(n):
+            d0 = a0 - c0[t]
+            d1 = a1 - c1[t]
+            d2 = a2 - c2[t]
+            keys[t] = (d0 * d0 + d1 * d1) + d2 * d2
+        return
     for c in range(dim):
         column = y[start + c * delay : start + c * delay + n]
         add_coordinate_keys(x[i + c * delay], column, n, c == 0, metric, keys)
@@ -538,17 +552,26 @@ def _clustering_transitivity(
     """Global cross-clustering and cross-transitivity of one direction (Eq. 6-9)."""
     total_triangles = 0
     total_triples = 0
+    # The words of a row that hold a neighbour: a state's cross-recurrences lie close in
+    # time, in one or two words of the row, so the triangle counts skip the empty ones.
+    occupied = np.empty(n_words, dtype=np.int64)
     for v in range(m):
         degree = 0
+        n_occupied = 0
         for w in range(n_words):
-            degree += int(_popcount(cross_rows[v, w]))
+            if cross_rows[v, w]:
+                degree += int(_popcount(cross_rows[v, w]))
+                occupied[n_occupied] = w
+                n_occupied += 1
         triangles = 0
-        for w in range(n_words):
+        for k in range(n_occupied):
+            w = occupied[k]
             word = cross_rows[v, w]
             while word:
                 p = w * 64 + np.int64(_lowest_bit(word))
                 word &= word - np.uint64(1)
-                for u in range(n_words):
+                for q in range(n_occupied):
+                    u = occupied[q]
                     triangles += int(_popcount(auto_rows[p, u] & cross_rows[v, u]))
         triples = degree * (degree - 1)
         local[v] = triangles / triples if triples > 0 else 0.0

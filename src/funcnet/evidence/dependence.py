@@ -90,6 +90,7 @@ __all__ = [
     "surrogate_plan",
     "check_surrogate_method",
     "dependence_test",
+    "recurrent_pairs",
     "default_surrogates",
     "benjamini_hochberg",
 ]
@@ -317,8 +318,21 @@ class DependenceResult:
     null_statistics: np.ndarray
 
 
+def recurrent_pairs(a: np.ndarray) -> np.ndarray:
+    """The recurrent pairs ``i < j`` of a dense recurrence matrix, shape (pairs, 2), in row
+    order: what :func:`dependence_test` reads of each matrix for the shift lattice.
+
+    Examples
+    --------
+    >>> recurrent_pairs(np.array([[0, 1, 1], [1, 0, 0], [1, 0, 0]], dtype=np.uint8)).tolist()
+    [[0, 1], [0, 2]]
+    """
+    return np.argwhere(np.triu(a, 1)).astype(np.int64)
+
+
 def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan | TwinPlan, *,
-                    theiler: int = 0) -> DependenceResult:
+                    theiler: int = 0,
+                    recurrent: tuple[np.ndarray, np.ndarray] | None = None) -> DependenceResult:
     """Joint-recurrence dependence test of X and Y on precomputed recurrence matrices.
 
     Parameters
@@ -330,6 +344,9 @@ def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan | TwinPlan
         (:func:`surrogate_plan`).
     theiler : int
         Pairs of times with ``|i - j| <= theiler`` are not counted.
+    recurrent : (ndarray, ndarray), optional
+        :func:`recurrent_pairs` of ``a_x`` and ``a_y`` when the caller has them (a signal in
+        many pairs); computed here otherwise.
 
     Returns
     -------
@@ -371,8 +388,8 @@ def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan | TwinPlan
         return _result(_index_windows(a_x, a_y, indices, int(theiler)), plan.surrogates)
     starts_x = np.concatenate([[plan.observed], plan.starts_x]).astype(np.int64)
     starts_y = np.concatenate([[plan.observed], plan.starts_y]).astype(np.int64)
-    pairs_x = np.argwhere(np.triu(a_x, 1)).astype(np.int64)
-    pairs_y = np.argwhere(np.triu(a_y, 1)).astype(np.int64)
+    pairs_x, pairs_y = ((recurrent_pairs(a_x), recurrent_pairs(a_y)) if recurrent is None
+                        else recurrent)
     values = _windows(a_y, pairs_x, pairs_y, starts_x, starts_y, plan.length, int(theiler))
     return _result(values, plan.surrogates)
 

@@ -41,6 +41,7 @@ from funcnet.evidence.dependence import (
     decorrelation_time,
     default_surrogates,
     dependence_test,
+    recurrent_pairs,
     surrogate_plan,
 )
 from funcnet.evidence.interval import AsymmetryInterval, asymmetry_intervals
@@ -276,6 +277,8 @@ def pairwise_evidence(
         for s, (rate, eps), c in zip(states, thresholds, called, strict=True)
     ]
     dense = [a.to_dense().astype(np.uint8) for a in autos]
+    # each signal's recurrent pairs once, for all its pairs' shift tests
+    recurrent = [recurrent_pairs(d) for d in dense] if surrogate_method == "shift" else None
     decorrelation = [decorrelation_time(s) for s in signals]
     span = (p.dim - 1) * p.delay + 1
     raw: list[dict[str, Any]] = []
@@ -297,7 +300,9 @@ def pairwise_evidence(
             if plan is None:
                 entry.update(statistic=np.nan, p=np.nan, k=0, index=np.nan, index_p=np.nan)
             else:
-                test = dependence_test(dense[i], dense[j], plan, theiler=p.theiler)
+                test = dependence_test(
+                    dense[i], dense[j], plan, theiler=p.theiler,
+                    recurrent=None if recurrent is None else (recurrent[i], recurrent[j]))
                 entry.update(statistic=test.statistic, p=test.p_value, k=test.surrogates,
                              index=test.direction_index, index_p=test.direction_p)
             entry["observed"] = (measures.c_diff, measures.t_diff)
