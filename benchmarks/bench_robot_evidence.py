@@ -155,7 +155,8 @@ def main() -> None:
         wall_ratio = medians["other"][0] / medians["this checkout"][0]
         cpu_ratio = medians["other"][1] / medians["this checkout"][1]
         print(f"ratio (other / this checkout): wall {wall_ratio:.1f}x, CPU {cpu_ratio:.1f}x")
-        problems = compare(old, new)
+        problems = [problem for found in results["this checkout"]
+                    for problem in compare(old, found["pairs"])]
         print("numbers and kinds bit for bit: " + ("yes" if not problems
                                                    else "NO: " + "; ".join(problems)))
 

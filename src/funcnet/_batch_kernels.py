@@ -54,6 +54,11 @@ DIRECT_PAIRS = 6144
 #: (benchmarks/RESULTS.md, "Many short windows").
 DIRECT_MAX_STATES = 800
 _SAMPLE = 512
+# From this many candidates on, the sample is _LARGE_SAMPLE keys: four times the sample, a
+# bracket half as wide (a share of the keys), half the keys to select from (at M = 532,
+# 0.24 ms instead of 0.33 ms per cross-recurrence); the value never depends on the sample.
+_LARGE_CANDIDATES = 65536
+_LARGE_SAMPLE = 2048
 _BRACKET_SIGMAS = 4.0
 
 
@@ -412,7 +417,8 @@ def _threshold(
     directly. Returns ``(eps, number of candidate pairs set)``.
     """
     if not direct:
-        sample = np.empty(_SAMPLE, dtype=np.float64)
+        sample = np.empty(_LARGE_SAMPLE if n_candidates >= _LARGE_CANDIDATES else _SAMPLE,
+                          dtype=np.float64)
         lo, hi, share = _bracket(
             x, y, m, auto, theiler, dim, delay, metric, rank, n_candidates, sample
         )
