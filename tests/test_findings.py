@@ -11,6 +11,7 @@ import pandas as pd
 import pytest
 
 from funcnet.errors import ParameterError
+from funcnet.network import FunctionalNetwork
 from funcnet.paper import (
     BASELINE,
     REVERSAL_SEQUENCE,
@@ -31,7 +32,7 @@ NODES = ("RP", "AP", "MP", "V", "RC", "AC")
 
 
 def make_pairs(edges: dict[str, float] | list[str], nodes=NODES, default="bidirectional"):
-    """A pairs table over all node pairs: listed relations set, every other pair ``default``.
+    """A network over all node pairs: listed relations set, every other pair ``default``.
 
     ``edges`` holds ``"A->B"`` or ``"A<->B"`` or ``"A-/-B"`` (conflict), optionally with weights.
     """
@@ -49,7 +50,12 @@ def make_pairs(edges: dict[str, float] | list[str], nodes=NODES, default="bidire
         if kind == "directed":
             kind = "x->y" if (a, b) == (x, y) else "y->x"
         rows.append({"x": x, "y": y, "kind": kind, "weight": w})
-    return pd.DataFrame(rows)
+    return FunctionalNetwork.from_pairs(pd.DataFrame(rows), nodes=nodes)
+
+
+def with_pairs(net, **columns):
+    """The network of ``net``'s pairs table with ``columns`` replaced."""
+    return FunctionalNetwork.from_pairs(net.pairs.assign(**columns), nodes=net.nodes)
 
 
 def test_relation_reads_all_four_kinds_in_both_orders():
@@ -131,13 +137,11 @@ def test_claims_about_an_absent_node_are_not_evaluable_and_never_a_full_match():
 DEGENERATE = "degenerate recurrence structure (a signal barely moves in the window)"
 
 
-def flag_degenerate(pairs, *relations):
-    """The pairs table with a ``degenerate`` column, True for the pairs of ``relations``."""
-    pairs = pairs.copy()
+def flag_degenerate(net, *relations):
+    """The network with its pairs of ``relations`` flagged ``degenerate``, no other."""
     flagged = {frozenset(re.findall(r"\w+", r)) for r in relations}
-    pairs["degenerate"] = [frozenset(xy) in flagged
-                           for xy in zip(pairs["x"], pairs["y"], strict=True)]
-    return pairs
+    return with_pairs(net, degenerate=[frozenset(xy) in flagged for xy in
+                                       zip(net.pairs["x"], net.pairs["y"], strict=True)])
 
 
 def test_claims_about_a_degenerate_pair_are_not_evaluable_like_an_absent_signal():
@@ -160,9 +164,9 @@ def test_claims_about_a_degenerate_pair_are_not_evaluable_like_an_absent_signal(
     assert both.reproduced == "not evaluable"
     assert both.evidence.endswith(f"2 of 2 claims could not be evaluated: [early] RP->AP: "
                                   f"{DEGENERATE}, [early] RP->MP: {DEGENERATE}")
-    # tables without the column (older results), or with gaps from mixing them, are evaluated
+    # no degenerate pair, or rows with gaps from mixing older results, are evaluated
     assert evaluate(spec, {"early": shown}).reproduced == "yes"
-    mixed = shown.assign(degenerate=[None] * len(shown))
+    mixed = with_pairs(shown, degenerate=[None] * len(shown.pairs))
     assert evaluate(spec, {"early": mixed}).reproduced == "yes"
     assert evaluate(spec, {"early": flag_degenerate(shown)}).reproduced == "yes"
 
@@ -183,13 +187,15 @@ def reference_verdict(claims, networks):
     outcomes = {}  # (key, claim) -> True / False / None (not evaluable)
     for key, cs in claims.items():
         net = networks.get(key)
-        nodes = set() if net is None else {*net["x"], *net["y"]}
+        nodes = set() if net is None else {*net.pairs["x"], *net.pairs["y"]}
         for claim in cs:
             a, b = claim.split("->")
             if a not in nodes or b not in nodes:
                 outcomes[(key, claim)] = None
                 continue
-            row = net[((net["x"] == a) & (net["y"] == b)) | ((net["x"] == b) & (net["y"] == a))]
+            table = net.pairs
+            row = table[((table["x"] == a) & (table["y"] == b))
+                        | ((table["x"] == b) & (table["y"] == a))]
             kind = row["kind"].iloc[0]
             outcomes[(key, claim)] = kind == ("x->y" if row["x"].iloc[0] == a else "y->x")
     evaluated = [v for v in outcomes.values() if v is not None]
@@ -256,8 +262,8 @@ def test_baseline_as_in_the_paper_is_reproduced_and_its_opposite_is_not():
     assert [f.id for f in found] == [s.id for s in BASELINE]
     assert all(f.reproduced == "yes" for f in found), [(f.id, f.evidence) for f in found]
     # every edge flipped: no directed claim holds, bidirectional ones become directed
-    flipped = {k: v.assign(kind=v["kind"].map({"x->y": "y->x", "y->x": "x->y",
-                                                "bidirectional": "x->y"}))
+    flipped = {k: with_pairs(v, kind=v.pairs["kind"].map({"x->y": "y->x", "y->x": "x->y",
+                                                          "bidirectional": "x->y"}))
                for k, v in networks.items()}
     assert all(f.reproduced == "no" for f in baseline_findings(flipped))
 
@@ -342,7 +348,8 @@ def test_reversal_signature_and_sequence_counts():
 def test_reversal_findings_say_which_signal_was_left_out():
     as_paper = {o: [c.replace("!<->", "->") for c in cs] for o, cs in REVERSAL_SEQUENCE.items()}
     nets = sequence_networks(as_paper)
-    nets[0] = nets[0][(nets[0]["x"] != "RP") & (nets[0]["y"] != "RP")]
+    pairs = nets[0].pairs
+    nets[0] = FunctionalNetwork.from_pairs(pairs[(pairs["x"] != "RP") & (pairs["y"] != "RP")])
     found = {f.id: f for f in reversal_findings({"B0": nets}, left_out={"B0": {0: ("RP",)}})}
     chain = found["4.3-position-chain"]
     # MP->AP holds; MP->RP and AP->RP cannot be evaluated
@@ -492,7 +499,8 @@ def test_degenerate_pairs_do_not_count_in_the_mean_edge_weight():
                        default="conflict")
     assert mean_edge_weight(pairs) == pytest.approx(0.65)
     assert mean_edge_weight(flag_degenerate(pairs, "RP->MP")) == pytest.approx(0.4)
-    assert mean_edge_weight(pairs.assign(degenerate=[None] * len(pairs))) == pytest.approx(0.65)
+    gaps = with_pairs(pairs, degenerate=[None] * len(pairs.pairs))
+    assert mean_edge_weight(gaps) == pytest.approx(0.65)
 
 
 

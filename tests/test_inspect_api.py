@@ -98,5 +98,8 @@ def test_edge_timeline_takes_what_window_networks_returns():
     ax = plot_edge_timeline(nets)
     times = sorted({float(x) for c in ax.collections for x, _ in c.get_offsets()})
     assert times == pytest.approx([0.4, 1.2])
+    # keyed by label, a network without a window has no place on the timeline
+    from funcnet.network import FunctionalNetwork
+
     with pytest.raises(ParameterError, match="not a time"):
-        plot_edge_timeline({"a": nets["a"].pairs})
+        plot_edge_timeline({"a": FunctionalNetwork.from_pairs(nets["a"].pairs)})

@@ -15,6 +15,7 @@ from matplotlib.text import Text
 
 import funcnet
 from funcnet import plot
+from funcnet.network import FunctionalNetwork
 from funcnet.network.schema import PAIR_KINDS
 from funcnet.paper import figures
 from funcnet.recurrence import isrn_adjacency, recurrence_matrix
@@ -24,6 +25,12 @@ NODES = ("RP", "AP", "MP", "V", "RC", "AC")
 # The synthetic signals trip the eps ordering / ties warnings; they are about the data, and this
 # module tests drawing.
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+
+
+def net_of(pairs, **parameters):
+    """The network of a small pairs table (default parameters, or those given)."""
+    return FunctionalNetwork.from_pairs(
+        pairs, funcnet.NetworkParameters(**parameters) if parameters else None)
 
 
 def gids(ax, prefix):
@@ -70,8 +77,10 @@ def test_plot_network_draws_every_edge_with_its_colour(network):
 
 
 def test_plot_network_from_pairs_matches_the_network(network):
+    again = FunctionalNetwork.from_pairs(network.pairs, network.parameters)
+    assert again.nodes == network.nodes and again.edges.equals(network.edges)
     from_net = sorted(p.get_gid() for p in edge_patches(plot.plot_network(network)))
-    from_pairs = sorted(p.get_gid() for p in edge_patches(plot.plot_network(network.pairs)))
+    from_pairs = sorted(p.get_gid() for p in edge_patches(plot.plot_network(again)))
     # a bidirectional pair may be drawn from either end; compare as unordered pairs for those
     def norm(g):
         _, rest = g.split(":", 1)
@@ -87,7 +96,7 @@ def test_plot_network_width_proportional_to_weight_and_isolated_nodes():
     pairs.loc[0, ["kind", "weight"]] = ["x->y", 0.2]
     pairs.loc[1, ["kind", "weight"]] = ["y->x", 0.05]
     pairs.loc[2, ["kind", "weight"]] = ["bidirectional", 0.0]
-    ax = plot.plot_network(pairs, width_scale=40, min_width=0.5)
+    ax = plot.plot_network(net_of(pairs), width_scale=40, min_width=0.5)
     widths = {p.get_gid(): p.get_linewidth() for p in edge_patches(ax)}
     assert widths == {"edge:RP->AP:directed": pytest.approx(8.0),
                       "edge:MP->RP:directed": pytest.approx(2.0),
@@ -97,7 +106,7 @@ def test_plot_network_width_proportional_to_weight_and_isolated_nodes():
 
 def test_plot_network_places_given_nodes_and_dashes_absent_ones():
     pairs = pd.DataFrame({"x": ["RP"], "y": ["AC"], "kind": ["x->y"], "weight": [0.1]})
-    ax = plot.plot_network(pairs, nodes=NODES)
+    ax = plot.plot_network(net_of(pairs), nodes=NODES)
     circles = {p.get_gid(): p for p in ax.patches if (p.get_gid() or "").startswith("node:")}
     assert sorted(circles) == sorted(f"node:{n}" for n in NODES)
     assert {n for n, c in circles.items() if c.get_linestyle() == "-"} == {"node:RP", "node:AC"}
@@ -184,7 +193,7 @@ def test_figure_phases_marks_every_phase_and_draws_a_network_per_phase(network):
     phases = pd.DataFrame({"phase": ["early spin-up", "cruise", "braking"],
                            "start": [0.0, 0.4, 0.9], "stop": [0.4, 0.9, 1.19]})
     fig = figures.figure_phases(data, phases, {"early spin-up": network, "cruise": network,
-                                            "braking": network.pairs})
+                                            "braking": net_of(network.pairs)})
     signal_axes = [ax for ax in fig.axes if ax.lines]
     # normalized + raw panels by units: positions, velocity, currents, other (FE)
     assert len(signal_axes) == 5
@@ -229,7 +238,7 @@ def test_figure_reversal_windows_and_networks(network):
 
 
 def test_plot_edge_timeline_one_point_per_pair_and_window(network):
-    timeline = {0.5: network, 1.0: network, 1.5: network.pairs}
+    timeline = {0.5: network, 1.0: network, 1.5: net_of(network.pairs)}
     ax = plot.plot_edge_timeline(timeline)
     points = sum(len(c.get_offsets()) for c in ax.collections)
     assert points == 3 * len(network.pairs)
@@ -278,7 +287,7 @@ def test_velocity_grid_has_one_shared_legend_of_signals_and_one_of_edges(network
 
 def test_network_legend_explains_colours_and_width():
     pairs = pd.DataFrame({"x": ["RP"], "y": ["TORSION"], "kind": ["x->y"], "weight": [0.3]})
-    ax = plot.plot_network(pairs, width_scale=10)
+    ax = plot.plot_network(net_of(pairs), width_scale=10)
     legend = ax.get_legend()
     handles = dict(zip([t.get_text() for t in legend.get_texts()], legend.legend_handles,
                        strict=True))
@@ -286,7 +295,7 @@ def test_network_legend_explains_colours_and_width():
     assert to_rgba(handles["bidirectional (|diff| < μ)"].get_color()) == to_rgba("red")
     (reference,) = [h for label, h in handles.items() if label.startswith("weight 0.2")]
     assert reference.get_linewidth() == pytest.approx(2.0)  # same scale as the edges
-    assert plot.plot_network(pairs, legend=False).get_legend() is None
+    assert plot.plot_network(net_of(pairs), legend=False).get_legend() is None
     # the long name gets a larger node; the arrow head grows with the line and ends at its rim
     circles = {p.get_gid(): p for p in ax.patches if (p.get_gid() or "").startswith("node:")}
     assert circles["node:TORSION"].radius > circles["node:RP"].radius
@@ -339,8 +348,12 @@ def test_plot_draws_and_computes_nothing():
     files = sorted(Path(plot.__file__).parent.glob("*.py"))
     assert len(files) > 1  # the package, not one module
     trees = [ast.parse(f.read_text(encoding="utf-8")) for f in files]
+    # imports for type annotations only (`if TYPE_CHECKING:`) run nothing
+    type_only = {id(n) for tree in trees for block in ast.walk(tree)
+                 if isinstance(block, ast.If) and getattr(block.test, "id", "") == "TYPE_CHECKING"
+                 for stmt in block.body for n in ast.walk(stmt)}
     imported = set()
-    for node in (n for tree in trees for n in ast.walk(tree)):
+    for node in (n for tree in trees for n in ast.walk(tree) if id(n) not in type_only):
         if isinstance(node, ast.Import):
             imported |= {alias.name for alias in node.names}
         elif isinstance(node, ast.ImportFrom):
@@ -368,12 +381,12 @@ def degenerate_pairs():
 def test_degenerate_edges_are_drawn_only_when_kept_and_then_dashed_grey():
     pairs = degenerate_pairs()
     # by default a degenerate pair is no edge: not drawn, no legend entry
-    ax = plot.plot_network(pairs)
+    ax = plot.plot_network(net_of(pairs))
     assert sorted(p.get_gid() for p in edge_patches(ax)) == [
         "edge:AP->MP:bidirectional", "edge:RP->AP:directed"]
     assert "degenerate" not in " ".join(t.get_text() for t in ax.get_legend().get_texts())
     # kept: drawn, grey and dashed, unlike every real edge, and the legend says so
-    ax = plot.plot_network(pairs, degenerate="keep")
+    ax = plot.plot_network(net_of(pairs, degenerate="keep"))
     arrows = {p.get_gid(): p for p in edge_patches(ax)}
     assert set(arrows) == {"edge:RP->AP:directed", "edge:AP->MP:bidirectional",
                            "edge:MP->RP:directed:degenerate"}
@@ -389,9 +402,9 @@ def test_degenerate_edges_are_drawn_only_when_kept_and_then_dashed_grey():
     (entry,) = [t for t in texts if t.startswith("degenerate")]
     assert handles[entry].get_linestyle() == "--"
     # a table without the flag, or with gaps (older study rows), has no degenerate pair
-    assert len(edge_patches(plot.plot_network(pairs.drop(columns="degenerate")))) == 3
+    assert len(edge_patches(plot.plot_network(net_of(pairs.drop(columns="degenerate"))))) == 3
     gaps = pairs.assign(degenerate=[None, True, None])
-    assert len(edge_patches(plot.plot_network(gaps, degenerate="keep"))) == 3
+    assert len(edge_patches(plot.plot_network(net_of(gaps, degenerate="keep")))) == 3
 
 
 def test_a_network_that_keeps_degenerate_pairs_draws_them_differently():
@@ -417,8 +430,8 @@ def test_a_network_that_keeps_degenerate_pairs_draws_them_differently():
 
 
 def test_edge_timeline_marks_degenerate_pairs():
-    pairs = degenerate_pairs()
-    ax = plot.plot_edge_timeline({0.5: pairs, 1.0: pairs})
+    net = net_of(degenerate_pairs())
+    ax = plot.plot_edge_timeline({0.5: net, 1.0: net})
     by_kind = {c.get_gid(): len(c.get_offsets()) for c in ax.collections}
     assert by_kind == {"kind:x->y": 2, "kind:bidirectional": 2, "kind:degenerate": 2}
 
@@ -460,7 +473,7 @@ def evidence_pairs():
 
 
 def test_edges_without_coupling_evidence_are_dotted_and_pale():
-    ax = plot.plot_network(evidence_pairs())
+    ax = plot.plot_network(net_of(evidence_pairs()))
     arrows = {p.get_gid(): p for p in edge_patches(ax)}
     assert set(arrows) == {"edge:RP->AP:directed:coupled-directed",
                            "edge:MP->RP:directed:asymmetry-only",
@@ -489,8 +502,8 @@ def test_edges_without_coupling_evidence_are_dotted_and_pale():
 
 
 def test_without_evidence_columns_the_drawing_is_unchanged():
-    with_evidence = plot.plot_network(evidence_pairs())
-    plain = plot.plot_network(evidence_pairs().drop(columns="evidence"))
+    with_evidence = plot.plot_network(net_of(evidence_pairs()))
+    plain = plot.plot_network(net_of(evidence_pairs().drop(columns="evidence")))
     assert all(p.get_linestyle() == "-" for p in edge_patches(plain))
     assert all(g.count(":") == 2 for g in (p.get_gid() for p in edge_patches(plain)))
     texts = [t.get_text() for t in plain.get_legend().get_texts()]
@@ -498,7 +511,7 @@ def test_without_evidence_columns_the_drawing_is_unchanged():
     assert len(with_evidence.get_legend().get_texts()) == len(texts) + 3
     # rows of a study run without evidence (NaN) count as no evidence at all
     gaps = evidence_pairs().assign(evidence=[None] * 4)
-    assert all(p.get_linestyle() == "-" for p in edge_patches(plot.plot_network(gaps)))
+    assert all(p.get_linestyle() == "-" for p in edge_patches(plot.plot_network(net_of(gaps))))
 
 
 def test_a_network_with_evidence_draws_its_readings():

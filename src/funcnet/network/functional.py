@@ -110,6 +110,65 @@ class FunctionalNetwork:
 
     __hash__ = None  # type: ignore[assignment]  # holds DataFrames
 
+    @classmethod
+    def from_pairs(cls, pairs: pd.DataFrame, parameters: NetworkParameters | None = None, *,
+                   nodes: Sequence[str] | None = None, label: str | None = None,
+                   window: Mapping[str, Any] | None = None) -> FunctionalNetwork:
+        """The network of a pairs table, its edges by the edge rule (e.g. a study's rows).
+
+        Parameters
+        ----------
+        pairs : pandas.DataFrame
+            At least ``x``, ``y``, ``kind`` and ``weight``; a ``degenerate`` column holding
+            anything but True (missing, or NaN in rows of older results) means not degenerate.
+        parameters : NetworkParameters, optional
+            The parameters that produced the table (default :class:`NetworkParameters`()); their
+            ``degenerate`` policy decides whether degenerate pairs are edges.
+        nodes : sequence of str, optional
+            The nodes, in order (default the signals of ``x`` and ``y`` in order of appearance).
+        label : str, optional
+            A name for the network.
+        window : mapping, optional
+            Where the data comes from (:attr:`window`).
+
+        Returns
+        -------
+        FunctionalNetwork
+            The table as its ``pairs`` (``degenerate`` a boolean column), its edges
+            (:func:`funcnet.network.edges_from_pairs`); the table does not record the window's
+            length: ``n_samples`` is 0.
+
+        Raises
+        ------
+        ParameterError
+            A column missing.
+
+        References
+        ----------
+        Section 2.4 (edges) and Eq. 13 (weights) of the paper.
+
+        Examples
+        --------
+        >>> import pandas as pd
+        >>> pairs = pd.DataFrame({"x": ["A", "A"], "y": ["B", "C"], "kind": ["y->x", "x->y"],
+        ...                       "weight": [0.2, 0.4], "degenerate": [False, True]})
+        >>> net = FunctionalNetwork.from_pairs(pairs)
+        >>> net.nodes, net.edges[["source", "target"]].values.tolist()
+        (('A', 'B', 'C'), [['B', 'A']])
+        >>> kept = FunctionalNetwork.from_pairs(pairs, NetworkParameters(degenerate="keep"))
+        >>> kept.edges["degenerate"].tolist()
+        [False, True]
+        """
+        parameters = NetworkParameters() if parameters is None else parameters
+        flags = (pairs["degenerate"].eq(True) if "degenerate" in pairs.columns
+                 else pd.Series(False, index=pairs.index))
+        pairs = pairs.assign(degenerate=flags.astype(bool))
+        nodes = tuple(dict.fromkeys(str(n) for n in [*pairs["x"], *pairs["y"]])
+                      if nodes is None else nodes)
+        return cls(nodes=nodes, pairs=pairs,
+                   edges=edges_from_pairs(pairs, degenerate=parameters.degenerate),
+                   parameters=parameters, n_samples=0, label=label, window=window)
+
     def edges_for(self, measure: str | None = None, *,
                   degenerate: str | None = None) -> pd.DataFrame:
         """Edges of the network under another measure or degenerate policy, at the same ``mu``.

@@ -7,9 +7,9 @@ the :class:`~funcnet.paper.claims.Finding` says so (``reproduced="no"``) with th
 A claim is *not evaluable* in a network that lacks one of its two signals (a signal constant in
 the window cannot be min-max normalized and is left out of that window's network), in a network
 whose pair of the two signals is flagged ``degenerate`` (too few distinct states: the pair's
-arrow is meaningless; pairs tables without that column, from older results, count as not
-degenerate), or when the network is missing altogether (not computed, or no such trial in the
-plan). Such a claim is neither a success nor a failure: it is counted and named in the evidence.
+arrow is meaningless), or when the network is missing altogether (not computed, or no such
+trial in the plan). Such a claim is neither a success nor a failure: it is counted and named in
+the evidence.
 
 How a finding is decided (one rule for all of them, fixed before looking at any result and the
 same whatever the results are):
@@ -117,7 +117,7 @@ def evaluate(spec: FindingSpec, networks: Mapping[Any, Any], *,
     ----------
     spec : FindingSpec
         The claimed relations per network key.
-    networks : mapping of key -> FunctionalNetwork, pairs table or None
+    networks : mapping of key -> FunctionalNetwork or None
         The networks; a key that is missing, or maps to ``None`` (the network could not be
         computed), makes all its claims not evaluable, and so does a network lacking a signal
         for the claims about that signal, or flagging a pair ``degenerate`` for the claims
@@ -140,7 +140,9 @@ def evaluate(spec: FindingSpec, networks: Mapping[Any, Any], *,
     Examples
     --------
     >>> import pandas as pd
-    >>> net = pd.DataFrame({"x": ["RP", "RP"], "y": ["AP", "MP"], "kind": ["x->y", "y->x"]})
+    >>> from funcnet.network import FunctionalNetwork
+    >>> net = FunctionalNetwork.from_pairs(pd.DataFrame(
+    ...     {"x": ["RP", "RP"], "y": ["AP", "MP"], "kind": ["x->y", "y->x"], "weight": [.1, .1]}))
     >>> spec = FindingSpec("t", "4.1", "RP drives AP and MP", {"early": ("RP->AP", "RP->MP")})
     >>> f = evaluate(spec, {"early": net})
     >>> f.reproduced, f.evidence
@@ -189,7 +191,7 @@ def baseline_findings(networks: Mapping[Any, Any], *,
 
     Parameters
     ----------
-    networks : mapping of phase -> FunctionalNetwork (or pairs table, or None)
+    networks : mapping of phase -> FunctionalNetwork (or None)
         Keys ``"early spin-up"``, ``"late spin-up"``, ``"cruise"``, ``"braking"``.
     left_out : mapping of phase -> sequence of str, optional
         Signals left out of a phase's network as constant (see :func:`evaluate`).
@@ -217,7 +219,7 @@ def velocity_findings(networks: Mapping[Any, Any], *,
 
     Parameters
     ----------
-    networks : mapping of (velocity, phase) -> FunctionalNetwork (or pairs table, or None)
+    networks : mapping of (velocity, phase) -> FunctionalNetwork (or None)
         Velocities ``"V1", "V35", "V175", "V350"``; phases ``"spin-up", "cruise", "braking"``
         (fixed windows of 280 / 600 / 600 ms).
     left_out : mapping of (velocity, phase) -> sequence of str, optional

@@ -392,7 +392,9 @@ def figure_phases(
     >>> import numpy as np, pandas as pd
     >>> t = np.arange(500) * 0.002
     >>> data = pd.DataFrame({"RP": t ** 2, "AC": np.cos(9 * t)}, index=t)
-    >>> net = pd.DataFrame({"x": ["RP"], "y": ["AC"], "kind": ["y->x"], "weight": [0.2]})
+    >>> from funcnet.network import FunctionalNetwork
+    >>> net = FunctionalNetwork.from_pairs(
+    ...     pd.DataFrame({"x": ["RP"], "y": ["AC"], "kind": ["y->x"], "weight": [0.2]}))
     >>> phases = pd.DataFrame({"phase": ["spin-up", "cruise"], "start": [0.0, 0.4],
     ...                        "stop": [0.4, 1.0]})
     >>> fig = figure_phases(data, phases, {"spin-up": net, "cruise": None})
@@ -452,7 +454,9 @@ def figure_velocity_grid(
     --------
     >>> import numpy as np, pandas as pd
     >>> window = pd.DataFrame({"RP": np.arange(10.0), "AC": np.ones(10)})
-    >>> net = pd.DataFrame({"x": ["RP"], "y": ["AC"], "kind": ["bidirectional"], "weight": [0.0]})
+    >>> from funcnet.network import FunctionalNetwork
+    >>> net = FunctionalNetwork.from_pairs(pd.DataFrame(
+    ...     {"x": ["RP"], "y": ["AC"], "kind": ["bidirectional"], "weight": [0.0]}))
     >>> cells = {(v, p): (window, net) for v in ("V35", "V175") for p in ("cruise", "braking")}
     >>> len(figure_velocity_grid(cells).axes)
     8
@@ -530,7 +534,9 @@ def figure_reversal(
     >>> data = pd.DataFrame({"RP": np.abs(t - 1.0), "V": np.sign(t - 1.0)}, index=t)
     >>> windows = [Window(f"{s:+d} ms", 0.9 + s / 1000, 1.1 + s / 1000, offset=s / 1000)
     ...            for s in (-20, 0, 20)]
-    >>> net = pd.DataFrame({"x": ["V"], "y": ["RP"], "kind": ["x->y"], "weight": [0.1]})
+    >>> from funcnet.network import FunctionalNetwork
+    >>> net = FunctionalNetwork.from_pairs(
+    ...     pd.DataFrame({"x": ["V"], "y": ["RP"], "kind": ["x->y"], "weight": [0.1]}))
     >>> fig = figure_reversal(data, windows, {w.label: net for w in windows})
     >>> sorted(p.get_gid() for p in fig.axes[1].patches)
     ['window:+0 ms', 'window:+20 ms', 'window:-20 ms']

@@ -13,12 +13,15 @@ References
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 import pandas as pd
 
 from funcnet.network.schema import PAIR_KINDS
 from funcnet.paper.claims import parse_claim
+
+if TYPE_CHECKING:
+    from funcnet.network import FunctionalNetwork
 
 __all__ = ["DEGENERATE", "pair_kind", "relation", "relation_holds", "pairs_of", "nodes_of",
            "is_degenerate"]
@@ -30,18 +33,18 @@ _REVERSED = {_X_Y: _Y_X, _Y_X: _X_Y}
 DEGENERATE = "degenerate recurrence structure (a signal barely moves in the window)"
 
 
-def pairs_of(net: Any) -> pd.DataFrame:
-    """The pairs table of a network, or the table itself."""
-    return net if isinstance(net, pd.DataFrame) else net.pairs
+def pairs_of(net: FunctionalNetwork) -> pd.DataFrame:
+    """The pairs table of a network."""
+    return net.pairs
 
 
-def pair_kind(net: Any, a: str, b: str) -> str | None:
+def pair_kind(net: FunctionalNetwork, a: str, b: str) -> str | None:
     """The kind of the pair (a, b) in a network, read with ``a`` as ``x``.
 
     Parameters
     ----------
-    net : FunctionalNetwork or pandas.DataFrame
-        A network or its pairs table (columns ``x, y, kind``).
+    net : FunctionalNetwork
+        A network.
     a, b : str
         Node names.
 
@@ -54,8 +57,10 @@ def pair_kind(net: Any, a: str, b: str) -> str | None:
     Examples
     --------
     >>> import pandas as pd
-    >>> pairs = pd.DataFrame({"x": ["RP"], "y": ["AP"], "kind": ["y->x"]})
-    >>> pair_kind(pairs, "RP", "AP"), pair_kind(pairs, "AP", "RP"), pair_kind(pairs, "RP", "V")
+    >>> from funcnet.network import FunctionalNetwork
+    >>> net = FunctionalNetwork.from_pairs(
+    ...     pd.DataFrame({"x": ["RP"], "y": ["AP"], "kind": ["y->x"], "weight": [0.1]}))
+    >>> pair_kind(net, "RP", "AP"), pair_kind(net, "AP", "RP"), pair_kind(net, "RP", "V")
     ('y->x', 'x->y', None)
     """
     if a == b:
@@ -69,13 +74,13 @@ def pair_kind(net: Any, a: str, b: str) -> str | None:
     return None
 
 
-def relation(net: Any, a: str, b: str) -> str | None:
+def relation(net: FunctionalNetwork, a: str, b: str) -> str | None:
     """The relation a network shows between signals ``a`` and ``b``, in the claim language.
 
     Parameters
     ----------
-    net : FunctionalNetwork or pandas.DataFrame
-        A network or its pairs table (columns ``x, y, kind``).
+    net : FunctionalNetwork
+        A network.
     a, b : str
         Node names.
 
@@ -89,8 +94,10 @@ def relation(net: Any, a: str, b: str) -> str | None:
     Examples
     --------
     >>> import pandas as pd
-    >>> pairs = pd.DataFrame({"x": ["RP"], "y": ["AP"], "kind": ["y->x"]})
-    >>> relation(pairs, "RP", "AP"), relation(pairs, "AP", "RP"), relation(pairs, "RP", "V")
+    >>> from funcnet.network import FunctionalNetwork
+    >>> net = FunctionalNetwork.from_pairs(
+    ...     pd.DataFrame({"x": ["RP"], "y": ["AP"], "kind": ["y->x"], "weight": [0.1]}))
+    >>> relation(net, "RP", "AP"), relation(net, "AP", "RP"), relation(net, "RP", "V")
     ('AP->RP', 'AP->RP', None)
     """
     kind = pair_kind(net, a, b)
@@ -103,13 +110,13 @@ def relation(net: Any, a: str, b: str) -> str | None:
     return f"{a}->{b}" if kind == _X_Y else f"{b}->{a}"
 
 
-def relation_holds(net: Any, claim: str) -> tuple[bool | None, str | None]:
+def relation_holds(net: FunctionalNetwork, claim: str) -> tuple[bool | None, str | None]:
     """Whether a network shows a claimed relation.
 
     Parameters
     ----------
-    net : FunctionalNetwork or pandas.DataFrame
-        A network or its pairs table.
+    net : FunctionalNetwork
+        A network.
     claim : str
         ``"A->B"``, ``"A<->B"``, ``"A-/-B"`` or ``"A!<->B"``
         (:func:`funcnet.paper.claims.parse_claim`).
@@ -128,10 +135,13 @@ def relation_holds(net: Any, claim: str) -> tuple[bool | None, str | None]:
     Examples
     --------
     >>> import pandas as pd
-    >>> pairs = pd.DataFrame({"x": ["RC"], "y": ["AC"], "kind": ["bidirectional"]})
-    >>> relation_holds(pairs, "AC<->RC"), relation_holds(pairs, "RC->AC")[0]
+    >>> from funcnet.network import FunctionalNetwork
+    >>> pairs = pd.DataFrame({"x": ["RC"], "y": ["AC"], "kind": ["bidirectional"],
+    ...                       "weight": [0.01]})
+    >>> net = FunctionalNetwork.from_pairs(pairs)
+    >>> relation_holds(net, "AC<->RC"), relation_holds(net, "RC->AC")[0]
     ((True, 'AC<->RC'), False)
-    >>> relation_holds(pairs.assign(degenerate=True), "AC<->RC")
+    >>> relation_holds(FunctionalNetwork.from_pairs(pairs.assign(degenerate=True)), "AC<->RC")
     (None, None)
     """
     parsed = parse_claim(claim)
@@ -141,7 +151,7 @@ def relation_holds(net: Any, claim: str) -> tuple[bool | None, str | None]:
     return parsed.holds(kind), relation(net, parsed.a, parsed.b)
 
 
-def is_degenerate(net: Any, a: str, b: str) -> bool:
+def is_degenerate(net: FunctionalNetwork, a: str, b: str) -> bool:
     """Whether the pair of ``a`` and ``b`` is flagged ``degenerate`` (False without the column)."""
     table = pairs_of(net)
     if "degenerate" not in table.columns:
@@ -151,8 +161,6 @@ def is_degenerate(net: Any, a: str, b: str) -> bool:
     return bool(pair["degenerate"].eq(True).any())
 
 
-def nodes_of(net: Any) -> set[str]:
-    """The nodes of a network, or those named in a pairs table."""
-    if isinstance(net, pd.DataFrame):
-        return {*net["x"], *net["y"]}
+def nodes_of(net: FunctionalNetwork) -> set[str]:
+    """The nodes of a network."""
     return set(net.nodes)

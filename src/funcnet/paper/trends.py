@@ -13,7 +13,7 @@ References
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
@@ -24,18 +24,21 @@ from funcnet.network.schema import PAIR_KINDS
 from funcnet.paper.claims import Finding
 from funcnet.paper.relations import pairs_of, relation
 
+if TYPE_CHECKING:
+    from funcnet.network import FunctionalNetwork
+
 __all__ = ["mean_edge_weight", "spearman", "edge_thinning", "design_effect"]
 
 _CONFLICT = PAIR_KINDS[3]
 
 
-def mean_edge_weight(net: Any) -> float:
+def mean_edge_weight(net: FunctionalNetwork) -> float:
     """Mean weight (Eq. 13) of a network's edges: neither conflicts nor degenerate pairs.
 
     Parameters
     ----------
-    net : FunctionalNetwork or pandas.DataFrame
-        A network or its pairs table (``kind``, ``weight``, optionally ``degenerate``).
+    net : FunctionalNetwork
+        A network.
 
     Returns
     -------
@@ -49,9 +52,11 @@ def mean_edge_weight(net: Any) -> float:
     Examples
     --------
     >>> import pandas as pd
-    >>> pairs = pd.DataFrame({"kind": ["x->y", "conflict", "bidirectional"],
+    >>> from funcnet.network import FunctionalNetwork
+    >>> pairs = pd.DataFrame({"x": ["A", "A", "B"], "y": ["B", "C", "C"],
+    ...                       "kind": ["x->y", "conflict", "bidirectional"],
     ...                       "weight": [0.3, 0.9, 0.1], "degenerate": [False, False, True]})
-    >>> mean_edge_weight(pairs)
+    >>> mean_edge_weight(FunctionalNetwork.from_pairs(pairs))
     0.3
     """
     pairs = pairs_of(net)
@@ -103,7 +108,7 @@ def edge_thinning(networks: Mapping[Any, Any], *,
 
     Parameters
     ----------
-    networks : mapping of (velocity, phase) -> FunctionalNetwork (or pairs table, or None)
+    networks : mapping of (velocity, phase) -> FunctionalNetwork (or None)
         As for :func:`velocity_findings`.
     speeds : mapping of velocity label -> °/min, optional
         Defaults to V1 = 1, V35 = 35, V175 = 175, V350 = 350.
@@ -122,8 +127,10 @@ def edge_thinning(networks: Mapping[Any, Any], *,
     Examples
     --------
     >>> import pandas as pd
+    >>> from funcnet.network import FunctionalNetwork
     >>> def net(w):
-    ...     return pd.DataFrame({"x": ["A"], "y": ["B"], "kind": ["x->y"], "weight": [w]})
+    ...     return FunctionalNetwork.from_pairs(
+    ...         pd.DataFrame({"x": ["A"], "y": ["B"], "kind": ["x->y"], "weight": [w]}))
     >>> nets = {(v, p): net(w) for p in ("spin-up", "cruise", "braking")
     ...         for v, w in (("V1", .4), ("V35", .3), ("V175", .2), ("V350", .1))}
     >>> edge_thinning(nets).reproduced
@@ -177,7 +184,7 @@ def design_effect(
 
     Parameters
     ----------
-    networks : mapping of (trial name, phase) -> FunctionalNetwork (or pairs table, or None)
+    networks : mapping of (trial name, phase) -> FunctionalNetwork (or None)
         The main trials' networks.
     trials : pandas.DataFrame
         One row per trial: ``name, speed, tcp, step``.
@@ -224,9 +231,9 @@ def design_effect(
         for nets in groups.values():
             if len(nets) < 2:
                 continue
-            tables = [pairs_of(n) for n in nets.values()]
-            for pair in tables[0].itertuples(index=False):
-                kinds = {relation(t, pair.x, pair.y) for t in tables}
+            members = list(nets.values())
+            for pair in pairs_of(members[0]).itertuples(index=False):
+                kinds = {relation(n, pair.x, pair.y) for n in members}
                 total += 1
                 same += len(kinds) == 1
         return same, total

@@ -1,6 +1,6 @@
 """Drawing: functional networks, recurrence matrices, signals and edge timelines.
 
-Everything here draws what it is given -- a network or its pairs table, a recurrence matrix, a
+Everything here draws what it is given -- a network, a recurrence matrix, a
 window of signals -- and computes nothing: no recurrence, no measure, no network. The paper's
 figures, which compute their data and then draw it with these functions, are in
 :mod:`funcnet.paper.figures`. Single-panel functions take ``ax=`` and return it; figure-level

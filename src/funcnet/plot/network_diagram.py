@@ -11,7 +11,7 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
@@ -22,13 +22,15 @@ from matplotlib.patches import Circle, FancyArrowPatch
 
 from funcnet._io import atomic_path
 from funcnet.errors import ParameterError
-from funcnet.network.rule import edges_from_pairs
 from funcnet.plot.style import (
     BIDIRECTIONAL_COLOR,
     DEGENERATE_COLOR,
     DIRECTED_COLOR,
     _new_axes,
 )
+
+if TYPE_CHECKING:
+    from funcnet.network import FunctionalNetwork
 
 __all__ = [
     "network_edges",
@@ -113,19 +115,15 @@ def network_legend_handles(width_scale: float = 10.0, weight: float = 0.2, *,
     return handles
 
 
-def network_edges(net: Any, *, degenerate: str = "drop") -> pd.DataFrame:
-    """The edges to draw: a network's ``.edges``, or those of a pairs table.
+def network_edges(net: FunctionalNetwork) -> pd.DataFrame:
+    """The edges to draw: the network's own ``edges``.
+
+    They hold degenerate pairs only when the network was built with ``degenerate="keep"``.
 
     Parameters
     ----------
-    net : FunctionalNetwork or pandas.DataFrame
-        A :class:`funcnet.FunctionalNetwork` (its own ``edges``, which hold degenerate pairs
-        only when it was built with ``degenerate="keep"``), or a pairs table with at least the
-        columns ``x, y, kind, weight`` (e.g. one window's rows of a study's results); a table
-        without ``degenerate`` counts as having no degenerate pair.
-    degenerate : {"drop", "keep"}
-        For a pairs table: leave degenerate pairs out (default) or keep them as edges flagged
-        ``degenerate`` (:func:`funcnet.network.rule.edges_from_pairs`).
+    net : FunctionalNetwork
+        The network (for a study's rows, :func:`funcnet.study.store.network_from_rows`).
 
     Returns
     -------
@@ -136,44 +134,37 @@ def network_edges(net: Any, *, degenerate: str = "drop") -> pd.DataFrame:
     Examples
     --------
     >>> import pandas as pd
+    >>> from funcnet.network import FunctionalNetwork
     >>> pairs = pd.DataFrame({"x": ["A", "A"], "y": ["B", "C"], "kind": ["y->x", "x->y"],
     ...                       "weight": [0.2, 0.4], "degenerate": [False, True]})
-    >>> network_edges(pairs)[["source", "target"]].values.tolist()
+    >>> network_edges(FunctionalNetwork.from_pairs(pairs))[["source", "target"]].values.tolist()
     [['B', 'A']]
-    >>> network_edges(pairs, degenerate="keep")["degenerate"].tolist()
-    [False, True]
     """
-    if not isinstance(net, pd.DataFrame):
-        return net.edges
-    if "degenerate" in net.columns:
-        # Rows of older results mixed with newer ones hold NaN there: not degenerate.
-        flags = net["degenerate"].eq(True)
-    else:
-        flags = pd.Series(False, index=net.index)
-    return edges_from_pairs(net.assign(degenerate=flags.astype(bool)), degenerate=degenerate)
+    return net.edges
 
 
-def network_nodes(net: Any) -> list[str]:
-    """The nodes of a network, or of a pairs table (its signals in order of appearance).
+def network_nodes(net: FunctionalNetwork) -> list[str]:
+    """The nodes of a network, in its order.
 
     Examples
     --------
-    >>> network_nodes(pd.DataFrame({"x": ["A", "A"], "y": ["B", "C"]}))
+    >>> from funcnet.network import FunctionalNetwork
+    >>> pairs = pd.DataFrame({"x": ["A", "A"], "y": ["B", "C"], "kind": ["x->y", "x->y"],
+    ...                       "weight": [0.1, 0.1]})
+    >>> network_nodes(FunctionalNetwork.from_pairs(pairs))
     ['A', 'B', 'C']
     """
-    if isinstance(net, pd.DataFrame):
-        return list(dict.fromkeys([*net["x"], *net["y"]]))
     return list(net.nodes)
 
 
 
-def edge_evidence(net: Any, edges: pd.DataFrame) -> list[str] | None:
+def edge_evidence(net: FunctionalNetwork, edges: pd.DataFrame) -> list[str] | None:
     """The ``evidence`` reading of each edge's pair, or ``None`` for a network without evidence.
 
     Parameters
     ----------
-    net : FunctionalNetwork or pandas.DataFrame
-        A network or a pairs table; the evidence is its pairs table's ``evidence`` column
+    net : FunctionalNetwork
+        The network; the evidence is its pairs table's ``evidence`` column
         (:data:`funcnet.network.schema.EVIDENCE_COLUMNS`).
     edges : pandas.DataFrame
         Its edges (:func:`network_edges`), ``source`` and ``target`` in either order of the
@@ -187,14 +178,17 @@ def edge_evidence(net: Any, edges: pd.DataFrame) -> list[str] | None:
 
     Examples
     --------
+    >>> from funcnet.network import FunctionalNetwork
     >>> pairs = pd.DataFrame({"x": ["A", "A"], "y": ["B", "C"], "kind": ["y->x", "x->y"],
     ...                       "weight": [0.2, 0.4], "evidence": ["coupled", "asymmetry-only"]})
-    >>> edge_evidence(pairs, network_edges(pairs))
+    >>> net = FunctionalNetwork.from_pairs(pairs)
+    >>> edge_evidence(net, network_edges(net))
     ['coupled', 'asymmetry-only']
-    >>> edge_evidence(pairs.drop(columns="evidence"), network_edges(pairs)) is None
+    >>> plain = FunctionalNetwork.from_pairs(pairs.drop(columns="evidence"))
+    >>> edge_evidence(plain, network_edges(plain)) is None
     True
     """
-    pairs = net if isinstance(net, pd.DataFrame) else net.pairs
+    pairs = net.pairs
     if "evidence" not in pairs.columns:
         return None
     labels = pairs["evidence"].where(pairs["evidence"].notna(), "").astype(str)
@@ -207,7 +201,7 @@ def edge_evidence(net: Any, edges: pd.DataFrame) -> list[str] | None:
 
 
 def plot_network(
-    net: Any,
+    net: FunctionalNetwork,
     ax: Axes | None = None,
     *,
     nodes: Sequence[str] | None = None,
@@ -218,15 +212,14 @@ def plot_network(
     title: str | None = None,
     fontsize: float = 10.0,
     legend: bool = True,
-    degenerate: str = "drop",
     groups: Mapping[str, Sequence[str]] | None = None,
 ) -> Axes:
     """Draw a functional network in a circular layout (paper section 3.4, Fig. 9-11).
 
     Parameters
     ----------
-    net : FunctionalNetwork or pandas.DataFrame
-        The network, or its pairs table (see :func:`network_edges`).
+    net : FunctionalNetwork
+        The network (for a study's rows, :func:`funcnet.study.store.network_from_rows`).
     ax : matplotlib.axes.Axes, optional
         Where to draw; a new figure's axes when omitted.
     nodes : sequence of str, optional
@@ -252,9 +245,6 @@ def plot_network(
         (:func:`network_legend_handles`); multi-panel figures draw one for the whole figure.
         When degenerate edges are drawn, the legend has their entry too; for a network with
         evidence columns, the entries of the evidence styles.
-    degenerate : {"drop", "keep"}
-        For a pairs table only: draw degenerate pairs as edges (``"keep"``) or not (see
-        :func:`network_edges`); a network's own edges say it themselves.
     groups : mapping of str to sequence of str, optional
         Nodes grouped (the axes of a robot: ``{"A1": ["A1.RP", ...], ...}``): each group
         placed together on the circle, a gap between groups, its name outside the circle and
@@ -281,10 +271,11 @@ def plot_network(
     Examples
     --------
     >>> import pandas as pd
+    >>> from funcnet.network import FunctionalNetwork
     >>> pairs = pd.DataFrame({"x": ["RP", "RP", "AP"], "y": ["AP", "MP", "MP"],
     ...                       "kind": ["x->y", "x->y", "bidirectional"],
     ...                       "weight": [0.2, 0.1, 0.01]})
-    >>> ax = plot_network(pairs)
+    >>> ax = plot_network(FunctionalNetwork.from_pairs(pairs))
     >>> sorted(p.get_gid() for p in ax.patches if p.get_gid().startswith("edge:"))
     ['edge:AP->MP:bidirectional', 'edge:RP->AP:directed', 'edge:RP->MP:directed']
     """
@@ -323,7 +314,7 @@ def plot_network(
             middle = float(np.mean(placed))
             ax.text(1.2 * np.cos(middle), 1.2 * np.sin(middle), str(group), ha="center",
                     va="center", fontsize=fontsize + 1, fontweight="bold", gid=f"group:{group}")
-    edges = network_edges(net, degenerate=degenerate)
+    edges = network_edges(net)
     readings = edge_evidence(net, edges)
     for k, edge in enumerate(edges.itertuples(index=False)):
         bidirectional = edge.kind == "bidirectional"

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
@@ -14,10 +14,13 @@ from matplotlib.lines import Line2D
 from funcnet.errors import ParameterError
 from funcnet.plot.style import _BIDIRECTIONAL, _CONFLICT, _X_Y, _Y_X, KIND_COLORS, _new_axes
 
+if TYPE_CHECKING:
+    from funcnet.network import FunctionalNetwork
+
 __all__ = ["plot_edge_timeline"]
 
 
-def _window_time(key: Any, net: Any) -> float:
+def _window_time(key: Any, net: FunctionalNetwork) -> float:
     """A network's time on a timeline: its key when a number, else its window's centre."""
     try:
         return float(key)
@@ -31,24 +34,22 @@ def _window_time(key: Any, net: Any) -> float:
         ) from None
 
 
-def _pair_table(networks: Any, time: str) -> pd.DataFrame:
-    if isinstance(networks, pd.DataFrame):
-        return networks
+def _pair_table(networks: Mapping[Any, FunctionalNetwork]) -> pd.DataFrame:
+    """One table of every network's pairs, with the time of its window."""
     frames = []
     for key, net in networks.items():
         t = _window_time(key, net)
-        pairs = net if isinstance(net, pd.DataFrame) else net.pairs
+        pairs = net.pairs
         columns = ["x", "y", "kind", "weight", *(["degenerate"] if "degenerate" in pairs else [])]
         frame = pairs[columns].copy()
-        frame[time] = t
+        frame["time"] = t
         frames.append(frame)
     return pd.concat(frames, ignore_index=True)
 
 
 def plot_edge_timeline(
-    networks: Mapping[float, Any] | pd.DataFrame,
+    networks: Mapping[Any, FunctionalNetwork],
     *,
-    time: str = "time",
     ax: Axes | None = None,
     size_scale: float = 600.0,
 ) -> Axes:
@@ -63,13 +64,10 @@ def plot_edge_timeline(
 
     Parameters
     ----------
-    networks : mapping of time -> FunctionalNetwork (or pairs table), or pandas.DataFrame
+    networks : mapping of time -> FunctionalNetwork
         Networks keyed by the time of their window (e.g. its centre, seconds) -- or keyed by
         label, as :func:`funcnet.window_networks` returns them: each is then placed at its
-        window's centre -- or one pairs table of all windows with columns ``x, y, kind,
-        weight``, ``time`` and optionally ``degenerate``.
-    time : str
-        Name of the time column of a table.
+        window's centre.
     ax : matplotlib.axes.Axes, optional
         Where to draw.
     size_scale : float
@@ -89,13 +87,16 @@ def plot_edge_timeline(
     Examples
     --------
     >>> import pandas as pd
-    >>> rows = pd.DataFrame({"x": ["A", "A"], "y": ["B", "B"], "kind": ["x->y", "conflict"],
-    ...                      "weight": [0.1, 0.2], "time": [0.5, 1.0]})
-    >>> sum(len(c.get_offsets()) for c in plot_edge_timeline(rows).collections)
+    >>> from funcnet.network import FunctionalNetwork
+    >>> def net(kind, weight):
+    ...     return FunctionalNetwork.from_pairs(pd.DataFrame(
+    ...         {"x": ["A"], "y": ["B"], "kind": [kind], "weight": [weight]}))
+    >>> networks = {0.5: net("x->y", 0.1), 1.0: net("conflict", 0.2)}
+    >>> sum(len(c.get_offsets()) for c in plot_edge_timeline(networks).collections)
     2
     """
     ax = _new_axes(ax, (8.0, 3.0))
-    table = _pair_table(networks, time)
+    table = _pair_table(networks)
     pair_names = list(dict.fromkeys(f"{a}–{b}" for a, b in zip(table["x"], table["y"],
                                                                  strict=True)))
     track = {name: k for k, name in enumerate(pair_names)}
@@ -115,7 +116,7 @@ def plot_edge_timeline(
         mask = (kinds == kind).to_numpy()
         if not mask.any():
             continue
-        points = ax.scatter(table[time].to_numpy(dtype=float)[mask], y[mask],
+        points = ax.scatter(table["time"].to_numpy(dtype=float)[mask], y[mask],
                             s=np.maximum(4.0, size_scale * weights[mask]), marker=marker,
                             color=KIND_COLORS[kind], label=label, linewidths=0)
         points.set_gid(f"kind:{kind}")

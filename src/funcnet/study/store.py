@@ -30,6 +30,7 @@ import json
 import math
 import os
 from collections.abc import Iterator, Mapping
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -380,7 +381,7 @@ def network_from_rows(rows: pd.DataFrame) -> FunctionalNetwork:
     >>> again.edges.equals(net.edges), again.nodes, again.label
     (True, ('x', 'y'), 'w')
     """
-    from funcnet.network import FunctionalNetwork, edges_from_pairs
+    from funcnet.network import FunctionalNetwork
 
     first = rows.iloc[0]
     values = {}
@@ -397,20 +398,13 @@ def network_from_rows(rows: pd.DataFrame) -> FunctionalNetwork:
     parameters = NetworkParameters.from_mapping(values)
     known = {field.name for field in IDENTITY_SCHEMA} | set(PARAMETER_COLUMNS.values())
     pairs = rows[[c for c in rows.columns if c not in known]].reset_index(drop=True)
-    if "degenerate" in pairs.columns:
-        # Rows of older results mixed with newer ones hold NaN there: not degenerate.
-        pairs = pairs.assign(degenerate=pairs["degenerate"].eq(True).astype(bool))
     signals = str(first.get("signals") or "")
-    nodes = tuple(signals.split(",")) if signals else tuple(
-        dict.fromkeys(str(n) for n in [*pairs["x"], *pairs["y"]]))
     dropped = str(first.get("dropped") or "")
     window = {"label": first.get("window"), "start": first.get("start"),
               "stop": first.get("stop"), "phase": first.get("phase"),
               "offset": first.get("offset"), "source": first.get("recording"),
               "dropped": tuple(dropped.split(",")) if dropped else ()}
-    return FunctionalNetwork(
-        nodes=nodes, pairs=pairs,
-        edges=edges_from_pairs(pairs, degenerate=parameters.degenerate),
-        parameters=parameters, n_samples=0, label=first.get("window"), window=window,
-        evidence={} if "evidence" in pairs.columns else None,
-    )
+    network = FunctionalNetwork.from_pairs(
+        pairs, parameters, nodes=tuple(signals.split(",")) if signals else None,
+        label=first.get("window"), window=window)
+    return replace(network, evidence={}) if "evidence" in pairs.columns else network
