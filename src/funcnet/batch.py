@@ -38,7 +38,7 @@ from funcnet._isrn_kernels import _METRIC_CODE
 from funcnet._order_statistic import _pyunicorn_rank, _rank_from_rate
 from funcnet.embedding import MIN_STATES
 from funcnet.errors import FuncnetError, ParameterError, SignalError
-from funcnet.measures import CrossMeasures, pairwise_cross_measures
+from funcnet.measures import CrossMeasures, _degenerate_reason, pairwise_cross_measures
 from funcnet.normalization import normalize as normalize_signals
 from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
 
@@ -385,12 +385,12 @@ def _columns(p: NetworkParameters, names: list[str], pairs: tuple[np.ndarray, np
     for w, q in np.argwhere(degenerate).tolist():
         i, j = int(pair_x[q]), int(pair_y[q])
         found = [
-            _auto_reason(f"signal {names[s]}", bool(constant[w, s]), float(auto_eps[w, s]),
-                         float(auto_rate[w, s]), float(rates[s]))
+            _degenerate_reason(f"signal {names[s]}", bool(constant[w, s]),
+                               float(auto_eps[w, s]), float(auto_rate[w, s]), float(rates[s]))
             for s in (i, j)
         ]
-        found.append(_auto_reason(f"cross-recurrence ({names[i]}, {names[j]})", False,
-                                  float(cross_eps[w, q]), float(cross_rate[w, q]), p.cr))
+        found.append(_degenerate_reason(f"cross-recurrence ({names[i]}, {names[j]})", False,
+                                        float(cross_eps[w, q]), float(cross_rate[w, q]), p.cr))
         reasons[w, q] = "; ".join(reason for reason in found if reason)
     return {
         "c_xy": c_xy, "c_yx": c_yx, "t_xy": t_xy, "t_yx": t_yx,
@@ -405,20 +405,6 @@ def _columns(p: NetworkParameters, names: list[str], pairs: tuple[np.ndarray, np
         "degenerate": degenerate,
         "degenerate_reason": reasons,
     }
-
-
-def _auto_reason(label: str, constant: bool, eps: float, rate: float, target: float) -> str:
-    """Why a block is degenerate, in the words of :mod:`funcnet.measures`."""
-    if constant:
-        return f"{label}: constant (a single distinct state)"
-    if eps == 0.0:
-        return f"{label}: threshold 0 (too few distinct states)"
-    if rate > 2 * target:
-        return (
-            f"{label}: achieved rate {rate:.3g} over twice its target {target:.3g} "
-            "(too few distinct states)"
-        )
-    return ""
 
 
 def _per_window(window: np.ndarray, names: list[str], w: int, p: NetworkParameters,

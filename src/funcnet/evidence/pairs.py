@@ -144,6 +144,13 @@ def evidence_label(coupled: bool, direction: str, kind: str, *,
     return "asymmetry-only" if kind in ("x->y", "y->x") else "not-coupled"
 
 
+def _check_surrogates(surrogates: Any) -> None:
+    if surrogates is not None and (isinstance(surrogates, bool) or not isinstance(
+            surrogates, (int, np.integer)) or surrogates < 1):
+        raise ParameterError.of("surrogates", f"must be an integer >= 1 (or None), got "
+                                f"{surrogates!r}")
+
+
 def _check_alpha(alpha: Any) -> float:
     if isinstance(alpha, bool) or not isinstance(alpha, (int, float)) or not 0 < alpha < 1:
         raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha!r}")
@@ -166,10 +173,7 @@ def check_evidence_arguments(surrogates: Any, alpha: Any, resamples: Any,
         ...
     funcnet.errors.ParameterError: surrogates must be an integer >= 1 (or None), got 0
     """
-    if surrogates is not None and (isinstance(surrogates, bool) or not isinstance(
-            surrogates, (int, np.integer)) or surrogates < 1):
-        raise ParameterError.of("surrogates", f"must be an integer >= 1 (or None), got "
-                                f"{surrogates!r}")
+    _check_surrogates(surrogates)
     _check_alpha(alpha)
     if isinstance(resamples, bool) or not isinstance(resamples, (int, np.integer)) or \
             resamples < 0:

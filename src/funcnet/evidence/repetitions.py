@@ -83,7 +83,7 @@ from funcnet.embedding import signal_states
 from funcnet.errors import ParameterError, SignalError
 from funcnet.evidence._kernels import _repetition_counts
 from funcnet.evidence.dependence import benjamini_hochberg, default_surrogates
-from funcnet.evidence.pairs import _check_alpha
+from funcnet.evidence.pairs import _check_alpha, _check_surrogates
 from funcnet.evidence.reading import evidence_readings
 from funcnet.kinds import measure_kinds
 from funcnet.normalization import normalize
@@ -338,13 +338,6 @@ def repetition_tests(
     _check_surrogates(surrogates)
     stack, names = _stack(repetitions, signals)
     return _tests(stack, names, p, seed, 999 if surrogates is None else surrogates, residuals)
-
-
-def _check_surrogates(surrogates: Any) -> None:
-    if surrogates is not None and (isinstance(surrogates, bool) or not isinstance(
-            surrogates, (int, np.integer)) or surrogates < 1):
-        raise ParameterError.of("surrogates", f"must be an integer >= 1 (or None), got "
-                                f"{surrogates!r}")
 
 
 def _tests(stack: np.ndarray, names: list[str], p: NetworkParameters, seed: int,

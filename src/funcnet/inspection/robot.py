@@ -23,7 +23,7 @@ from typing import Any
 
 import pandas as pd
 
-from funcnet.inspection.trace import TraceInspection, inspect_recording
+from funcnet.inspection.trace import TraceInspection, _step, inspect_recording
 from funcnet.network import FunctionalNetwork
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.parameters import NetworkParameters, resolve
@@ -205,8 +205,3 @@ def inspect_robot(
         recording=recording,
     )
 
-
-def _step(progress: Callable[[int, int, str], None] | None, done: int, total: int,
-          description: str) -> None:
-    if progress is not None:
-        progress(done, total, description)

@@ -44,6 +44,7 @@ from funcnet.errors import ParameterError, SignalError
 from funcnet.robot.phases import detect_phases
 from funcnet.robot.preprocess import velocity
 from funcnet.robot.recording import Recording
+from funcnet.robot.windows import _numbered
 
 __all__ = ["Repetitions", "find_repetitions", "POSITION_ROLES"]
 
@@ -267,14 +268,7 @@ def find_repetitions(
     relative["start"] = np.maximum(relative.start - t0, 0.0).round(9)
     relative["stop"] = np.minimum(relative.stop - t0, length * period).round(9)
     relative = relative[relative.phase != "standstill"].reset_index(drop=True)
-    counts: dict[str, int] = {}
-    labels = []
-    for phase in relative.phase:
-        counts[phase] = counts.get(phase, 0) + 1
-    seen: dict[str, int] = {}
-    for phase in relative.phase:
-        seen[phase] = seen.get(phase, 0) + 1
-        labels.append(phase if counts[phase] == 1 else f"{phase} {seen[phase]}")
+    labels = _numbered(list(relative.phase))
     windows: dict[str, list[pd.DataFrame]] = {label: [] for label in labels}
     for (move, mirrored, _), start in zip(group, starts, strict=True):
         data = items[move.recording].data
