@@ -104,3 +104,23 @@ def _map_file(folder: Path) -> str:
     path.write_text("defaults = false\n[channels]\n"
                     + "".join(f'"{k}" = "{v}"\n' for k, v in MAP.items()))
     return str(path)
+
+
+def test_robot_table_says_why_an_axis_has_no_lost_motion(tmp_path):
+    # Axis 2 has no arm-side encoder (it reads all zeros, as on axes 4-6 of the KUKA runs): the
+    # robot page's lost motion says "none (no AP)" there, not a number or "nan".
+    from funcnet.report.inspect import _axis_rows
+
+    t = np.arange(0, 4, 0.004)
+    rng = np.random.default_rng(5)
+    rp = np.vstack([10 * np.sin(np.pi * t / 4) ** 2, -6 * np.sin(np.pi * t / 2) ** 2])
+    mp = rp + 0.001 * rng.standard_normal(rp.shape)
+    ap = mp - 0.01 * np.gradient(rp, t, axis=1)
+    ap[1] = 0.0
+    tau = np.gradient(np.gradient(rp, t, axis=1), t, axis=1)
+    path = tmp_path / "no-ap.mat"
+    scipy.io.savemat(path, {"rec": {"t": t, "rp": rp, "ap": ap, "mp": mp, "tau": tau}})
+    found = inspect_robot(read_trace(path, channels=MAP), evidence=False, delay=5)
+    rows = _axis_rows(found).set_index("axis")["lost motion [arcmin]"]
+    assert rows[2] == "none (no AP)"
+    assert isinstance(rows[1], float)

@@ -371,11 +371,16 @@ def _axis_rows(ins: RobotInspection) -> pd.DataFrame:
                          "backlash": ins.axis_errors.get(axis, ""), "lost motion [arcmin]": None})
             continue
         result = one.backlash
-        lost = None if result is None or result.lost_motion is None else 60 * result.lost_motion
+        if result is None:
+            lost: float | str | None = None
+        elif result.lost_motion is None:  # say why, as the command line does, not "nan"
+            lost = f"none ({result.lost_motion_reason or 'no AP'})"
+        else:
+            lost = round(60 * result.lost_motion, 3)
         rows.append({
             "axis": axis, "moves": len(one.moves), "networks": len(one.networks),
             "backlash": result.message if result is not None else one.backlash_error,
-            "lost motion [arcmin]": None if lost is None else round(lost, 3),
+            "lost motion [arcmin]": lost,
         })
     return pd.DataFrame(rows)
 
