@@ -371,17 +371,12 @@ def _axis_rows(ins: RobotInspection) -> pd.DataFrame:
                          "backlash": ins.axis_errors.get(axis, ""), "lost motion [arcmin]": None})
             continue
         result = one.backlash
-        if result is None:
-            lost: float | str | None = None
-        elif result.lost_motion is None:  # say why, as the command line does, not "nan"
-            lost = f"none ({result.lost_motion_reason or 'no AP'})"
-        else:
-            lost = round(60 * result.lost_motion, 3)
+        lost: float | str | None = None if result is None else round(60 * result.lost_motion, 3) \
+            if result.lost_motion is not None else f"none ({result.lost_motion_reason or 'no AP'})"
         rows.append({
             "axis": axis, "moves": len(one.moves), "networks": len(one.networks),
             "backlash": result.message if result is not None else one.backlash_error,
-            "lost motion [arcmin]": lost,
-        })
+            "lost motion [arcmin]": lost})
     return pd.DataFrame(rows)
 
 
