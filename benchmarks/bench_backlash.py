@@ -359,8 +359,8 @@ def kuka_table() -> str:
     set-point's (stretches faster than 1 deg/s), the lost motion at each with its interval and
     ``traversed`` (also with the motor inertia of the runs' identification, ``para.J_mr`` times
     the gear ratio ``para.u``), the axis's lost motion, the plain least squares (MP - AP on a
-    constant, the torque and the direction; motor faster than 1 deg/s) and the same with the
-    motor speed, and the gear's fit."""
+    constant, the torque and the direction; motor faster than 1 deg/s), the same with the
+    motor speed and with AP read at the time shift that fits best, and the gear's fit."""
     import scipy.io
 
     from funcnet.diagnosis import diagnose_recording
@@ -368,9 +368,9 @@ def kuka_table() -> str:
     from funcnet.diagnosis.reversals import motor_side_recording
 
     lines = ["| run | axis | set-point changes | found | turn (s) | lost motion (arcmin) [95 %] "
-             "| traversed (with J_m) | axis lost_motion | plain LS | LS with speed | skew (ms) "
-             "| compliance (arcsec/N m) | reading |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
+             "| traversed (with J_m) | axis lost_motion | plain LS | LS with speed "
+             "| LS, encoders aligned (shift ms) | skew (ms) | compliance (arcsec/N m) | reading |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
     for run in ("A", "B"):
         path = ROOT.parent / "shared" / "data" / "kuka-kr300" / f"kr300-run-{run}.mat"
         mat = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)
@@ -386,22 +386,30 @@ def kuka_table() -> str:
             inertia = float(para.J_mr[axis - 1] * para.u[axis - 1] * np.pi / 180)
             moving = motor_side_recording(recording)
             plain = []
+            mp, ap = recording.data["MP"].to_numpy(), recording.data["AP"].to_numpy()
+            torque, vm = recording.data["AC"].to_numpy(), np.gradient(mp, t)
+            use = np.abs(vm) > 1.0
             for with_speed in (False, True):
-                mp, ap = recording.data["MP"].to_numpy(), recording.data["AP"].to_numpy()
-                torque, vm = recording.data["AC"].to_numpy(), np.gradient(mp, t)
-                use = np.abs(vm) > 1.0
                 x = np.column_stack([np.ones(use.sum()), torque[use]]
                                     + ([vm[use]] if with_speed else []) + [np.sign(vm[use])])
                 coef, *_ = np.linalg.lstsq(x, (mp - ap)[use], rcond=None)
                 plain.append(2 * coef[-1] * 60)
+            # the plain fit again, AP read at the time shift (+-8 ms) that leaves the least residual
+            fits = []
+            for shift in np.linspace(-8e-3, 8e-3, 321):
+                d = (mp - np.interp(t - shift, t, ap))[use]
+                coef, *_ = np.linalg.lstsq(x[:, [0, 1, 3]], d, rcond=None)
+                fits.append((float(np.sum((d - x[:, [0, 1, 3]] @ coef) ** 2)), shift, coef[-1]))
+            _, shift, half = min(fits)
+            aligned = f"{120 * half:+.2f} ({1e3 * shift:+.2f})"
             for i, r in enumerate(result.reversals):
                 with_j = torque_traversed(moving, r.change, motor_inertia=inertia)
                 head = (f"| {run} | {axis} | {expected} | {len(result.reversals)} "
                         if i == 0 else "| | | | ")  # fmt: skip
                 tail = (f"| {60 * result.lost_motion:+.2f} | {plain[0]:+.2f} | {plain[1]:+.2f} "
-                        f"| {1e3 * result.gear.skew:.2f} | {3600 * result.gear.compliance:.1f} "
+                        f"| {aligned} | {1e3 * result.gear.skew:.2f} | {3600 * result.gear.compliance:.1f} "
                         f"| {'none' if result.reading is None else result.reading['text']} |"
-                        if i == 0 else "| | | | | | |")  # fmt: skip
+                        if i == 0 else "| | | | | | | |")  # fmt: skip
                 lines.append(
                     f"{head}| {r.change.turn:.2f} | {60 * r.lost_motion:+.2f} "
                     f"[{60 * r.lost_motion_low:+.2f}, {60 * r.lost_motion_high:+.2f}] "
