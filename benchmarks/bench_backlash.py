@@ -407,7 +407,8 @@ def kuka_table() -> str:
                 head = (f"| {run} | {axis} | {expected} | {len(result.reversals)} "
                         if i == 0 else "| | | | ")  # fmt: skip
                 tail = (f"| {60 * result.lost_motion:+.2f} | {plain[0]:+.2f} | {plain[1]:+.2f} "
-                        f"| {aligned} | {1e3 * result.gear.skew:.2f} | {3600 * result.gear.compliance:.1f} "
+                        f"| {aligned} | {1e3 * result.gear.skew:.2f} "
+                        f"| {3600 * result.gear.compliance:.1f} "
                         f"| {'none' if result.reading is None else result.reading['text']} |"
                         if i == 0 else "| | | | | | | |")  # fmt: skip
                 lines.append(
