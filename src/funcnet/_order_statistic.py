@@ -290,3 +290,36 @@ def _pyunicorn_rank(rate: float, n_states: int | None, n_candidates: int) -> int
     if n_states is None:
         return index + 1
     return max(0, index + 1 - n_states)
+
+
+def _auto_candidates(n_states: int, theiler: int) -> int:
+    """Ordered candidate pairs ``|i - j| > theiler`` of an auto-recurrence of ``n_states``."""
+    return (n_states - theiler) * (n_states - theiler - 1)
+
+
+def _auto_rank(rate: float, n_states: int, theiler: int, pyunicorn: bool) -> int:
+    """Rank of an auto-recurrence's threshold among its ordered candidates, by the exact rule
+    or pyunicorn's (0: nothing recurrent, threshold 0).
+
+    Examples
+    --------
+    >>> _auto_rank(0.05, 231, 0, False), _auto_rank(0.05, 231, 0, True)
+    (2657, 2438)
+    """
+    if pyunicorn:
+        return _pyunicorn_rank(rate, n_states, n_states * n_states)
+    return _rank_from_rate(rate, _auto_candidates(n_states, theiler))
+
+
+def _cross_rank(rate: float, n_candidates: int, pyunicorn: bool) -> int:
+    """Rank of a cross-recurrence's threshold among its ``n_candidates`` pairs, by the exact
+    rule or pyunicorn's.
+
+    Examples
+    --------
+    >>> _cross_rank(0.05, 231 * 231, False), _cross_rank(0.05, 231 * 231, True)
+    (2669, 2669)
+    """
+    if pyunicorn:
+        return _pyunicorn_rank(rate, None, n_candidates)
+    return _rank_from_rate(rate, n_candidates)

@@ -35,7 +35,7 @@ import numpy as np
 
 from funcnet import _batch_kernels
 from funcnet._isrn_kernels import _METRIC_CODE
-from funcnet._order_statistic import _pyunicorn_rank, _rank_from_rate
+from funcnet._order_statistic import _auto_candidates, _auto_rank, _cross_rank
 from funcnet.embedding import MIN_STATES
 from funcnet.errors import FuncnetError, ParameterError, SignalError
 from funcnet.measures import CrossMeasures, _degenerate_reason, pairwise_cross_measures
@@ -227,15 +227,10 @@ def _ranks(p: NetworkParameters, n_states: np.ndarray,
     cross_rank = np.zeros(n, dtype=np.int64)
     for m in np.unique(n_states).tolist():
         at = n_states == m
-        candidates = (m - p.theiler) * (m - p.theiler - 1)
-        auto_candidates[at] = candidates
+        auto_candidates[at] = _auto_candidates(m, p.theiler)
         for s, rate in enumerate(rates):
-            auto_rank[at, s] = (
-                _pyunicorn_rank(rate, m, m * m) if pyunicorn else _rank_from_rate(rate, candidates)
-            )
-        cross_rank[at] = (
-            _pyunicorn_rank(p.cr, None, m * m) if pyunicorn else _rank_from_rate(p.cr, m * m)
-        )
+            auto_rank[at, s] = _auto_rank(rate, m, p.theiler, pyunicorn)
+        cross_rank[at] = _cross_rank(p.cr, m * m, pyunicorn)
     return auto_rank, auto_candidates, cross_rank, n_states.astype(np.int64) ** 2
 
 

@@ -58,7 +58,7 @@ from funcnet._isrn_kernels import (
     _cross_triangles_both,
     _transpose_packed,
 )
-from funcnet._order_statistic import _pyunicorn_rank, _rank_from_rate
+from funcnet._order_statistic import _auto_candidates, _auto_rank, _cross_rank
 from funcnet.embedding import MIN_STATES, signal_states
 from funcnet.errors import (
     DegenerateWarning,
@@ -197,9 +197,55 @@ def _degenerate_reason(
     return ""
 
 
-def _block_reason(label: str, block: PackedRecurrence) -> str:
-    """Why a block is degenerate (``""`` when it is not)."""
-    return _degenerate_reason(label, block.constant, block.eps, block.rate, block.target)
+# (constant, eps, achieved rate, target rate or None) of a block: what its reason is made of.
+_Block = tuple[bool, float, float, float | None]
+
+
+def _pair_measures(
+    measures: tuple[float, float, float, float],
+    blocks: tuple[_Block, _Block, _Block],
+    rate_exceeded: bool,
+    names: tuple[str, str],
+    n_states: tuple[int, int],
+    parameters: NetworkParameters | None,
+) -> CrossMeasures:
+    """The result of a pair from ``(c_xy, c_yx, t_xy, t_yx)`` and the numbers of its blocks
+    ``A_X``, ``A_Y``, ``CR_XY``: the differences, ``eps_ordered`` and the reasons."""
+    c_xy, c_yx, t_xy, t_yx = measures
+    (constant_x, eps_x, rate_x, target_x), (constant_y, eps_y, rate_y, target_y), (
+        constant_xy, eps_xy, rate_xy, target_xy) = blocks
+    x, y = names
+    reasons = [
+        reason
+        for reason in (
+            _degenerate_reason(f"signal {x}", constant_x, eps_x, rate_x, target_x),
+            _degenerate_reason(f"signal {y}", constant_y, eps_y, rate_y, target_y),
+            _degenerate_reason(f"cross-recurrence ({x}, {y})", constant_xy, eps_xy, rate_xy,
+                               target_xy),
+        )
+        if reason
+    ]
+    return CrossMeasures(
+        c_xy=c_xy,
+        c_yx=c_yx,
+        t_xy=t_xy,
+        t_yx=t_yx,
+        c_diff=c_xy - c_yx,
+        t_diff=t_xy - t_yx,
+        eps_x=eps_x,
+        eps_y=eps_y,
+        eps_xy=eps_xy,
+        achieved_rr_x=rate_x,
+        achieved_rr_y=rate_y,
+        achieved_cr=rate_xy,
+        eps_ordered=eps_xy < min(eps_x, eps_y),
+        rate_exceeded=rate_exceeded,
+        degenerate=bool(reasons),
+        degenerate_reason="; ".join(reasons),
+        m_x=n_states[0],
+        m_y=n_states[1],
+        parameters=parameters,
+    )
 
 
 def isrn_measures(
@@ -264,40 +310,13 @@ def isrn_measures(
             f"has shape {cr_xy.shape}, expected (M_x, M_y) = ({a_x.shape[0]}, {a_y.shape[0]})",
         )
     xy, yx = _cross_counts(a_x, a_y, cr_xy)
-    c_xy = float(_local_clustering(*xy).mean())
-    c_yx = float(_local_clustering(*yx).mean())
-    t_xy = _transitivity(*xy)
-    t_yx = _transitivity(*yx)
-    x, y = names
-    reasons = [
-        reason
-        for reason in (
-            _block_reason(f"signal {x}", a_x),
-            _block_reason(f"signal {y}", a_y),
-            _block_reason(f"cross-recurrence ({x}, {y})", cr_xy),
-        )
-        if reason
-    ]
-    return CrossMeasures(
-        c_xy=c_xy,
-        c_yx=c_yx,
-        t_xy=t_xy,
-        t_yx=t_yx,
-        c_diff=c_xy - c_yx,
-        t_diff=t_xy - t_yx,
-        eps_x=a_x.eps,
-        eps_y=a_y.eps,
-        eps_xy=cr_xy.eps,
-        achieved_rr_x=a_x.rate,
-        achieved_rr_y=a_y.rate,
-        achieved_cr=cr_xy.rate,
-        eps_ordered=cr_xy.eps < min(a_x.eps, a_y.eps),
-        rate_exceeded=a_x.rate_exceeded or a_y.rate_exceeded or cr_xy.rate_exceeded,
-        degenerate=bool(reasons),
-        degenerate_reason="; ".join(reasons),
-        m_x=a_x.shape[0],
-        m_y=a_y.shape[0],
-        parameters=parameters,
+    return _pair_measures(
+        (float(_local_clustering(*xy).mean()), float(_local_clustering(*yx).mean()),
+         _transitivity(*xy), _transitivity(*yx)),
+        ((a_x.constant, a_x.eps, a_x.rate, a_x.target), (a_y.constant, a_y.eps, a_y.rate,
+         a_y.target), (cr_xy.constant, cr_xy.eps, cr_xy.rate, cr_xy.target)),
+        a_x.rate_exceeded or a_y.rate_exceeded or cr_xy.rate_exceeded,
+        names, (a_x.shape[0], a_y.shape[0]), parameters,
     )
 
 
@@ -565,57 +584,26 @@ def _short_pair(x: Any, y: Any, p: NetworkParameters) -> CrossMeasures | None:
     if len(rates) != 2:
         return None
     pyunicorn = p.rule == "pyunicorn"
-    n_candidates = (m - p.theiler) * (m - p.theiler - 1)
-    if pyunicorn:
-        ranks = [_pyunicorn_rank(rate, m, m * m) for rate in rates]
-        rank_xy = _pyunicorn_rank(p.cr, None, m * m)
-    else:
-        ranks = [_rank_from_rate(rate, n_candidates) for rate in rates]
-        rank_xy = _rank_from_rate(p.cr, m * m)
+    # Ranks among the unordered candidates j > i + theiler (0: nothing recurrent).
+    rank_x, rank_y = ((_auto_rank(rate, m, p.theiler, pyunicorn) + 1) // 2 for rate in rates)
+    rank_xy = _cross_rank(p.cr, m * m, pyunicorn)
     (plain, eps_x, count_x, eps_y, count_y, eps_xy, count_xy, c_xy, c_yx, t_xy, t_yx,
      constant_x, constant_y) = _batch_kernels.pair_kernel(
         np.ascontiguousarray(x, dtype=np.float64), np.ascontiguousarray(y, dtype=np.float64),
         pyunicorn, p.dim, p.delay, _METRIC_CODE[p.metric], p.theiler, pyunicorn,
-        # Rank among the unordered candidates j > i + theiler (0: nothing recurrent).
-        (ranks[0] + 1) // 2, (ranks[1] + 1) // 2, rank_xy,
+        rank_x, rank_y, rank_xy,
     )
     if not plain:
         return None
-    rate_x, rate_y = count_x / n_candidates, count_y / n_candidates
-    rate_xy = count_xy / (m * m)
-    reasons = [
-        reason
-        for reason in (
-            _degenerate_reason("signal x", constant_x, eps_x, rate_x, rates[0]),
-            _degenerate_reason("signal y", constant_y, eps_y, rate_y, rates[1]),
-            _degenerate_reason("cross-recurrence (x, y)", False, eps_xy, rate_xy, p.cr),
-        )
-        if reason
-    ]
-    return CrossMeasures(
-        c_xy=c_xy,
-        c_yx=c_yx,
-        t_xy=t_xy,
-        t_yx=t_yx,
-        c_diff=c_xy - c_yx,
-        t_diff=t_xy - t_yx,
-        eps_x=eps_x,
-        eps_y=eps_y,
-        eps_xy=eps_xy,
-        achieved_rr_x=rate_x,
-        achieved_rr_y=rate_y,
-        achieved_cr=rate_xy,
-        eps_ordered=eps_xy < min(eps_x, eps_y),
+    n_candidates = _auto_candidates(m, p.theiler)
+    return _pair_measures(
+        (c_xy, c_yx, t_xy, t_yx),
+        ((constant_x, eps_x, count_x / n_candidates, rates[0]),
+         (constant_y, eps_y, count_y / n_candidates, rates[1]),
+         (False, eps_xy, count_xy / (m * m), p.cr)),
         # Recurrences come in symmetric pairs: an odd k always gives k + 1 without any tie.
-        rate_exceeded=(
-            count_x > 2 * ((ranks[0] + 1) // 2) or count_y > 2 * ((ranks[1] + 1) // 2)
-            or count_xy > rank_xy
-        ),
-        degenerate=bool(reasons),
-        degenerate_reason="; ".join(reasons),
-        m_x=m,
-        m_y=m,
-        parameters=p,
+        count_x > 2 * rank_x or count_y > 2 * rank_y or count_xy > rank_xy,
+        ("x", "y"), (m, m), p,
     )
 
 

@@ -84,7 +84,13 @@ from funcnet._isrn_kernels import (
     _transpose_packed,
     _unpack,
 )
-from funcnet._order_statistic import _key_bound, _pyunicorn_rank, _rank_from_rate, _rate_rows
+from funcnet._order_statistic import (
+    _auto_candidates,
+    _auto_rank,
+    _cross_rank,
+    _key_bound,
+    _rate_rows,
+)
 from funcnet.embedding import MIN_STATES, signal_states
 from funcnet.errors import ParameterError, SignalError
 from funcnet.parameters import (
@@ -366,14 +372,9 @@ def auto_recurrence(
             "theiler", f"{theiler} excludes every pair of the {n_states} states of {name}"
         )
     pyunicorn = p.rule == "pyunicorn"
-    n_candidates = (n_states - theiler) * (n_states - theiler - 1)
-    rank: int | None = None
-    if target is not None:
-        if pyunicorn:
-            # An index among the diagonal's zeros gives rank 0: eps = 0, nothing recurrent.
-            rank = _pyunicorn_rank(target, n_states, n_states * n_states)
-        else:
-            rank = _rank_from_rate(target, n_candidates)
+    n_candidates = _auto_candidates(n_states, theiler)
+    # pyunicorn's rank 0 (an index among the diagonal's zeros): eps = 0, nothing recurrent.
+    rank = None if target is None else _auto_rank(target, n_states, theiler, pyunicorn)
     threshold, rows, n_recurrent = _threshold_rows(
         states,
         states,
@@ -469,12 +470,7 @@ def cross_recurrence(
     _check_key_range((x_states, y_states), p.metric, f"signals {x_name} and {y_name}")
     n_candidates = x_states.shape[0] * y_states.shape[0]
     pyunicorn = p.rule == "pyunicorn"
-    rank: int | None = None
-    if target is not None:
-        if pyunicorn:
-            rank = _pyunicorn_rank(target, None, n_candidates)
-        else:
-            rank = _rank_from_rate(target, n_candidates)
+    rank = None if target is None else _cross_rank(target, n_candidates, pyunicorn)
     threshold, rows, n_recurrent = _threshold_rows(
         x_states,
         y_states,
