@@ -27,7 +27,7 @@ warnings).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -238,6 +238,20 @@ def _ranks(p: NetworkParameters, n_states: np.ndarray,
 # the engine
 
 
+def _block_size(n_signals: int, n_states: int) -> int:
+    """Windows per call of the kernel: their packed adjacencies (windows x signals x M x M / 64
+    words) stay within _BLOCK_BYTES (e.g. 80 windows of 5 signals at M = 800)."""
+    per_window = n_signals * n_states * ((n_states + 63) // 64) * 8
+    return max(1, min(_BLOCK, _BLOCK_BYTES // per_window))
+
+
+def _kernel(n_windows: int, n_pairs: int, n_signals: int) -> Callable[..., tuple[Any, ...]]:
+    """The batched kernel for a call on ``n_windows``: in the calling thread when it has fewer
+    than _PARALLEL_TASKS tasks of (window, signal) or (window, pair)."""
+    serial = n_windows * max(n_pairs, n_signals) < _PARALLEL_TASKS
+    return _batch_kernels.batch_kernel_serial if serial else _batch_kernels.batch_kernel
+
+
 def batch_pairs(
     values: Any,
     offsets: Any = None,
@@ -320,19 +334,13 @@ def batch_pairs(
 
     direct_ok = np.array([applies(int(n), p) for n in lengths]) & _plain_windows(table, starts, p)
     direct = np.flatnonzero(direct_ok)
-    # The packed adjacencies of a block (windows x signals x M x M / 64 words) stay within
-    # _BLOCK_BYTES (e.g. 80 windows of 5 signals at M = 800).
-    largest = int(n_states[direct].max()) if direct.size else 1
-    per_window = n_signals * largest * ((largest + 63) // 64) * 8
-    block_size = max(1, min(_BLOCK, _BLOCK_BYTES // per_window))
+    block_size = _block_size(n_signals, int(n_states[direct].max()) if direct.size else 1)
     pyunicorn = p.rule == "pyunicorn"
     for first in range(0, direct.size, block_size):
         block = direct[first : first + block_size]
         norm_offsets = np.zeros(block.size + 1, dtype=np.int64)
         np.cumsum(lengths[block], out=norm_offsets[1:])
-        serial = block.size * max(n_pairs, n_signals) < _PARALLEL_TASKS
-        kernel = _batch_kernels.batch_kernel_serial if serial else _batch_kernels.batch_kernel
-        out = kernel(
+        out = _kernel(block.size, n_pairs, n_signals)(
             table, starts[block], stops[block], norm_offsets,
             _batch_kernels.NORMALIZE_CODE[p.normalize],
             pyunicorn, p.dim, p.delay, _METRIC_CODE[p.metric], p.theiler, pyunicorn,

@@ -76,7 +76,7 @@ import numpy as np
 from funcnet import _batch_kernels
 from funcnet._batch_kernels import DIRECT_MAX_STATES
 from funcnet._isrn_kernels import _METRIC_CODE
-from funcnet.batch import _BLOCK_BYTES, _PARALLEL_TASKS, _ranks
+from funcnet.batch import _block_size, _kernel, _ranks
 from funcnet.embedding import MIN_STATES
 from funcnet.errors import ParameterError
 from funcnet.measures import isrn_measures
@@ -362,10 +362,7 @@ def _batched(states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
     auto_rank, _, cross_rank, _ = _ranks(p, n_states, n_signals)
     pyunicorn = p.rule == "pyunicorn"
     out = np.empty((len(pairs), n_resamples, 2), dtype=np.float64)
-    # The packed adjacencies of a block (resamples x signals x n x n / 64 words) stay within
-    # the engine's budget.
-    per_window = n_signals * n * ((n + 63) // 64) * 8
-    block = max(1, min(n_resamples, _BLOCK_BYTES // per_window))
+    block = _block_size(n_signals, n)
     for first in range(0, n_resamples, block):
         kept = chosen[first:first + block]
         table = np.empty((kept.shape[0] * rows, n_signals), dtype=np.float64)
@@ -376,9 +373,7 @@ def _batched(states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
         if not (np.abs(table) < 1e38).all():  # NaN compares False too
             return None
         bounds = np.arange(kept.shape[0] + 1, dtype=np.int64) * rows
-        serial = kept.shape[0] * len(pairs) < _PARALLEL_TASKS
-        kernel = _batch_kernels.batch_kernel_serial if serial else _batch_kernels.batch_kernel
-        measures = kernel(
+        measures = _kernel(kept.shape[0], len(pairs), n_signals)(
             table, bounds[:-1], bounds[1:], bounds, 0, False, width, n, _METRIC_CODE[p.metric],
             p.theiler, pyunicorn,
             np.ascontiguousarray(np.repeat((auto_rank + 1) // 2, kept.shape[0], axis=0)),
