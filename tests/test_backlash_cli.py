@@ -113,3 +113,49 @@ def test_the_sweep_report_on_bad_input_is_one_line_and_exit_2(tmp_path, args):
     result = runner.invoke(app, ["backlash-report", *args])
     assert result.exit_code == 2
     assert result.output.strip().count("\n") == 0 and "error" in result.output
+
+
+def test_a_continuous_sweep_is_reported_with_its_lost_motion_against_the_truth(tmp_path):
+    """The continuous sweep's trials (smooth turns, with and without a load) go through
+    `simulate` and `backlash-report`: the manifest carries `arm_load` and `profile`, the rest
+    reversals' indicators are absent there (no crash), and the lost-motion table's shares are
+    those counted here from the indicator table."""
+    import pandas as pd
+
+    from funcnet.robot.sim.plan import continuous_sweep_plan, write_plan
+
+    plan = continuous_sweep_plan(backlash_arcmin=(0, 2), arm_loads=(0.0, 1000.0), speeds=(175,),
+                                 tcps=(1.6,), friction_scales=(1.0,))  # fmt: skip
+    manifest = pd.read_csv(write_plan(plan, tmp_path / "traces"))
+    assert sorted(set(manifest["arm_load"])) == [0.0, 1000.0]
+    assert set(manifest["profile"]) == {"smooth"}
+    out = tmp_path / "report" / "cs.html"
+    result = runner.invoke(app, ["backlash-report", str(tmp_path / "traces"), "-o", str(out),
+                                 "--no-fn", "--resamples", "50", "-q"])  # fmt: skip
+    assert result.exit_code == 0, result.output
+    assert "warning" not in result.output
+    table = pd.read_csv(out.parent / "cs-indicators.csv")
+    assert table["motor_hysteresis"].isna().all() and table["lost_motion"].notna().all()
+    page = out.read_text()
+    assert 'id="lost-motion"' in page and "smooth" in page
+    # independent count: the unloaded 2-arcmin trial crosses its dead zone, the others do not
+    crossed = (table["backlash_arcmin"] > 0) & (table["arm_load"] == 0)
+    assert (table["true_lost_motion"][crossed] * 60 > 1.0).all()
+    assert (table["true_lost_motion"][~crossed].abs() * 60 < 0.05).all()
+    step = 360 / 2**22
+    for load in (0.0, 1000.0):
+        part = table[table["arm_load"] == load]
+        error = part["lost_motion"] - part["true_lost_motion"]
+        within = (error.abs() <= 2 * step)[~crossed[part.index]].mean()
+        assert f"{within:.1%}" in page.split('id="lost-motion"')[1].split("</table>")[0]
+
+
+def test_an_existing_plan_keeps_its_manifest_columns(tmp_path):
+    import pandas as pd
+
+    from funcnet.robot.sim import MANIFEST_COLUMNS, OPTIONAL_MANIFEST_COLUMNS, Trial
+    from funcnet.robot.sim.plan import write_plan
+
+    manifest = write_plan([Trial("q", "g", speed=350, tcp=1.2, step=1)], tmp_path)
+    assert list(pd.read_csv(manifest).columns) == list(MANIFEST_COLUMNS)
+    assert not set(OPTIONAL_MANIFEST_COLUMNS) & set(MANIFEST_COLUMNS)

@@ -10,7 +10,11 @@ an indicator's window edge by one tick: ``vibration`` then differs slightly, the
 not). Trials are spread over spawned worker processes in chunks; each worker loads the compiled
 kernels once. :func:`score_indicators` gives, per speed and noise level, detection AUCs and
 Spearman's rho with bootstrap intervals; :func:`calibration` the per-backlash quantiles that
-:func:`funcnet.diagnosis.diagnose_backlash` reads a score on.
+:func:`funcnet.diagnosis.diagnose_backlash` reads a score on; :func:`lost_motion_accuracy` the
+two-encoder lost motion against its truth.
+
+Length: over 600 lines because running the sweep and scoring it against the truth share the
+indicator table's columns.
 """
 
 from __future__ import annotations
@@ -33,7 +37,12 @@ from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recor
 from funcnet.errors import ParameterError, TraceError
 from funcnet.robot.channels import SignalInfo
 from funcnet.robot.recording import Recording, read_trace
-from funcnet.robot.sim.axis import SimulatedTrial, simulate_trial
+from funcnet.robot.sim.axis import (
+    AxisParameters,
+    SimulatedTrial,
+    real_axis_parameters,
+    simulate_trial,
+)
 from funcnet.robot.sim.plan import ARCMIN
 from funcnet.robot.sim.trial import Trial
 
@@ -48,6 +57,7 @@ __all__ = [
     "run_sweep",
     "score_indicators",
     "calibration",
+    "lost_motion_accuracy",
     "CONTRASTS",
 ]
 
@@ -191,6 +201,9 @@ def trace_indicators(
     row["true_lost_motion"] = float(truth["lost_motion"])
     for name in ("arm_model", "position_feedback", "sensors"):
         row.setdefault(name, truth.get(name, ""))
+    # a manifest has these only when a trial sets them (the continuous sweep)
+    row["arm_load"] = float(truth.get("arm_load") or 0.0)
+    row["profile"] = str(truth.get("profile") or "step")
     rec = read_trace(path)
     rp = rec.data["RP"].to_numpy(dtype=np.float64)
     row["peak_speed"] = round(float(np.nanmax(np.abs(np.diff(rp))) / rec.sample_period * 60), 1)
@@ -366,6 +379,8 @@ def _auc(scores: np.ndarray, positive: np.ndarray, negative: np.ndarray) -> np.n
 
 
 def _spearman(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    if x.shape[-1] == 0:  # an indicator not computed in this group (a continuous turn)
+        return np.full(x.shape[:-1], math.nan)
     rx, ry = rankdata(x, axis=-1), rankdata(y, axis=-1)
     rx = rx - rx.mean(axis=-1, keepdims=True)
     ry = ry - ry.mean(axis=-1, keepdims=True)
@@ -555,3 +570,83 @@ def with_contact_score(
             for name in CONTACT_FEATURES
         )
     return table.assign(motor_contact=score)
+
+
+def lost_motion_accuracy(table: pd.DataFrame) -> pd.DataFrame:
+    """The two-encoder ``lost_motion`` against its truth, per kind of motion, load and speed.
+
+    The validation of the sweep's targets. A trial whose truth is the dead zone crossed
+    (backlash, and a true lost motion above half its width) is judged by 5 % of the truth; every
+    other (no backlash; a load or the arm's inertia keeping the gear on one flank, the truth
+    then about nothing) by two arm-encoder steps (the step of the trial's sensors: ``"real"``
+    the 840D sl trace's encoder, else the simulator's default). A missing estimate is a miss.
+
+    Parameters
+    ----------
+    table : DataFrame
+        A sweep's indicator table (:func:`run_sweep`, :func:`folder_indicators`): ``speed``,
+        ``backlash_arcmin``, ``lost_motion`` and ``true_lost_motion`` (deg); ``profile``,
+        ``arm_load`` and ``sensors`` when present.
+
+    Returns
+    -------
+    DataFrame
+        One row per (``profile``, ``arm_load``, ``speed``) present: ``n``; ``crossed`` (trials
+        judged by 5 %), ``within_5_percent`` (their share), ``median_error_percent`` (signed);
+        ``not_crossed``, ``within_2_steps``, ``median_error_steps`` (signed); NaN where a group
+        has no such trial.
+
+    Raises
+    ------
+    ParameterError
+        A column the comparison needs is missing.
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"speed": [35.0] * 3, "backlash_arcmin": [0.0, 1.0, 2.0],
+    ...                   "lost_motion": [0.0, 1.02 / 60, 1.8 / 60],
+    ...                   "true_lost_motion": [0.0, 1 / 60, 2 / 60]})
+    >>> row = lost_motion_accuracy(t).iloc[0]
+    >>> int(row["crossed"]), float(row["within_5_percent"]), float(row["within_2_steps"])
+    (2, 0.5, 1.0)
+    """
+    needed = ("speed", "backlash_arcmin", "lost_motion", "true_lost_motion")
+    missing = [c for c in needed if c not in table.columns]
+    if missing:
+        raise ParameterError.of("table", f"has no column(s) {missing}")
+    table = table.assign(
+        profile=table["profile"] if "profile" in table else "step",
+        arm_load=table["arm_load"] if "arm_load" in table else 0.0,
+    )
+    counts = {"real": real_axis_parameters().arm_encoder_counts}
+    default = AxisParameters().arm_encoder_counts
+    sensors = table["sensors"] if "sensors" in table else pd.Series("", index=table.index)
+    step = 360.0 / sensors.map(lambda s: counts.get(s, default)).astype(float)
+    truth = table["true_lost_motion"]
+    error = table["lost_motion"] - truth
+    crossed = (table["backlash_arcmin"] > 0) & (truth > 0.5 * table["backlash_arcmin"] * ARCMIN)
+    rows = []
+    for key, part in table.groupby(["profile", "arm_load", "speed"], sort=True):
+        judged = part.index[crossed[part.index]]
+        other = part.index[~crossed[part.index]]
+        relative = (error[judged] / truth[judged]).to_numpy()
+        steps = (error[other] / step[other]).to_numpy()
+        rows.append({
+            "profile": key[0], "arm_load": key[1], "speed": key[2], "n": len(part),
+            "crossed": len(judged),
+            "within_5_percent": _share(np.abs(relative) <= 0.05),
+            "median_error_percent": 100 * _median(relative),
+            "not_crossed": len(other),
+            "within_2_steps": _share(np.abs(steps) <= 2),
+            "median_error_steps": _median(steps),
+        })  # fmt: skip
+    return pd.DataFrame(rows)
+
+
+def _share(hits: np.ndarray) -> float:
+    return float(hits.mean()) if hits.size else math.nan
+
+
+def _median(values: np.ndarray) -> float:
+    finite = values[np.isfinite(values)]
+    return float(np.median(finite)) if finite.size else math.nan

@@ -27,7 +27,7 @@ import pandas as pd
 from funcnet._io import write_text_atomic
 from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE, SCORE, load_calibration
 from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL
-from funcnet.diagnosis.sweep import score_indicators, with_contact_score
+from funcnet.diagnosis.sweep import lost_motion_accuracy, score_indicators, with_contact_score
 from funcnet.errors import ParameterError
 from funcnet.report.html import contents, escape, figure_html, page
 from funcnet.report.html import table as html_table
@@ -247,6 +247,29 @@ def _reading(table: pd.DataFrame, scores: pd.DataFrame, score: str, best_fn: str
     return "<ul>" + "".join(f"<li>{item}</li>" for item in items) + "</ul>"
 
 
+def _lost_motion_html(table: pd.DataFrame) -> str:
+    """The two-encoder lost motion's accuracy per motion, load and speed (``step``: a rest at
+    the turn; ``smooth``: the reversal error at turns in continuous motion)."""
+    if "true_lost_motion" not in table or not np.isfinite(table["lost_motion"]).any():
+        return "<p>Not computed (no AP).</p>"
+    accuracy = lost_motion_accuracy(table)
+    shown = accuracy.assign(
+        within_5_percent=[f"{v:.1%}" if math.isfinite(v) else "-"
+                          for v in accuracy["within_5_percent"]],
+        within_2_steps=[f"{v:.1%}" if math.isfinite(v) else "-"
+                        for v in accuracy["within_2_steps"]],
+    ).round({"median_error_percent": 2, "median_error_steps": 2})  # fmt: skip
+    return ("<p>Where the truth is the dead zone crossed (<code>crossed</code>: backlash, and a "
+            "true lost motion above half its width) the share of trials whose "
+            "<code>lost_motion</code> lies within 5 % of it; elsewhere (no backlash, or the gear "
+            "kept on one flank by a load or the arm's inertia: a truth of about nothing) within "
+            "two arm-encoder steps. A trial without an estimate counts as a miss. At a "
+            "continuous turn (<code>smooth</code>) the truth is the step of the gear's torsion "
+            "that the gear torque does not explain, which the motor current only approximates "
+            "(docs/backlash.md, section 5.1).</p>"
+            + html_table(shown))
+
+
 def _signature_rates(table: pd.DataFrame) -> pd.DataFrame:
     if "signature" not in table or not np.isfinite(table["signature"].to_numpy(float)).any():
         return pd.DataFrame(columns=["speed", "backlash_arcmin", "trials", "signature"])
@@ -286,7 +309,10 @@ def _figures(table: pd.DataFrame, scores: pd.DataFrame, score: str, best_fn: str
             truth = part["backlash_arcmin"].to_numpy(float)
             keep = (truth >= 0.5 - 1e-9) | (truth <= 1e-9)
             for name in drawn:
-                fpr, tpr = roc_curve(part[name].to_numpy(float)[keep], truth[keep] >= 0.5 - 1e-9)
+                values = part[name].to_numpy(float)[keep]
+                if not np.isfinite(values).any():  # not computed here (a continuous turn)
+                    continue
+                fpr, tpr = roc_curve(values, truth[keep] >= 0.5 - 1e-9)
                 style = "-" if name in (score, best_fn) else "--"
                 ax.plot(fpr, tpr, style, lw=2 if name == score else 1, label=name)
             ax.plot([0, 1], [0, 1], color="grey", lw=0.5)
@@ -363,6 +389,7 @@ def write_sweep_report(
     shown = scores[scores["indicator"].isin(
         [score, *PHYSICAL, MOTOR_LOOP_SCORE, *([best_fn] if best_fn else [])])]  # fmt: skip
     sections = [("reading", "Reading"), ("scores", "Scores"), ("figures", "Figures"),
+                ("lost-motion", "Lost motion against its truth"),
                 ("signature", "The paper's signature"), ("all", "Every indicator")]  # fmt: skip
     body = [
         "<h1>Backlash sweep: indicators against the true backlash</h1>",
@@ -379,6 +406,8 @@ def write_sweep_report(
         _score_table(shown, score),
         '<h2 id="figures">Figures</h2>',
         *(html for html, _ in figures),
+        '<h2 id="lost-motion">Lost motion against its truth</h2>',
+        _lost_motion_html(table),
         '<h2 id="signature">The paper\'s signature</h2>',
         "<p>Reversal windows (nodes RP, AP, MP, V, RC, AC) in which V has a directed edge to "
         "every other node and MP -> AP -> RP, per speed and backlash width.</p>",

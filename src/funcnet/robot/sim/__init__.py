@@ -32,6 +32,7 @@ _EXPORTS = {
     "read_plan": "funcnet.robot.sim.plan",
     "write_plan": "funcnet.robot.sim.plan",
     "MANIFEST_COLUMNS": "funcnet.robot.sim.plan",
+    "OPTIONAL_MANIFEST_COLUMNS": "funcnet.robot.sim.plan",
     "real_axis_parameters": "funcnet.robot.sim.axis",
     "backlash_sweep_plan": "funcnet.robot.sim.plan",
     "continuous_sweep_plan": "funcnet.robot.sim.plan",

@@ -90,6 +90,7 @@ __all__ = [
     "read_plan",
     "write_plan",
     "MANIFEST_COLUMNS",
+    "OPTIONAL_MANIFEST_COLUMNS",
     "ARCMIN",
     "SWEEP_GRID",
 ]
@@ -128,6 +129,11 @@ MANIFEST_COLUMNS = (
     "fingerprint",
     "sha256",
 )
+
+#: Columns ``manifest.csv`` gains, before ``fingerprint``, only when a trial of the plan sets
+#: them (the continuous sweep's ``arm_load`` and ``profile``): the manifests of the existing
+#: plans keep their bytes.
+OPTIONAL_MANIFEST_COLUMNS = ("arm_load", "profile")
 
 #: 1 arcmin in degrees: plans and manifests give ``backlash`` in degrees (full dead-zone width).
 ARCMIN = 1.0 / 60.0
@@ -521,6 +527,8 @@ def _simulate_and_write(
         "sensors": trial.sensors or "paper",
         "arm_model": p.arm_model,
         "position_feedback": p.position_feedback,
+        "arm_load": p.arm_load,
+        "profile": trial.profile or "step",
     }
     row.update({k: sim.truth[k] for k in MANIFEST_COLUMNS if k in sim.truth and k not in row})
     row["fingerprint"] = _fingerprint(trial, p, seed)
@@ -572,7 +580,8 @@ def write_plan(
     Path
         The manifest, ``out_dir / "manifest.csv"``: one row per trial in the given order with
         the columns :data:`MANIFEST_COLUMNS` (parameters in effect and ground truth: backlash,
-        lost motion at the reversal, breakaway time, ...; NaN where a trial has none).
+        lost motion at the reversal, breakaway time, ...; NaN where a trial has none), and
+        :data:`OPTIONAL_MANIFEST_COLUMNS` when a trial sets them.
 
     Raises
     ------
@@ -614,7 +623,8 @@ def write_plan(
     for trial in trials:
         old = previous.get(trial.name)
         trial_seed = seed if trial.seed is None else trial.seed
-        fingerprint = _fingerprint(trial, effective_parameters(trial, params), trial_seed)
+        effective = effective_parameters(trial, params)
+        fingerprint = _fingerprint(trial, effective, trial_seed)
         target = out / f"{trial.name}.xml"
         if (
             old
@@ -623,7 +633,9 @@ def write_plan(
             and target.is_file()
             and old.get("sha256") == file_sha256(target)
         ):
-            rows[trial.name] = old
+            # a manifest written before the optional columns existed
+            rows[trial.name] = {"arm_load": effective.arm_load,
+                                "profile": trial.profile or "step", **old}  # fmt: skip
         else:
             todo.append(trial)
     total, done = len(trials), 0
@@ -648,9 +660,14 @@ def write_plan(
             done += 1
             if progress:
                 progress(done, total, trial.name)
+    columns = list(MANIFEST_COLUMNS)
+    if any(float(r.get("arm_load") or 0) != 0 or r.get("profile", "step") not in ("step", "")
+           for r in rows.values()):  # fmt: skip
+        at = columns.index("fingerprint")
+        columns[at:at] = OPTIONAL_MANIFEST_COLUMNS
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(MANIFEST_COLUMNS)
+    writer.writerow(columns)
     for name in names:
-        writer.writerow([_cell(rows[name][column]) for column in MANIFEST_COLUMNS])
+        writer.writerow([_cell(rows[name].get(column, "")) for column in columns])
     return write_text_atomic(manifest, buffer.getvalue())
