@@ -62,6 +62,7 @@ def test_inspect_real_trace_end_to_end(real_report, tmp_path):
     assert "3 time(s)" in text  # three moves in the real trace
     assert "lost motion" in text and "arcsec" in text
     assert "Reading an arrow" in text
+    assert "Values are missing" not in text and "a gap" not in text  # the trace has none
     for label in ("early spin-up 1", "cruise 2", "braking 3"):
         assert label in text
     shown = text[:text.index('id="parameters"')]  # provenance records the command as typed

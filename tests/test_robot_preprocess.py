@@ -10,6 +10,7 @@ from funcnet.errors import ChannelError, ParameterError, SignalError, WindowErro
 from funcnet.robot.preprocess import (
     add_derived_signals,
     resample,
+    segment_velocity,
     staircase_signals,
     trim,
     velocity,
@@ -65,6 +66,28 @@ def test_velocity_of_an_ipo_staircase_spans_one_step():
     raw_central = (ramp[2:] - ramp[:-2]) / (2 * 0.002)
     np.testing.assert_allclose(raw_central, 1 / 0.004)
     np.testing.assert_allclose(velocity(ramp, 0.002)[2:-2], 1 / 0.004)
+
+
+def test_velocity_is_taken_within_each_segment_of_a_recording_with_gaps():
+    rng = np.random.default_rng(4)
+    x = np.cumsum(rng.normal(size=30))
+    x[10:13] = np.nan  # a gap of three ticks; a segment of one tick (20) between two gaps
+    x[19] = x[21] = np.nan
+    t = np.arange(30) * 0.002
+    data = pd.DataFrame({"AP": x}, index=pd.Index(t.round(9), name="time"))
+    gaps = ((0.02, 0.026), (0.038, 0.04), (0.042, 0.044))
+    rec = Recording(data, {}, {"AP": SignalInfo("AP", "posn", None, 0.002)},
+                    sample_period=0.002, gaps=gaps)
+    v = segment_velocity(rec, x)
+    for first, stop in ((0, 10), (13, 19), (22, 30)):  # Eq. 11-12 on each segment alone
+        np.testing.assert_allclose(v[first:stop], velocity_by_hand(list(x[first:stop]), 0.002),
+                                   rtol=1e-12)
+    assert np.isnan(v[[10, 11, 12, 19, 20, 21]]).all()  # the gaps, and one tick: no speed
+    # V of add_derived_signals is the same; without gaps, velocity as before
+    np.testing.assert_array_equal(add_derived_signals(rec, ["V"]).data["V"], v)
+    whole = Recording(data.fillna(0.0), {}, rec.signals, sample_period=0.002)
+    np.testing.assert_array_equal(segment_velocity(whole, whole.data["AP"].to_numpy()),
+                                  velocity(whole.data["AP"].to_numpy(), 0.002))
 
 
 def test_velocity_rejects_bad_input():

@@ -2,6 +2,10 @@
 first (times, directions and the direction changes within, distance, peak speeds and currents,
 following error).
 
+A recording with gaps (missing values: :attr:`funcnet.robot.Recording.gaps`) is read segment by
+segment (:func:`segment_phases`): no phase and no move spans a gap, and a move that a gap
+interrupts is two moves, each marked as cut by the gap.
+
 References
 ----------
 .. [1] El Dabett, Hansen & Geier, "Functional network analysis of robot dynamics", section 4
@@ -16,11 +20,58 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from funcnet.robot import Recording
+from funcnet.robot import Recording, detect_phases
 from funcnet.robot.phases import Turn, direction_changes
-from funcnet.robot.preprocess import velocity
+from funcnet.robot.preprocess import segment_velocity
 
-__all__ = ["numbered_moves", "motion_summary"]
+__all__ = ["numbered_moves", "motion_summary", "segment_phases"]
+
+
+def segment_phases(recording: Recording) -> tuple[pd.DataFrame, tuple[Turn, ...]]:
+    """The phases and the set-point's direction changes of a recording, segment by segment.
+
+    Parameters
+    ----------
+    recording : Recording
+        With RP; its :attr:`~funcnet.robot.Recording.gaps` split it into segments.
+
+    Returns
+    -------
+    phases : pandas.DataFrame
+        :func:`numbered_moves` of :func:`funcnet.robot.detect_phases` of each segment, in time
+        order: the gaps are not covered, and a segment of one tick (no speed to read) has no
+        row. Without gaps: the phases of the whole recording.
+    turns : tuple of Turn
+        :func:`funcnet.robot.direction_changes` of each segment.
+
+    Examples
+    --------
+    >>> from funcnet.robot import SignalInfo
+    >>> t = np.arange(0, 4, 0.002).round(9)
+    >>> rp = 10 * (1 - np.cos(np.pi * t / 2))  # out and back, a gap at 1.5-1.6 s
+    >>> rp[(t >= 1.5) & (t < 1.6)] = np.nan
+    >>> rec = Recording(pd.DataFrame({"RP": rp}, index=pd.Index(t, name="time")), {},
+    ...                 {"RP": SignalInfo("RP", "posn", None, 0.002)}, gaps=((1.5, 1.6),))
+    >>> phases, turns = segment_phases(rec)
+    >>> phases.groupby("move")[["start", "stop"]].agg({"start": "min", "stop": "max"})
+          start  stop
+    move
+    1       0.0   1.5
+    2       1.6   4.0
+    >>> [round(turn.time, 2) for turn in turns]
+    [2.0]
+    """
+    parts = ([recording] if not recording.gaps else
+             [recording.window(a, b) for a, b in recording.segments])
+    tables, turns = [], []
+    for part in parts:
+        if len(part.data) < 2:
+            continue
+        tables.append(detect_phases(part))
+        turns += direction_changes(part)
+    # every segment a tick long: the whole recording's error names the file and the gap
+    tables = tables or [detect_phases(recording)]
+    return numbered_moves(pd.concat(tables, ignore_index=True)), tuple(turns)
 
 
 def numbered_moves(phases: pd.DataFrame) -> pd.DataFrame:
@@ -35,7 +86,8 @@ def numbered_moves(phases: pd.DataFrame) -> pd.DataFrame:
     -------
     pandas.DataFrame
         ``phases`` with ``move`` (consecutive non-standstill rows form one move, numbered from
-        1; 0 for standstill) and ``duration`` (seconds, rounded to the microsecond).
+        1; 0 for standstill; a row that does not start where the one before stops, after a gap,
+        starts a new move) and ``duration`` (seconds, rounded to the microsecond).
 
     Examples
     --------
@@ -45,7 +97,9 @@ def numbered_moves(phases: pd.DataFrame) -> pd.DataFrame:
     [0, 1, 1, 0]
     """
     moving = (phases["phase"] != "standstill").to_numpy()
-    starts = moving & ~np.concatenate([[False], moving[:-1]])
+    after_gap = np.concatenate(
+        [[False], phases["start"].to_numpy()[1:] != phases["stop"].to_numpy()[:-1]])
+    starts = moving & ~(np.concatenate([[False], moving[:-1]]) & ~after_gap)
     move = np.where(moving, np.cumsum(starts), 0)
     return phases.assign(move=move, duration=(phases["stop"] - phases["start"]).round(6))
 
@@ -72,7 +126,7 @@ def motion_summary(
         :func:`numbered_moves` of :func:`funcnet.robot.detect_phases`.
     turns : sequence of Turn, optional
         The set-point's direction changes; default :func:`funcnet.robot.direction_changes` of
-        ``recording``.
+        ``recording`` (of each segment: :func:`segment_phases`).
 
     Returns
     -------
@@ -82,6 +136,9 @@ def motion_summary(
         ``direction changes`` (within the move), ``distance`` (net), ``peak speed`` (set-point,
         unit/s, Eq. 11-12), ``peak V`` (arm side), ``peak |AC|``, ``peak |FE|`` (RP - AP),
         ``final |FE|`` (at the move's end); columns whose signal is missing are left out.
+        A recording with gaps adds ``cut by a gap``: the gap (``"3.5-3.8 s"``) the move starts
+        or stops at, its distance and peaks then only those of the part recorded ("" for a move
+        that no gap touches).
 
     Examples
     --------
@@ -109,11 +166,11 @@ def motion_summary(
     0        +−                  1
     """
     if turns is None:
-        turns = direction_changes(recording)
+        turns = segment_phases(recording)[1] if recording.gaps else direction_changes(recording)
     data = recording.data
     t = data.index.to_numpy(dtype=float)
     rp = data["RP"].to_numpy(dtype=float)
-    set_speed = np.abs(velocity(rp, recording.sample_period))
+    set_speed = np.abs(segment_velocity(recording, rp))
     rows = []
     for move, group in phases[phases["move"] > 0].groupby("move"):
         start, stop = float(group["start"].min()), float(group["stop"].max())
@@ -137,5 +194,10 @@ def motion_summary(
             fe = rp - data["AP"].to_numpy(dtype=float)
             row["peak |FE|"] = _peak(fe[inside])
             row["final |FE|"] = _peak(fe[last:last + 1])
+        if recording.gaps:
+            row["cut by a gap"] = ", ".join(
+                f"{a:g}-{b:g} s" for a, b in recording.gaps
+                if abs(stop - a) < recording.sample_period / 2
+                or abs(start - b) < recording.sample_period / 2)
         rows.append(row)
     return pd.DataFrame(rows)

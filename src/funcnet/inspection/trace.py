@@ -11,7 +11,9 @@ IPO positions on the 2 ms servo grid) interpolated so that no node is a staircas
 (:func:`funcnet.robot.load.prepare_recording`), signals constant in a window left out of that
 window, and the evidence columns of :func:`funcnet.pipeline.window_evidence`. A window too short
 for its network, or for a part of its evidence, is left out of that part and listed in
-:attr:`TraceInspection.failures`: it never stops the inspection.
+:attr:`TraceInspection.failures`: it never stops the inspection. A recording with gaps (missing
+values) is read segment by segment (:func:`~funcnet.inspection.motion.segment_phases`): no
+phase, move or window spans a gap, and :attr:`TraceInspection.gaps` says where they are.
 
 References
 ----------
@@ -30,14 +32,14 @@ from typing import Any
 import pandas as pd
 
 from funcnet.errors import FuncnetError
-from funcnet.inspection.motion import motion_summary, numbered_moves
+from funcnet.inspection.motion import motion_summary, segment_phases
 from funcnet.network import FunctionalNetwork
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.parameters import NetworkParameters, resolve
 from funcnet.pipeline import WindowFailure, window_evidence, window_networks, window_warnings
-from funcnet.robot import PAPER_NODES, Recording, Window, detect_phases, phase_windows
+from funcnet.robot import PAPER_NODES, Recording, Window, phase_windows
 from funcnet.robot.load import prepare_recording
-from funcnet.robot.phases import Turn, direction_changes
+from funcnet.robot.phases import Turn
 from funcnet.robot.preprocess import DERIVED_SIGNALS, staircase_signals
 
 __all__ = ["TraceInspection", "inspect_recording", "DETRENDED_NODES"]
@@ -62,11 +64,18 @@ class TraceInspection:
         The trace's file (as given) or ``"<recording>"``.
     duration, sample_period : float
         Seconds.
+    gaps : tuple of (float, float)
+        The spans ``[start, stop)`` (seconds) where values are missing
+        (:attr:`funcnet.robot.Recording.gaps`); () when none.
+    segments : tuple of (float, float)
+        The spans between the gaps (:attr:`funcnet.robot.Recording.segments`): no phase, move
+        or window spans a gap.
     signals : tuple of str
         The nodes of the networks.
     phases : pandas.DataFrame
-        :func:`funcnet.robot.detect_phases` with ``move`` (0 for standstill, else the move's
-        number) and ``duration`` (:func:`~funcnet.inspection.motion.numbered_moves`).
+        :func:`funcnet.robot.detect_phases` of each segment with ``move`` (0 for standstill,
+        else the move's number) and ``duration``
+        (:func:`~funcnet.inspection.motion.segment_phases`).
     moves : pandas.DataFrame
         :func:`~funcnet.inspection.motion.motion_summary`: one row per move.
     turns : tuple of Turn
@@ -101,6 +110,8 @@ class TraceInspection:
     source: str
     duration: float
     sample_period: float
+    gaps: tuple[tuple[float, float], ...]
+    segments: tuple[tuple[float, float], ...]
     signals: tuple[str, ...]
     phases: pd.DataFrame
     moves: pd.DataFrame
@@ -225,8 +236,7 @@ def inspect_recording(
     where = recording.source or "<recording>"
     raw = recording
     _step(progress, 0, 4, "phases")
-    phases = numbered_moves(detect_phases(raw))
-    turns = tuple(direction_changes(raw))
+    phases, turns = segment_phases(raw)  # a recording with gaps: segment by segment
     coarse = tuple(staircase_signals(raw)) if interpolate else ()
     # V always (the motion's speed), FE and TORSION (the detrended nodes) when asked for, from
     # the interpolated positions
@@ -265,6 +275,8 @@ def inspect_recording(
         source=where,
         duration=round(float(index[-1] - index[0]) + rec.sample_period, 6),
         sample_period=rec.sample_period,
+        gaps=raw.gaps,
+        segments=tuple(raw.segments),
         signals=tuple(signals),
         phases=phases,
         moves=moves,

@@ -46,6 +46,7 @@ _EXPORTS = {
     "KIND_COLORS": "funcnet.plot.style",
     "SPAN_TITLE_PAD": "funcnet.plot.style",
     "PHASE_COLORS": "funcnet.plot.style",
+    "GAP_COLOR": "funcnet.plot.style",
     "signal_color": "funcnet.plot.style",
     "phase_color": "funcnet.plot.style",
     "network_edges": "funcnet.plot.network_diagram",

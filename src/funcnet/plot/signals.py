@@ -17,7 +17,8 @@ __all__ = ["plot_signals", "add_signal_legend", "shade_spans"]
 
 
 def shade_spans(ax: Axes, spans: Any, *, prefix: str | None = "phase", alpha: float = 0.7,
-                names: bool = False, within: tuple[float, float] | None = None) -> None:
+                names: bool = False, within: tuple[float, float] | None = None,
+                color: str | None = None) -> None:
     """Shade spans of time (phases, windows) in their phases' colours, behind what is drawn.
 
     Parameters
@@ -35,6 +36,9 @@ def shade_spans(ax: Axes, spans: Any, *, prefix: str | None = "phase", alpha: fl
         short spans do not overlap).
     within : (float, float), optional
         Shade only the spans that overlap this range, clipped to it.
+    color : str, optional
+        One colour for every span (the gaps of a recording: :data:`funcnet.plot.GAP_COLOR`)
+        instead of each span's phase colour.
 
     Examples
     --------
@@ -49,8 +53,8 @@ def shade_spans(ax: Axes, spans: Any, *, prefix: str | None = "phase", alpha: fl
             if not (stop > within[0] and start < within[1]):
                 continue
             start, stop = max(start, within[0]), min(stop, within[1])
-        patch = ax.axvspan(start, stop, color=phase_color(name, k), alpha=alpha, zorder=0,
-                           linewidth=0)
+        patch = ax.axvspan(start, stop, color=color or phase_color(name, k), alpha=alpha,
+                           zorder=0, linewidth=0)
         if prefix is not None:
             patch.set_gid(f"{prefix}:{name}")
         if names:

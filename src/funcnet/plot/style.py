@@ -21,6 +21,7 @@ __all__ = [
     "KIND_COLORS",
     "SPAN_TITLE_PAD",
     "PHASE_COLORS",
+    "GAP_COLOR",
     "signal_color",
     "phase_color",
 ]
@@ -53,6 +54,8 @@ PHASE_COLORS = {
     "braking": "#f4cccc",  # light red
     "reversal": "#d9ead3",  # light green
 }
+#: The shade of a gap in a recording (values missing): darker than any phase, standstill too.
+GAP_COLOR = "#8c8c8c"
 _X_Y, _Y_X, _BIDIRECTIONAL, _CONFLICT = PAIR_KINDS
 #: Colour of each pair kind in :func:`plot_edge_timeline`.
 KIND_COLORS = {_X_Y: "#1f4e9c", _Y_X: "#e07b00", _BIDIRECTIONAL: "red", _CONFLICT: "0.6",

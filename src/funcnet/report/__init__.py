@@ -15,6 +15,7 @@ module               what it holds
 ``study``            :func:`write_report`: a study's results folder
 ``inspect``          :func:`inspect_trace`: the engineer's report of one or several traces
 ``inspect_figures``  its figures
+``inspect_text``     its words: the summary of a trace (its gaps, moves, turns, windows)
 ===================  ===========================================================================
 
 References

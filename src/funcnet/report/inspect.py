@@ -12,7 +12,9 @@ several axes read without ``axis`` is :func:`funcnet.inspection.inspect_robot`'s
 its nodes grouped per axis and its pairs told apart within and between axes) and each axis's
 own page in ``axis-N/``.
 
-The figures are in :mod:`funcnet.report.inspect_figures`.
+The figures are in :mod:`funcnet.report.inspect_figures`, the summary's words in
+:mod:`funcnet.report.inspect_text`. A recording with gaps (missing values) is said to have them
+where the summary says how long it is, on the trace's page and the robot's.
 
 References
 ----------
@@ -59,6 +61,12 @@ from funcnet.report.inspect_figures import (
     figure_networks,
     figure_timeline,
 )
+from funcnet.report.inspect_text import (
+    failed_windows,
+    gaps_sentence,
+    partial_evidence,
+    summary_html,
+)
 from funcnet.report.repetitions_page import write_repetitions
 from funcnet.robot import read_trace
 from funcnet.robot.axes import split_qualified
@@ -95,102 +103,6 @@ def _fmt(value: Any, digits: int = 3) -> str:
     return str(value)
 
 
-def _turns_sentence(ins: TraceInspection) -> str:
-    """How often the set-point changes direction, and where."""
-    if not ins.turns:
-        return "It never changes direction." if len(ins.moves) else ""
-    within = int(ins.moves["direction changes"].sum()) if len(ins.moves) else 0
-    times = ", ".join(f"{turn.time:.2f}" for turn in ins.turns)
-    parts = [f"{within} within a move (no rest at the turn)" if within else "",
-             f"{len(ins.turns) - within} after a rest" if len(ins.turns) > within else ""]
-    return (f"It changes direction {len(ins.turns)} time(s), at {times} s: "
-            + ", ".join(p for p in parts if p) + ".")
-
-
-def _summary_html(ins: TraceInspection) -> str:
-    moves = ins.moves
-    moving = float(moves["duration"].sum()) if len(moves) else 0.0
-    kinds = ins.phases[ins.phases["move"] > 0]["phase"].value_counts()
-    lines = [f"<p><b>{escape(Path(ins.source).name)}</b>: {ins.duration:.1f} s sampled every "
-             f"{ins.sample_period * 1e3:g} ms; signals used as nodes: "
-             f"{escape(', '.join(ins.signals))}. The axis moves {len(moves)} time(s), "
-             f"{moving:.1f} s in all, and stands still the other "
-             f"{ins.duration - moving:.1f} s. {escape(_turns_sentence(ins))}</p>"]
-    if len(moves):
-        facts = []
-        facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} °/s "
-                     f"({moves['peak speed'].max() * 60:.4g} °/min)")
-        if "peak |AC|" in moves:
-            info = ins.recording.signals.get("AC")
-            unit = info.unit if info is not None and info.unit else "A"
-            what = "current" if unit.endswith("A") else "torque" if "N" in unit else "value"
-            facts.append(f"peak {what} |AC| {moves['peak |AC|'].max():.3g} {unit}")
-        if "peak |FE|" in moves:
-            facts.append(f"peak following error |RP − AP| {moves['peak |FE|'].max():.3g}° "
-                         f"({moves['peak |FE|'].max() * 60:.3g} arcmin), "
-                         f"{moves['final |FE|'].max() * 3600:.3g} arcsec at the end of a move")
-        lines.append("<ul>" + "".join(f"<li>{escape(f)}</li>" for f in facts)
-                     + "<li>phases within the moves: "
-                     + escape(", ".join(f"{k} ×{n}" for k, n in kinds.items())) + "</li>"
-                     + _lost_motion_item(ins) + "</ul>")
-    n_net = len(ins.networks)
-    errors, partial = _why(ins, "network"), _partial_evidence(ins)
-    lines.append(f"<p>{n_net} of {len(ins.windows)} phase windows have a network"
-                 + (f" ({len(errors)} could not be computed: see "
-                    "<a href=\"#problems\">problems</a>)" if errors else "")
-                 + (", each with its evidence columns" if ins.evidence and n_net else "")
-                 + _evidence_count(ins)
-                 + (f" ({len(partial)} without part of them, too short for it: see "
-                    "<a href=\"#problems\">problems</a>)" if len(partial) else "")
-                 + (f"; {escape(', '.join(ins.resampled))} were interpolated onto the "
-                    f"{ins.sample_period * 1e3:g} ms grid (recorded coarser)" if ins.resampled
-                    else "") + ".</p>")
-    return "".join(lines)
-
-
-def _evidence_count(ins: TraceInspection) -> str:
-    """``" (pairs: 3 coupled, 117 untestable ...)"``: the evidence labels over all windows."""
-    labels = [label for net in ins.networks.values() if "evidence" in net.pairs.columns
-              for label in net.pairs["evidence"]]
-    if not labels:
-        return ""
-    counts = pd.Series(labels).value_counts()
-    text = ", ".join(f"{n} {label}" for label, n in counts.items())
-    blind = [net.pairs.loc[net.pairs["evidence"] == "untestable", "surrogates"]
-             for net in ins.networks.values() if "evidence" in net.pairs.columns]
-    k = pd.concat(blind) if blind else pd.Series(dtype=float)
-    span = "" if not len(k) else str(k.min()) if k.min() == k.max() else f"{k.min()}–{k.max()}"
-    note = (f"; untestable: the windows leave the test {span} surrogates, too few to reject "
-            "whatever the data" if span else "")
-    return f" (pairs over the windows: {text}{note})"
-
-
-def _why(ins: TraceInspection, part: str) -> dict[str, str]:
-    """Window label -> why it lacks ``part``, the trace's file left out of the message."""
-    return {label: message.removeprefix(f"{ins.source}: ")
-            for label, message in ins.failed(part).items()}
-
-
-def _partial_evidence(ins: TraceInspection) -> pd.DataFrame:
-    """The windows whose network lacks its evidence or part of it: window, left out, why."""
-    rows = [{"window": f.window, "left out": f.part,
-             "why": f.message.removeprefix(f"{ins.source}: ")}
-            for f in ins.failures if f.part != "network"]
-    return pd.DataFrame(rows, columns=["window", "left out", "why"])
-
-
-def _lost_motion_item(ins: TraceInspection) -> str:
-    result = ins.backlash
-    if result is None:
-        return ""
-    if result.lost_motion is None:
-        return f"<li>backlash: {escape(result.message)}</li>"
-    values = [r.lost_motion for r in result.reversals if r.lost_motion is not None]
-    listed = ", ".join(f"{v * 3600:.3g}" for v in values)
-    return (f"<li>lost motion at the {len(values)} direction change(s), from both encoders: "
-            f"{listed} arcsec (mean {result.lost_motion * 3600:.3g} arcsec)</li>")
-
-
 def _backlash_html(ins: TraceInspection) -> str:
     result = ins.backlash
     if result is None:
@@ -210,7 +122,7 @@ def _backlash_html(ins: TraceInspection) -> str:
 
 def _network_tables(ins: TraceInspection) -> str:
     parts = []
-    errors = _why(ins, "network")
+    errors = failed_windows(ins, "network")
     partial = {f.window: f.part for f in ins.failures if f.part != "network"}
     for w in ins.windows:
         net = ins.networks.get(w.label)
@@ -249,7 +161,8 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
         "Figure 1 — the motion. Top: the set-point RP over the whole trace, the moves named. "
         "Below, each move zoomed: positions, arm-side speed V (Eq. 11–12 on AP), current AC "
         "and following error RP − AP. Shading: the detected phase (same colour for the same "
-        "kind of phase in every figure).")
+        "kind of phase in every figure)" + ("; dark grey: a gap, where values are missing."
+                                            if ins.gaps else "."))
     add(1, "networks", figure_networks,
         "Figure 2 — the functional network of every phase window (rows: moves; columns: "
         "phases), each node at the same place in every panel. Black arrow: directed edge X → "
@@ -327,7 +240,7 @@ def write_inspection(
         "<code>rate_exceeded</code>: ties pushed a rate above its target; "
         "<code>degenerate</code>: too few distinct states, no edge drawn).</p>"
         + table(problems))
-    errors, partial = _why(ins, "network"), _partial_evidence(ins)
+    errors, partial = failed_windows(ins, "network"), partial_evidence(ins)
     if errors:
         problem_html += table(pd.DataFrame({"window": list(errors),
                                             "why no network": list(errors.values())}))
@@ -338,7 +251,7 @@ def write_inspection(
                          "<code>evidence</code>: all of it).</p>" + table(partial))
     body = [
         f"<h1>What the axis does — {escape(name)}</h1>",
-        f"<section id=\"summary\"><h2>Summary</h2>{_summary_html(ins)}</section>",
+        f"<section id=\"summary\"><h2>Summary</h2>{summary_html(ins)}</section>",
         contents(sections),
         "<h2 id=\"figures\">Figures</h2>", *figures,
         f"<section id=\"arrows\"><h2>Reading an arrow</h2><p>{escape(READING_AN_ARROW)}</p>"
@@ -431,6 +344,8 @@ def write_robot_inspection(
     for axis, one in ins.axes.items():
         write_inspection(one, out / f"axis-{axis}", progress=progress)
     rows = _axis_rows(ins)
+    gaps = gaps_sentence(ins.recording.gaps, ins.recording.segments)
+    gaps += " The robot network is one per segment." if gaps else ""
     links = "".join(
         f'<li><a href="axis-{a}/index.html">axis {a}</a></li>' for a in ins.axes)
     name = Path(ins.source).name
@@ -467,7 +382,8 @@ def write_robot_inspection(
         f"<h1>What the robot does — {escape(name)}</h1>",
         f"<section id=\"axes\"><h2>Each axis</h2><p>{len(ins.recording.axes)} axes, "
         f"{ins.recording.duration:.1f} s sampled every {ins.recording.sample_period * 1000:g} "
-        "ms. Each axis's own report (moves, a network per phase, evidence, backlash): </p>"
+        f"ms. {escape(gaps + ' ' if gaps else '')}Each axis's own report (moves, a network per "
+        "phase, evidence, backlash): </p>"
         f"<ul>{links}</ul>{table(rows)}</section>",
         "<section id=\"robot\"><h2>The robot as one network</h2>",
         f"<p>Nodes: {escape(', '.join(ins.signals))}.</p>", *network_parts, "</section>",

@@ -34,12 +34,15 @@ _MAX_MOVE_COLUMNS = 6  # the motion figure zooms into at most this many moves
 
 
 
-def _phase_legend(fig: Any, kinds: Sequence[str]) -> None:
+def _phase_legend(fig: Any, kinds: Sequence[str], gaps: bool = False) -> None:
     from matplotlib.patches import Patch
 
     from funcnet import plot
 
     handles = [Patch(facecolor=plot.phase_color(k), edgecolor="0.6", label=k) for k in kinds]
+    if gaps:
+        handles.append(Patch(facecolor=plot.GAP_COLOR, edgecolor="0.6", alpha=0.8,
+                             label="gap (values missing)"))
     legend = fig.legend(handles=handles, loc="outside upper center", ncol=len(handles),
                         fontsize=9, frameon=False, title="phase (shading)", title_fontsize=9)
     legend.set_gid("legend:phases")
@@ -57,7 +60,8 @@ def figure_motion(inspection: TraceInspection) -> Any:
     matplotlib.figure.Figure
         Row 0 the set-point over the whole trace; below, one column per move (at most six):
         positions, V, AC and the following error RP - AP, the phases shaded in the colours of
-        :data:`funcnet.plot.PHASE_COLORS`.
+        :data:`funcnet.plot.PHASE_COLORS` and the gaps (values missing) in
+        :data:`funcnet.plot.GAP_COLOR`.
     """
     from matplotlib.figure import Figure
 
@@ -79,6 +83,7 @@ def figure_motion(inspection: TraceInspection) -> Any:
     top = fig.add_subplot(grid[0, :])
     t = data.index.to_numpy(dtype=float)
     plot.shade_spans(top, phases, alpha=0.8, within=(t[0], t[-1]))
+    _shade_gaps(top, inspection, (t[0], t[-1]))
     top.plot(t, data["RP"].to_numpy(dtype=float), color=plot.signal_color("RP"), linewidth=1)
     top.set_ylabel("RP [°]", fontsize=9)
     top.set_xlabel("time [s]", fontsize=9)
@@ -95,6 +100,7 @@ def figure_motion(inspection: TraceInspection) -> Any:
         for row, (ylabel, columns) in enumerate(panels, start=1):
             ax = fig.add_subplot(grid[row, k])
             plot.shade_spans(ax, phases, alpha=0.8, within=(lo, hi))
+            _shade_gaps(ax, inspection, (lo, hi))
             for column in columns:
                 values = (fe.loc[part.index] if column == "FE" and fe is not None
                           else part[column]).to_numpy(dtype=float)
@@ -111,8 +117,17 @@ def figure_motion(inspection: TraceInspection) -> Any:
             if row == len(panels):
                 ax.set_xlabel("time [s]", fontsize=9)
     top.tick_params(labelsize=9)
-    _phase_legend(fig, [k for k in plot.PHASE_COLORS if k in set(phases["phase"])])
+    _phase_legend(fig, [k for k in plot.PHASE_COLORS if k in set(phases["phase"])],
+                  gaps=bool(inspection.gaps))
     return fig
+
+
+def _shade_gaps(ax: Any, inspection: TraceInspection, within: tuple[float, float]) -> None:
+    """The recording's gaps (values missing), shaded over the phases."""
+    from funcnet import plot
+
+    plot.shade_spans(ax, [("gap", a, b) for a, b in inspection.gaps], prefix="gap", alpha=0.8,
+                     within=within, color=plot.GAP_COLOR)
 
 
 def _kinds_present(windows: Sequence[Window]) -> list[str]:

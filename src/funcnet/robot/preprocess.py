@@ -20,6 +20,7 @@ from funcnet.robot.recording import Recording
 
 __all__ = [
     "velocity",
+    "segment_velocity",
     "reference_speed",
     "add_derived_signals",
     "trim",
@@ -98,6 +99,47 @@ def velocity(ap: np.ndarray, sample_period: float) -> np.ndarray:
     return smooth
 
 
+def segment_velocity(recording: Recording, values: np.ndarray) -> np.ndarray:
+    """:func:`velocity` of a recording's signal within each of its segments.
+
+    Parameters
+    ----------
+    recording : Recording
+        Its :attr:`~funcnet.robot.Recording.gaps` split it into segments.
+    values : ndarray, shape (N,)
+        A position signal on the recording's grid.
+
+    Returns
+    -------
+    ndarray, shape (N,)
+        Without gaps, :func:`velocity` of ``values``. With gaps, the velocity of each segment
+        on its own (a value across a gap is no neighbour, so no NaN of the gap spreads into a
+        segment) and NaN in the gaps and in a segment of one tick.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from funcnet.robot.recording import SignalInfo
+    >>> x = np.array([0.0, 1.0, 2.0, np.nan, 10.0, 11.0, 12.0])
+    >>> data = pd.DataFrame({"AP": x}, index=pd.Index(np.arange(7.0), name="time"))
+    >>> rec = Recording(data, {}, {"AP": SignalInfo("AP", None, None, 1.0)}, sample_period=1.0,
+    ...                 gaps=((3.0, 4.0),))
+    >>> segment_velocity(rec, x).tolist()
+    [1.0, 1.0, 1.0, nan, 1.0, 1.0, 1.0]
+    """
+    values = np.asarray(values, dtype=np.float64)
+    dt = recording.sample_period
+    if not recording.gaps:
+        return velocity(values, dt)
+    out = np.full(values.shape, np.nan)
+    index = recording.data.index.to_numpy(dtype=np.float64)
+    for start, stop in recording.segments:
+        first, last = np.searchsorted(index, [start - dt / 2, stop - dt / 2])
+        if last - first >= 2:
+            out[first:last] = velocity(values[first:last], dt)
+    return out
+
+
 def _column(recording: Recording, column: str, purpose: str) -> np.ndarray:
     if column not in recording.data.columns:
         raise ChannelError(
@@ -158,7 +200,9 @@ def add_derived_signals(
     Recording
         With the new columns appended. Their :class:`SignalInfo` names the formula; V has the
         grid's interval, FE and TORSION the coarser interval of their inputs (a staircase input
-        makes a staircase). Compute derived signals before windowing, so V has no window ends.
+        makes a staircase). Compute derived signals before windowing, so V has no window ends;
+        V and VM are computed within each segment of a recording with gaps
+        (:func:`segment_velocity`).
 
     Raises
     ------
@@ -191,7 +235,7 @@ def add_derived_signals(
         inputs, description = DERIVED_SIGNALS[name]
         columns = [_column(recording, column, name) for column in inputs]
         if name in ("V", "VM"):
-            values, interval, units = velocity(columns[0], dt), dt, "velo"
+            values, interval, units = segment_velocity(recording, columns[0]), dt, "velo"
         else:
             values = columns[0] - columns[1]
             interval = max(recording.signals[column].interval for column in inputs)

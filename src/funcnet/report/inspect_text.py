@@ -1,0 +1,179 @@
+"""The words of the inspect pages (:mod:`funcnet.report.inspect`): the summary of a trace.
+
+What the page says first, from a :class:`~funcnet.inspection.TraceInspection`: how long the
+trace is, where values are missing (its gaps and segments), how the axis moves and turns, the
+peak speed, current and following error, the lost motion, how many phase windows have their
+network and evidence, and which windows lack one or a part of it. The figures are in
+:mod:`funcnet.report.inspect_figures`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+
+import pandas as pd
+
+from funcnet.inspection import TraceInspection
+from funcnet.report.html import escape
+
+__all__ = ["summary_html", "gaps_sentence", "failed_windows", "partial_evidence"]
+
+
+def gaps_sentence(gaps: Sequence[tuple[float, float]], segments: Sequence[tuple[float, float]],
+                  spanned: str = "no window") -> str:
+    """Where values are missing: each gap (start-end, its length) and the segments between.
+
+    Parameters
+    ----------
+    gaps, segments : sequence of (float, float)
+        Spans in seconds (:attr:`funcnet.robot.Recording.gaps`, ``.segments``).
+    spanned : str
+        What never spans a gap, as the sentence names it.
+
+    Returns
+    -------
+    str
+        One sentence; "" without gaps.
+
+    Examples
+    --------
+    >>> gaps_sentence([(3.5, 3.8)], [(0.0, 3.5), (3.8, 8.0)])
+    'Values are missing in 1 gap, 3.5–3.8 s (0.3 s): the recording is read as 2 segments, 0–3.5 s and 3.8–8 s, and no window spans a gap.'
+    >>> gaps_sentence([], [(0.0, 8.0)])
+    ''
+    """  # noqa: E501
+    if not gaps:
+        return ""
+    listed = ", ".join(f"{a:g}–{b:g} s ({round(b - a, 9):g} s)" for a, b in gaps)
+    parts = [f"{a:g}–{b:g} s" for a, b in segments]
+    between = ", ".join(parts[:-1]) + " and " + parts[-1] if len(parts) > 1 else "".join(parts)
+    return (f"Values are missing in {len(gaps)} gap{'s' if len(gaps) > 1 else ''}, {listed}: "
+            f"the recording is read as {len(segments)} segment{'s' if len(parts) > 1 else ''}, "
+            f"{between}, and {spanned} spans a gap.")
+
+
+def _cut_moves_sentence(ins: TraceInspection) -> str:
+    """The moves a gap cuts: only the part recorded is summarized."""
+    if "cut by a gap" not in ins.moves:
+        return ""
+    cut = ins.moves[ins.moves["cut by a gap"] != ""]
+    if not len(cut):
+        return ""
+    listed = ", ".join(f"move {move} ({gap})"
+                       for move, gap in zip(cut["move"], cut["cut by a gap"], strict=True))
+    return f"A gap cuts {listed}: distance and peaks are those of the part recorded."
+
+
+def _turns_sentence(ins: TraceInspection) -> str:
+    """How often the set-point changes direction, and where."""
+    if not ins.turns:
+        return "It never changes direction." if len(ins.moves) else ""
+    within = int(ins.moves["direction changes"].sum()) if len(ins.moves) else 0
+    times = ", ".join(f"{turn.time:.2f}" for turn in ins.turns)
+    parts = [f"{within} within a move (no rest at the turn)" if within else "",
+             f"{len(ins.turns) - within} after a rest" if len(ins.turns) > within else ""]
+    return (f"It changes direction {len(ins.turns)} time(s), at {times} s: "
+            + ", ".join(p for p in parts if p) + ".")
+
+
+def summary_html(ins: TraceInspection) -> str:
+    """The page's summary: the trace, its gaps, the moves and their peaks, the windows.
+
+    Parameters
+    ----------
+    ins : TraceInspection
+
+    Returns
+    -------
+    str
+        HTML paragraphs and a list.
+    """
+    moves = ins.moves
+    moving = float(moves["duration"].sum()) if len(moves) else 0.0
+    missing = sum(b - a for a, b in ins.gaps)
+    gaps = gaps_sentence(ins.gaps, ins.segments, "no phase, move or window")
+    kinds = ins.phases[ins.phases["move"] > 0]["phase"].value_counts()
+    lines = [f"<p><b>{escape(Path(ins.source).name)}</b>: {ins.duration:.1f} s sampled every "
+             f"{ins.sample_period * 1e3:g} ms; signals used as nodes: "
+             f"{escape(', '.join(ins.signals))}. {escape(gaps + ' ' if gaps else '')}The axis "
+             f"moves {len(moves)} time(s), {moving:.1f} s in all, and stands still the other "
+             f"{max(ins.duration - moving - missing, 0.0):.1f} s. "
+             f"{escape(_turns_sentence(ins))}"
+             + (f" {escape(_cut_moves_sentence(ins))}" if _cut_moves_sentence(ins) else "")
+             + "</p>"]
+    if len(moves):
+        facts = []
+        facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} °/s "
+                     f"({moves['peak speed'].max() * 60:.4g} °/min)")
+        if "peak |AC|" in moves:
+            info = ins.recording.signals.get("AC")
+            unit = info.unit if info is not None and info.unit else "A"
+            what = "current" if unit.endswith("A") else "torque" if "N" in unit else "value"
+            facts.append(f"peak {what} |AC| {moves['peak |AC|'].max():.3g} {unit}")
+        if "peak |FE|" in moves:
+            facts.append(f"peak following error |RP − AP| {moves['peak |FE|'].max():.3g}° "
+                         f"({moves['peak |FE|'].max() * 60:.3g} arcmin), "
+                         f"{moves['final |FE|'].max() * 3600:.3g} arcsec at the end of a move")
+        lines.append("<ul>" + "".join(f"<li>{escape(f)}</li>" for f in facts)
+                     + "<li>phases within the moves: "
+                     + escape(", ".join(f"{k} ×{n}" for k, n in kinds.items())) + "</li>"
+                     + _lost_motion_item(ins) + "</ul>")
+    n_net = len(ins.networks)
+    errors, partial = failed_windows(ins, "network"), partial_evidence(ins)
+    lines.append(f"<p>{n_net} of {len(ins.windows)} phase windows have a network"
+                 + (f" ({len(errors)} could not be computed: see "
+                    "<a href=\"#problems\">problems</a>)" if errors else "")
+                 + (", each with its evidence columns" if ins.evidence and n_net else "")
+                 + _evidence_count(ins)
+                 + (f" ({len(partial)} without part of them, too short for it: see "
+                    "<a href=\"#problems\">problems</a>)" if len(partial) else "")
+                 + (f"; {escape(', '.join(ins.resampled))} were interpolated onto the "
+                    f"{ins.sample_period * 1e3:g} ms grid (recorded coarser)" if ins.resampled
+                    else "") + ".</p>")
+    return "".join(lines)
+
+
+def _evidence_count(ins: TraceInspection) -> str:
+    """``" (pairs: 3 coupled, 117 untestable ...)"``: the evidence labels over all windows."""
+    labels = [label for net in ins.networks.values() if "evidence" in net.pairs.columns
+              for label in net.pairs["evidence"]]
+    if not labels:
+        return ""
+    counts = pd.Series(labels).value_counts()
+    text = ", ".join(f"{n} {label}" for label, n in counts.items())
+    blind = [net.pairs.loc[net.pairs["evidence"] == "untestable", "surrogates"]
+             for net in ins.networks.values() if "evidence" in net.pairs.columns]
+    k = pd.concat(blind) if blind else pd.Series(dtype=float)
+    span = "" if not len(k) else str(k.min()) if k.min() == k.max() else f"{k.min()}–{k.max()}"
+    note = (f"; untestable: the windows leave the test {span} surrogates, too few to reject "
+            "whatever the data" if span else "")
+    return f" (pairs over the windows: {text}{note})"
+
+
+def failed_windows(ins: TraceInspection, part: str) -> dict[str, str]:
+    """Window label -> why it lacks ``part``, the trace's file left out of the message."""
+    return {label: message.removeprefix(f"{ins.source}: ")
+            for label, message in ins.failed(part).items()}
+
+
+def partial_evidence(ins: TraceInspection) -> pd.DataFrame:
+    """The windows whose network lacks its evidence or part of it: window, left out, why."""
+    rows = [{"window": f.window, "left out": f.part,
+             "why": f.message.removeprefix(f"{ins.source}: ")}
+            for f in ins.failures if f.part != "network"]
+    return pd.DataFrame(rows, columns=["window", "left out", "why"])
+
+
+def _lost_motion_item(ins: TraceInspection) -> str:
+    result = ins.backlash
+    if result is None:
+        return ""
+    if result.lost_motion is None:
+        return f"<li>backlash: {escape(result.message)}</li>"
+    values = [r.lost_motion for r in result.reversals if r.lost_motion is not None]
+    listed = ", ".join(f"{v * 3600:.3g}" for v in values)
+    return (f"<li>lost motion at the {len(values)} direction change(s), from both encoders: "
+            f"{listed} arcsec (mean {result.lost_motion * 3600:.3g} arcsec)</li>")
+
+
