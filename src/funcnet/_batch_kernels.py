@@ -36,7 +36,15 @@ from typing import Any
 import numpy as np
 from numba import njit, prange
 
-from funcnet._isrn_kernels import Int, _lowest_bit, _popcount, add_coordinate_keys
+from funcnet._isrn_kernels import (
+    Int,
+    _lowest_bit,
+    _popcount,
+    add_coordinate_keys,
+    below_and_upto_words,
+    dim3_squared_keys,
+    first_candidate,
+)
 
 Array = np.ndarray
 
@@ -275,18 +283,9 @@ def _row_keys(
     embedding read in place); accumulated coordinate by coordinate as the per-window path does.
     """
     if metric == 0 and dim == 3:
-        # The default embedding in one pass: the same operations in the same order,
-        # ((d0 d0 + d1 d1) + d2 d2), without writing the keys back between coordinates
-        # (about twice as fast).
-        a0, a1, a2 = x[i], x[i + delay], x[i + 2 * delay]
-        c0 = y[start : start + n]
-        c1 = y[start + delay : start + delay + n]
-        c2 = y[start + 2 * delay : start + 2 * delay + n]
-        for t in range(n):
-            d0 = a0 - c0[t]
-            d1 = a1 - c1[t]
-            d2 = a2 - c2[t]
-            keys[t] = (d0 * d0 + d1 * d1) + d2 * d2
+        dim3_squared_keys(x[i], x[i + delay], x[i + 2 * delay], y[start : start + n],
+                          y[start + delay : start + delay + n],
+                          y[start + 2 * delay : start + 2 * delay + n], n, keys)
         return
     for c in range(dim):
         column = y[start + c * delay : start + c * delay + n]
@@ -376,7 +375,7 @@ def _scan(
     below = 0
     position = 0
     for i in range(m):
-        start = i + theiler + 1 if auto else 0
+        start = first_candidate(i, auto, theiler)
         if start >= m:
             continue
         first_word = start // 64
@@ -384,12 +383,7 @@ def _scan(
         _row_keys(x, i, y, start, m - start, dim, delay, metric, rowbuf[start:])
         base = i << 32
         for w in range(first_word, n_words):
-            block = rowbuf[w * 64 : w * 64 + 64]
-            below_word = np.uint64(0)
-            upto_word = np.uint64(0)
-            for b in range(64):
-                below_word |= np.uint64(block[b] < lo) << np.uint64(b)
-                upto_word |= np.uint64(block[b] <= hi) << np.uint64(b)
+            below_word, upto_word = below_and_upto_words(rowbuf[w * 64 : w * 64 + 64], lo, hi)
             rows[i, w] = below_word
             below += int(_popcount(below_word))
             band = upto_word & ~below_word
@@ -457,7 +451,7 @@ def _threshold(
     cand = np.empty(n_candidates, dtype=np.float64)
     n = 0
     for i in range(m):
-        start = i + theiler + 1 if auto else 0
+        start = first_candidate(i, auto, theiler)
         if start < m:
             _row_keys(x, i, y, start, m - start, dim, delay, metric, cand[n:])
             n += m - start
@@ -489,6 +483,23 @@ def _transpose_into(rows: Array, out: Array, m: int, upper_only: bool) -> None:
 
 
 @njit(cache=True)
+def _recurrence(
+    x: Array, y: Array, m: int, auto: bool, theiler: int, dim: int, delay: int, metric: int,
+    rank: int, n_candidates: int, strict: bool, direct: bool, rows: Array, rows_t: Array,
+) -> tuple[float, int]:
+    """Threshold and packed rows of one block (zeroed on entry) and its transpose into
+    ``rows_t`` (for an auto-recurrence ``rows`` itself: the mirrored triangle); returns
+    ``(eps, candidate pairs set)``."""
+    rowbuf = np.empty(((m + 63) // 64) * 64, dtype=np.float64)
+    eps, count = _threshold(
+        x, y, m, auto, theiler, dim, delay, metric, rank, n_candidates, strict, direct, rowbuf,
+        rows,
+    )
+    _transpose_into(rows, rows_t, m, auto)
+    return eps, count
+
+
+@njit(cache=True)
 def _auto(
     x: Array, m: int, dim: int, delay: int, metric: int, theiler: int, rank: int,
     n_candidates: int, strict: bool, direct: bool, rows: Array,
@@ -500,25 +511,8 @@ def _auto(
     """
     if rank == 0:
         return 0.0, 0
-    n_words = (m + 63) // 64
-    rowbuf = np.empty(n_words * 64, dtype=np.float64)
-    eps, count = _threshold(
-        x,
-        x,
-        m,
-        True,
-        theiler,
-        dim,
-        delay,
-        metric,
-        rank,
-        n_candidates,
-        strict,
-        direct,
-        rowbuf,
-        rows,
-    )
-    _transpose_into(rows, rows, m, True)
+    eps, count = _recurrence(x, x, m, True, theiler, dim, delay, metric, rank, n_candidates,
+                             strict, direct, rows, rows)
     return eps, 2 * count
 
 
@@ -528,27 +522,8 @@ def _cross(
     direct: bool, rows: Array, rows_t: Array,
 ) -> tuple[float, int]:
     """Threshold and packed rows of CR_XY and CR_YX (zeroed on entry); (eps, recurrent pairs)."""
-    n_words = (m + 63) // 64
-    n_candidates = m * m
-    rowbuf = np.empty(n_words * 64, dtype=np.float64)
-    eps, count = _threshold(
-        x,
-        y,
-        m,
-        False,
-        0,
-        dim,
-        delay,
-        metric,
-        rank,
-        n_candidates,
-        strict,
-        direct,
-        rowbuf,
-        rows,
-    )
-    _transpose_into(rows, rows_t, m, False)
-    return eps, count
+    return _recurrence(x, y, m, False, 0, dim, delay, metric, rank, m * m, strict, direct, rows,
+                       rows_t)
 
 
 @njit(cache=True)
