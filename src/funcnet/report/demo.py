@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import datetime as _dt
 import os
-import sys
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -26,7 +25,6 @@ from funcnet._io import write_text_atomic
 from funcnet.paper import Finding, PaperAnalyses, TrialAnalysis, run_paper_analyses
 from funcnet.paper.coupling import CouplingEvidence, claims_coupling
 from funcnet.report.html import (
-    PACKAGES,
     Progress,
     contents,
     escape,
@@ -34,10 +32,10 @@ from funcnet.report.html import (
     mapping_table,
     page,
     pairs_table,
+    provenance,
     step,
     table,
 )
-from funcnet.study import package_versions
 
 __all__ = ["build_demo_report"]
 
@@ -298,13 +296,10 @@ def build_demo_report(
     figures = _demo_figures(analyses, out, progress)
     failures = [(t.trial, k, msg) for group in analyses.groups().values()
                 for t in group.values() if t is not None for k, msg in t.errors.items()]
-    provenance = {
-        "date (UTC)": started.isoformat(timespec="seconds"),
-        "command": " ".join([Path(sys.argv[0]).name, *sys.argv[1:]]),
+    run = provenance({
         "plan folder (from the report)": os.path.relpath(Path(plan_dir).resolve(), out.resolve()),
         "analysis time [s]": f"{analyses.elapsed:.1f}",
-        **{f"version of {k}": v for k, v in package_versions(PACKAGES).items()},
-    }
+    }, date=started)
     rule = (
         "<p class=\"verdict\"><b>How each finding is decided</b> (fixed before any result, "
         "the same for every finding): a claimed relation is <i>not evaluable</i> when its "
@@ -368,7 +363,7 @@ def build_demo_report(
                  "<p>Min–max normalization needs a range; claims about these signals in these "
                  "windows are counted as not evaluable.</p>",
                  table(pd.DataFrame(dropped, columns=["trial", "window", "signals"]))]
-    body += ["<section id=\"provenance\"><h2>Provenance</h2>", mapping_table(provenance, "item"),
+    body += ["<section id=\"provenance\"><h2>Provenance</h2>", mapping_table(run, "item"),
              "<details><summary>Inputs (SHA-256)</summary>",
              mapping_table(analyses.inputs, "file", "sha256"), "</details></section>"]
     index = write_text_atomic(out / "index.html", page("funcnet demo report", body))

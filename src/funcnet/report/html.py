@@ -7,9 +7,11 @@ from elsewhere (no CDN, no script, no web font). Every file is written atomicall
 
 from __future__ import annotations
 
+import datetime as _dt
 import html
 import os
 import re
+import sys
 from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 from typing import Any
@@ -20,7 +22,7 @@ from funcnet._io import atomic_path
 from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS
 
 __all__ = ["Progress", "PACKAGES", "save_figure", "escape", "table", "mapping_table",
-           "pairs_table", "figure_html", "page", "step", "contents"]
+           "provenance", "pairs_table", "figure_html", "page", "step", "contents"]
 
 Progress = Callable[[int, int, str], None] | None
 _HYPHENATED = re.compile(r"(\S*-\S*)")
@@ -125,6 +127,30 @@ def table(frame: pd.DataFrame, *, classes: Mapping[str, Callable[[Any], str]] | 
 def mapping_table(mapping: Mapping[str, Any], key: str = "name", value: str = "value") -> str:
     """A two-column table of a mapping (values as text)."""
     return table(pd.DataFrame({key: list(mapping), value: [str(v) for v in mapping.values()]}))
+
+
+def provenance(items: Mapping[str, Any] | None = None, *, qualifier: str = "",
+               date: _dt.datetime | None = None) -> dict[str, Any]:
+    """A report's provenance: the date (UTC) and command of this run, ``items``, then the
+    versions of Python, funcnet and :data:`PACKAGES`.
+
+    ``qualifier`` tells this run's entries from others' (``"report"``: ``report date (UTC)``,
+    ``report command``, ``version of numpy (report)``); ``date`` defaults to now.
+
+    Examples
+    --------
+    >>> list(provenance({"trace": "t.xml"}))[:4]
+    ['date (UTC)', 'command', 'trace', 'version of python']
+    """
+    from funcnet.study import package_versions
+
+    before, after = (f"{qualifier} ", f" ({qualifier})") if qualifier else ("", "")
+    return {
+        f"{before}date (UTC)": (date or _dt.datetime.now(_dt.UTC)).isoformat(timespec="seconds"),
+        f"{before}command": " ".join([Path(sys.argv[0]).name, *sys.argv[1:]]),
+        **(items or {}),
+        **{f"version of {k}{after}": v for k, v in package_versions(PACKAGES).items()},
+    }
 
 
 def pairs_table(pairs: pd.DataFrame) -> str:

@@ -24,9 +24,7 @@ References
 
 from __future__ import annotations
 
-import datetime as _dt
 import os
-import sys
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -42,7 +40,6 @@ from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection,
 from funcnet.parameters import NetworkParameters, resolve
 from funcnet.plot import plot_network
 from funcnet.report.html import (
-    PACKAGES,
     Progress,
     contents,
     escape,
@@ -50,6 +47,7 @@ from funcnet.report.html import (
     mapping_table,
     page,
     pairs_table,
+    provenance,
     step,
     table,
 )
@@ -191,16 +189,9 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
     return [f"<section id=\"{name}\">{html}</section>" for name, _, html in figures]
 
 
-def _provenance(ins: TraceInspection) -> dict[str, Any]:
-    from funcnet.study import package_versions
-
-    return {
-        "trace": Path(ins.source).name,
-        "date (UTC)": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
-        "command": " ".join([Path(sys.argv[0]).name, *sys.argv[1:]]),
-        "computation time [s]": f"{ins.elapsed:.1f}",
-        **{f"version of {k}": v for k, v in package_versions(PACKAGES).items()},
-    }
+def _provenance(ins: TraceInspection | RobotInspection, **items: str) -> dict[str, Any]:
+    return {"trace": Path(ins.source).name,
+            **provenance({"computation time [s]": f"{ins.elapsed:.1f}", **items})}
 
 
 def write_inspection(
@@ -370,14 +361,6 @@ def write_robot_inspection(
         network_parts.append("<details><summary>pairs with their scope</summary>" + scope
                              + "</details><details><summary>every column</summary>" + shown
                              + "</details>")
-    provenance = {
-        "trace": name,
-        "date (UTC)": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
-        "command": " ".join([Path(sys.argv[0]).name, *sys.argv[1:]]),
-        "computation time [s]": f"{ins.elapsed:.1f}",
-        "segments": ", ".join(f"{a:g}-{b:g} s" for a, b in ins.recording.segments),
-        "packages": ", ".join(PACKAGES),
-    }
     body = [
         f"<h1>What the robot does — {escape(name)}</h1>",
         f"<section id=\"axes\"><h2>Each axis</h2><p>{len(ins.recording.axes)} axes, "
@@ -391,7 +374,8 @@ def write_robot_inspection(
         "</section>",
         "<section id=\"parameters\"><h2>Parameters and provenance</h2>",
         mapping_table(ins.parameters.to_dict(), "parameter"),
-        mapping_table(provenance, "item"), "</section>",
+        mapping_table(_provenance(ins, segments=", ".join(
+            f"{a:g}-{b:g} s" for a, b in ins.recording.segments)), "item"), "</section>",
     ]
     return write_text_atomic(out / "index.html", page(f"funcnet inspect — {name}", body))
 

@@ -18,10 +18,8 @@ References
 
 from __future__ import annotations
 
-import datetime as _dt
 import json
 import os
-import sys
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -31,7 +29,6 @@ import pandas as pd
 
 from funcnet._io import write_text_atomic
 from funcnet.report.html import (
-    PACKAGES,
     Progress,
     contents,
     escape,
@@ -39,10 +36,11 @@ from funcnet.report.html import (
     mapping_table,
     page,
     pairs_table,
+    provenance,
     step,
     table,
 )
-from funcnet.study import PARAMETER_COLUMNS, load_results, network_from_rows, package_versions
+from funcnet.study import PARAMETER_COLUMNS, load_results, network_from_rows
 
 __all__ = ["write_report", "consensus", "problem_counts", "evidence_counts"]
 
@@ -491,14 +489,11 @@ def write_report(
              f"<details><summary>{len(index_rows)} recordings</summary>{table(index_rows)}"
              "</details></section>"]
     study_provenance = document.get("provenance", {})
-    provenance = {
-        "report date (UTC)": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
-        "report command": " ".join([Path(sys.argv[0]).name, *sys.argv[1:]]),
+    run = provenance({
         "study command": " ".join(study_provenance.get("command", [])),
         **{f"version of {k} (study)": v
            for k, v in study_provenance.get("versions", {}).items()},
-        **{f"version of {k} (report)": v for k, v in package_versions(PACKAGES).items()},
-    }
+    }, qualifier="report")
     inputs = study_provenance.get("inputs") or dict(
         zip(rows["recording"], rows.get("source_sha256", ""), strict=False))
     inputs = {Path(str(k)).name: v for k, v in inputs.items()}
@@ -510,7 +505,7 @@ def write_report(
         body.append("<details><summary>the study as read</summary><pre>"
                     f"{escape(json.dumps(document['study'], indent=2, default=str))}</pre>"
                     "</details>")
-    body += [mapping_table(provenance, "item"),
+    body += [mapping_table(run, "item"),
              "<details><summary>inputs (SHA-256)</summary>"
              f"{mapping_table(inputs, 'file', 'sha256')}</details></section>"]
     index = write_text_atomic(out / "index.html", page("funcnet study report", body))
