@@ -16,6 +16,7 @@ felt by the other axis).
 from __future__ import annotations
 
 import dataclasses
+import functools
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -94,7 +95,7 @@ class RobotInspection:
         asked for).
     pairs : dict
         Window label -> the network's pairs table with ``axis_x``, ``axis_y``, ``scope``
-        (:func:`pair_scope`).
+        (:func:`pair_scope`), derived from ``networks`` when first read.
     failures : tuple of WindowFailure
         Windows without their robot network or a part of its evidence.
     parameters : NetworkParameters
@@ -110,12 +111,16 @@ class RobotInspection:
     signals: tuple[str, ...]
     windows: tuple[Window, ...]
     networks: dict[str, FunctionalNetwork]
-    pairs: dict[str, pd.DataFrame]
     failures: tuple[WindowFailure, ...]
     parameters: NetworkParameters
     evidence: bool
     elapsed: float
     recording: Recording = dataclasses.field(repr=False)
+
+    @functools.cached_property
+    def pairs(self) -> dict[str, pd.DataFrame]:
+        """Window label -> the network's pairs table with its scope (:func:`pair_scope`)."""
+        return {label: pair_scope(net.pairs) for label, net in self.networks.items()}
 
 
 def inspect_robot(
@@ -197,7 +202,6 @@ def inspect_robot(
         signals=tuple(nodes),
         windows=windows,
         networks=dict(networks),
-        pairs={label: pair_scope(net.pairs) for label, net in networks.items()},
         failures=tuple(failures),
         parameters=p,
         evidence=evidence,
