@@ -46,6 +46,7 @@ import pandas as pd
 from funcnet.diagnosis.reversal_error import fit_gear, reversal_error
 from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
 from funcnet.diagnosis.sweep import simulated_recording
+from funcnet.robot.phases import move_threshold
 from funcnet.robot.preprocess import velocity
 from funcnet.robot.sim import Trial, simulate_trial
 from funcnet.robot.sim.plan import continuous_sweep_plan
@@ -101,7 +102,7 @@ def trial_row(trial: Trial) -> dict[str, float | str]:
     tau = sim.states["gear_torque"].reindex(rec.data.index, method="nearest").to_numpy()
     stiffness = p.gear_stiffness * p.stiffness_scale * math.pi / 180  # N m per deg
     # the library's samples: the motor faster than 1 deg/s, or half its peak on a slow trial
-    fast = np.flatnonzero(np.abs(vm) > min(1.0, 0.5 * float(np.abs(vm).max())))
+    fast = np.flatnonzero(np.abs(vm) > move_threshold(vm))
     flank = fast[np.abs(tau[fast]) > FLANK]
     gear = fit_gear(rec)
     n, fs = p.gear_ratio, p.friction_scale

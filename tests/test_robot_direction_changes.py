@@ -10,7 +10,14 @@ import pytest
 import scipy.io
 
 from funcnet.errors import ChannelError, ParameterError
-from funcnet.robot.phases import Turn, detect_phases, direction_changes
+from funcnet.robot.phases import (
+    Turn,
+    detect_phases,
+    direction_changes,
+    mask_runs,
+    merge_runs,
+    move_threshold,
+)
 from funcnet.robot.recording import Recording, SignalInfo
 
 KUKA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "kuka-kr300"
@@ -280,3 +287,38 @@ def test_turn_threshold_checks():
     for bad in ({"min_speed": -1.0}, {"relative": 0.0}, {"dip": 1.0}):
         with pytest.raises(ParameterError, match=next(iter(bad))):
             detect_phases(rec, **bad)
+
+
+def test_runs_and_their_merging_match_a_plain_loop():
+    rng = np.random.default_rng(5)
+    for _ in range(50):
+        signed = rng.choice([-1.0, 0.0, 1.0], size=60, p=[0.3, 0.4, 0.3])
+        runs = mask_runs(signed != 0)
+        # plain: the ticks that move, grouped where consecutive
+        moving = [i for i in range(signed.size) if signed[i] != 0]
+        plain = []
+        for i in moving:
+            if plain and plain[-1][1] == i:
+                plain[-1][1] = i + 1
+            else:
+                plain.append([i, i + 1])
+        assert [(int(a), int(b)) for a, b in runs] == [tuple(r) for r in plain]
+        for max_gap, period in ((3, 1.0), (0.01, DT)):
+            merged = [list(r) for r in plain[:1]]
+            for a, b in plain[1:]:
+                same = np.sign(signed[merged[-1][0]:merged[-1][1]].sum()) == np.sign(
+                    signed[a:b].sum())
+                if same and (a - merged[-1][1]) < 3:  # 0.01 s: 2 ticks of 4 ms, not 3
+                    merged[-1][1] = b
+                else:
+                    merged.append([a, b])
+            assert [(int(a), int(b)) for a, b in merge_runs(runs, signed, max_gap, period)] == [
+                tuple(r) for r in merged
+            ]
+
+
+def test_the_move_threshold_is_1_deg_per_s_or_half_the_peak():
+    assert move_threshold(np.array([0.0, 4.0, -3.0])) == 1.0
+    assert move_threshold(np.array([0.1, -1.5, np.nan])) == 0.75
+    assert move_threshold(np.array([0.1, -1.5]), min_speed=0.5) == 0.5
+    assert move_threshold(np.array([np.nan, np.nan])) == 0.0

@@ -31,6 +31,7 @@ from scipy.stats import t as student_t
 
 from funcnet.diagnosis.reversals import DirectionChange
 from funcnet.errors import ChannelError, ParameterError
+from funcnet.robot.phases import move_threshold
 from funcnet.robot.preprocess import velocity
 from funcnet.robot.recording import Recording
 
@@ -129,7 +130,7 @@ def _design(torque: np.ndarray, vm: np.ndarray) -> np.ndarray:
 def _fit_rows(vm: np.ndarray, d: np.ndarray, torque: np.ndarray, min_speed: float) -> np.ndarray:
     """The samples fitted: the motor faster than ``min_speed`` (or half its peak speed, if
     that is less: a slow recording), every value finite."""
-    fast = min(min_speed, 0.5 * float(np.nanmax(np.abs(vm)))) if np.isfinite(vm).any() else 0.0
+    fast = move_threshold(vm, min_speed)
     return np.flatnonzero((np.abs(vm) > fast) & np.isfinite(d) & np.isfinite(torque)
                           & np.isfinite(vm))  # fmt: skip
 

@@ -22,7 +22,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from funcnet.errors import ChannelError, ParameterError
-from funcnet.robot.phases import direction_changes
+from funcnet.robot.phases import (
+    MOVE_SPEED,
+    direction_changes,
+    mask_runs,
+    merge_runs,
+    move_threshold,
+)
 from funcnet.robot.preprocess import add_derived_signals, resample, staircase_signals, velocity
 from funcnet.robot.recording import Recording
 
@@ -36,8 +42,9 @@ __all__ = [
 
 #: Longest standstill, in s, between the two moves of a reversal (as ``detect_phases``).
 MAX_DWELL = 0.5
-#: deg/s a set-point must exceed for a move (or half its peak speed, if less).
-MIN_SPEED = 1.0
+#: deg/s a set-point must exceed for a move (or half its peak speed, if less:
+#: :func:`funcnet.robot.phases.move_threshold`).
+MIN_SPEED = MOVE_SPEED
 
 
 @dataclass(frozen=True)
@@ -158,25 +165,17 @@ def find_direction_changes(
     v = velocity(x, dt)
     if not np.any(v):
         return []
-    fast = min(min_speed, 0.5 * float(np.abs(v).max()))
-    moving = np.abs(v) > standstill * np.abs(v).max()
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], moving.astype(np.int8), [0]])))
+    fast = move_threshold(v, min_speed)
     runs = []
-    for a, b in zip(edges[::2], edges[1::2], strict=True):
+    for a, b in mask_runs(np.abs(v) > standstill * np.abs(v).max()):
         # a run whose speed changes sign is a continuous change: one move per sign
         flips = np.flatnonzero(np.diff(np.sign(v[a:b])) != 0) + a + 1
         bounds = [int(a), *(int(f) for f in flips), int(b)]
-        runs += [[lo, hi] for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)]
-    # a wiggle below the move threshold is no move
-    runs = [[a, b] for a, b in runs if np.abs(v[a:b]).max() > fast]
-    moves: list[list[int]] = []
-    for a, b in runs:  # join same-direction runs separated by less than min_gap
-        sign = np.sign(v[a:b].sum())
-        if moves and np.sign(v[moves[-1][0] : moves[-1][1]].sum()) == sign:
-            if (a - moves[-1][1]) * dt < min_gap:
-                moves[-1][1] = b
-                continue
-        moves.append([a, b])
+        runs += list(zip(bounds[:-1], bounds[1:], strict=True))
+    # a wiggle below the move threshold is no move; same-direction runs less than min_gap apart
+    # are one move
+    runs = [(a, b) for a, b in runs if np.abs(v[a:b]).max() > fast]
+    moves = merge_runs(runs, v, min_gap, dt)
     t0 = float(recording.data.index[0])
     changes = []
     turns = None

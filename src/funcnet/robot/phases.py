@@ -22,7 +22,17 @@ from funcnet.errors import ParameterError
 from funcnet.robot.preprocess import reference_speed, velocity
 from funcnet.robot.recording import Recording
 
-__all__ = ["PHASES", "Turn", "detect_phases", "direction_changes", "phase_table"]
+__all__ = [
+    "MOVE_SPEED",
+    "PHASES",
+    "Turn",
+    "detect_phases",
+    "direction_changes",
+    "mask_runs",
+    "merge_runs",
+    "move_threshold",
+    "phase_table",
+]
 
 #: Phase names, as the paper writes them.
 PHASES = ("standstill", "early spin-up", "late spin-up", "cruise", "braking", "reversal")
@@ -30,6 +40,8 @@ PHASES = ("standstill", "early spin-up", "late spin-up", "cruise", "braking", "r
 #: Default of :func:`direction_changes`' ``relative``: a stretch of motion counts when its speed
 #: exceeds this fraction of the reference's peak speed.
 TURN_SPEED = 0.05
+#: Default of :func:`move_threshold`: 1 deg/s on an axis in degrees.
+MOVE_SPEED = 1.0
 
 
 def _fraction(value: float, name: str) -> float:
@@ -38,22 +50,77 @@ def _fraction(value: float, name: str) -> float:
     return value
 
 
-def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
-    """Maximal runs of True as (first, stop) tick pairs."""
+def move_threshold(speed: np.ndarray, min_speed: float = MOVE_SPEED) -> float:
+    """The speed a motion must exceed to count as a move: ``min_speed``, or half the peak speed
+    where that is less (a slow trace keeps its moves).
+
+    Parameters
+    ----------
+    speed : ndarray
+        Speeds (either sign) of the motion, e.g. deg/s; NaN values are ignored.
+    min_speed : float
+        The threshold of a trace that moves faster than twice it.
+
+    Returns
+    -------
+    float
+        ``min(min_speed, max|speed| / 2)``; 0 when no speed is finite.
+
+    Examples
+    --------
+    >>> move_threshold(np.array([0.0, 3.0, -5.0])), move_threshold(np.array([0.2, -0.8]))
+    (1.0, 0.4)
+    """
+    if not np.isfinite(speed).any():
+        return 0.0
+    return min(min_speed, 0.5 * float(np.nanmax(np.abs(speed))))
+
+
+def mask_runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Maximal runs of True as ``(first, stop)`` tick pairs (``first <= tick < stop``).
+
+    Examples
+    --------
+    >>> [(int(a), int(b)) for a, b in mask_runs(np.array([0, 1, 1, 0, 1], dtype=bool))]
+    [(1, 3), (4, 5)]
+    """
     edges = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
     return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True))
 
 
-def _merge_runs(
-    runs: list[tuple[int, int]], signed: np.ndarray, max_gap: float
+def merge_runs(
+    runs: list[tuple[int, int]], signed: np.ndarray, max_gap: float, period: float = 1.0
 ) -> list[tuple[int, int]]:
-    """Join runs in the same direction separated by fewer than ``max_gap`` ticks."""
+    """Join consecutive runs in the same direction that lie less than ``max_gap`` apart.
+
+    Parameters
+    ----------
+    runs : list of (int, int)
+        ``(first, stop)`` tick pairs in time order (:func:`mask_runs`).
+    signed : ndarray
+        The signed speed per tick: a run's direction is the sign of its sum.
+    max_gap : float
+        The gap (ticks from one run's stop to the next's first, times ``period``) below which
+        two runs the same way are one.
+    period : float
+        1 for ``max_gap`` in ticks; the sample period for ``max_gap`` in seconds.
+
+    Returns
+    -------
+    list of (int, int)
+
+    Examples
+    --------
+    >>> v = np.array([1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0])
+    >>> [(int(a), int(b)) for a, b in merge_runs(mask_runs(v != 0), v, 2)]
+    [(0, 4), (7, 8)]
+    """
     merged: list[tuple[int, int]] = []
     for first, stop in runs:
         if merged:
             prev_first, prev_stop = merged[-1]
             same = np.sign(signed[prev_first:prev_stop].sum()) == np.sign(signed[first:stop].sum())
-            if same and first - prev_stop < max_gap:
+            if same and (first - prev_stop) * period < max_gap:
                 merged[-1] = (prev_first, stop)
                 continue
         merged.append((first, stop))
@@ -415,7 +482,7 @@ def detect_phases(
         position = recording.data[reference].to_numpy(dtype=np.float64)
         threshold = float(min_speed) if min_speed is not None else relative * speed.max()
         turns = [turn for _, _, turn, _ in _turn_ticks(position, signed, threshold)]
-        moves = _merge_runs(_runs(speed > standstill * speed.max()), signed, min_gap / dt)
+        moves = merge_runs(mask_runs(speed > standstill * speed.max()), signed, min_gap / dt)
         # a creep or wiggle never faster than the threshold is no move
         moves = [(first, stop) for first, stop in moves if speed[first:stop].max() > threshold]
         segments = _segments(moves, turns, speed, threshold, dip)

@@ -88,6 +88,7 @@ import pandas as pd
 from scipy.signal import lfilter
 
 from funcnet.errors import ParameterError
+from funcnet.robot.phases import move_threshold
 from funcnet.robot.sim._kernel import axis_kernel
 from funcnet.robot.sim.trial import FAULT_KNOBS, Trial
 
@@ -740,7 +741,7 @@ def reversal_error_truth(
     """
     t = states.index.to_numpy()
     v = np.asarray(setpoint_speed, dtype=np.float64) / 60.0
-    fast = min(1.0, 0.5 * float(np.abs(v).max()))
+    fast = move_threshold(v)
     rest = (states["torsion"] - states["gear_torque"] / stiffness).to_numpy()
     sign = np.where(v > fast, 1, np.where(v < -fast, -1, 0))
     moving = np.flatnonzero(sign)
