@@ -15,6 +15,7 @@ from funcnet.diagnosis import diagnose_recording, find_direction_changes, write_
 from funcnet.diagnosis.reversal_error import fit_gear, reversal_error, torque_traversed
 from funcnet.diagnosis.reversals import DirectionChange, motor_side_recording
 from funcnet.robot import Recording, SignalInfo, read_trace
+from funcnet.robot.preprocess import velocity
 from funcnet.robot.sim import Trial, simulate_trial, write_trace
 
 KUKA = SHARED / "data" / "kuka-kr300"
@@ -206,6 +207,34 @@ def test_the_reversal_error_recovers_a_known_lost_motion():
         # the torque changes sign across the first turn only
         assert [torque_traversed(rec, c) for c in changes] == [True, False]
     assert covered >= 16  # of 20: a 95 % interval
+
+
+def test_the_bootstrap_refits_on_the_samples_the_gear_was_fitted_on():
+    # exact above 5 deg/s; below it a direction term 0.02 deg larger: a gear fitted above 5 deg/s
+    # is exact on every resample of its own samples, so the interval closes on the step, which
+    # the slower stretches beside the turns give in closed form: 2 (0.01 + 0.02) deg
+    dt = 0.004
+    t = np.arange(0, 6, dt)
+    mp = 10 * np.sin(t)
+    v = velocity(mp, dt)
+    torque = 3 * np.sin(2 * t) + 0.5 * np.cos(5 * t)
+    d = 0.001 * torque + 0.003 * v + (0.01 + 0.02 * (np.abs(v) <= 5)) * np.sign(v)
+    data = pd.DataFrame({"RP": mp, "MP": mp, "AP": mp - d, "AC": torque},
+                        index=pd.Index(t, name="time"))  # fmt: skip
+    rec = Recording(data, {}, {c: SignalInfo(c, "posn", None, dt) for c in data},
+                    sample_period=dt)  # fmt: skip
+    gear = fit_gear(rec, min_speed=5.0)
+    assert gear.min_speed == 5.0 and gear.compliance == pytest.approx(0.001)
+    changes = find_direction_changes(rec)
+    assert len(changes) == 2
+    for change in changes:
+        error = reversal_error(rec, change, gear, resamples=100)
+        assert error.lost_motion == pytest.approx(0.06, abs=1e-12)
+        assert error.high - error.low < 1e-12
+        # the torque test handed in is the one it would make itself
+        given = reversal_error(rec, change, gear, resamples=100,
+                               traversed=torque_traversed(rec, change))  # fmt: skip
+        assert given == error
 
 
 def test_no_lost_motion_says_why(tmp_path):

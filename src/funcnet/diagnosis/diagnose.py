@@ -329,7 +329,7 @@ def diagnose_recording(
             shown = {}
             lost = None
             if has_ap:
-                error = reversal_error(rec, change, gear)
+                error = reversal_error(rec, change, gear, traversed=traversed)
                 lost, low, high = (_none(error.lost_motion), _none(error.low),
                                    _none(error.high))  # fmt: skip
         else:

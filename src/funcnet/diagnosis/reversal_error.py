@@ -96,9 +96,12 @@ class GearFit:
     rms : float
         deg, the fit's residual.
     samples : int
-        Samples fitted (motor faster than :data:`FIT_SPEED`).
+        Samples fitted (motor faster than ``min_speed``).
     torque : str
         The torque column fitted (AC or RC).
+    min_speed : float
+        deg/s, the fit's ``min_speed`` (:func:`fit_gear`): the bootstrap of
+        :func:`reversal_error` refits on the same samples.
     """
 
     compliance: float
@@ -108,6 +111,7 @@ class GearFit:
     rms: float
     samples: int
     torque: str
+    min_speed: float = FIT_SPEED
 
     def to_dict(self) -> dict[str, float | int | str | None]:
         """JSON-ready."""
@@ -198,6 +202,7 @@ def fit_gear(rec: Recording, *, min_speed: float = FIT_SPEED) -> GearFit | None:
         rms=rms,
         samples=int(use.size),
         torque=torque_column(rec),
+        min_speed=min_speed,
     )
 
 
@@ -324,7 +329,7 @@ def _blocks(rng: np.random.Generator, n: int, size: int) -> np.ndarray:
 def reversal_error(
     rec: Recording, change: DirectionChange, gear: GearFit | None = None, *,
     window: float = _WINDOW, resamples: int = 400, level: float = 0.95, seed: int = 0,
-    motor_inertia: float = 0.0,
+    motor_inertia: float = 0.0, traversed: bool | None = None,
 ) -> ReversalError:  # fmt: skip
     """The lost motion at a direction change in continuous motion, with an interval.
 
@@ -349,6 +354,9 @@ def reversal_error(
         Of the bootstrap.
     motor_inertia : float
         For ``traversed`` (:func:`gear_torque`).
+    traversed : bool, optional
+        :func:`torque_traversed` at ``change`` with this ``motor_inertia`` and ``window``
+        (computed here when omitted).
 
     Returns
     -------
@@ -385,7 +393,8 @@ def reversal_error(
     if not (window > 0 and resamples >= 0 and 0 < level < 1):
         raise ParameterError.of("window", "must be > 0 s, resamples >= 0, level in (0, 1)")
     gear = fit_gear(rec) if gear is None else gear
-    traversed = torque_traversed(rec, change, motor_inertia=motor_inertia, window=window)
+    if traversed is None:
+        traversed = torque_traversed(rec, change, motor_inertia=motor_inertia, window=window)
     nan = ReversalError(math.nan, math.nan, math.nan, traversed)
     if gear is None:
         return nan
@@ -402,7 +411,7 @@ def reversal_error(
         return float(old * (rest[b].mean() - rest[a].mean()))
 
     point = step(gear.compliance, gear.skew, before, after)
-    fitted = _fit_rows(vm, d, torque, FIT_SPEED)
+    fitted = _fit_rows(vm, d, torque, gear.min_speed)
     rng = np.random.default_rng(seed)
     block = max(1, round(_BLOCK / rec.sample_period))
     draws = []
