@@ -40,10 +40,10 @@ from funcnet.diagnosis.reversals import (
     motor_side_recording,
 )
 from funcnet.diagnosis.sweep import with_contact_score
-from funcnet.diagnosis.two_encoder import _quantum, first_start, lost_motion
+from funcnet.diagnosis.two_encoder import first_start, lost_motion
 from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
-from funcnet.robot.preprocess import velocity
+from funcnet.robot.preprocess import encoder_step, velocity
 from funcnet.robot.recording import Recording, read_trace
 
 __all__ = [
@@ -308,7 +308,7 @@ def diagnose_recording(
     # the gear between the encoders, fitted once for every continuous change's reversal error
     continuous = len(resting) < len(changes)
     gear = fit_gear(rec) if has_ap and continuous else None
-    quantum = _quantum(rec.data["AP"].to_numpy(dtype=np.float64)) if has_ap else math.nan
+    quantum = encoder_step(rec.data["AP"].to_numpy(dtype=np.float64)) if has_ap else math.nan
     results = []
     for change in changes:
         speed = _move_speed(rec, change)

@@ -30,6 +30,7 @@ import numba
 import numpy as np
 
 from funcnet.diagnosis.reversals import DirectionChange
+from funcnet.robot.preprocess import encoder_step
 from funcnet.robot.recording import Recording
 
 __all__ = ["ArmStart", "first_start", "lost_motion"]
@@ -342,12 +343,6 @@ def _fit_restart(
     return start, omega, drop, residual
 
 
-def _quantum(ap: np.ndarray) -> float:
-    """The arm encoder's step: the least change between readings."""
-    steps = np.abs(np.diff(ap))
-    return float(steps[steps > 0].min()) if np.any(steps > 0) else 1e-9
-
-
 # readings (0.1 s at 4 ms) the arm rests on one reading before a start whose physics is fitted
 # for the axis's parameters (:func:`first_start`): a rest, not a pause of the encoder's count
 _REST_READINGS = 25
@@ -433,7 +428,7 @@ def first_start(rec: Recording) -> ArmStart | None:
     """
     t = rec.data.index.to_numpy()
     mp, ap = _values(rec, "MP"), _values(rec, "AP")
-    quantum = _quantum(ap)
+    quantum = encoder_step(ap)
     bounds = np.concatenate(([0], np.flatnonzero(np.diff(ap) != 0) + 1, [ap.size]))
     for a, b in zip(bounds[:-1], bounds[1:], strict=True):
         if b - a < _REST_READINGS or b == ap.size:
@@ -539,7 +534,7 @@ def lost_motion(
     mp, ap = _values(rec, "MP"), _values(rec, "AP")
     new = change.direction
     old = -new
-    quantum = _quantum(ap)
+    quantum = encoder_step(ap)
     if change.kind == "reversal":
         k = _arm_restart(t, mp, ap, change, quantum)
         if k is None:

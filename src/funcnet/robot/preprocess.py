@@ -1,7 +1,8 @@
 """Preprocessing of a robot recording before the networks (paper section 3.3).
 
-Velocity from the arm-side position (Eq. 11-12), derived signals (V, following error, torsion),
-trimming to the motion or a time range, and resampling of mixed-rate signals to a common grid.
+Velocity from the arm-side position (Eq. 11-12), an encoder's step, derived signals (V,
+following error, torsion), trimming to the motion or a time range, and resampling of mixed-rate
+signals to a common grid.
 Normalization per analysis window is the network's job (:func:`funcnet.normalization.normalize`,
 called by :func:`funcnet.functional_network`), not done here.
 """
@@ -22,6 +23,7 @@ __all__ = [
     "velocity",
     "segment_velocity",
     "reference_speed",
+    "encoder_step",
     "add_derived_signals",
     "trim",
     "resample",
@@ -178,6 +180,29 @@ def reference_speed(recording: Recording, reference: str = "RP") -> np.ndarray:
             "trim the recording to where it is recorded"
         )
     return np.abs(velocity(position, recording.sample_period))
+
+
+def encoder_step(positions: np.ndarray) -> float:
+    """An encoder's step (its resolution): the least change between its readings.
+
+    Parameters
+    ----------
+    positions : ndarray
+        The encoder's readings (AP or MP), in time order; NaN readings are no change.
+
+    Returns
+    -------
+    float
+        The least nonzero ``|difference|`` of consecutive readings; 1e-9 when the readings
+        never change.
+
+    Examples
+    --------
+    >>> encoder_step(np.array([0.0, 0.0, 0.25, 0.75, 0.5]))
+    0.25
+    """
+    steps = np.abs(np.diff(positions))
+    return float(steps[steps > 0].min()) if np.any(steps > 0) else 1e-9
 
 
 def add_derived_signals(
