@@ -94,10 +94,12 @@ class _Move:
     displacement: np.ndarray = field(repr=False)
 
 
-def _moves(recordings: Sequence[Recording], reference: str) -> list[_Move]:
+def _moves(
+    recordings: Sequence[Recording], tables: Sequence[pd.DataFrame], reference: str
+) -> list[_Move]:
+    """The moves of each recording, from its phase table (:func:`detect_phases`)."""
     found = []
-    for r, recording in enumerate(recordings):
-        table = detect_phases(recording, reference=reference)
+    for r, (recording, table) in enumerate(zip(recordings, tables, strict=True)):
         moving = (table.phase != "standstill").to_numpy()
         index = recording.data.index
         rp = recording.data[reference].to_numpy(dtype=np.float64)
@@ -213,7 +215,8 @@ def find_repetitions(
         if missing:
             raise SignalError(f"recording {r} ({item.source}) has no signal(s) "
                               f"{', '.join(map(str, missing))}")
-    moves = _moves(items, reference)
+    tables = [detect_phases(item, reference=reference) for item in items]
+    moves = _moves(items, tables, reference)
     if not moves:
         raise SignalError(f"no move of the set-point {reference} in the recordings")
     lag_samples = int(round(max_lag / period))
@@ -261,7 +264,7 @@ def find_repetitions(
                      "move": move.number, "start": round(start, 9),
                      "stop": round(start + length * period, 9), "direction": move.direction,
                      "mirrored": mirrored, "lag": round(lag * period, 9)})
-    relative = detect_phases(items[first.recording], reference=reference)
+    relative = tables[first.recording]
     t0 = float(items[first.recording].data.index[first.first])
     relative = relative[(relative.stop > t0 + 1e-9) & (relative.start < t0 + length * period
                                                           - 1e-9)].copy()
