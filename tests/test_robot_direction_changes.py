@@ -10,11 +10,11 @@ import pytest
 import scipy.io
 
 from funcnet.errors import ChannelError, ParameterError
+from funcnet.robot.grid import mask_runs
 from funcnet.robot.phases import (
     Turn,
     detect_phases,
     direction_changes,
-    mask_runs,
     merge_runs,
     move_threshold,
 )

@@ -22,13 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from funcnet.errors import ChannelError, ParameterError
-from funcnet.robot.phases import (
-    MOVE_SPEED,
-    direction_changes,
-    mask_runs,
-    merge_runs,
-    move_threshold,
-)
+from funcnet.robot.grid import mask_runs
+from funcnet.robot.phases import MOVE_SPEED, direction_changes, merge_runs, move_threshold
 from funcnet.robot.preprocess import add_derived_signals, resample, staircase_signals, velocity
 from funcnet.robot.recording import Recording
 

@@ -3,8 +3,9 @@
 Every reader ends here: a file's time stamps become ticks of one sample period
 (:func:`time_grid`), the samples are placed on those ticks (:func:`place_on_grid`), and the
 stretches where a signal has no value after its first one are the recording's gaps
-(:func:`find_gaps`). A file reader returns a :class:`GridSignals`; :func:`funcnet.robot.read_trace`
-turns it into a :class:`~funcnet.robot.Recording`.
+(:func:`find_gaps`, runs of ticks as :func:`mask_runs` finds them). A file reader returns a
+:class:`GridSignals`; :func:`funcnet.robot.read_trace` turns it into a
+:class:`~funcnet.robot.Recording`.
 
 The rules, the same for every format:
 
@@ -32,7 +33,8 @@ from funcnet.errors import TraceFormatError
 from funcnet.robot.channels import SignalInfo
 
 __all__ = [
-    "GridSignals", "time_grid", "place_on_grid", "find_gaps", "segments_between", "OFF_GRID"
+    "GridSignals", "time_grid", "place_on_grid", "find_gaps", "mask_runs", "segments_between",
+    "OFF_GRID",
 ]
 
 #: What to do with time stamps off their grid: refuse them, or interpolate onto the grid.
@@ -218,6 +220,18 @@ def place_on_grid(
     return out
 
 
+def mask_runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Maximal runs of True as ``(first, stop)`` tick pairs (``first <= tick < stop``).
+
+    Examples
+    --------
+    >>> [(int(a), int(b)) for a, b in mask_runs(np.array([0, 1, 1, 0, 1], dtype=bool))]
+    [(1, 3), (4, 5)]
+    """
+    edges = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
+    return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True))
+
+
 def find_gaps(values: np.ndarray) -> tuple[list[tuple[int, int]], list[list[int]]]:
     """The stretches of ticks where a signal has no value after its first one.
 
@@ -245,10 +259,7 @@ def find_gaps(values: np.ndarray) -> tuple[list[tuple[int, int]], list[list[int]
     any_hole = hole.any(axis=1)
     if not any_hole.any():
         return [], []
-    edges = np.diff(np.concatenate(([0], any_hole.astype(np.int8), [0])))
-    starts = np.flatnonzero(edges == 1)
-    stops = np.flatnonzero(edges == -1)
-    gaps = [(int(a), int(b)) for a, b in zip(starts, stops, strict=True)]
+    gaps = [(int(a), int(b)) for a, b in mask_runs(any_hole)]
     columns = [np.flatnonzero(hole[a:b].any(axis=0)).tolist() for a, b in gaps]
     return gaps, columns
 

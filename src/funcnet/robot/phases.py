@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet.errors import ParameterError
+from funcnet.robot.grid import mask_runs
 from funcnet.robot.preprocess import reference_speed, velocity
 from funcnet.robot.recording import Recording
 
@@ -28,7 +29,6 @@ __all__ = [
     "Turn",
     "detect_phases",
     "direction_changes",
-    "mask_runs",
     "merge_runs",
     "move_threshold",
     "phase_table",
@@ -76,18 +76,6 @@ def move_threshold(speed: np.ndarray, min_speed: float = MOVE_SPEED) -> float:
     return min(min_speed, 0.5 * float(np.nanmax(np.abs(speed))))
 
 
-def mask_runs(mask: np.ndarray) -> list[tuple[int, int]]:
-    """Maximal runs of True as ``(first, stop)`` tick pairs (``first <= tick < stop``).
-
-    Examples
-    --------
-    >>> [(int(a), int(b)) for a, b in mask_runs(np.array([0, 1, 1, 0, 1], dtype=bool))]
-    [(1, 3), (4, 5)]
-    """
-    edges = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
-    return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True))
-
-
 def merge_runs(
     runs: list[tuple[int, int]], signed: np.ndarray, max_gap: float, period: float = 1.0
 ) -> list[tuple[int, int]]:
@@ -96,7 +84,7 @@ def merge_runs(
     Parameters
     ----------
     runs : list of (int, int)
-        ``(first, stop)`` tick pairs in time order (:func:`mask_runs`).
+        ``(first, stop)`` tick pairs in time order (:func:`~funcnet.robot.grid.mask_runs`).
     signed : ndarray
         The signed speed per tick: a run's direction is the sign of its sum.
     max_gap : float
