@@ -6,7 +6,9 @@ Fig. 11). :func:`detect_phases` finds them from the position set-point RP and it
 :func:`phase_table` takes phases given by hand. Both give the same table: one row per phase with
 ``phase``, ``start`` and ``stop`` (seconds, ``start <= time < stop``), in time order.
 :func:`direction_changes` finds where the set-point turns, after a standstill or in continuous
-motion.
+motion. :func:`merge_runs` joins a move's runs across short standstills; :func:`move_threshold`
+is the speed a move must exceed to count in the backlash diagnosis and its simulated truth (1
+deg/s, or half the peak speed if less).
 """
 
 from __future__ import annotations
@@ -91,7 +93,9 @@ def merge_runs(
         The gap (ticks from one run's stop to the next's first, times ``period``) below which
         two runs the same way are one.
     period : float
-        1 for ``max_gap`` in ticks; the sample period for ``max_gap`` in seconds.
+        1 for ``max_gap`` in ticks (``min_gap / dt``: :func:`detect_phases`); the sample period
+        for ``max_gap`` in seconds (:func:`funcnet.diagnosis.reversals.find_direction_changes`).
+        The two round differently at an exact tie, so each caller keeps its own.
 
     Returns
     -------
