@@ -354,6 +354,18 @@ def _kuka_recording(rec: Any, axis: int) -> Any:
     return Recording(data, {}, info, source=f"axis {axis}", sample_period=0.004)
 
 
+def _parts_cell(parts: Any) -> str:
+    """Dead zone and friction with their intervals (arcmin), or why they are not told apart."""
+    if parts is None:
+        return "-"
+    if parts.dead_zone is None:
+        return ("none (torque keeps one sign)" if "one sign" in parts.reason
+                else f"none (torque and direction differ on {parts.disagreeing:.1%})")
+    return (f"{60 * parts.dead_zone:+.2f} [{60 * parts.dead_zone_low:+.2f}, "
+            f"{60 * parts.dead_zone_high:+.2f}]; {60 * parts.friction:+.2f} "
+            f"[{60 * parts.friction_low:+.2f}, {60 * parts.friction_high:+.2f}]")
+
+
 def kuka_table() -> str:
     """Per run and axis (1-3) of the KUKA KR 300 runs: the direction changes against the
     set-point's (stretches faster than 1 deg/s), the lost motion at each with its interval and
@@ -369,8 +381,9 @@ def kuka_table() -> str:
 
     lines = ["| run | axis | set-point changes | found | turn (s) | lost motion (arcmin) [95 %] "
              "| traversed (with J_m) | axis lost_motion | plain LS | LS with speed "
-             "| LS, encoders aligned (shift ms) | skew (ms) | compliance (arcsec/N m) | reading |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
+             "| LS, encoders aligned (shift ms) | skew (ms) | compliance (arcsec/N m) | reading "
+             "| dead zone; friction [95 %] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
     for run in ("A", "B"):
         path = ROOT.parent / "shared" / "data" / "kuka-kr300" / f"kr300-run-{run}.mat"
         mat = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)
@@ -409,8 +422,9 @@ def kuka_table() -> str:
                 tail = (f"| {60 * result.lost_motion:+.2f} | {plain[0]:+.2f} | {plain[1]:+.2f} "
                         f"| {aligned} | {1e3 * result.gear.skew:.2f} "
                         f"| {3600 * result.gear.compliance:.1f} "
-                        f"| {'none' if result.reading is None else result.reading['text']} |"
-                        if i == 0 else "| | | | | | | |")  # fmt: skip
+                        f"| {'none' if result.reading is None else result.reading['text']} "
+                        f"| {_parts_cell(result.gear_parts)} |"
+                        if i == 0 else "| | | | | | | | |")  # fmt: skip
                 lines.append(
                     f"{head}| {r.change.turn:.2f} | {60 * r.lost_motion:+.2f} "
                     f"[{60 * r.lost_motion_low:+.2f}, {60 * r.lost_motion_high:+.2f}] "

@@ -22,9 +22,11 @@ recording does not hold -- the simulator's gear torque (noise-free state) and it
   above is the motor's own torque, inertia and friction, which the current carries and the gear
   does not).
 
-Then the AUC of ">= 0.5 arcmin against none" for the two-encoder estimate and for a motor-side
-reading -- the same estimate with the set-point RP in the arm encoder's place (``MP - RP``: the
-wind-up, the loop's lag, which the speed term takes, and the dead zone) -- on this plan and on
+Then the dead zone told from friction (:func:`~funcnet.diagnosis.reversal_error.gear_parts`)
+per speed and backlash width, and the AUC of ">= 0.5 arcmin against none" for the two-encoder
+estimate and for a motor-side reading -- the same estimate with the set-point RP in the arm
+encoder's place (``MP - RP``: the wind-up, the loop's lag, which the speed term takes, and the
+dead zone) -- on this plan and on
 a held-out plan the sweep does not contain (backlash 0, 0.5, 1, 2 arcmin, load 0 and 1000 N m,
 70 and 120 deg/min, TCP 1.4 and 1.8 m, friction 0.85 and 1.2, seed 11: 64 trials), positives
 by the backlash width and by the truth (the dead zone crossed: a loaded gear never crosses it).
@@ -43,7 +45,7 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 import pandas as pd
 
-from funcnet.diagnosis.reversal_error import fit_gear, reversal_error
+from funcnet.diagnosis.reversal_error import fit_gear, gear_parts, reversal_error
 from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
 from funcnet.diagnosis.sweep import simulated_recording
 from funcnet.robot.phases import move_threshold
@@ -113,6 +115,7 @@ def trial_row(trial: Trial) -> dict[str, float | str]:
     estimated = n * (p.torque_constant * _mean(current) - own)
     on_flank = fast[np.abs(estimated[fast]) > 3 * FLANK]
     library = [reversal_error(rec, c, gear, resamples=0).lost_motion for c in turns]
+    parts = gear_parts(rec, resamples=0)
     motor_rec = dataclasses.replace(rec, data=rec.data.assign(AP=rec.data["RP"]))
     motor_gear = fit_gear(motor_rec)
     motor_side = [reversal_error(motor_rec, c, motor_gear, resamples=0).lost_motion
@@ -127,6 +130,7 @@ def trial_row(trial: Trial) -> dict[str, float | str]:
         "encoder_step": 360 / p.arm_encoder_counts * 60,
         "library": float(np.mean(library)) * 60,
         "motor side": float(np.mean(motor_side)) * 60,
+        "dead zone": math.nan if parts.dead_zone is None else parts.dead_zone * 60,
         "true torque, linear fit": _step(t, turns, _fitted(d, tau, vm, fast, np.sign(vm))),
         "true torque, dead-zone fit": _step(t, turns, _fitted(d, tau, vm, flank, np.sign(tau))),
         "true torque and stiffness": _step(t, turns, d - tau / stiffness),
@@ -218,6 +222,14 @@ def main() -> None:
     print(
         df[df["load"] == 0].groupby("backlash")[["truth", *ESTIMATES]].median().round(3).to_string()
     )
+    print("\nthe dead zone told from friction (gear_parts), trials without a load: told apart "
+          "/ trials, and the term's range (arcmin):")
+    for (v, width), part in df[df["load"] == 0].groupby(["speed", "backlash"]):
+        told = part["dead zone"].dropna()
+        span = f"{told.min():.2f}-{told.max():.2f}" if len(told) else "-"
+        print(f"  {v:g} deg/min, backlash {width:g}: {len(told)}/{len(part)}, {span}")
+    print(f"  with the load: told apart on {int(df[df['load'] > 0]['dead zone'].notna().sum())} "
+          f"of {int((df['load'] > 0).sum())}")
     with ProcessPoolExecutor(args.workers) as pool:
         held = pd.DataFrame(pool.map(trial_row, held_out_plan(), chunksize=4))
     print("\nAUC, >= 0.5 arcmin against none (n positive / n negative):")

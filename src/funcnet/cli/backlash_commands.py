@@ -82,7 +82,13 @@ def _backlash_numbers(result: Any) -> str:
         return f"{score}; lost_motion none ({result.lost_motion_reason or 'no AP'})"
     # Backlash is read in arcmin (1/60 deg); the JSON keeps degrees, as the manifest does.
     spread = "" if result.lost_motion_spread is None else f" ± {60 * result.lost_motion_spread:.2f}"
-    return f"{score}; lost_motion {60 * result.lost_motion:.2f}{spread} arcmin"
+    line = f"{score}; lost_motion {60 * result.lost_motion:.2f}{spread} arcmin"
+    parts = result.gear_parts
+    if parts is not None and parts.dead_zone is not None:
+        line += (f" (dead zone {60 * parts.dead_zone:.2f} [{60 * parts.dead_zone_low:.2f}, "
+                 f"{60 * parts.dead_zone_high:.2f}], friction {60 * parts.friction:.2f} "
+                 f"[{60 * parts.friction_low:.2f}, {60 * parts.friction_high:.2f}] arcmin)")
+    return line
 
 
 # --------------------------------------------------------------------------------------------

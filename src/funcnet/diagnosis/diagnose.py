@@ -28,7 +28,9 @@ from funcnet._io import write_text_atomic
 from funcnet.diagnosis.indicators import reversal_indicators
 from funcnet.diagnosis.reversal_error import (
     GearFit,
+    GearParts,
     fit_gear,
+    gear_parts,
     reversal_error,
     torque_column,
     torque_traversed,
@@ -164,6 +166,9 @@ class BacklashResult:
         Why ``lost_motion`` is None: no AP, or no direction change (None when there is one).
     gear : GearFit or None
         With AP and continuous changes: the gear's fit over the recording (:func:`.fit_gear`).
+    gear_parts : GearParts or None
+        With ``gear``: backlash (dead zone) and friction told apart where the torque's sign
+        allows, else why not (:func:`.gear_parts`).
     axis : int or None
         The axis diagnosed, when the trace held several (one result per axis).
     """
@@ -180,6 +185,7 @@ class BacklashResult:
     reading_reason: str | None = None
     lost_motion_reason: str | None = None
     gear: GearFit | None = None
+    gear_parts: GearParts | None = None
     axis: int | None = None
 
     @property
@@ -202,6 +208,7 @@ class BacklashResult:
             "reading_reason": self.reading_reason,
             "lost_motion_reason": self.lost_motion_reason,
             "gear": None if self.gear is None else self.gear.to_dict(),
+            "gear_parts": None if self.gear_parts is None else self.gear_parts.to_dict(),
             "message": self.message,
             "note": MODEL_NOTE,
         }
@@ -390,6 +397,7 @@ def diagnose_recording(
         reading_reason=None if reading is not None else reason,
         lost_motion_reason=lost_reason,
         gear=gear,
+        gear_parts=gear_parts(rec) if gear is not None else None,
     )
 
 
