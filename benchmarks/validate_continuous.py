@@ -22,7 +22,7 @@ recording does not hold -- the simulator's gear torque (noise-free state) and it
   above is the motor's own torque, inertia and friction, which the current carries and the gear
   does not).
 
-Then the dead zone told from friction (:func:`~funcnet.diagnosis.reversal_error.gear_parts`)
+Then the dead zone told from friction (:func:`~funcnet.diagnosis.dead_zone.gear_parts`)
 per speed and backlash width, and the AUC of ">= 0.5 arcmin against none" for the two-encoder
 estimate and for a motor-side reading -- the same estimate with the set-point RP in the arm
 encoder's place (``MP - RP``: the wind-up, the loop's lag, which the speed term takes, and the
@@ -45,7 +45,8 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 import pandas as pd
 
-from funcnet.diagnosis.reversal_error import fit_gear, gear_parts, reversal_error
+from funcnet.diagnosis.dead_zone import gear_parts
+from funcnet.diagnosis.reversal_error import fit_gear, reversal_error
 from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
 from funcnet.diagnosis.sweep import simulated_recording
 from funcnet.robot.phases import move_threshold

@@ -15,7 +15,7 @@ from typer.testing import CliRunner
 from conftest import REPO, SHARED
 from funcnet.cli import app
 from funcnet.diagnosis import diagnose_recording
-from funcnet.diagnosis.reversal_error import gear_parts
+from funcnet.diagnosis.dead_zone import gear_parts
 from funcnet.diagnosis.reversals import motor_side_recording
 from funcnet.diagnosis.sweep import simulated_recording
 from funcnet.robot import Recording, SignalInfo, read_trace

@@ -6,7 +6,8 @@ baselines, motor-side functional-network features, the paper's signature),
 :mod:`~funcnet.diagnosis.two_encoder` the two-encoder lost motion among them,
 :mod:`~funcnet.diagnosis.sweep` simulates the sweep and scores the indicators against the
 truth, and :mod:`~funcnet.diagnosis.diagnose` diagnoses real traces
-(:func:`diagnose_backlash`). Names are imported lazily.
+(:func:`diagnose_backlash`; :mod:`~funcnet.diagnosis.results` writes the diagnoses). Names are
+imported lazily.
 
 Examples
 --------
@@ -40,8 +41,8 @@ _EXPORTS = {
     "diagnose_backlash": "funcnet.diagnosis.diagnose",
     "diagnose_recording": "funcnet.diagnosis.diagnose",
     "load_calibration": "funcnet.diagnosis.diagnose",
-    "write_results": "funcnet.diagnosis.diagnose",
-    "trend_table": "funcnet.diagnosis.diagnose",
+    "write_results": "funcnet.diagnosis.results",
+    "trend_table": "funcnet.diagnosis.results",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

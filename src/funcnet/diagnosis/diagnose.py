@@ -6,34 +6,28 @@ sweep supports best (:data:`SCORE`, see ``docs/backlash.md``) and, when the trac
 arm-side encoder AP, the two-encoder lost motion; and reads the score on the sweep's
 calibration, which ships with the package (``calibration.json``, written by
 ``benchmarks/bench_backlash.py --calibrate``). The reading is **model-based**: it says which
-backlash widths gave such values on the simulated axis, not on this machine.
-
-Length: just over 600 lines because the result's fields, its JSON and its trend page are read
-together with the diagnosis that fills them.
+backlash widths gave such values on the simulated axis, not on this machine. The results are
+written by :mod:`~funcnet.diagnosis.results` (JSON, the trend table and its page).
 """
 
 from __future__ import annotations
 
-import html
 import json
 import math
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from importlib import resources
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
-from funcnet._io import write_text_atomic
+from funcnet.diagnosis.dead_zone import GearParts, gear_parts
 from funcnet.diagnosis.indicators import reversal_indicators
 from funcnet.diagnosis.reversal_error import (
     GearFit,
-    GearParts,
     fit_gear,
-    gear_parts,
     reversal_error,
     torque_column,
     torque_traversed,
@@ -59,8 +53,6 @@ __all__ = [
     "diagnose_backlash",
     "diagnose_recording",
     "load_calibration",
-    "write_results",
-    "trend_table",
     "MODEL_NOTE",
 ]
 
@@ -483,128 +475,3 @@ def diagnose_backlash(
                                    calibration=cal, max_dwell=max_dwell), axis=n)
         for path, rec in recordings for n in rec.axes or (None,)
     ]
-
-
-def trend_table(results: Sequence[BacklashResult]) -> pd.DataFrame:
-    """One row per trace, in the given order (the monitoring use: one axis over time).
-
-    Returns
-    -------
-    DataFrame
-        ``path``, ``reversals`` (count), ``score_indicator``, ``backlash_score``,
-        ``score_spread``,
-        ``lost_motion``, ``arcmin_low``, ``arcmin_high``, ``message``.
-
-    Examples
-    --------
-    >>> trend_table([]).columns.tolist()[:4]
-    ['path', 'reversals', 'score_indicator', 'backlash_score']
-    """
-    columns = ["path", "reversals", "score_indicator", "backlash_score", "score_spread",
-               "lost_motion",
-               "arcmin_low", "arcmin_high", "message"]  # fmt: skip
-    rows = [
-        {
-            "path": r.path,
-            "reversals": sum(x.change.kind == "reversal" for x in r.reversals),
-            "score_indicator": r.score_indicator,
-            "backlash_score": r.backlash_score,
-            "score_spread": r.score_spread,
-            "lost_motion": r.lost_motion,
-            "arcmin_low": r.reading["arcmin_low"] if r.reading else None,
-            "arcmin_high": r.reading["arcmin_high"] if r.reading else None,
-            "message": r.message,
-        }
-        for r in results
-    ]
-    return pd.DataFrame(rows, columns=columns)
-
-
-def write_results(results: Sequence[BacklashResult], path: str | os.PathLike[str]) -> Path:
-    """Write ``{"traces": [...]}`` as JSON (or the trend table as HTML), atomically.
-
-    Parameters
-    ----------
-    results : sequence of BacklashResult
-    path : path-like
-        A ``.json`` file (one entry per trace: ``path`` as given, ``backlash_score``,
-        ``lost_motion``, ``reversals``, ...) or an ``.html`` page (the trend table).
-
-    Returns
-    -------
-    Path
-
-    Raises
-    ------
-    ParameterError
-        ``path`` does not end in ``.json`` or ``.html``.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib, json
-    >>> out = write_results([], pathlib.Path(tempfile.mkdtemp()) / "r.json")
-    >>> json.loads(out.read_text())["traces"]
-    []
-    """
-    target = Path(path)
-    suffix = target.suffix.lower()
-    if suffix not in (".json", ".html"):
-        raise ParameterError.of("output", f"must be a .json or .html file, got {str(path)!r}")
-    if suffix == ".html":
-        return write_text_atomic(target, _html(results))
-    payload = {"traces": [r.to_dict() for r in results], "note": MODEL_NOTE}
-    return write_text_atomic(target, json.dumps(payload, indent=2, allow_nan=False) + "\n")
-
-
-def _html(results: Sequence[BacklashResult]) -> str:
-    """A plain page: the trend table (one row per trace, in order) and what to read it as."""
-    table = trend_table(results).to_html(index=False, na_rep="", float_format="{:.5g}".format)
-    return (
-        "<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>funcnet backlash</title>"
-        "</head><body>\n<h1>Backlash diagnosis</h1>\n"
-        f"<p>backlash_score: {html.escape(SCORE)} (deg) with AP, "
-        f"{html.escape(MOTOR_LOOP_SCORE)} (dimensionless) without; higher = more backlash. "
-        "lost_motion: "
-        "two-encoder lost motion (deg). Readings are "
-        f"{html.escape(MODEL_NOTE)}. See docs/backlash.md for how far each can be trusted.</p>\n"
-        f"{table}\n{_trend_svg(results)}\n</body></html>\n"
-    )
-
-
-def _trend_svg(results: Sequence[BacklashResult]) -> str:
-    """The trend plot (score and lost motion per trace, in the given order) as inline SVG."""
-    trend = trend_table(results)
-    if len(trend) < 2:
-        return ""
-    import io
-
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(7, 3.2))
-    ax = fig.subplots()
-    x = np.arange(len(trend))
-
-    def column(name: str, scale: float = 60.0) -> np.ndarray:
-        return pd.to_numeric(trend[name], errors="coerce").to_numpy(dtype=float) * scale
-
-    lost = column("lost_motion")
-    if np.isfinite(lost).any():
-        ax.plot(x, lost, marker="o", label="lost_motion (arcmin)")
-    for indicator, unit, scale in ((SCORE, "arcmin", 60.0), (MOTOR_LOOP_SCORE, "z", 1.0)):
-        mine = (trend["score_indicator"] == indicator).to_numpy()
-        score = np.where(mine, column("backlash_score", scale), np.nan)
-        if np.isfinite(score).any():  # one line per score (their units differ)
-            spread = column("score_spread", scale)
-            ax.plot(x, score, marker="s", label=f"backlash_score: {indicator} ({unit})")
-            ax.fill_between(x, score - spread, score + spread, alpha=0.2)
-    ax.set_xticks(x, [Path(p).name for p in trend["path"]], rotation=20, fontsize=7)
-    ax.set_ylabel("arcmin (or z)")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    buffer = io.StringIO()
-    fig.savefig(buffer, format="svg")
-    text = buffer.getvalue()
-    return text[text.index("<svg") :]
