@@ -150,6 +150,25 @@ def child(n_states: int) -> None:
     print(json.dumps(report))
 
 
+class Run:
+    """A benchmark run's record: the load average and the clock at its start, printed in its
+    header (title, machine, load before) and its footer (load after, total time, command)."""
+
+    def __init__(self) -> None:
+        self.load_before = os.getloadavg()
+        self.start = time.perf_counter()
+
+    def header(self, title: str) -> None:
+        print(f"## {title}\n")
+        print(f"- machine: {machine()}")
+        print(f"- load average before: {self.load_before[0]:.2f} (1 min), "
+              f"{self.load_before[1]:.2f} (5 min)")
+
+    def footer(self, command: str) -> None:
+        print(f"\nload average after: {os.getloadavg()[0]:.2f} (1 min); total "
+              f"{time.perf_counter() - self.start:.0f} s; command: {command}")
+
+
 def machine() -> str:
     import numba
 
@@ -176,8 +195,7 @@ def main(argv: list[str] | None = None) -> None:
         child(args.child)
         return
 
-    load_before = os.getloadavg()
-    start = time.perf_counter()
+    run = Run()
     # The size sweep runs first, while this process is small: a child's getrusage peak starts
     # from its parent's size at fork.
     sweep = [one_pair_in_child(n_states) for n_states in args.sizes]
@@ -189,9 +207,7 @@ def main(argv: list[str] | None = None) -> None:
     cross_measures(x[:900], y[:900], rule="pyunicorn")  # load the compiled kernels
     cross_measures(x[:900], y[:900])
 
-    print("## funcnet core benchmark\n")
-    print(f"- machine: {machine()}")
-    print(f"- load average before: {load_before[0]:.2f} (1 min), {load_before[1]:.2f} (5 min)")
+    run.header("funcnet core benchmark")
     print(
         f"- signals: coupled noisy oscillators, m = {DIM}, tau = {DELAY}, RR = CR = {RATE}, "
         "Euclidean; wall = median (best) of 7 calls (5 for the network), CPU = median CPU "
@@ -241,11 +257,7 @@ def main(argv: list[str] | None = None) -> None:
             f"{report['vm_hwm_mib']:.0f} | {report['ru_maxrss_mib']:.0f} | "
             f"{report['baseline_mib']:.0f} |"
         )
-    load_after = os.getloadavg()
-    print(
-        f"\nload average after: {load_after[0]:.2f} (1 min); total "
-        f"{time.perf_counter() - start:.0f} s; command: python -m benchmarks.bench_core"
-    )
+    run.footer("python -m benchmarks.bench_core")
 
 
 if __name__ == "__main__":

@@ -29,7 +29,7 @@ import warnings
 from pathlib import Path
 from typing import Any
 
-from benchmarks.bench_core import machine
+from benchmarks.bench_core import Run
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT.parent / "shared/data/kuka-kr300"
@@ -91,11 +91,8 @@ def main(argv: list[str] | None = None) -> None:
     if args.child is not None:
         child(args.child)
         return
-    load_before = os.getloadavg()
-    start = time.perf_counter()
-    print("## One robot-wide network: 21 signals of a KUKA KR 300 run\n")
-    print(f"- machine: {machine()}")
-    print(f"- load average before: {load_before[0]:.2f} (1 min), {load_before[1]:.2f} (5 min)")
+    run = Run()
+    run.header("One robot-wide network: 21 signals of a KUKA KR 300 run")
     checkouts = {"this checkout": ROOT}
     if args.against is not None:
         checkouts = {"before": args.against.resolve(), "after": ROOT}
@@ -120,11 +117,8 @@ def main(argv: list[str] | None = None) -> None:
                  / statistics.median(r["wall"] for r in after))
         print(f"\nbefore / after: {ratio:.2f}x wall; pairs tables (C, T, eps of every pair) "
               f"{'identical' if same else 'DIFFERENT'}")
-    load_after = os.getloadavg()
-    print(f"\nload average after: {load_after[0]:.2f} (1 min); total "
-          f"{time.perf_counter() - start:.0f} s; command: python -m "
-          "benchmarks.bench_robot_network" + (f" --against {args.against}" if args.against
-                                              else ""))
+    run.footer("python -m benchmarks.bench_robot_network"
+               + (f" --against {args.against}" if args.against else ""))
 
 
 if __name__ == "__main__":

@@ -36,7 +36,7 @@ import warnings
 from pathlib import Path
 from typing import Any
 
-from benchmarks.bench_core import machine
+from benchmarks.bench_core import Run
 from benchmarks.bench_windows import NODES, pyunicorn_measures, signal_pair, timeline_windows
 
 OPTIONS: dict[str, Any] = {"dim": 3, "delay": 10, "metric": "supremum", "rule": "pyunicorn"}
@@ -179,19 +179,14 @@ def main(argv: list[str] | None = None) -> None:
         child(args.child, args.repeats)
         return
     warnings.simplefilter("ignore")
-    load_before = os.getloadavg()
-    start = time.perf_counter()
-    print("## One short pair\n")
-    print(f"- machine: {machine()}")
-    print(f"- load average before: {load_before[0]:.2f} (1 min), {load_before[1]:.2f} (5 min)")
+    run = Run()
+    run.header("One short pair")
     against_pyunicorn(tuple(args.sizes), args.repeats)
     if args.against is not None:
         against_checkout(args.against.resolve(), args.repeats, not args.skip_timeline,
                          args.rounds)
-    load_after = os.getloadavg()
-    print(f"\nload average after: {load_after[0]:.2f} (1 min); total "
-          f"{time.perf_counter() - start:.0f} s; command: python -m benchmarks.bench_short_pair"
-          + (f" --against {args.against}" if args.against else ""))
+    run.footer("python -m benchmarks.bench_short_pair"
+               + (f" --against {args.against}" if args.against else ""))
 
 
 if __name__ == "__main__":

@@ -28,7 +28,6 @@ something.
 from __future__ import annotations
 
 import argparse
-import os
 import statistics
 import time
 import warnings
@@ -39,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from benchmarks.bench_core import machine, six_signals, timed
+from benchmarks.bench_core import Run, six_signals, timed
 
 DIM, DELAY, RATE = 3, 10, 0.05
 PAIR_SAMPLES = (150, 300, 600, 1000, 2000)
@@ -247,8 +246,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--only", choices=("pair", "six", "timeline", "paper"), default=None)
     args = parser.parse_args(argv)
     warnings.simplefilter("ignore")
-    load_before = os.getloadavg()
-    start = time.perf_counter()
+    run = Run()
 
     from funcnet.batch import batch_pairs
     from funcnet.measures import cross_measures
@@ -257,9 +255,7 @@ def main(argv: list[str] | None = None) -> None:
     cross_measures(x, y, rule="pyunicorn", metric="supremum", warn=False)  # load the kernels
     batch_pairs(np.column_stack([x, y])[np.newaxis])
 
-    print("## Many short windows: batched engine\n")
-    print(f"- machine: {machine()}")
-    print(f"- load average before: {load_before[0]:.2f} (1 min), {load_before[1]:.2f} (5 min)")
+    run.header("Many short windows: batched engine")
     sizes = PAIR_SAMPLES[:3] if args.quick else PAIR_SAMPLES
     if args.only in (None, "pair"):
         one_pair(args.skip_pyunicorn, sizes)
@@ -269,9 +265,7 @@ def main(argv: list[str] | None = None) -> None:
         timeline(args.skip_pyunicorn, args.sample or (10 if args.quick else 100))
     if args.paper is not None and args.only in (None, "paper"):
         paper(args.paper)
-    load_after = os.getloadavg()
-    print(f"\nload average after: {load_after[0]:.2f} (1 min); total "
-          f"{time.perf_counter() - start:.0f} s; command: python -m benchmarks.bench_windows")
+    run.footer("python -m benchmarks.bench_windows")
 
 
 if __name__ == "__main__":
