@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
+from typing import TypeVar
 
 import numpy as np
 
@@ -34,6 +35,7 @@ from funcnet._isrn_kernels import (
 )
 
 Array = np.ndarray
+_Rank = TypeVar("_Rank", int, np.ndarray)
 
 # Below this many candidate pairs every key is collected directly (at most 2 MB); above, a
 # random sample of pairs brackets the order statistic.
@@ -309,6 +311,22 @@ def _auto_rank(rate: float, n_states: int, theiler: int, pyunicorn: bool) -> int
     if pyunicorn:
         return _pyunicorn_rank(rate, n_states, n_states * n_states)
     return _rank_from_rate(rate, _auto_candidates(n_states, theiler))
+
+
+def _unordered_rank(rank: _Rank) -> _Rank:
+    """An auto-recurrence's rank among its unordered candidates ``j > i + theiler`` from its
+    rank among the ordered ones, each unordered pair being two (0 stays 0: nothing recurrent).
+
+    Recurrences come in symmetric pairs: an odd rank ``k`` always gives ``k + 1`` recurrences
+    without any tie, so only a count beyond ``2 * _unordered_rank(k)`` means that ties pushed
+    the rate above its target.
+
+    Examples
+    --------
+    >>> _unordered_rank(2657), _unordered_rank(2438), _unordered_rank(0)
+    (1329, 1219, 0)
+    """
+    return (rank + 1) // 2
 
 
 def _cross_rank(rate: float, n_candidates: int, pyunicorn: bool) -> int:

@@ -35,7 +35,12 @@ import numpy as np
 
 from funcnet import _batch_kernels
 from funcnet._isrn_kernels import _METRIC_CODE
-from funcnet._order_statistic import _auto_candidates, _auto_rank, _cross_rank
+from funcnet._order_statistic import (
+    _auto_candidates,
+    _auto_rank,
+    _cross_rank,
+    _unordered_rank,
+)
 from funcnet.embedding import MIN_STATES
 from funcnet.errors import FuncnetError, ParameterError, SignalError
 from funcnet.measures import CrossMeasures, _degenerate_reason, pairwise_cross_measures
@@ -212,7 +217,8 @@ def _plain_windows(table: np.ndarray, starts: np.ndarray, p: NetworkParameters) 
 
 def _ranks(p: NetworkParameters, n_states: np.ndarray,
            n_signals: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Per window and signal the rank of A among ordered candidates and their number; per
+    """Per window and signal the rank of A among its unordered candidates
+    (:func:`~funcnet._order_statistic._unordered_rank`) and the number of ordered ones; per
     window those of CR (as :func:`funcnet.recurrence.auto_recurrence` and
     :func:`~funcnet.recurrence.cross_recurrence` set them)."""
     rates = list(p.rr) if isinstance(p.rr, tuple) else [p.rr] * n_signals
@@ -229,7 +235,7 @@ def _ranks(p: NetworkParameters, n_states: np.ndarray,
         at = n_states == m
         auto_candidates[at] = _auto_candidates(m, p.theiler)
         for s, rate in enumerate(rates):
-            auto_rank[at, s] = _auto_rank(rate, m, p.theiler, pyunicorn)
+            auto_rank[at, s] = _unordered_rank(_auto_rank(rate, m, p.theiler, pyunicorn))
         cross_rank[at] = _cross_rank(p.cr, m * m, pyunicorn)
     return auto_rank, auto_candidates, cross_rank, n_states.astype(np.int64) ** 2
 
@@ -344,8 +350,7 @@ def batch_pairs(
             table, starts[block], stops[block], norm_offsets,
             _batch_kernels.NORMALIZE_CODE[p.normalize],
             pyunicorn, p.dim, p.delay, _METRIC_CODE[p.metric], p.theiler, pyunicorn,
-            # Rank among the unordered candidates j > i + theiler; 0: nothing recurrent.
-            np.ascontiguousarray((auto_rank[block] + 1) // 2), cross_rank[block], pair_x, pair_y,
+            np.ascontiguousarray(auto_rank[block]), cross_rank[block], pair_x, pair_y,
             int(n_states[block].max()), _batch_kernels.DIRECT_PAIRS,
         )
         auto_eps[block], auto_count[block], cross_eps[block], cross_count[block] = out[:4]
@@ -376,8 +381,7 @@ def _columns(p: NetworkParameters, names: list[str], pairs: tuple[np.ndarray, np
     with np.errstate(invalid="ignore", divide="ignore"):  # too short: per-window path below
         auto_rate = auto_count / auto_candidates[:, None]
         cross_rate = cross_count / cross_candidates[:, None]
-    # Recurrences come in symmetric pairs: an odd k always gives k + 1 without any tie.
-    auto_exceeded = auto_count > 2 * ((auto_rank + 1) // 2)
+    auto_exceeded = auto_count > 2 * auto_rank
     cross_exceeded = cross_count > cross_rank[:, None]
     auto_degenerate = constant | (auto_eps == 0.0) | (auto_rate > 2 * rates)
     cross_degenerate = (cross_eps == 0.0) | (cross_rate > 2 * p.cr)

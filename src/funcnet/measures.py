@@ -58,7 +58,12 @@ from funcnet._isrn_kernels import (
     _cross_triangles_both,
     _transpose_packed,
 )
-from funcnet._order_statistic import _auto_candidates, _auto_rank, _cross_rank
+from funcnet._order_statistic import (
+    _auto_candidates,
+    _auto_rank,
+    _cross_rank,
+    _unordered_rank,
+)
 from funcnet.embedding import MIN_STATES, signal_states
 from funcnet.errors import (
     DegenerateWarning,
@@ -584,8 +589,8 @@ def _short_pair(x: Any, y: Any, p: NetworkParameters) -> CrossMeasures | None:
     if len(rates) != 2:
         return None
     pyunicorn = p.rule == "pyunicorn"
-    # Ranks among the unordered candidates j > i + theiler (0: nothing recurrent).
-    rank_x, rank_y = ((_auto_rank(rate, m, p.theiler, pyunicorn) + 1) // 2 for rate in rates)
+    rank_x, rank_y = (_unordered_rank(_auto_rank(rate, m, p.theiler, pyunicorn))
+                      for rate in rates)
     rank_xy = _cross_rank(p.cr, m * m, pyunicorn)
     (plain, eps_x, count_x, eps_y, count_y, eps_xy, count_xy, c_xy, c_yx, t_xy, t_yx,
      constant_x, constant_y) = _batch_kernels.pair_kernel(
@@ -601,7 +606,6 @@ def _short_pair(x: Any, y: Any, p: NetworkParameters) -> CrossMeasures | None:
         ((constant_x, eps_x, count_x / n_candidates, rates[0]),
          (constant_y, eps_y, count_y / n_candidates, rates[1]),
          (False, eps_xy, count_xy / (m * m), p.cr)),
-        # Recurrences come in symmetric pairs: an odd k always gives k + 1 without any tie.
         count_x > 2 * rank_x or count_y > 2 * rank_y or count_xy > rank_xy,
         ("x", "y"), (m, m), p,
     )

@@ -90,6 +90,7 @@ from funcnet._order_statistic import (
     _cross_rank,
     _key_bound,
     _rate_rows,
+    _unordered_rank,
 )
 from funcnet.embedding import MIN_STATES, signal_states
 from funcnet.errors import ParameterError, SignalError
@@ -381,8 +382,7 @@ def auto_recurrence(
         auto=True,
         theiler=theiler,
         metric=_METRIC_CODE[p.metric],
-        # Each unordered pair appears twice among the ordered candidates.
-        rank=None if not rank else (rank + 1) // 2,
+        rank=None if not rank else _unordered_rank(rank),
         n_pairs=n_candidates // 2,
         eps=0.0 if eps is None else eps,
         strict=pyunicorn,
@@ -396,8 +396,7 @@ def auto_recurrence(
         n_recurrent=n_recurrent,
         n_candidates=n_candidates,
         rank=rank,
-        # Recurrences come in symmetric pairs: an odd k always gives k + 1 without any tie.
-        rate_exceeded=rank is not None and n_recurrent > 2 * ((rank + 1) // 2),
+        rate_exceeded=rank is not None and n_recurrent > 2 * _unordered_rank(rank),
         constant=bool((states == states[0]).all()),
     )
 

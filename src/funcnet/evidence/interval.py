@@ -376,7 +376,7 @@ def _batched(states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
         measures = _kernel(kept.shape[0], len(pairs), n_signals)(
             table, bounds[:-1], bounds[1:], bounds, 0, False, width, n, _METRIC_CODE[p.metric],
             p.theiler, pyunicorn,
-            np.ascontiguousarray(np.repeat((auto_rank + 1) // 2, kept.shape[0], axis=0)),
+            np.ascontiguousarray(np.repeat(auto_rank, kept.shape[0], axis=0)),
             np.repeat(cross_rank, kept.shape[0]), pair_x, pair_y, n,
             _batch_kernels.DIRECT_PAIRS,
         )[4]
