@@ -43,7 +43,12 @@ from funcnet._order_statistic import (
 )
 from funcnet.embedding import MIN_STATES
 from funcnet.errors import FuncnetError, ParameterError, SignalError
-from funcnet.measures import CrossMeasures, _degenerate_reason, pairwise_cross_measures
+from funcnet.measures import (
+    CrossMeasures,
+    _block_labels,
+    _degenerate_reason,
+    pairwise_cross_measures,
+)
 from funcnet.normalization import normalize as normalize_signals
 from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
 
@@ -391,13 +396,14 @@ def _columns(p: NetworkParameters, names: list[str], pairs: tuple[np.ndarray, np
     reasons = np.full(degenerate.shape, "", dtype=object)
     for w, q in np.argwhere(degenerate).tolist():
         i, j = int(pair_x[q]), int(pair_y[q])
+        label_i, label_j, label_ij = _block_labels(names[i], names[j])
         found = [
-            _degenerate_reason(f"signal {names[s]}", bool(constant[w, s]),
-                               float(auto_eps[w, s]), float(auto_rate[w, s]), float(rates[s]))
-            for s in (i, j)
+            _degenerate_reason(label, bool(constant[w, s]), float(auto_eps[w, s]),
+                               float(auto_rate[w, s]), float(rates[s]))
+            for s, label in ((i, label_i), (j, label_j))
         ]
-        found.append(_degenerate_reason(f"cross-recurrence ({names[i]}, {names[j]})", False,
-                                        float(cross_eps[w, q]), float(cross_rate[w, q]), p.cr))
+        found.append(_degenerate_reason(label_ij, False, float(cross_eps[w, q]),
+                                        float(cross_rate[w, q]), p.cr))
         reasons[w, q] = "; ".join(reason for reason in found if reason)
     return {
         "c_xy": c_xy, "c_yx": c_yx, "t_xy": t_xy, "t_yx": t_yx,

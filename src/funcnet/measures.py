@@ -206,27 +206,35 @@ def _degenerate_reason(
 _Block = tuple[bool, float, float, float | None]
 
 
+def _block_labels(x: str, y: str) -> tuple[str, str, str]:
+    """How ``degenerate_reason`` calls the blocks ``A_X``, ``A_Y``, ``CR_XY`` of signals x, y."""
+    return f"signal {x}", f"signal {y}", f"cross-recurrence ({x}, {y})"
+
+
+_XY_LABELS = _block_labels("x", "y")
+
+
 def _pair_measures(
     measures: tuple[float, float, float, float],
     blocks: tuple[_Block, _Block, _Block],
     rate_exceeded: bool,
-    names: tuple[str, str],
+    labels: tuple[str, str, str],
     n_states: tuple[int, int],
     parameters: NetworkParameters | None,
 ) -> CrossMeasures:
     """The result of a pair from ``(c_xy, c_yx, t_xy, t_yx)`` and the numbers of its blocks
-    ``A_X``, ``A_Y``, ``CR_XY``: the differences, ``eps_ordered`` and the reasons."""
+    ``A_X``, ``A_Y``, ``CR_XY`` (:func:`_block_labels` names them): the differences,
+    ``eps_ordered`` and the reasons."""
     c_xy, c_yx, t_xy, t_yx = measures
     (constant_x, eps_x, rate_x, target_x), (constant_y, eps_y, rate_y, target_y), (
         constant_xy, eps_xy, rate_xy, target_xy) = blocks
-    x, y = names
+    label_x, label_y, label_xy = labels
     reasons = [
         reason
         for reason in (
-            _degenerate_reason(f"signal {x}", constant_x, eps_x, rate_x, target_x),
-            _degenerate_reason(f"signal {y}", constant_y, eps_y, rate_y, target_y),
-            _degenerate_reason(f"cross-recurrence ({x}, {y})", constant_xy, eps_xy, rate_xy,
-                               target_xy),
+            _degenerate_reason(label_x, constant_x, eps_x, rate_x, target_x),
+            _degenerate_reason(label_y, constant_y, eps_y, rate_y, target_y),
+            _degenerate_reason(label_xy, constant_xy, eps_xy, rate_xy, target_xy),
         )
         if reason
     ]
@@ -321,7 +329,7 @@ def isrn_measures(
         ((a_x.constant, a_x.eps, a_x.rate, a_x.target), (a_y.constant, a_y.eps, a_y.rate,
          a_y.target), (cr_xy.constant, cr_xy.eps, cr_xy.rate, cr_xy.target)),
         a_x.rate_exceeded or a_y.rate_exceeded or cr_xy.rate_exceeded,
-        names, (a_x.shape[0], a_y.shape[0]), parameters,
+        _block_labels(*names), (a_x.shape[0], a_y.shape[0]), parameters,
     )
 
 
@@ -589,8 +597,8 @@ def _short_pair(x: Any, y: Any, p: NetworkParameters) -> CrossMeasures | None:
     if len(rates) != 2:
         return None
     pyunicorn = p.rule == "pyunicorn"
-    rank_x, rank_y = (_unordered_rank(_auto_rank(rate, m, p.theiler, pyunicorn))
-                      for rate in rates)
+    rank_x = _unordered_rank(_auto_rank(rates[0], m, p.theiler, pyunicorn))
+    rank_y = _unordered_rank(_auto_rank(rates[1], m, p.theiler, pyunicorn))
     rank_xy = _cross_rank(p.cr, m * m, pyunicorn)
     (plain, eps_x, count_x, eps_y, count_y, eps_xy, count_xy, c_xy, c_yx, t_xy, t_yx,
      constant_x, constant_y) = _batch_kernels.pair_kernel(
@@ -607,7 +615,7 @@ def _short_pair(x: Any, y: Any, p: NetworkParameters) -> CrossMeasures | None:
          (constant_y, eps_y, count_y / n_candidates, rates[1]),
          (False, eps_xy, count_xy / (m * m), p.cr)),
         count_x > 2 * rank_x or count_y > 2 * rank_y or count_xy > rank_xy,
-        ("x", "y"), (m, m), p,
+        _XY_LABELS, (m, m), p,
     )
 
 
