@@ -6,8 +6,9 @@ baselines, motor-side functional-network features, the paper's signature),
 :mod:`~funcnet.diagnosis.two_encoder` the two-encoder lost motion among them,
 :mod:`~funcnet.diagnosis.sweep` simulates the sweep and scores the indicators against the
 truth, and :mod:`~funcnet.diagnosis.diagnose` diagnoses real traces
-(:func:`diagnose_backlash`; :mod:`~funcnet.diagnosis.results` writes the diagnoses). Names are
-imported lazily.
+(:func:`diagnose_backlash`; :mod:`~funcnet.diagnosis.segments` reads a recording with gaps
+segment by segment, :mod:`~funcnet.diagnosis.results` writes the diagnoses). Names are imported
+lazily.
 
 Examples
 --------
@@ -23,6 +24,7 @@ from funcnet._lazy import attach
 _EXPORTS = {
     "DirectionChange": "funcnet.diagnosis.reversals",
     "find_direction_changes": "funcnet.diagnosis.reversals",
+    "changes_across_gaps": "funcnet.diagnosis.reversals",
     "motor_side_recording": "funcnet.diagnosis.reversals",
     "INDICATORS": "funcnet.diagnosis.indicators",
     "MOTOR_SIDE": "funcnet.diagnosis.indicators",

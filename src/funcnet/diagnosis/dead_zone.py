@@ -22,6 +22,7 @@ from funcnet.diagnosis.reversal_error import (
     _blocks,
     _columns,
     _design,
+    _firsts,
     _fit_rows,
     _solve,
     gear_torque,
@@ -168,8 +169,9 @@ def gear_parts(
     coef = _solve(x, d[use])
     rng = np.random.default_rng(seed)
     block = max(1, round(_BLOCK / rec.sample_period))
-    draws = np.array([_solve(x[rows], d[use][rows])[3:]
-                      for rows in (_blocks(rng, use.size, block) for _ in range(resamples))])
+    firsts = _firsts(rec, use)  # no block across a gap
+    draws = np.array([_solve(x[rows], d[use][rows])[3:] for rows in
+                      (_blocks(rng, use.size, block, firsts) for _ in range(resamples))])
     low, high = (2 * np.percentile(draws, [2.5, 97.5], axis=0) if resamples
                  else np.full((2, 2), math.nan))  # fmt: skip
     return GearParts(

@@ -7,7 +7,8 @@ arm-side encoder AP, the two-encoder lost motion; and reads the score on the swe
 calibration, which ships with the package (``calibration.json``, written by
 ``benchmarks/bench_backlash.py --calibrate``). The reading is **model-based**: it says which
 backlash widths gave such values on the simulated axis, not on this machine. The results are
-written by :mod:`~funcnet.diagnosis.results` (JSON, the trend table and its page).
+written by :mod:`~funcnet.diagnosis.results` (JSON, the trend table and its page). A recording
+with gaps is read segment by segment (:mod:`~funcnet.diagnosis.segments`).
 """
 
 from __future__ import annotations
@@ -32,14 +33,16 @@ from funcnet.diagnosis.reversal_error import (
     torque_column,
     torque_traversed,
 )
-from funcnet.diagnosis.reversals import (
-    MAX_DWELL,
-    DirectionChange,
-    find_direction_changes,
-    motor_side_recording,
+from funcnet.diagnosis.reversals import MAX_DWELL, DirectionChange, motor_side_recording
+from funcnet.diagnosis.segments import (
+    LeftOut,
+    segment_changes,
+    segment_first_start,
+    segment_part,
+    segments_note,
 )
 from funcnet.diagnosis.sweep import with_contact_score
-from funcnet.diagnosis.two_encoder import first_start, lost_motion
+from funcnet.diagnosis.two_encoder import lost_motion
 from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import encoder_step, velocity
@@ -146,7 +149,8 @@ class BacklashResult:
         Half the range of the lost motions over the direction changes (None with fewer than
         two).
     reversals : tuple of ReversalResult
-        Every direction change (reversals and changes after a standstill).
+        Every direction change (reversals and changes after a standstill), in time order; in
+        a recording with gaps, those of every segment (none left out: ``left_out``).
     reading : dict or None
         The calibration's reading: ``indicator``, ``speed`` (calibrated speed used),
         ``extrapolated`` (always False now: a reading outside the calibrated speeds is None),
@@ -166,6 +170,11 @@ class BacklashResult:
         allows, else why not (:func:`.gear_parts`).
     axis : int or None
         The axis diagnosed, when the trace held several (one result per axis).
+    segments : tuple of (float, float)
+        s, the segments a recording with gaps was read in; () without gaps (the JSON then
+        has neither this nor ``left_out``).
+    left_out : tuple of LeftOut
+        The direction changes left out: a gap within what is read around them.
     """
 
     path: str
@@ -182,6 +191,8 @@ class BacklashResult:
     gear: GearFit | None = None
     gear_parts: GearParts | None = None
     axis: int | None = None
+    segments: tuple[tuple[float, float], ...] = ()
+    left_out: tuple[LeftOut, ...] = ()
 
     @property
     def score_unit(self) -> str:
@@ -204,6 +215,8 @@ class BacklashResult:
             "lost_motion_reason": self.lost_motion_reason,
             "gear": None if self.gear is None else self.gear.to_dict(),
             "gear_parts": None if self.gear_parts is None else self.gear_parts.to_dict(),
+            **({"segments": [list(s) for s in self.segments],
+                "left_out": [o.to_dict() for o in self.left_out]} if self.segments else {}),
             "message": self.message,
             "note": MODEL_NOTE,
         }
@@ -297,27 +310,32 @@ def diagnose_recording(
     Returns
     -------
     BacklashResult
+        A recording with gaps is read segment by segment (:mod:`.segments`): no direction
+        change, window, fit row or bootstrap block spans a gap; a change with a gap within what
+        is read around it is left out; ``message`` says both.
     """
     cal = load_calibration() if calibration is None else calibration
     where = path if path is not None else (recording.source or "<recording>")
     rec = motor_side_recording(recording)
-    changes = find_direction_changes(rec, max_dwell=max_dwell)
+    segmented = segment_changes(rec, max_dwell=max_dwell)
+    changes = list(segmented.changes)
     has_ap = "AP" in rec.data.columns and bool(np.isfinite(rec.data["AP"]).any())
     indicator, table = (SCORE, cal) if has_ap else (MOTOR_LOOP_SCORE, cal["motor_loop"])
     # the axis's start from rest, fitted once for every reversal's lost motion
     resting = [c for c in changes if c.kind != "continuous"]
-    arm_start = first_start(rec) if has_ap and resting else None
+    arm_start = segment_first_start(rec) if has_ap and resting else None
     # the gear between the encoders, fitted once for every continuous change's reversal error
     continuous = len(resting) < len(changes)
     gear = fit_gear(rec) if has_ap and continuous else None
     quantum = encoder_step(rec.data["AP"].to_numpy(dtype=np.float64)) if has_ap else math.nan
     results = []
     for change in changes:
-        speed = _move_speed(rec, change)
+        part = segment_part(rec, change)  # the recording itself without gaps
+        speed = _move_speed(part, change)
         traversed = torque_traversed(rec, change)
         low = high = None
         if change.kind == "reversal":
-            values = reversal_indicators(rec, change, networks=False, arm_start=arm_start)
+            values = reversal_indicators(part, change, networks=False, arm_start=arm_start)
             if not has_ap:
                 row = pd.DataFrame([{**values, "peak_speed": speed}])
                 contact = with_contact_score(row, table["reference"])["motor_contact"]
@@ -336,7 +354,7 @@ def diagnose_recording(
                                    _none(error.high))  # fmt: skip
         else:
             score = None
-            lost = _none(lost_motion(rec, change)) if has_ap else None
+            lost = _none(lost_motion(part, change)) if has_ap else None
             shown = {}
         if lost is not None and change.kind != "continuous":
             # the sweep's validated accuracy: 5 % or two arm-encoder steps (section 3.1)
@@ -362,7 +380,8 @@ def diagnose_recording(
     n_rev = sum(r.change.kind == "reversal" for r in results)
     n_cont = sum(r.change.kind == "continuous" for r in results)
     if not changes:
-        message = "no direction change: the axis moves one way only; no backlash indicator"
+        message = ("no direction change: the axis moves one way only; no backlash indicator"
+                   if not segmented.left_out else "no direction change read; no backlash indicator")
     elif n_rev == 0:
         rest = len(changes) - n_cont
         found = (f"{n_cont} in continuous motion (the arm never rests)"
@@ -377,6 +396,7 @@ def diagnose_recording(
         message = f"{n_rev} reversal(s); " + (
             reading["text"] if reading else f"no reading ({reason})" if reason else "no score"
         )
+    message = "; ".join(m for m in (message, segments_note(segmented)) if m)
     lost_reason = (None if losses else "no AP" if not has_ap else "no direction change"
                    if not changes else "the arm does not restart")  # fmt: skip
     return BacklashResult(
@@ -393,6 +413,8 @@ def diagnose_recording(
         lost_motion_reason=lost_reason,
         gear=gear,
         gear_parts=gear_parts(rec) if gear is not None else None,
+        segments=segmented.segments,
+        left_out=segmented.left_out,
     )
 
 

@@ -20,6 +20,10 @@ slower than 1 deg/s), with a circular block bootstrap interval over the samples 
 redone on each resample). :func:`torque_traversed` says whether the gear torque changed sign
 there (the backlash is crossed only then); :func:`funcnet.diagnosis.dead_zone.gear_parts` tells
 the dead zone from the friction over the recording, where the torque's sign allows.
+
+A recording with gaps (:attr:`funcnet.robot.Recording.gaps`) is fitted over the samples of all
+its segments: the motor speed and the gear torque's moving mean within each segment, and no
+bootstrap block across a gap.
 """
 
 from __future__ import annotations
@@ -33,7 +37,7 @@ from scipy.stats import t as student_t
 from funcnet.diagnosis.reversals import DirectionChange
 from funcnet.errors import ChannelError, ParameterError
 from funcnet.robot.phases import move_threshold
-from funcnet.robot.preprocess import velocity
+from funcnet.robot.preprocess import segment_ticks, segment_velocity
 from funcnet.robot.recording import Recording
 
 __all__ = [
@@ -77,7 +81,7 @@ def _columns(rec: Recording) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.nda
     mp = rec.data["MP"].to_numpy(dtype=np.float64)
     ap = rec.data["AP"].to_numpy(dtype=np.float64)
     torque = rec.data[torque_column(rec)].to_numpy(dtype=np.float64)
-    return t, mp - ap, velocity(mp, rec.sample_period), torque
+    return t, mp - ap, segment_velocity(rec, mp), torque
 
 
 @dataclass(frozen=True)
@@ -215,7 +219,8 @@ def gear_torque(rec: Recording, *, motor_inertia: float = 0.0) -> tuple[np.ndarr
     ms (the torque ripples at 10-25 Hz on a real robot); its noise is the standard deviation of
     the torque about that mean, divided by the root of the samples averaged. The motor's own
     friction, which flips with the motor's direction, is left in: it cannot be told apart from
-    the arm's in the motor torque (docs/backlash.md).
+    the arm's in the motor torque (docs/backlash.md). In a recording with gaps both are taken
+    within each segment (NaN in a gap).
 
     Parameters
     ----------
@@ -246,12 +251,20 @@ def gear_torque(rec: Recording, *, motor_inertia: float = 0.0) -> tuple[np.ndarr
         raise ChannelError(rec.source or "<recording>", "no MP column")
     dt = rec.sample_period
     torque = rec.data[torque_column(rec)].to_numpy(dtype=np.float64)
+    ticks = segment_ticks(rec)  # the whole recording when it has no gap
     if motor_inertia:
-        vm = velocity(rec.data["MP"].to_numpy(dtype=np.float64), dt)
-        torque = torque - motor_inertia * np.gradient(vm, dt)
+        vm = segment_velocity(rec, rec.data["MP"].to_numpy(dtype=np.float64))
+        accel = np.full(vm.shape, np.nan)
+        for a, b in ticks:
+            if b - a >= 2:
+                accel[a:b] = np.gradient(vm[a:b], dt)
+        torque = torque - motor_inertia * accel
     n = max(1, round(_SMOOTH / dt))
-    padded = np.pad(torque, (n // 2, n - 1 - n // 2), mode="edge")
-    smooth = np.convolve(padded, np.ones(n) / n, mode="valid")
+    smooth = np.full(torque.shape, np.nan)
+    for a, b in ticks:
+        if b > a:
+            padded = np.pad(torque[a:b], (n // 2, n - 1 - n // 2), mode="edge")
+            smooth[a:b] = np.convolve(padded, np.ones(n) / n, mode="valid")
     scatter = torque - smooth
     noise = float(np.nanstd(scatter) / math.sqrt(n)) if np.isfinite(scatter).any() else math.nan
     return smooth, noise
@@ -319,12 +332,30 @@ class ReversalError:
     traversed: bool
 
 
-def _blocks(rng: np.random.Generator, n: int, size: int) -> np.ndarray:
+def _blocks(
+    rng: np.random.Generator, n: int, size: int, firsts: np.ndarray | None = None
+) -> np.ndarray:
     """A circular block bootstrap draw of ``n`` indices in blocks of ``size`` (circular: every
-    sample as likely as any other, the ends included)."""
+    sample as likely as any other, the ends included); with ``firsts`` (the index each segment
+    starts at, 0 first) a block wraps round within the segment it starts in."""
     size = max(1, min(size, n))
     starts = rng.integers(0, n, size=-(-n // size))
-    return ((starts[:, None] + np.arange(size)[None, :]) % n).ravel()[:n]
+    if firsts is None:
+        return ((starts[:, None] + np.arange(size)[None, :]) % n).ravel()[:n]
+    bounds = np.append(firsts, n)
+    k = np.searchsorted(bounds, starts, side="right") - 1
+    lo, length = bounds[k][:, None], (bounds[k + 1] - bounds[k])[:, None]
+    return (lo + (starts[:, None] - lo + np.arange(size)[None, :]) % length).ravel()[:n]
+
+
+def _firsts(rec: Recording, rows: np.ndarray) -> np.ndarray | None:
+    """Where in ``rows`` (ticks within the segments, in order) each segment starts; None without
+    gaps."""
+    if not rec.gaps:
+        return None
+    firsts = np.searchsorted(rows, [a for a, _ in segment_ticks(rec)])
+    firsts[0] = 0
+    return firsts
 
 
 def reversal_error(
@@ -413,11 +444,12 @@ def reversal_error(
 
     point = step(gear.compliance, gear.skew, before, after)
     fitted = _fit_rows(vm, d, torque, gear.min_speed)
+    firsts = _firsts(rec, fitted)
     rng = np.random.default_rng(seed)
     block = max(1, round(_BLOCK / rec.sample_period))
     draws = []
     for _ in range(resamples):
-        rows = fitted[_blocks(rng, fitted.size, block)]
+        rows = fitted[_blocks(rng, fitted.size, block, firsts)]
         coef = _solve(_design(torque[rows], vm[rows]), d[rows])
         draws.append(step(coef[1], coef[2], before[_blocks(rng, before.size, block)],
                           after[_blocks(rng, after.size, block)]))  # fmt: skip

@@ -12,24 +12,38 @@ through the turn (the smooth multi-axis trajectories of a real robot).
 A move counts only when the set-point's speed reaches ``min_speed`` (1 deg/s, or half the trace's
 peak speed on a slower trace): a set-point that wiggles below it near a standstill does not
 change direction.
+
+A recording with gaps (missing values: :attr:`funcnet.robot.Recording.gaps`) is read segment by
+segment: the set-point's speed within each (:func:`funcnet.robot.preprocess.segment_velocity`),
+the thresholds those of the whole recording; no move spans a gap, and a direction change across
+one (:func:`changes_across_gaps`) is not among those found.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import groupby
 
 import numpy as np
 
 from funcnet.errors import ChannelError, ParameterError
 from funcnet.robot.grid import mask_runs
 from funcnet.robot.phases import MOVE_SPEED, direction_changes, merge_runs, move_threshold
-from funcnet.robot.preprocess import add_derived_signals, resample, staircase_signals, velocity
+from funcnet.robot.preprocess import (
+    add_derived_signals,
+    resample,
+    segment_ticks,
+    segment_velocity,
+    staircase_signals,
+    velocity,
+)
 from funcnet.robot.recording import Recording
 
 __all__ = [
     "DirectionChange",
     "find_direction_changes",
+    "changes_across_gaps",
     "motor_side_recording",
     "MAX_DWELL",
     "MIN_SPEED",
@@ -146,6 +160,57 @@ def find_direction_changes(
     ...  for c in find_direction_changes(rec)]
     [(0.96, 1.0, 1.04, 'continuous'), (2.96, 3.0, 3.04, 'continuous')]
     """
+    return _changes(recording, reference, standstill, max_dwell, min_gap, min_speed)[0]
+
+
+def changes_across_gaps(
+    recording: Recording,
+    *,
+    reference: str = "RP",
+    standstill: float = 1e-4,
+    max_dwell: float = MAX_DWELL,
+    min_gap: float = 0.05,
+    min_speed: float = MIN_SPEED,
+) -> list[tuple[float, float]]:
+    """Where the set-point changes direction across a gap: what no segment shows.
+
+    Parameters
+    ----------
+    recording : Recording
+    reference, standstill, max_dwell, min_gap, min_speed
+        As for :func:`find_direction_changes`.
+
+    Returns
+    -------
+    list of (float, float)
+        Per such change, in time order: the end of the move before the gap and the start of
+        the next move, the other way, after it (s). Empty without gaps.
+
+    Raises
+    ------
+    ChannelError, ParameterError
+        As :func:`find_direction_changes`.
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot import Recording, SignalInfo
+    >>> t = np.arange(0, 4, 0.002).round(9)
+    >>> rp = 10 * np.sin(np.pi * t / 2)  # turns at 1 s and 3 s; 0.9-1.1 s missing
+    >>> rp[(t >= 0.9) & (t < 1.1)] = np.nan
+    >>> rec = Recording(pd.DataFrame({"RP": rp}, index=pd.Index(t, name="time")), {},
+    ...                 {"RP": SignalInfo("RP", "posn", None, 0.002)}, gaps=((0.9, 1.1),))
+    >>> changes_across_gaps(rec), [c.turn for c in find_direction_changes(rec)]
+    ([(0.9, 1.1)], [3.0])
+    """
+    return _changes(recording, reference, standstill, max_dwell, min_gap, min_speed)[1]
+
+
+def _changes(
+    recording: Recording, reference: str, standstill: float, max_dwell: float, min_gap: float,
+    min_speed: float,
+) -> tuple[list[DirectionChange], list[tuple[float, float]]]:  # fmt: skip
+    """The direction changes within the segments, and the (stop, start) of those across a gap."""
     if reference not in recording.data.columns:
         raise ChannelError(
             recording.source or "<recording>", f"no {reference!r} column to find the moves"
@@ -157,9 +222,17 @@ def find_direction_changes(
     dt = recording.sample_period
     x = recording.data[reference].to_numpy(dtype=np.float64)
     x = np.where(np.isnan(x), np.nanmean(x) if np.isfinite(x).any() else 0.0, x)
-    v = velocity(x, dt)
+    segment = None
+    if recording.gaps:
+        # each segment's speed on its own (0 in a gap: no move there) and its ticks' segment
+        v = np.nan_to_num(segment_velocity(recording, x))
+        segment = np.full(x.size, -1)
+        for k, (a, b) in enumerate(segment_ticks(recording)):
+            segment[a:b] = k
+    else:
+        v = velocity(x, dt)
     if not np.any(v):
-        return []
+        return [], []
     fast = move_threshold(v, min_speed)
     runs = []
     for a, b in mask_runs(np.abs(v) > standstill * np.abs(v).max()):
@@ -170,22 +243,31 @@ def find_direction_changes(
     # a wiggle below the move threshold is no move; same-direction runs less than min_gap apart
     # are one move
     runs = [(a, b) for a, b in runs if np.abs(v[a:b]).max() > fast]
-    moves = merge_runs(runs, v, min_gap, dt)
+    if segment is None:
+        moves = merge_runs(runs, v, min_gap, dt)
+    else:  # runs in different segments are never one move
+        moves = [move for _, part in groupby(runs, key=lambda run: segment[run[0]])
+                 for move in merge_runs(list(part), v, min_gap, dt)]  # fmt: skip
     t0 = float(recording.data.index[0])
-    changes = []
-    turns = None
+    changes, across = [], []
+    turns: dict[int | None, list] = {}
     for (a0, b0), (a1, b1) in zip(moves, moves[1:], strict=False):
         s0, s1 = np.sign(v[a0:b0].sum()), np.sign(v[a1:b1].sum())
         if s0 == s1 or s1 == 0:
+            continue
+        if segment is not None and segment[a0] != segment[a1]:
+            across.append((round(t0 + b0 * dt, 9), round(t0 + a1 * dt, 9)))
             continue
         # no standstill between -- the set-point turns while moving, its speed at most dipping
         # below the standstill threshold as it crosses zero, its reading never held: continuous
         if a1 == b0 or not np.any(np.diff(x[b0 - 1 : a1 + 1]) == 0):
             # bracketed by the stretches faster than the move threshold (robot.phases)
-            turns = direction_changes(recording, reference=reference, min_speed=fast) \
-                if turns is None else turns  # fmt: skip
+            key = None if segment is None else int(segment[a0])
+            if key not in turns:
+                part = recording if key is None else recording.window(*recording.segments[key])
+                turns[key] = direction_changes(part, reference=reference, min_speed=fast)
             at = round(t0 + b0 * dt, 9)
-            turn = next((u for u in turns if u.stop - 1e-9 <= at <= u.start + 1e-9), None)
+            turn = next((u for u in turns[key] if u.stop - 1e-9 <= at <= u.start + 1e-9), None)
             bracket = (at, at, at) if turn is None else (turn.stop, turn.start, turn.time)
             changes.append(DirectionChange(bracket[0], bracket[1], 0.0, int(s1), "continuous",
                                            bracket[2]))  # fmt: skip
@@ -200,7 +282,9 @@ def find_direction_changes(
                 kind="reversal" if dwell <= max_dwell else "after standstill",
             )
         )
-    return changes
+    return changes, across
+
+
 
 
 def motor_side_recording(recording: Recording) -> Recording:

@@ -22,6 +22,7 @@ from funcnet.robot.recording import Recording
 __all__ = [
     "velocity",
     "segment_velocity",
+    "segment_ticks",
     "reference_speed",
     "encoder_step",
     "add_derived_signals",
@@ -134,12 +135,48 @@ def segment_velocity(recording: Recording, values: np.ndarray) -> np.ndarray:
     if not recording.gaps:
         return velocity(values, dt)
     out = np.full(values.shape, np.nan)
-    index = recording.data.index.to_numpy(dtype=np.float64)
-    for start, stop in recording.segments:
-        first, last = np.searchsorted(index, [start - dt / 2, stop - dt / 2])
+    for first, last in segment_ticks(recording):
         if last - first >= 2:
             out[first:last] = velocity(values[first:last], dt)
     return out
+
+
+def segment_ticks(recording: Recording) -> list[tuple[int, int]]:
+    """The tick ranges ``[first, stop)`` of a recording's segments (row positions).
+
+    A tick belongs to the segment whose span (:attr:`~funcnet.robot.Recording.segments`) holds
+    its time; on a grid coarser than the gaps' (a decimated recording) a tick in a gap belongs
+    to none.
+
+    Parameters
+    ----------
+    recording : Recording
+
+    Returns
+    -------
+    list of (int, int)
+        ``[(0, len(recording.data))]`` without gaps.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from funcnet.robot.recording import SignalInfo
+    >>> data = pd.DataFrame({"AP": np.arange(7.0)}, index=pd.Index(np.arange(7.0), name="time"))
+    >>> rec = Recording(data, {}, {"AP": SignalInfo("AP", None, None, 1.0)}, sample_period=1.0,
+    ...                 gaps=((3.0, 4.0),))
+    >>> [(int(a), int(b)) for a, b in segment_ticks(rec)]
+    [(0, 3), (4, 7)]
+    """
+    if not recording.gaps:
+        return [(0, len(recording.data))]
+    # the gaps' times lie on the grid they were found on (to the nanosecond)
+    tolerance = _TICK_TOLERANCE * recording.sample_period
+    index = recording.data.index.to_numpy(dtype=np.float64)
+    return [
+        (int(first), int(last))
+        for first, last in (np.searchsorted(index, [start - tolerance, stop - tolerance])
+                            for start, stop in recording.segments)
+    ]
 
 
 def _column(recording: Recording, column: str, purpose: str) -> np.ndarray:
