@@ -85,7 +85,8 @@ def _backlash_numbers(result: Any) -> str:
     line = f"{score}; lost_motion {60 * result.lost_motion:.2f}{spread} arcmin"
     parts = result.gear_parts
     if parts is not None and parts.dead_zone is not None:
-        line += (f" (dead zone {60 * parts.dead_zone:.2f} [{60 * parts.dead_zone_low:.2f}, "
+        line += (f" (over the run, where the torque changes sign: dead zone "
+                 f"{60 * parts.dead_zone:.2f} [{60 * parts.dead_zone_low:.2f}, "
                  f"{60 * parts.dead_zone_high:.2f}], friction {60 * parts.friction:.2f} "
                  f"[{60 * parts.friction_low:.2f}, {60 * parts.friction_high:.2f}] arcmin)")
     return line
