@@ -106,3 +106,22 @@ def test_the_kuka_runs_say_where_the_parts_are_told_apart(run, tmp_path):
     told = [t for t in traces if t["gear_parts"] and t["gear_parts"]["dead_zone"] is not None]
     assert all(f"dead zone {60 * t['gear_parts']['dead_zone']:.2f}" in result.output
                for t in told)  # fmt: skip
+
+
+def test_the_lost_motion_figure_shows_the_step_it_reports_at_a_continuous_turn():
+    """On a KUKA axis the figure's two bars (the means of what the gear does not explain
+    before and after each turn) differ by the reversal error the diagnosis reports."""
+    from funcnet.inspection import inspect_recording
+    from funcnet.report.inspect_figures import figure_lost_motion
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        rec = read_trace(KUKA / "kr300-run-A.mat", channels=KUKA_MAP, axis=2)
+        ins = inspect_recording(rec, evidence=False)  # its threshold warnings tested elsewhere
+    fig = figure_lost_motion(ins)
+    assert fig is not None and len(fig.axes) == len(ins.backlash.reversals) == 3
+    for ax, reversal in zip(fig.axes, ins.backlash.reversals, strict=True):
+        before, after = (float(c.get_segments()[0][0][1]) for c in ax.collections[-2:])
+        step = -reversal.change.direction * (before - after) / 3600
+        assert step == pytest.approx(reversal.lost_motion, abs=1e-9)
+        assert f"{reversal.change.turn:.2f} s" in ax.get_title()

@@ -48,11 +48,14 @@ __all__ = [
     "reversal_error",
     "torque_traversed",
     "torque_column",
+    "unexplained",
+    "WINDOW",
 ]
 
 #: deg/s the motor must exceed for a sample to enter the gear's fit (the plain fit of the issue).
 FIT_SPEED = 1.0
-_WINDOW = 0.25  # s of each stretch beside the turn over which the step is measured
+#: s of each stretch beside the turn over which the step is measured.
+WINDOW = 0.25
 _BLOCK = 0.05  # s, the bootstrap's blocks (the torque ripples at 10-25 Hz)
 _SMOOTH = 0.04  # s, the gear torque's moving mean (takes the ripple out)
 _MARGIN = 2.0  # the gear torque's noise (s.d. of its moving mean) a sign must lie beyond
@@ -270,6 +273,49 @@ def gear_torque(rec: Recording, *, motor_inertia: float = 0.0) -> tuple[np.ndarr
     return smooth, noise
 
 
+def _unexplained(d: np.ndarray, torque: np.ndarray, vm: np.ndarray, compliance: float,
+                 skew: float) -> np.ndarray:  # fmt: skip
+    return d - compliance * torque - skew * vm
+
+
+def unexplained(rec: Recording, gear: GearFit) -> np.ndarray:
+    """``MP - AP`` less the gear's wind-up and the encoders' skew: what the reversal error steps.
+
+    Parameters
+    ----------
+    rec : Recording
+        With MP, AP and AC (or RC).
+    gear : GearFit
+        :func:`fit_gear` of the recording.
+
+    Returns
+    -------
+    ndarray
+        deg per sample, ``MP - AP - compliance * torque - skew * VM``.
+
+    Raises
+    ------
+    ChannelError
+        No MP, AP or torque.
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot import Recording, SignalInfo
+    >>> t = np.arange(0, 4, 0.004)
+    >>> mp, torque = 10 * np.sin(t), 3 * np.sin(2 * t)
+    >>> ap = mp - (0.001 * torque + 0.003 * 10 * np.cos(t) + 0.02 * np.sign(np.cos(t)))
+    >>> info = {c: SignalInfo(c, "posn", None, 0.004) for c in ("MP", "AP", "AC")}
+    >>> rec = Recording(pd.DataFrame({"MP": mp, "AP": ap, "AC": torque},
+    ...                              index=pd.Index(t, name="time")), {}, info, sample_period=0.004)
+    >>> rest = unexplained(rec, fit_gear(rec))
+    >>> round(float(rest[100] - rest[-100]), 3)  # the direction's step: +0.02 out, -0.02 back
+    0.04
+    """
+    _, d, vm, torque = _columns(rec)
+    return _unexplained(d, torque, vm, gear.compliance, gear.skew)
+
+
 def _windows(t: np.ndarray, change: DirectionChange, window: float) -> tuple[np.ndarray, ...]:
     """Indices of the stretch before the turn and of the one after it."""
     before = np.flatnonzero((t >= change.stop - window) & (t < change.stop))
@@ -279,7 +325,7 @@ def _windows(t: np.ndarray, change: DirectionChange, window: float) -> tuple[np.
 
 def torque_traversed(
     rec: Recording, change: DirectionChange, *, motor_inertia: float = 0.0,
-    window: float = _WINDOW,
+    window: float = WINDOW,
 ) -> bool:  # fmt: skip
     """Whether the gear torque changed sign at a direction change, beyond its noise.
 
@@ -360,7 +406,7 @@ def _firsts(rec: Recording, rows: np.ndarray) -> np.ndarray | None:
 
 def reversal_error(
     rec: Recording, change: DirectionChange, gear: GearFit | None = None, *,
-    window: float = _WINDOW, resamples: int = 400, level: float = 0.95, seed: int = 0,
+    window: float = WINDOW, resamples: int = 400, level: float = 0.95, seed: int = 0,
     motor_inertia: float = 0.0, traversed: bool | None = None,
 ) -> ReversalError:  # fmt: skip
     """The lost motion at a direction change in continuous motion, with an interval.
@@ -439,7 +485,7 @@ def reversal_error(
     old = -change.direction
 
     def step(c: float, skew: float, b: np.ndarray, a: np.ndarray) -> float:
-        rest = d - c * torque - skew * vm
+        rest = _unexplained(d, torque, vm, c, skew)
         return float(old * (rest[b].mean() - rest[a].mean()))
 
     point = step(gear.compliance, gear.skew, before, after)

@@ -17,7 +17,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from funcnet.diagnosis.reversal_error import _WINDOW
+from funcnet.diagnosis.reversal_error import WINDOW
 from funcnet.diagnosis.reversals import (
     MAX_DWELL,
     DirectionChange,
@@ -45,8 +45,8 @@ __all__ = [
 #: the start; in continuous motion the reversal error's stretches (0.25 s each).
 REACH = {
     "reversal": (1.0, MAX_DWELL + 1.0),
-    "after standstill": (_WINDOW, 1.5),
-    "continuous": (_WINDOW, _WINDOW),
+    "after standstill": (WINDOW, 1.5),
+    "continuous": (WINDOW, WINDOW),
 }
 
 

@@ -184,7 +184,11 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
         "Figure 5 — motor minus arm position (MP − AP, arcsec) around the start of the move "
         "after each direction change; the dotted line is where the set-point starts it. The "
         "jump in MP − AP while the motor turns and the arm waits is the lost motion (backlash "
-        "plus elastic windup) the table below lists.")
+        "plus elastic windup) the table below lists. At a direction change in continuous motion "
+        "(the arm never waits) the panel shows MP − AP less the gear's fitted wind-up and the "
+        "encoders' skew, the dotted line at the set-point's turn; the black bars are its means "
+        "over the stretches before and after the turn, and their difference is the reversal "
+        "error listed.")
     step(progress, steps, steps, "figures done")
     return [f"<section id=\"{name}\">{html}</section>" for name, _, html in figures]
 

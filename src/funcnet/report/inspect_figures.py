@@ -287,6 +287,11 @@ def figure_evidence(inspection: TraceInspection) -> Any:
 def figure_lost_motion(inspection: TraceInspection) -> Any | None:
     """Motor minus arm position (MP − AP) around each direction change, its lost motion marked.
 
+    After a rest, MP − AP itself; at a direction change in continuous motion, the part of it the
+    gear's wind-up and the encoders' skew do not explain
+    (:func:`funcnet.diagnosis.reversal_error.unexplained`), with the two stretches whose means
+    differ by the reversal error.
+
     Parameters
     ----------
     inspection : TraceInspection
@@ -299,31 +304,47 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
     from matplotlib.figure import Figure
 
     from funcnet import plot
+    from funcnet.diagnosis.reversal_error import WINDOW, unexplained
 
     data = inspection.recording.data
     result = inspection.backlash
     if result is None or not result.reversals or not {"AP", "MP"} <= set(data.columns):
         return None
     changes = result.reversals[:_MAX_MOVE_COLUMNS]
+    rest = (unexplained(inspection.recording, result.gear) if result.gear is not None
+            else None)  # fmt: skip
     fig = Figure(figsize=(max(6.0, 3.6 * len(changes)), 3.6), layout="constrained")
+    t_all = data.index.to_numpy(dtype=float)
     for k, reversal in enumerate(changes):
         change = reversal.change
+        continuous = change.kind == "continuous" and rest is not None
         # around the restart: the turn itself when the axis reverses, else the new start
-        lo = (change.stop if change.kind == "reversal" else change.start) - 0.15
-        hi = change.start + 0.3
-        part = data.loc[(data.index >= lo) & (data.index <= hi)]
+        lo = (change.stop - WINDOW - 0.1 if continuous else
+              (change.stop if change.kind == "reversal" else change.start) - 0.15)  # fmt: skip
+        hi = change.start + (WINDOW + 0.1 if continuous else 0.3)
+        inside = (t_all >= lo) & (t_all <= hi)
         ax = fig.add_subplot(1, len(changes), k + 1)
         plot.shade_spans(ax, inspection.phases, alpha=0.8, within=(lo, hi))
-        t = part.index.to_numpy(dtype=float)
-        ax.plot(t, (part["MP"] - part["AP"]).to_numpy(dtype=float) * 3600,
-                color=plot.signal_color("TORSION"), linewidth=1)
-        ax.axvline(change.start, color="0.3", linewidth=0.8, linestyle=":")
+        if continuous:
+            y = rest * 3600  # type: ignore[operator]
+            ax.plot(t_all[inside], y[inside], color=plot.signal_color("TORSION"), linewidth=1)
+            stretches = ((change.stop - WINDOW, change.stop), (change.start, change.start + WINDOW))
+            for a, b in stretches:
+                part = (t_all >= a) & (t_all < b) & np.isfinite(y)
+                ax.hlines(float(np.mean(y[part])), a, b, color="black", linewidth=1.5)
+            where = change.turn if change.turn is not None else change.start
+        else:
+            ax.plot(t_all[inside], (data["MP"] - data["AP"]).to_numpy(dtype=float)[inside] * 3600,
+                    color=plot.signal_color("TORSION"), linewidth=1)  # fmt: skip
+            where = change.start
+        ax.axvline(where, color="0.3", linewidth=0.8, linestyle=":")
         lost = reversal.lost_motion
         text = (f"lost motion {lost * 3600:.3g} arcsec" if lost is not None
                 else "no lost motion measured")
-        ax.set_title(f"{change.kind} at {change.start:.2f} s\n{text}", fontsize=9)
+        ax.set_title(f"{change.kind} at {where:.2f} s\n{text}", fontsize=9)
         ax.set_xlabel("time [s]", fontsize=9)
         ax.tick_params(labelsize=9)
         if k == 0:
-            ax.set_ylabel("MP − AP [arcsec]", fontsize=9)
+            ax.set_ylabel("MP − AP" + (" unexplained" if continuous else "") + " [arcsec]",
+                          fontsize=9)  # fmt: skip
     return fig
