@@ -308,7 +308,9 @@ def test_runs_and_their_merging_match_a_plain_loop():
             for a, b in plain[1:]:
                 same = np.sign(signed[merged[-1][0]:merged[-1][1]].sum()) == np.sign(
                     signed[a:b].sum())
-                if same and (a - merged[-1][1]) < 3:  # 0.01 s: 2 ticks of 4 ms, not 3
+                # a gap of fewer than 3 ticks merges in both settings: 3 ticks, and 0.01 s
+                # at 4 ms (2.5 ticks)
+                if same and (a - merged[-1][1]) < 3:
                     merged[-1][1] = b
                 else:
                     merged.append([a, b])

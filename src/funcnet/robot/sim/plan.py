@@ -669,5 +669,5 @@ def write_plan(
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(columns)
     for name in names:
-        writer.writerow([_cell(rows[name].get(column, "")) for column in columns])
+        writer.writerow([_cell(rows[name][column]) for column in columns])
     return write_text_atomic(manifest, buffer.getvalue())
