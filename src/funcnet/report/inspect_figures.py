@@ -326,7 +326,7 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
         ax = fig.add_subplot(1, len(changes), k + 1)
         plot.shade_spans(ax, inspection.phases, alpha=0.8, within=(lo, hi))
         if continuous:
-            y = rest * 3600  # type: ignore[operator]
+            y = np.asarray(rest, dtype=float) * 3600
             ax.plot(t_all[inside], y[inside], color=plot.signal_color("TORSION"), linewidth=1)
             stretches = ((change.stop - WINDOW, change.stop), (change.start, change.start + WINDOW))
             for a, b in stretches:
