@@ -220,3 +220,14 @@ def test_the_gear_fit_reads_no_speed_across_a_gap():
     assert fit.rms < 1e-3
     # every sample outside the gap where the motor is fast is fitted, those beside it included
     assert fit.samples == int(np.sum(~gap & (np.abs(vm) > 1.0)))
+
+
+@pytest.mark.parametrize("gap", [None, (3.35, 3.45)], ids=["no gap", "and a gap"])
+def test_values_not_yet_written_at_the_start_are_no_move(tmp_path, reverse_trial, gap):
+    """Every signal empty for the first 0.1 s: no gap and no direction change there."""
+    frame = reverse_trial.copy()
+    frame.loc[frame["time"] < 0.1, ROLES] = np.nan
+    (late,) = diagnose_backlash(_csv(frame, tmp_path / "late.csv", gap))
+    assert _changes(late) == [("reversal", 1.798, 1.806, -1, None)]
+    assert late.left_out == ()
+    assert late.segments == (() if gap is None else ((0.0, gap[0]), (gap[1], 5.002)))

@@ -220,8 +220,12 @@ def _changes(
     if not (min_speed > 0 and math.isfinite(min_speed)):
         raise ParameterError.of("min_speed", f"must be a speed > 0 in deg/s, got {min_speed!r}")
     dt = recording.sample_period
-    x = recording.data[reference].to_numpy(dtype=np.float64)
-    x = np.where(np.isnan(x), np.nanmean(x) if np.isfinite(x).any() else 0.0, x)
+    x = recording.data[reference].to_numpy(dtype=np.float64, copy=True)
+    written = np.flatnonzero(np.isfinite(x))
+    if written.size:
+        # the values a signal has not yet written are no gap and no move: held at its first
+        x[: written[0]] = x[written[0]]
+    x = np.where(np.isnan(x), np.nanmean(x) if written.size else 0.0, x)
     segment = None
     if recording.gaps:
         # each segment's speed on its own (0 in a gap: no move there) and its ticks' segment
