@@ -231,3 +231,20 @@ def test_values_not_yet_written_at_the_start_are_no_move(tmp_path, reverse_trial
     assert _changes(late) == [("reversal", 1.798, 1.806, -1, None)]
     assert late.left_out == ()
     assert late.segments == (() if gap is None else ((0.0, gap[0]), (gap[1], 5.002)))
+
+
+@pytest.mark.parametrize(("gap", "count"), [((3.35, 3.45), "2 segments"),
+                                            ((4.9, 5.1), "1 segment")],
+                         ids=["within", "up to the end"])  # fmt: skip
+def test_the_reader_and_the_diagnosis_count_the_same_segments(tmp_path, reverse_trial, gap,
+                                                              count):  # fmt: skip
+    from funcnet.errors import RecordingWarning
+
+    path = _csv(reverse_trial, tmp_path / "cut.csv", gap)
+    with pytest.warns(RecordingWarning) as caught:
+        rec = read_trace(path)
+    (said,) = [str(w.message) for w in caught if "missing values" in str(w.message)]
+    assert len(rec.segments) == int(count[0])
+    assert f"the recording is split into {count} and" in said
+    (cut,) = diagnose_backlash(path)
+    assert f"read in {count}, values missing at {rec.gaps[0][0]:g}-" in cut.message

@@ -25,6 +25,7 @@ from funcnet.diagnosis.reversals import (
     find_direction_changes,
 )
 from funcnet.diagnosis.two_encoder import ArmStart, first_start
+from funcnet.robot.grid import segments_phrase
 from funcnet.robot.recording import Recording
 
 __all__ = [
@@ -215,7 +216,7 @@ change left out, a gap within what is read around it: 2.9-3.1 s (gap 2.8-2.9 s)
     """
     if not found.gaps:
         return ""
-    note = (f"read in {len(found.segments)} segments, values missing at {_spans(found.gaps)} "
+    note = (f"read in {segments_phrase(found.segments)}, values missing at {_spans(found.gaps)} "
             "(nothing read across a gap)")  # fmt: skip
     if found.left_out:
         where = "; ".join(

@@ -34,7 +34,7 @@ from funcnet.robot.channels import SignalInfo
 
 __all__ = [
     "GridSignals", "time_grid", "place_on_grid", "find_gaps", "mask_runs", "segments_between",
-    "OFF_GRID",
+    "segments_phrase", "OFF_GRID",
 ]
 
 #: What to do with time stamps off their grid: refuse them, or interpolate onto the grid.
@@ -223,6 +223,15 @@ def place_on_grid(
 def mask_runs(mask: np.ndarray) -> list[tuple[int, int]]:
     """Maximal runs of True as ``(first, stop)`` tick pairs (``first <= tick < stop``).
 
+    Parameters
+    ----------
+    mask : ndarray of bool, shape (N,)
+
+    Returns
+    -------
+    list of (int, int)
+        The runs in order; empty when no tick is True.
+
     Examples
     --------
     >>> [(int(a), int(b)) for a, b in mask_runs(np.array([0, 1, 1, 0, 1], dtype=bool))]
@@ -282,3 +291,26 @@ def segments_between(
     if at < stop:
         spans.append((at, stop))
     return [(a, b) for a, b in spans if b > a]
+
+
+def segments_phrase(spans: Sequence[tuple[float, float]]) -> str:
+    """How many segments ``spans`` are, in words, as every message about gaps says it.
+
+    Parameters
+    ----------
+    spans : sequence of (float, float)
+        The segments (:func:`segments_between`, :attr:`funcnet.robot.Recording.segments`).
+
+    Returns
+    -------
+    str
+        ``"1 segment"``, ``"2 segments"``, ...
+
+    Examples
+    --------
+    >>> segments_phrase(segments_between([(4.0, 5.0)], 0.0, 5.0))  # a gap up to the end
+    '1 segment'
+    >>> segments_phrase(segments_between([(1.0, 1.5)], 0.0, 5.0))
+    '2 segments'
+    """
+    return f"{len(spans)} segment{'' if len(spans) == 1 else 's'}"

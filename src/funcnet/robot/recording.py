@@ -41,7 +41,13 @@ from funcnet.robot.channels import (
     check_entries,
     parse_signal_name,
 )
-from funcnet.robot.grid import OFF_GRID, GridSignals, find_gaps, segments_between
+from funcnet.robot.grid import (
+    OFF_GRID,
+    GridSignals,
+    find_gaps,
+    segments_between,
+    segments_phrase,
+)
 from funcnet.robot.sinumerik import read_sinumerik
 from funcnet.robot.tables import read_csv_table, table_signals
 
@@ -390,22 +396,8 @@ def _assemble(path: Path, grid: GridSignals, cmap: ChannelMap) -> Recording:
     index = _time_index(len(values), grid.sample_period, grid.t0)
     ticks, missing = find_gaps(values)
     gaps = tuple(_gap_span(index, grid.sample_period, a, b) for a, b in ticks)
-    if gaps:
-        where = [
-            f"{a:g}-{b:g} s ({_listed([columns[j] for j in which], 4)})"
-            for (a, b), which in zip(gaps, missing, strict=True)
-        ]
-        warnings.warn(
-            RecordingWarning(
-                f"{path}: missing values at {_listed(where, 4)}: the recording is split into "
-                f"{len(gaps) + 1} segments and no window spans a gap",
-                problem="gap",
-                signals=tuple(dict.fromkeys(columns[j] for which in missing for j in which)),
-            ),
-            stacklevel=3,
-        )
     data = pd.DataFrame(values, index=index, columns=columns, copy=False)
-    return Recording(
+    recording = Recording(
         data=data,
         roles=roles,
         signals=dict(zip(columns, infos, strict=True)),
@@ -415,6 +407,21 @@ def _assemble(path: Path, grid: GridSignals, cmap: ChannelMap) -> Recording:
         axis=grid.axis,
         gaps=gaps,
     )
+    if gaps:
+        where = [
+            f"{a:g}-{b:g} s ({_listed([columns[j] for j in which], 4)})"
+            for (a, b), which in zip(gaps, missing, strict=True)
+        ]
+        warnings.warn(
+            RecordingWarning(
+                f"{path}: missing values at {_listed(where, 4)}: the recording is split into "
+                f"{segments_phrase(recording.segments)} and no window spans a gap",
+                problem="gap",
+                signals=tuple(dict.fromkeys(columns[j] for which in missing for j in which)),
+            ),
+            stacklevel=3,
+        )
+    return recording
 
 
 def _gap_span(index: pd.Index, period: float, first: int, stop: int) -> tuple[float, float]:
