@@ -248,3 +248,79 @@ def test_the_reader_and_the_diagnosis_count_the_same_segments(tmp_path, reverse_
     assert f"the recording is split into {count} and" in said
     (cut,) = diagnose_backlash(path)
     assert f"read in {count}, values missing at {rec.gaps[0][0]:g}-" in cut.message
+
+
+def _set_point(t: np.ndarray, rp: np.ndarray, period: float,
+               gaps: tuple[tuple[float, float], ...]) -> Recording:  # fmt: skip
+    rp = rp.copy()
+    for a, b in gaps:
+        rp[(t >= a) & (t < b)] = np.nan
+    return Recording(pd.DataFrame({"RP": rp}, index=pd.Index(t, name="time")), {},
+                     {"RP": SignalInfo("RP", "posn", None, period)}, sample_period=period,
+                     gaps=gaps)  # fmt: skip
+
+
+def test_a_reversal_is_left_out_where_a_gap_cuts_its_restart_search_at_a_longer_dwell():
+    """max_dwell 1 s: a reversal resting 0.8 s has its arm's restart sought up to 1.8 s after the
+    start (the dwell and 1 s); a gap 1.7 s after the start lies within."""
+    from funcnet.diagnosis.segments import segment_changes
+
+    t = np.arange(0, 8, 0.002).round(9)
+    rp = np.interp(t, [0, 2, 2.8, 5, 8], [0, 2, 2, 0, 0])  # out, 0.8 s at rest, back
+    gap = (4.5, 4.55)
+    rec = _set_point(t, rp, 0.002, (gap,))
+    (change,) = segment_changes(_set_point(t, rp, 0.002, ()), max_dwell=1.0).changes
+    assert change.kind == "reversal" and 0.5 < change.dwell < 1.0
+    assert change.start + 1.5 < gap[0] < change.start + change.dwell + 1.0
+    # the default max_dwell (0.5 s) finds a change after a standstill, its reach 1.5 s
+    assert [c.kind for c in segment_changes(rec).changes] == ["after standstill"]
+    longer = segment_changes(rec, max_dwell=1.0)
+    assert longer.changes == ()
+    (left,) = longer.left_out
+    assert (left.stop, left.start, left.gap, left.across) == (change.stop, change.start, gap,
+                                                             False)  # fmt: skip
+    # a gap beyond the search (2.9 s after the start) leaves the reversal read
+    far = segment_changes(_set_point(t, rp, 0.002, ((5.7, 5.75),)), max_dwell=1.0)
+    assert far.changes == (change,)
+
+
+def test_the_set_point_is_read_once_for_the_changes_and_those_across_gaps(monkeypatch):
+    from funcnet.diagnosis import reversals
+    from funcnet.diagnosis.segments import segment_changes
+
+    calls = {"speed": 0, "turns": 0}
+    speed, turns = reversals.segment_velocity, reversals.direction_changes
+
+    def counted_speed(*args, **kwargs):
+        calls["speed"] += 1
+        return speed(*args, **kwargs)
+
+    def counted_turns(*args, **kwargs):
+        calls["turns"] += 1
+        return turns(*args, **kwargs)
+
+    monkeypatch.setattr(reversals, "segment_velocity", counted_speed)
+    monkeypatch.setattr(reversals, "direction_changes", counted_turns)
+    t = np.arange(0, 8, 0.002).round(9)
+    # turns at 1, 3, 5 and 7 s; the one at 5 s within a gap
+    rec = _set_point(t, 10 * np.sin(np.pi * t / 2), 0.002, ((2.8, 2.9), (4.9, 5.1)))
+    found = segment_changes(rec)
+    assert [round(c.turn, 2) for c in found.changes] == [1.0, 7.0]
+    assert [(o.gap, o.across) for o in found.left_out] == [((2.8, 2.9), False),
+                                                           ((4.9, 5.1), True)]  # fmt: skip
+    # one speed of the set-point, and one search for turns per segment holding a turn
+    assert calls == {"speed": 1, "turns": 3}
+
+
+def test_a_turn_across_a_gap_between_two_ticks_names_that_gap():
+    """A 4 ms grid (a decimated recording) with a 2 ms gap between two ticks: the set-point
+    turns within it; an earlier gap is not the one named."""
+    from funcnet.diagnosis.segments import segment_changes
+
+    t = np.arange(0, 4, 0.004).round(9)
+    gaps = ((0.5, 0.6), (2.002, 2.004))
+    found = segment_changes(_set_point(t, -10 * np.abs(t - 2.002), 0.004, gaps))
+    assert found.changes == ()
+    (left,) = found.left_out
+    assert left.across and left.gap == (2.002, 2.004)
+    assert left.stop <= 2.004 and left.start >= 2.004

@@ -16,7 +16,8 @@ change direction.
 A recording with gaps (missing values: :attr:`funcnet.robot.Recording.gaps`) is read segment by
 segment: the set-point's speed within each (:func:`funcnet.robot.preprocess.segment_velocity`),
 the thresholds those of the whole recording; no move spans a gap, and a direction change across
-one (:func:`changes_across_gaps`) is not among those found.
+one (:func:`changes_across_gaps`) is not among those found (:func:`changes_within_and_across`
+gives both from one reading).
 """
 
 from __future__ import annotations
@@ -44,6 +45,7 @@ __all__ = [
     "DirectionChange",
     "find_direction_changes",
     "changes_across_gaps",
+    "changes_within_and_across",
     "motor_side_recording",
     "MAX_DWELL",
     "MIN_SPEED",
@@ -160,7 +162,10 @@ def find_direction_changes(
     ...  for c in find_direction_changes(rec)]
     [(0.96, 1.0, 1.04, 'continuous'), (2.96, 3.0, 3.04, 'continuous')]
     """
-    return _changes(recording, reference, standstill, max_dwell, min_gap, min_speed)[0]
+    return changes_within_and_across(
+        recording, reference=reference, standstill=standstill, max_dwell=max_dwell,
+        min_gap=min_gap, min_speed=min_speed,
+    )[0]  # fmt: skip
 
 
 def changes_across_gaps(
@@ -203,14 +208,57 @@ def changes_across_gaps(
     >>> changes_across_gaps(rec), [c.turn for c in find_direction_changes(rec)]
     ([(0.9, 1.1)], [3.0])
     """
-    return _changes(recording, reference, standstill, max_dwell, min_gap, min_speed)[1]
+    across = changes_within_and_across(
+        recording, reference=reference, standstill=standstill, max_dwell=max_dwell,
+        min_gap=min_gap, min_speed=min_speed,
+    )[1]  # fmt: skip
+    return [(stop, start) for stop, start, _ in across]
 
 
-def _changes(
-    recording: Recording, reference: str, standstill: float, max_dwell: float, min_gap: float,
-    min_speed: float,
-) -> tuple[list[DirectionChange], list[tuple[float, float]]]:  # fmt: skip
-    """The direction changes within the segments, and the (stop, start) of those across a gap."""
+def changes_within_and_across(
+    recording: Recording,
+    *,
+    reference: str = "RP",
+    standstill: float = 1e-4,
+    max_dwell: float = MAX_DWELL,
+    min_gap: float = 0.05,
+    min_speed: float = MIN_SPEED,
+) -> tuple[list[DirectionChange], list[tuple[float, float, tuple[float, float]]]]:
+    """:func:`find_direction_changes` and :func:`changes_across_gaps` from one reading.
+
+    Parameters
+    ----------
+    recording : Recording
+    reference, standstill, max_dwell, min_gap, min_speed
+        As for :func:`find_direction_changes`.
+
+    Returns
+    -------
+    changes : list of DirectionChange
+        As :func:`find_direction_changes`.
+    across : list of (float, float, (float, float))
+        As :func:`changes_across_gaps`, each with the gap that ends the segment of the move
+        before it (``[start, stop)``, s; the first, where the two moves lie several segments
+        apart).
+
+    Raises
+    ------
+    ChannelError, ParameterError
+        As :func:`find_direction_changes`.
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot import Recording, SignalInfo
+    >>> t = np.arange(0, 4, 0.002).round(9)
+    >>> rp = 10 * np.sin(np.pi * t / 2)  # turns at 1 s and 3 s; 0.9-1.1 s missing
+    >>> rp[(t >= 0.9) & (t < 1.1)] = np.nan
+    >>> rec = Recording(pd.DataFrame({"RP": rp}, index=pd.Index(t, name="time")), {},
+    ...                 {"RP": SignalInfo("RP", "posn", None, 0.002)}, gaps=((0.9, 1.1),))
+    >>> changes, across = changes_within_and_across(rec)
+    >>> [c.turn for c in changes], across
+    ([3.0], [(0.9, 1.1, (0.9, 1.1))])
+    """
     if reference not in recording.data.columns:
         raise ChannelError(
             recording.source or "<recording>", f"no {reference!r} column to find the moves"
@@ -260,7 +308,8 @@ def _changes(
         if s0 == s1 or s1 == 0:
             continue
         if segment is not None and segment[a0] != segment[a1]:
-            across.append((round(t0 + b0 * dt, 9), round(t0 + a1 * dt, 9)))
+            gap = _gap_after(recording, int(segment[a0]))
+            across.append((round(t0 + b0 * dt, 9), round(t0 + a1 * dt, 9), gap))
             continue
         # no standstill between -- the set-point turns while moving, its speed at most dipping
         # below the standstill threshold as it crosses zero, its reading never held: continuous
@@ -289,6 +338,16 @@ def _changes(
     return changes, across
 
 
+def _gap_after(recording: Recording, segment: int) -> tuple[float, float]:
+    """The gap that ends segment ``segment`` of ``recording`` (a segment ends where one starts)."""
+    end = recording.segments[segment][1]
+    gap = next((g for g in recording.gaps if g[0] == end), None)
+    if gap is None:  # Recording.segments ends every segment but the last at a gap's start
+        raise AssertionError(
+            f"{recording.source or '<recording>'}: no gap starts where segment {segment} ends "
+            f"({end:g} s; gaps {list(recording.gaps)})"
+        )
+    return gap
 
 
 def motor_side_recording(recording: Recording) -> Recording:

@@ -7,7 +7,7 @@ and the two-encoder lost motion read that segment alone (:func:`segment_part`), 
 start from rest is sought segment by segment (:func:`segment_first_start`); the gear is fitted
 over the samples of every segment, its speeds and bootstrap blocks within each
 (:mod:`~funcnet.diagnosis.reversal_error`). A direction change is left out (:class:`LeftOut`)
-where a gap lies within what the diagnosis reads around it (:data:`REACH`), or where the
+where a gap lies within what the diagnosis reads around it (:func:`reach`), or where the
 set-point turns across a gap (:func:`~funcnet.diagnosis.reversals.changes_across_gaps`).
 Without gaps every function here returns what the whole recording gives.
 """
@@ -18,18 +18,14 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from funcnet.diagnosis.reversal_error import WINDOW
-from funcnet.diagnosis.reversals import (
-    MAX_DWELL,
-    DirectionChange,
-    changes_across_gaps,
-    find_direction_changes,
-)
+from funcnet.diagnosis.reversals import MAX_DWELL, DirectionChange, changes_within_and_across
 from funcnet.diagnosis.two_encoder import ArmStart, first_start
 from funcnet.robot.grid import segments_phrase
 from funcnet.robot.recording import Recording
 
 __all__ = [
     "REACH",
+    "reach",
     "LeftOut",
     "SegmentedChanges",
     "segment_changes",
@@ -38,17 +34,40 @@ __all__ = [
     "segments_note",
 ]
 
-#: s the diagnosis reads before a direction change's ``stop`` and after its ``start``, by kind:
-#: a gap within is a change left out. At a reversal the motor hysteresis reads the set-point
-#: from 1 s before the stop (:mod:`.indicators`) and the arm's restart is sought up to 1.5 s
-#: after the start (the dwell, at most 0.5 s, and 1 s: :mod:`.two_encoder`); after a standstill
-#: the gear torque is read 0.25 s before the stop and the motor's turn sought up to 1.5 s after
-#: the start; in continuous motion the reversal error's stretches (0.25 s each).
-REACH = {
-    "reversal": (1.0, MAX_DWELL + 1.0),
-    "after standstill": (WINDOW, 1.5),
-    "continuous": (WINDOW, WINDOW),
-}
+def reach(kind: str, max_dwell: float = MAX_DWELL) -> tuple[float, float]:
+    """s the diagnosis reads before a direction change's ``stop`` and after its ``start``.
+
+    A gap within is a change left out. At a reversal the motor hysteresis reads the set-point
+    from 1 s before the stop to 1.2 s after the start (:mod:`.indicators`) and the arm's
+    restart is sought up to the dwell (at most ``max_dwell``, counted up to 1 s) and 1 s after
+    the start (:mod:`.two_encoder`); after a standstill the gear torque is read 0.25 s before
+    the stop and the motor's turn sought up to 1.5 s after the start; in continuous motion the
+    reversal error's stretches (0.25 s each).
+
+    Parameters
+    ----------
+    kind : str
+        The change's :attr:`~funcnet.diagnosis.reversals.DirectionChange.kind`.
+    max_dwell : float
+        Longest standstill (s) of a reversal, as the changes were found with.
+
+    Returns
+    -------
+    before, after : float
+        s before ``stop`` and after ``start``.
+
+    Examples
+    --------
+    >>> reach("reversal"), reach("reversal", max_dwell=0.8), reach("continuous")
+    ((1.0, 1.5), (1.0, 1.8), (0.25, 0.25))
+    """
+    if kind == "reversal":
+        return 1.0, max(1.2, min(max_dwell, 1.0) + 1.0)
+    return {"after standstill": (WINDOW, 1.5), "continuous": (WINDOW, WINDOW)}[kind]
+
+
+#: :func:`reach` by kind at the default ``max_dwell``.
+REACH = {kind: reach(kind) for kind in ("reversal", "after standstill", "continuous")}
 
 
 @dataclass(frozen=True)
@@ -119,8 +138,9 @@ def segment_changes(recording: Recording, *, max_dwell: float = MAX_DWELL) -> Se
     -------
     SegmentedChanges
         Without gaps: every change of :func:`.find_direction_changes`. With gaps: those whose
-        reach (:data:`REACH`, from ``stop`` back and from ``start`` on) holds no gap; the
-        others, and the changes across a gap (:func:`.changes_across_gaps`), left out.
+        reach (:func:`reach`, from ``stop`` back and from ``start`` on) holds no gap; the
+        others, and the changes across a gap (:func:`.changes_across_gaps`, labelled with the
+        gap after the move before), left out.
 
     Examples
     --------
@@ -137,21 +157,19 @@ def segment_changes(recording: Recording, *, max_dwell: float = MAX_DWELL) -> Se
     >>> [round(c.turn, 2) for c in found.changes], [(o.gap, o.across) for o in found.left_out]
     ([1.0, 7.0], [((2.8, 2.9), False), ((4.9, 5.1), True)])
     """
-    changes = find_direction_changes(recording, max_dwell=max_dwell)
+    changes, across = changes_within_and_across(recording, max_dwell=max_dwell)
     if not recording.gaps:
         return SegmentedChanges(tuple(changes))
     gaps = recording.gaps
     kept, left = [], []
     for change in changes:
-        before, after = REACH[change.kind]
+        before, after = reach(change.kind, max_dwell)
         gap = _gap_within(gaps, change.stop - before, change.start + after)
         if gap is None:
             kept.append(change)
         else:
             left.append(LeftOut(change.stop, change.start, gap))
-    for stop, start in changes_across_gaps(recording, max_dwell=max_dwell):
-        gap = _gap_within(gaps, stop, start)
-        left.append(LeftOut(stop, start, gaps[0] if gap is None else gap, across=True))
+    left += [LeftOut(stop, start, gap, across=True) for stop, start, gap in across]
     return SegmentedChanges(
         tuple(kept), tuple(sorted(left, key=lambda o: o.stop)), tuple(recording.segments), gaps
     )
