@@ -25,6 +25,7 @@ _EXPORTS = {
     "DirectionChange": "funcnet.diagnosis.reversals",
     "find_direction_changes": "funcnet.diagnosis.reversals",
     "changes_across_gaps": "funcnet.diagnosis.reversals",
+    "changes_within_and_across": "funcnet.diagnosis.reversals",
     "motor_side_recording": "funcnet.diagnosis.reversals",
     "INDICATORS": "funcnet.diagnosis.indicators",
     "MOTOR_SIDE": "funcnet.diagnosis.indicators",

@@ -178,6 +178,19 @@ def segment_changes(recording: Recording, *, max_dwell: float = MAX_DWELL) -> Se
 def segment_part(recording: Recording, change: DirectionChange) -> Recording:
     """The segment of ``recording`` that holds ``change`` (the recording itself without gaps).
 
+    Parameters
+    ----------
+    recording : Recording
+        From :func:`.motor_side_recording`.
+    change : DirectionChange
+        One of :attr:`SegmentedChanges.changes`.
+
+    Returns
+    -------
+    Recording
+        :meth:`~funcnet.robot.Recording.window` of the segment whose span holds
+        ``change.stop``; ``recording`` itself without gaps (or where no segment holds it).
+
     Examples
     --------
     >>> import numpy as np, pandas as pd
@@ -197,6 +210,17 @@ def segment_part(recording: Recording, change: DirectionChange) -> Recording:
 def segment_first_start(recording: Recording) -> ArmStart | None:
     """:func:`.first_start` of the first segment that has one (the whole recording's without
     gaps): no start's fit reads across a gap.
+
+    Parameters
+    ----------
+    recording : Recording
+        With MP and AP, from :func:`.motor_side_recording`.
+
+    Returns
+    -------
+    ArmStart or None
+        The axis's first start from a long rest, found within one segment; None where no
+        segment has one.
 
     Examples
     --------
@@ -224,6 +248,18 @@ def _spans(spans: Sequence[tuple[float, float]]) -> str:
 
 def segments_note(found: SegmentedChanges) -> str:
     """What the message of a diagnosis says of the gaps ("" without gaps).
+
+    Parameters
+    ----------
+    found : SegmentedChanges
+        From :func:`segment_changes`.
+
+    Returns
+    -------
+    str
+        The segments read (counted as the reader's warning counts them:
+        :func:`funcnet.robot.grid.segments_phrase`), the gaps, and each change left out with
+        its gap; "" without gaps.
 
     Examples
     --------
