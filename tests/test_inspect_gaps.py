@@ -15,7 +15,13 @@ from typer.testing import CliRunner
 
 from funcnet.cli import app
 from funcnet.inspection import inspect_recording, inspect_robot
-from funcnet.inspection.motion import motion_summary, numbered_moves, segment_phases
+from funcnet.inspection.motion import (
+    motion_summary,
+    numbered_moves,
+    segment_phases,
+    turns_across_gaps,
+)
+from funcnet.report.inspect_text import summary_html
 from funcnet.robot import detect_phases, direction_changes, read_trace
 
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
@@ -26,16 +32,20 @@ def _smooth_move(t: np.ndarray, start: float, stop: float, distance: float) -> n
     return distance * (s - np.sin(2 * np.pi * s) / (2 * np.pi))
 
 
-def _write_trace(path: Path, missing: tuple[float, float] | None) -> Path:
-    """Out at 0.5-2.5 s and back at 5-7 s (20 deg); the rows in ``missing`` left empty."""
+def _write_trace(path: Path, missing: tuple[float, float] | None, *,
+                 more: tuple[tuple[float, float], ...] = (), jitter: float = 0.0) -> Path:
+    """Out at 0.5-2.5 s and back at 5-7 s (20 deg); the rows in ``missing`` (and ``more``) left
+    empty; a set-point noise of ``jitter`` deg (standard deviation) when given."""
     t = np.round(np.arange(0, 8, 0.002), 9)
     rp = _smooth_move(t, 0.5, 2.5, 20) + _smooth_move(t, 5, 7, -20)
+    if jitter:
+        rp = rp + jitter * np.random.default_rng(1).standard_normal(t.size)
     rng = np.random.default_rng(0)
     ap = np.concatenate([[0.0] * 3, rp[:-3]]) + 1e-4 * rng.standard_normal(t.size)
     ac = np.gradient(np.gradient(ap)) * 1e4 + rng.normal(0, 0.05, t.size)
     frame = pd.DataFrame({"time": t, "RP": rp, "AP": ap, "AC": ac})
-    if missing is not None:
-        frame.loc[(t >= missing[0]) & (t < missing[1]), ["RP", "AP", "AC"]] = np.nan
+    for a, b in ([missing] if missing is not None else []) + list(more):
+        frame.loc[(t >= a) & (t < b), ["RP", "AP", "AC"]] = np.nan
     frame.to_csv(path, index=False, float_format="%.9g")
     return path
 
@@ -67,9 +77,10 @@ def test_a_gap_within_a_move_splits_it_and_the_page_says_where(tmp_path):
                     "a gap"]
     html = (out / "index.html").read_text(encoding="utf-8")
     summary = re.sub(r"<[^>]+>", "", html[html.index('id="summary"'):html.index('class="toc"')])
-    assert (f"Values are missing in 1 gap, {gap[0]:g}–{gap[1]:g} s "
-            f"({gap[1] - gap[0]:.1f} s): the recording is read as 2 segments, 0–{gap[0]:g} s "
-            f"and {gap[1]:g}–8 s, and no phase, move or window spans a gap.") in summary
+    # the spans written as the command line writes them
+    assert (f"Values are missing in 1 gap, {gap[0]:g}-{gap[1]:g} s "
+            f"({gap[1] - gap[0]:.1f} s): the recording is read as 2 segments, 0-{gap[0]:g} s "
+            f"and {gap[1]:g}-8 s, and no phase, move or window spans a gap.") in summary
     assert f"A gap cuts move 1 ({gap[0]:g}-{gap[1]:g} s), move 2" in summary
     assert "dark grey: a gap" in html
     assert "cut by a gap" in html  # the moves table's column
@@ -123,6 +134,16 @@ def test_a_gap_at_rest_leaves_the_moves_as_without_it(tmp_path):
     # the rest between the moves loses the gap's 0.3 s, nothing else
     moving = whole[whole["move"] > 0].reset_index(drop=True)
     pd.testing.assert_frame_equal(phases[phases["move"] > 0].reset_index(drop=True), moving)
+    # the one turn, at rest, falls in the gap: no segment holds it, it is carried across
+    assert len(direction_changes(without)) == 1 and turns == ()
+    back = reference["start"][1]
+    assert turns_across_gaps(moves, with_gap.gaps) == ((reference["stop"][0], back),)
+    ins = inspect_recording(with_gap, evidence=False, backlash=False)
+    assert ins.turns_across_gaps == ((reference["stop"][0], back),)
+    summary = re.sub(r"<[^>]+>", "", summary_html(ins))
+    assert "never changes direction" not in summary
+    assert ("It changes direction 1 time(s): 1 across a gap (it turns across the gap "
+            "3.5-3.8 s).") in summary
 
 
 def test_a_recording_without_gaps_reads_as_before(tmp_path):
@@ -138,6 +159,27 @@ def test_a_recording_without_gaps_reads_as_before(tmp_path):
     html = write_inspection(ins, tmp_path / "page").read_text(encoding="utf-8")
     shown = html[:html.index('id="parameters"')]  # the provenance names this test's command
     assert "gap" not in shown.lower()
+
+
+def test_a_resting_segment_with_a_jittering_set_point_is_no_move(tmp_path):
+    # two short gaps at rest cut out a segment (3.1-4 s) where the set-point only jitters; its
+    # speed is read against the whole recording's peak, not against its own jitter
+    whole = read_trace(_write_trace(tmp_path / "whole.csv", None, jitter=1e-4))
+    cut = read_trace(_write_trace(tmp_path / "cut.csv", (3.0, 3.1), more=((4.0, 4.1),),
+                                  jitter=1e-4))
+    assert cut.gaps == ((3.0, 3.1), (4.0, 4.1))
+    reference = motion_summary(whole, numbered_moves(detect_phases(whole)),
+                               direction_changes(whole))
+    assert len(reference) == 2 and reference["direction changes"].sum() == 0
+    phases, turns = segment_phases(cut)
+    moves = motion_summary(cut, phases, turns)
+    pd.testing.assert_frame_equal(moves.drop(columns="cut by a gap"), reference)
+    middle = phases[(phases["start"] >= 3.1) & (phases["stop"] <= 4.0)]
+    assert set(middle["phase"]) == {"standstill"}
+    # the one turn (at rest, 2.5-5 s) is across both gaps: none within a segment
+    assert len(direction_changes(whole)) == 1 and turns == ()
+    assert turns_across_gaps(moves, cut.gaps) == ((reference["stop"][0],
+                                                   reference["start"][1]),)
 
 
 def test_numbered_moves_starts_a_move_after_a_gap():
@@ -172,8 +214,8 @@ def test_the_robot_page_says_where_in_each_axis_section(tmp_path):
         page = write_robot_inspection(found, tmp_path / "report")
     html = page.read_text(encoding="utf-8")
     axes = html[html.index('id="axes"'):html.index('id="robot"')]
-    sentence = (f"Values are missing in 1 gap, {gap[0]:g}–{gap[1]:g} s (0.2 s): the recording "
-                f"is read as 2 segments, 0–{gap[0]:g} s and {gap[1]:g}–4 s")
+    sentence = (f"Values are missing in 1 gap, {gap[0]:g}-{gap[1]:g} s (0.2 s): the recording "
+                f"is read as 2 segments, 0-{gap[0]:g} s and {gap[1]:g}-4 s")
     assert sentence in axes
     assert sentence in (tmp_path / "report" / "axis-1" / "index.html").read_text()
     assert "Values are missing" not in (tmp_path / "report" / "axis-2" / "index.html").read_text()

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from funcnet.diagnosis.reversal_error import WINDOW
 from funcnet.diagnosis.reversals import MAX_DWELL, DirectionChange, changes_within_and_across
 from funcnet.diagnosis.two_encoder import ArmStart, first_start
-from funcnet.robot.grid import segments_phrase
+from funcnet.robot.grid import format_spans, segments_phrase
 from funcnet.robot.recording import Recording
 
 __all__ = [
@@ -242,10 +242,6 @@ def segment_first_start(recording: Recording) -> ArmStart | None:
     return None
 
 
-def _spans(spans: Sequence[tuple[float, float]]) -> str:
-    return ", ".join(f"{a:g}-{b:g} s" for a, b in spans)
-
-
 def segments_note(found: SegmentedChanges) -> str:
     """What the message of a diagnosis says of the gaps ("" without gaps).
 
@@ -270,8 +266,8 @@ change left out, a gap within what is read around it: 2.9-3.1 s (gap 2.8-2.9 s)
     """
     if not found.gaps:
         return ""
-    note = (f"read in {segments_phrase(found.segments)}, values missing at {_spans(found.gaps)} "
-            "(nothing read across a gap)")  # fmt: skip
+    note = (f"read in {segments_phrase(found.segments)}, values missing at "
+            f"{format_spans(found.gaps)} (nothing read across a gap)")  # fmt: skip
     if found.left_out:
         where = "; ".join(
             f"{o.stop:g}-{o.start:g} s ("

@@ -21,10 +21,15 @@ import numpy as np
 import pandas as pd
 
 from funcnet.robot import Recording, detect_phases
-from funcnet.robot.phases import Turn, direction_changes
-from funcnet.robot.preprocess import segment_velocity
+from funcnet.robot.grid import format_spans
+from funcnet.robot.phases import TURN_SPEED, Turn, direction_changes
+from funcnet.robot.preprocess import segment_velocity, velocity
 
-__all__ = ["numbered_moves", "motion_summary", "segment_phases"]
+#: A tick rests when its set-point speed is at most this fraction of the recording's peak (the
+#: default of :func:`funcnet.robot.detect_phases`).
+STANDSTILL = 1e-4
+
+__all__ = ["numbered_moves", "motion_summary", "segment_phases", "turns_across_gaps"]
 
 
 def segment_phases(recording: Recording) -> tuple[pd.DataFrame, tuple[Turn, ...]]:
@@ -61,14 +66,29 @@ def segment_phases(recording: Recording) -> tuple[pd.DataFrame, tuple[Turn, ...]
     >>> [round(turn.time, 2) for turn in turns]
     [2.0]
     """
-    parts = ([recording] if not recording.gaps else
-             [recording.window(a, b) for a, b in recording.segments])
+    if not recording.gaps:
+        return (numbered_moves(detect_phases(recording)),
+                tuple(direction_changes(recording)))  # fmt: skip
+    # the thresholds those of the whole recording (as the backlash diagnosis reads its
+    # segments), not of each segment: a resting segment's jitter is no move
+    speed = np.abs(segment_velocity(recording, recording.data["RP"].to_numpy(dtype=float)))
+    peak = float(np.nanmax(speed)) if np.isfinite(speed).any() else 0.0
     tables, turns = [], []
-    for part in parts:
+    for a, b in recording.segments:
+        part = recording.window(a, b)
         if len(part.data) < 2:
             continue
-        tables.append(detect_phases(part))
-        turns += direction_changes(part)
+        if peak == 0:  # nothing moves anywhere: each segment's own (zero) thresholds
+            tables.append(detect_phases(part))
+            continue
+        fast = TURN_SPEED * peak
+        own = float(np.abs(velocity(part.data["RP"].to_numpy(dtype=float), part.sample_period))
+                    .max())  # fmt: skip
+        # standstill: 1e-4 of the whole recording's peak, as a fraction of this segment's
+        # (below 1: a segment never faster than ``fast`` has no move whatever the fraction)
+        rest = STANDSTILL * peak / max(own, fast)
+        tables.append(detect_phases(part, min_speed=fast, standstill=rest))
+        turns += direction_changes(part, min_speed=fast, standstill=rest)
     # every segment a tick long: the whole recording's error names the file and the gap
     tables = tables or [detect_phases(recording)]
     return numbered_moves(pd.concat(tables, ignore_index=True)), tuple(turns)
@@ -195,9 +215,45 @@ def motion_summary(
             row["peak |FE|"] = _peak(fe[inside])
             row["final |FE|"] = _peak(fe[last:last + 1])
         if recording.gaps:
-            row["cut by a gap"] = ", ".join(
-                f"{a:g}-{b:g} s" for a, b in recording.gaps
-                if abs(stop - a) < recording.sample_period / 2
-                or abs(start - b) < recording.sample_period / 2)
+            row["cut by a gap"] = format_spans(
+                [(a, b) for a, b in recording.gaps
+                 if abs(stop - a) < recording.sample_period / 2
+                 or abs(start - b) < recording.sample_period / 2])
         rows.append(row)
     return pd.DataFrame(rows)
+
+
+def turns_across_gaps(
+    moves: pd.DataFrame, gaps: Sequence[tuple[float, float]]
+) -> tuple[tuple[float, float], ...]:
+    """Where the set-point changes direction across a gap: what no segment's turns hold.
+
+    Parameters
+    ----------
+    moves : pandas.DataFrame
+        :func:`motion_summary` (``start``, ``stop``, ``direction``).
+    gaps : sequence of (float, float)
+        :attr:`funcnet.robot.Recording.gaps`.
+
+    Returns
+    -------
+    tuple of (float, float)
+        Per such change, in time order: the end of the move before the gap and the start of the
+        next move, which goes the other way (its first direction against the last of the move
+        before); a gap lies between them. Empty without gaps.
+
+    Examples
+    --------
+    >>> moves = pd.DataFrame({"start": [0.5, 5.0], "stop": [2.5, 7.0],
+    ...                       "direction": ["+", "−"]})
+    >>> turns_across_gaps(moves, [(3.5, 3.8)]), turns_across_gaps(moves, [])
+    (((2.5, 5.0),), ())
+    """
+    if not gaps or not len(moves):
+        return ()
+    rows = list(zip(moves["start"], moves["stop"], moves["direction"], strict=True))
+    return tuple(
+        (float(stop), float(start))
+        for (_, stop, before), (start, _, after) in zip(rows, rows[1:], strict=False)
+        if before[-1] != after[0] and any(stop <= a and b <= start for a, b in gaps)
+    )

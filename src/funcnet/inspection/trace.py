@@ -32,7 +32,7 @@ from typing import Any
 import pandas as pd
 
 from funcnet.errors import FuncnetError
-from funcnet.inspection.motion import motion_summary, segment_phases
+from funcnet.inspection.motion import motion_summary, segment_phases, turns_across_gaps
 from funcnet.network import FunctionalNetwork
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.parameters import NetworkParameters, resolve
@@ -105,6 +105,10 @@ class TraceInspection:
         Seconds of computation.
     recording : Recording
         The recording the networks were computed on (interpolated, with V).
+    turns_across_gaps : tuple of (float, float)
+        The set-point's direction changes across a gap, which no segment holds
+        (:func:`~funcnet.inspection.motion.turns_across_gaps`): the end of the move before and
+        the start of the next, the other way.
     """
 
     source: str
@@ -127,6 +131,7 @@ class TraceInspection:
     resampled: tuple[str, ...]
     elapsed: float
     recording: Recording = dataclasses.field(repr=False)
+    turns_across_gaps: tuple[tuple[float, float], ...] = ()
 
     def failed(self, part: str) -> dict[str, str]:
         """Window label -> why, for the windows that lack ``part`` (``"network"``,
@@ -292,6 +297,7 @@ def inspect_recording(
         resampled=coarse,
         elapsed=time.perf_counter() - started,
         recording=rec,
+        turns_across_gaps=turns_across_gaps(moves, raw.gaps),
     )
 
 

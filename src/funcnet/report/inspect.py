@@ -68,6 +68,7 @@ from funcnet.report.inspect_text import (
 from funcnet.report.repetitions_page import write_repetitions
 from funcnet.robot import read_trace
 from funcnet.robot.axes import split_qualified
+from funcnet.robot.grid import format_spans
 
 __all__ = ["inspect_trace", "write_inspection", "write_robot_inspection", "READING_AN_ARROW"]
 
@@ -378,8 +379,8 @@ def write_robot_inspection(
         "</section>",
         "<section id=\"parameters\"><h2>Parameters and provenance</h2>",
         mapping_table(ins.parameters.to_dict(), "parameter"),
-        mapping_table(_provenance(ins, segments=", ".join(
-            f"{a:g}-{b:g} s" for a, b in ins.recording.segments)), "item"), "</section>",
+        mapping_table(_provenance(ins, segments=format_spans(
+            ins.recording.segments)), "item"), "</section>",
     ]
     return write_text_atomic(out / "index.html", page(f"funcnet inspect — {name}", body))
 

@@ -16,6 +16,7 @@ import pandas as pd
 
 from funcnet.inspection import TraceInspection
 from funcnet.report.html import escape
+from funcnet.robot.grid import format_spans
 
 __all__ = ["summary_html", "gaps_sentence", "failed_windows", "partial_evidence"]
 
@@ -39,14 +40,15 @@ def gaps_sentence(gaps: Sequence[tuple[float, float]], segments: Sequence[tuple[
     Examples
     --------
     >>> gaps_sentence([(3.5, 3.8)], [(0.0, 3.5), (3.8, 8.0)])
-    'Values are missing in 1 gap, 3.5–3.8 s (0.3 s): the recording is read as 2 segments, 0–3.5 s and 3.8–8 s, and no window spans a gap.'
+    'Values are missing in 1 gap, 3.5-3.8 s (0.3 s): the recording is read as 2 segments, 0-3.5 s and 3.8-8 s, and no window spans a gap.'
     >>> gaps_sentence([], [(0.0, 8.0)])
     ''
     """  # noqa: E501
     if not gaps:
         return ""
-    listed = ", ".join(f"{a:g}–{b:g} s ({round(b - a, 9):g} s)" for a, b in gaps)
-    parts = [f"{a:g}–{b:g} s" for a, b in segments]
+    listed = ", ".join(f"{format_spans([gap])} ({round(gap[1] - gap[0], 9):g} s)"
+                       for gap in gaps)
+    parts = [format_spans([segment]) for segment in segments]
     between = ", ".join(parts[:-1]) + " and " + parts[-1] if len(parts) > 1 else "".join(parts)
     return (f"Values are missing in {len(gaps)} gap{'s' if len(gaps) > 1 else ''}, {listed}: "
             f"the recording is read as {len(segments)} segment{'s' if len(parts) > 1 else ''}, "
@@ -67,14 +69,21 @@ def _cut_moves_sentence(ins: TraceInspection) -> str:
 
 def _turns_sentence(ins: TraceInspection) -> str:
     """How often the set-point changes direction, and where."""
-    if not ins.turns:
+    across = ins.turns_across_gaps
+    if not ins.turns and not across:
         return "It never changes direction." if len(ins.moves) else ""
     within = int(ins.moves["direction changes"].sum()) if len(ins.moves) else 0
     times = ", ".join(f"{turn.time:.2f}" for turn in ins.turns)
+    # where the set-point turns across a gap is not recorded: only the gaps it turns across
+    gaps = "; ".join(
+        format_spans([g for g in ins.gaps if stop <= g[0] and g[1] <= start])
+        for stop, start in across)  # fmt: skip
     parts = [f"{within} within a move (no rest at the turn)" if within else "",
-             f"{len(ins.turns) - within} after a rest" if len(ins.turns) > within else ""]
-    return (f"It changes direction {len(ins.turns)} time(s), at {times} s: "
-            + ", ".join(p for p in parts if p) + ".")
+             f"{len(ins.turns) - within} after a rest" if len(ins.turns) > within else "",
+             f"{len(across)} across a gap (it turns across the gap {gaps})" if across else ""]
+    return (f"It changes direction {len(ins.turns) + len(across)} time(s)"
+            + (f", at {times} s" if times else "") + ": " + ", ".join(p for p in parts if p)
+            + ".")
 
 
 def summary_html(ins: TraceInspection) -> str:

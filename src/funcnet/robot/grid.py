@@ -34,7 +34,7 @@ from funcnet.robot.channels import SignalInfo
 
 __all__ = [
     "GridSignals", "time_grid", "place_on_grid", "find_gaps", "mask_runs", "segments_between",
-    "segments_phrase", "OFF_GRID",
+    "segments_phrase", "OFF_GRID", "format_spans",
 ]
 
 #: What to do with time stamps off their grid: refuse them, or interpolate onto the grid.
@@ -314,3 +314,24 @@ def segments_phrase(spans: Sequence[tuple[float, float]]) -> str:
     '2 segments'
     """
     return f"{len(spans)} segment{'' if len(spans) == 1 else 's'}"
+
+
+def format_spans(spans: Sequence[tuple[float, float]]) -> str:
+    """Time spans as the messages and reports write them: ``"3.5-3.8 s, 5-5.2 s"``.
+
+    Parameters
+    ----------
+    spans : sequence of (float, float)
+        Start and end in seconds (gaps, segments).
+
+    Returns
+    -------
+    str
+        Each span ``start-end s`` (``%g``), comma-separated; "" for none.
+
+    Examples
+    --------
+    >>> format_spans([(3.5, 3.8), (5.0, 5.2)])
+    '3.5-3.8 s, 5-5.2 s'
+    """
+    return ", ".join(f"{a:g}-{b:g} s" for a, b in spans)
