@@ -4,7 +4,9 @@ following error).
 
 A recording with gaps (missing values: :attr:`funcnet.robot.Recording.gaps`) is read segment by
 segment (:func:`segment_phases`): no phase and no move spans a gap, and a move that a gap
-interrupts is two moves, each marked as cut by the gap.
+interrupts is two moves, each marked as cut by the gap. The speed thresholds are those of the
+whole recording, and a direction change across a gap (no segment holds it) is found from the
+moves on either side (:func:`turns_across_gaps`).
 
 References
 ----------
@@ -23,7 +25,7 @@ import pandas as pd
 from funcnet.robot import Recording, detect_phases
 from funcnet.robot.grid import format_spans
 from funcnet.robot.phases import TURN_SPEED, Turn, direction_changes
-from funcnet.robot.preprocess import segment_velocity, velocity
+from funcnet.robot.preprocess import segment_ticks, segment_velocity
 
 #: A tick rests when its set-point speed is at most this fraction of the recording's peak (the
 #: default of :func:`funcnet.robot.detect_phases`).
@@ -45,9 +47,14 @@ def segment_phases(recording: Recording) -> tuple[pd.DataFrame, tuple[Turn, ...]
     phases : pandas.DataFrame
         :func:`numbered_moves` of :func:`funcnet.robot.detect_phases` of each segment, in time
         order: the gaps are not covered, and a segment of one tick (no speed to read) has no
-        row. Without gaps: the phases of the whole recording.
+        row. Without gaps: the phases of the whole recording. The thresholds (the turn speed,
+        ``TURN_SPEED`` of the peak, and the standstill, :data:`STANDSTILL` of it) are those of
+        the whole recording: its peak set-point speed read within each segment
+        (:func:`funcnet.robot.preprocess.segment_velocity`), so that a segment where the
+        set-point only jitters at rest holds no move.
     turns : tuple of Turn
-        :func:`funcnet.robot.direction_changes` of each segment.
+        :func:`funcnet.robot.direction_changes` of each segment, at the same thresholds; a turn
+        across a gap is in none (:func:`turns_across_gaps`).
 
     Examples
     --------
@@ -73,20 +80,18 @@ def segment_phases(recording: Recording) -> tuple[pd.DataFrame, tuple[Turn, ...]
     # segments), not of each segment: a resting segment's jitter is no move
     speed = np.abs(segment_velocity(recording, recording.data["RP"].to_numpy(dtype=float)))
     peak = float(np.nanmax(speed)) if np.isfinite(speed).any() else 0.0
+    fast = TURN_SPEED * peak
     tables, turns = [], []
-    for a, b in recording.segments:
+    for (a, b), (first, last) in zip(recording.segments, segment_ticks(recording), strict=True):
         part = recording.window(a, b)
         if len(part.data) < 2:
             continue
         if peak == 0:  # nothing moves anywhere: each segment's own (zero) thresholds
             tables.append(detect_phases(part))
             continue
-        fast = TURN_SPEED * peak
-        own = float(np.abs(velocity(part.data["RP"].to_numpy(dtype=float), part.sample_period))
-                    .max())  # fmt: skip
-        # standstill: 1e-4 of the whole recording's peak, as a fraction of this segment's
-        # (below 1: a segment never faster than ``fast`` has no move whatever the fraction)
-        rest = STANDSTILL * peak / max(own, fast)
+        # standstill: STANDSTILL of the whole recording's peak, as a fraction of this
+        # segment's (below 1: a segment never faster than ``fast`` has no move at all)
+        rest = STANDSTILL * peak / max(float(np.nanmax(speed[first:last])), fast)
         tables.append(detect_phases(part, min_speed=fast, standstill=rest))
         turns += direction_changes(part, min_speed=fast, standstill=rest)
     # every segment a tick long: the whole recording's error names the file and the gap
