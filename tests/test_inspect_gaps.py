@@ -180,6 +180,10 @@ def test_a_resting_segment_with_a_jittering_set_point_is_no_move(tmp_path):
     assert len(direction_changes(whole)) == 1 and turns == ()
     assert turns_across_gaps(moves, cut.gaps) == ((reference["stop"][0],
                                                    reference["start"][1]),)
+    ins = inspect_recording(cut, evidence=False, backlash=False)
+    summary = re.sub(r"<[^>]+>", "", summary_html(ins))
+    assert ("It changes direction 1 time(s): 1 across a gap (it turns across the gaps "
+            "3-3.1 s, 4-4.1 s).") in summary
 
 
 def test_numbered_moves_starts_a_move_after_a_gap():

@@ -75,12 +75,11 @@ def _turns_sentence(ins: TraceInspection) -> str:
     within = int(ins.moves["direction changes"].sum()) if len(ins.moves) else 0
     times = ", ".join(f"{turn.time:.2f}" for turn in ins.turns)
     # where the set-point turns across a gap is not recorded: only the gaps it turns across
-    gaps = "; ".join(
-        format_spans([g for g in ins.gaps if stop <= g[0] and g[1] <= start])
-        for stop, start in across)  # fmt: skip
+    spanned = [[g for g in ins.gaps if stop <= g[0] and g[1] <= start] for stop, start in across]
+    gaps = "; ".join(f"the gap{'s' if len(g) > 1 else ''} {format_spans(g)}" for g in spanned)
     parts = [f"{within} within a move (no rest at the turn)" if within else "",
              f"{len(ins.turns) - within} after a rest" if len(ins.turns) > within else "",
-             f"{len(across)} across a gap (it turns across the gap {gaps})" if across else ""]
+             f"{len(across)} across a gap (it turns across {gaps})" if across else ""]
     return (f"It changes direction {len(ins.turns) + len(across)} time(s)"
             + (f", at {times} s" if times else "") + ": " + ", ".join(p for p in parts if p)
             + ".")

@@ -45,6 +45,7 @@ from funcnet.robot.grid import (
     OFF_GRID,
     GridSignals,
     find_gaps,
+    format_spans,
     segments_between,
     segments_phrase,
 )
@@ -409,7 +410,7 @@ def _assemble(path: Path, grid: GridSignals, cmap: ChannelMap) -> Recording:
     )
     if gaps:
         where = [
-            f"{a:g}-{b:g} s ({_listed([columns[j] for j in which], 4)})"
+            f"{format_spans([(a, b)])} ({_listed([columns[j] for j in which], 4)})"
             for (a, b), which in zip(gaps, missing, strict=True)
         ]
         warnings.warn(
