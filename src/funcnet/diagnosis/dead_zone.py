@@ -20,6 +20,7 @@ from funcnet.diagnosis.reversal_error import (
     _MARGIN,
     FIT_SPEED,
     _blocks,
+    _check_min_speed,
     _columns,
     _design,
     _firsts,
@@ -143,8 +144,7 @@ def gear_parts(
     >>> round(parts.dead_zone, 3), round(parts.friction, 3), round(parts.compliance, 4)
     (0.02, 0.008, 0.001)
     """
-    if not (min_speed >= 0 and math.isfinite(min_speed)):
-        raise ParameterError.of("min_speed", f"must be a speed >= 0 in deg/s, got {min_speed!r}")
+    _check_min_speed(min_speed)
     if not (isinstance(resamples, int) and resamples >= 0):
         raise ParameterError.of("resamples", f"must be an integer >= 0, got {resamples!r}")
     _, d, vm, torque = _columns(rec)
@@ -165,12 +165,12 @@ def gear_parts(
     if reason is not None:
         return GearParts(None, None, None, None, None, None, None, disagreeing, int(use.size),
                          reason)  # fmt: skip
-    x = np.column_stack([_design(torque[use], vm[use]), flank])
-    coef = _solve(x, d[use])
+    x, y = np.column_stack([_design(torque[use], vm[use]), flank]), d[use]
+    coef = _solve(x, y)
     rng = np.random.default_rng(seed)
     block = max(1, round(_BLOCK / rec.sample_period))
     firsts = _firsts(rec, use)  # no block across a gap
-    draws = np.array([_solve(x[rows], d[use][rows])[3:] for rows in
+    draws = np.array([_solve(x[rows], y[rows])[3:] for rows in
                       (_blocks(rng, use.size, block, firsts) for _ in range(resamples))])
     low, high = (2 * np.percentile(draws, [2.5, 97.5], axis=0) if resamples
                  else np.full((2, 2), math.nan))  # fmt: skip

@@ -152,6 +152,11 @@ def _solve(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return np.asarray(coef)
 
 
+def _check_min_speed(min_speed: float) -> None:
+    if not (min_speed >= 0 and math.isfinite(min_speed)):
+        raise ParameterError.of("min_speed", f"must be a speed >= 0 in deg/s, got {min_speed!r}")
+
+
 def fit_gear(rec: Recording, *, min_speed: float = FIT_SPEED) -> GearFit | None:
     """Fit the gear's compliance, the encoders' skew and the reversal error over a recording.
 
@@ -193,8 +198,7 @@ def fit_gear(rec: Recording, *, min_speed: float = FIT_SPEED) -> GearFit | None:
     >>> round(fit.compliance, 4), round(fit.skew, 4), round(fit.hysteresis, 3)
     (0.001, 0.003, 0.04)
     """
-    if not (min_speed >= 0 and math.isfinite(min_speed)):
-        raise ParameterError.of("min_speed", f"must be a speed >= 0 in deg/s, got {min_speed!r}")
+    _check_min_speed(min_speed)
     _, d, vm, torque = _columns(rec)
     use = _fit_rows(vm, d, torque, min_speed)
     if use.size < 20:
