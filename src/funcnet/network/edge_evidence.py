@@ -137,9 +137,14 @@ def _with_evidence(pairs: pd.DataFrame, found: Mapping[tuple[str, str], PairEvid
         if name not in _READING_COLUMNS:
             columns[name] = [getattr(e, name) for e in rows]
     columns["evidence"], columns["evidence_reason"] = evidence_readings(
-        columns["coupled"], columns["coupling_p"], columns["surrogates"], columns["direction"],
-        columns["kind"], alpha)
+        columns["coupled"], columns["coupling_p"], columns["surrogates"],
+        _directed(columns["direction"]), columns["kind"], alpha)
     return pairs_frame(columns)
+
+
+def _directed(directions: list[str]) -> list[str]:
+    """The ``direction`` column as the readings take it: ``""`` where it is ``"none"``."""
+    return ["" if d == "none" else d for d in directions]
 
 
 #: The evidence columns read from the others (:func:`funcnet.evidence.evidence_readings`).
@@ -176,7 +181,7 @@ def with_readings(pairs: pd.DataFrame, alpha: float) -> pd.DataFrame:
     labels, reasons = evidence_readings(pairs["coupled"].astype(bool).tolist(),
                                         pairs["coupling_p"].tolist(),
                                         pairs["surrogates"].tolist(),
-                                        pairs["direction"].astype(str).tolist(),
+                                        _directed(pairs["direction"].astype(str).tolist()),
                                         pairs["kind"].astype(str).tolist(), alpha)
     out = pairs.copy()
     out["evidence"] = pd.Series(labels, index=pairs.index, dtype="str")
@@ -237,8 +242,8 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     >>> full == functional_network(data, names=["x", "y"], delay=1, warn=False, evidence=True,
     ...                            surrogates=19, resamples=0)
     True
-    >>> full.pairs.loc[0, "evidence"]
-    'coupled'
+    >>> full.pairs.loc[0, ["kind", "direction", "evidence"]].tolist()  # x drives y
+    ['x->y', 'x->y', 'coupled-directed']
     """
     check_evidence_settings(surrogates=surrogates, alpha=alpha, resamples=resamples,
                             surrogate_method=surrogate_method, edge_rule=edge_rule)

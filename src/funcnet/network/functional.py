@@ -28,6 +28,7 @@ from funcnet.evidence import check_evidence_arguments
 from funcnet.measures import pairwise_cross_measures
 from funcnet.network import readwrite
 from funcnet.network._inputs import prepared_signals
+from funcnet.network.direction import direction_columns
 from funcnet.network.edge_evidence import check_edge_rule, evidence_columns
 from funcnet.network.rule import edges_from_pairs, pair_kinds
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
@@ -516,7 +517,7 @@ def functional_network(
     prepared = prepared_signals(data, names, nodes, p.normalize)
     results = pairwise_cross_measures(list(prepared.signals), names=list(prepared.names),
                                       parameters=p, warn=warn)
-    pairs = _pairs_table(results, p)
+    pairs = _pairs_table(results, p, dict(zip(prepared.names, prepared.signals, strict=True)))
     settings = None
     if evidence:
         pairs, settings = evidence_columns(
@@ -539,9 +540,10 @@ def functional_network(
     )
 
 
-def _pairs_table(results: Mapping[tuple[str, str], Any],
-                 parameters: NetworkParameters) -> pd.DataFrame:
-    """The pairs table of pairwise results (keyed by node names), the rule applied."""
+def _pairs_table(results: Mapping[tuple[str, str], Any], parameters: NetworkParameters,
+                 signals: Mapping[str, Any]) -> pd.DataFrame:
+    """The pairs table of pairwise results (keyed by node names), the rule applied and the
+    direction read from the nodes' ``signals``."""
     measures = list(results.values())
     columns: dict[str, list[Any]] = {
         "x": [str(x) for x, _ in results],
@@ -552,5 +554,7 @@ def _pairs_table(results: Mapping[tuple[str, str], Any],
     columns["degenerate"] = [bool(flag) for flag in columns["degenerate"]]
     columns.update(dict.fromkeys(RULE_COLUMNS, [""] * len(measures)))
     columns["weight"] = [0.0] * len(measures)  # set by the rule
+    columns.update(direction_columns(pd.DataFrame(
+        {name: columns[name] for name in ("x", "y", "degenerate")}), signals, parameters))
     return pair_kinds(pairs_frame(columns), parameters)
 

@@ -106,12 +106,30 @@ def _tuples(value: Any) -> Any:
 def _pairs_read(document: Mapping[str, Any]) -> pd.DataFrame:
     """The pairs table of a version-2 document; one written before the ``untestable`` label
     and the ``evidence_reason`` column gets both, read from its test's columns."""
-    columns = document["pairs"]
+    columns = _with_direction(document["pairs"])
     if "evidence" not in columns or "evidence_reason" in columns:
         return pairs_frame(columns)
     alpha = float((document.get("evidence") or {})["alpha"])
     frame = with_readings(pd.DataFrame(columns), alpha)
     return pairs_frame({name: frame[name].tolist() for name in frame.columns})
+
+
+#: The direction reason of a file written before the direction reading.
+NOT_READ = "not read: the file was written before the direction reading"
+
+
+def _with_direction(columns: Mapping[str, Any]) -> dict[str, Any]:
+    """A pairs document's columns with ``direction`` and ``direction_reason``: a file written
+    before them gets ``none`` and :data:`NOT_READ` (its conditional-recurrence ``direction``,
+    ``direction_index`` and ``direction_p`` are dropped: another reading)."""
+    out = dict(columns)
+    if "direction_reason" in out:
+        return out
+    for name in ("direction", "direction_index", "direction_p"):
+        out.pop(name, None)
+    n = len(out["x"])
+    out["direction"], out["direction_reason"] = ["none"] * n, [NOT_READ] * n
+    return out
 
 
 def fields_from_json(text: str) -> dict[str, Any]:
@@ -180,11 +198,13 @@ def to_networkx(network: FunctionalNetwork) -> nx.DiGraph:
     networkx.DiGraph
         Every node, even one without edges. A directed edge is one arc, a bidirectional
         relation two arcs; each arc has the attributes ``weight`` (Eq. 13), ``kind``
-        (``directed`` or ``bidirectional``) and ``degenerate``. The graph attributes hold
+        (``directed`` or ``bidirectional``), ``degenerate``, ``direction`` (the pair's
+        :mod:`~funcnet.network.direction` reading, ``"A->B"`` in node names, or ``"none"``)
+        and ``direction_reason``. The arcs are the rule's edges: a pair without one (a
+        conflict) keeps its direction in the pairs table only. The graph attributes hold
         ``label``, ``parameters`` (:meth:`NetworkParameters.to_dict`) and ``n_samples``.
         A network with evidence adds, on every arc, :data:`ARC_EVIDENCE`: ``coupling_p``,
-        ``coupled``, ``direction`` (``"A->B"`` in node names, or ``""``), ``evidence`` and
-        ``evidence_reason``.
+        ``coupled``, ``evidence`` and ``evidence_reason``.
 
     References
     ----------
@@ -197,8 +217,9 @@ def to_networkx(network: FunctionalNetwork) -> nx.DiGraph:
     >>> rng = np.random.default_rng(0)
     >>> x = rng.random(203)
     >>> network = functional_network(np.column_stack([x, x + 0.1 * rng.random(203)]), delay=1)
-    >>> to_networkx(network).edges["0", "1"]
-    {'weight': 0.027588..., 'kind': 'bidirectional', 'degenerate': False}
+    >>> arc = to_networkx(network).edges["0", "1"]
+    >>> arc["kind"], arc["direction"]
+    ('bidirectional', 'none')
     """
     graph = nx.DiGraph(
         label=network.label,
@@ -207,10 +228,12 @@ def to_networkx(network: FunctionalNetwork) -> nx.DiGraph:
     )
     graph.add_nodes_from(network.nodes)
     evidence = _edge_evidence(network)
+    directions = _edge_directions(network)
     for source, target, weight, kind, degenerate in network.edges[list(EDGE_COLUMNS)].itertuples(
         index=False
     ):
         attributes = {"weight": float(weight), "kind": str(kind), "degenerate": bool(degenerate)}
+        attributes.update(directions.get(frozenset((source, target)), {}))
         attributes.update(evidence.get(frozenset((source, target)), {}))
         graph.add_edge(source, target, **attributes)
         if kind == "bidirectional":
@@ -219,7 +242,18 @@ def to_networkx(network: FunctionalNetwork) -> nx.DiGraph:
 
 
 #: The evidence columns an arc carries (networkx, GraphML), when the network has them.
-ARC_EVIDENCE = ("coupling_p", "coupled", "direction", "evidence", "evidence_reason")
+ARC_EVIDENCE = ("coupling_p", "coupled", "evidence", "evidence_reason")
+
+
+def _edge_directions(network: FunctionalNetwork) -> dict[frozenset[str], dict[str, Any]]:
+    """Per unordered pair, its ``direction`` as ``"A->B"`` in node names (or ``"none"``) and
+    ``direction_reason``."""
+    found: dict[frozenset[str], dict[str, Any]] = {}
+    for x, y, direction, reason in network.pairs[["x", "y", "direction",
+                                                  "direction_reason"]].itertuples(index=False):
+        arrow = {"x->y": f"{x}->{y}", "y->x": f"{y}->{x}"}.get(str(direction), "none")
+        found[frozenset((x, y))] = {"direction": arrow, "direction_reason": str(reason)}
+    return found
 
 
 def _edge_evidence(network: FunctionalNetwork) -> dict[frozenset[str], dict[str, Any]]:
@@ -228,11 +262,9 @@ def _edge_evidence(network: FunctionalNetwork) -> dict[frozenset[str], dict[str,
         return {}
     found: dict[frozenset[str], dict[str, Any]] = {}
     for row in network.pairs[["x", "y", *ARC_EVIDENCE]].itertuples(index=False):
-        x, y, p_value, coupled, direction, reading, reason = row
-        # The direction is stored as the arc's source -> target, not as x/y.
-        arrow = {"x->y": f"{x}->{y}", "y->x": f"{y}->{x}"}.get(str(direction), "")
+        x, y, p_value, coupled, reading, reason = row
         found[frozenset((x, y))] = {
-            "coupling_p": float(p_value), "coupled": bool(coupled), "direction": arrow,
+            "coupling_p": float(p_value), "coupled": bool(coupled),
             "evidence": str(reading), "evidence_reason": str(reason),
         }
     return found

@@ -23,6 +23,10 @@ columns                                 dtype    meaning
 ``c_kind``, ``t_kind``                  str      kind from ``C_diff``, ``T_diff`` alone
 ``kind``                                str      kind under the network's measure
 ``weight``                              float64  ``(|C_diff| + |T_diff|) / 2`` (Eq. 13)
+``direction``                           str      ``"x->y"``, ``"y->x"`` or ``"none"``: whether
+                                                 one past improves the other's prediction
+                                                 (:mod:`funcnet.network.direction`)
+``direction_reason``                    str      why, in one sentence
 ======================================  =======  ==============================================
 
 **Evidence** (only in networks built with ``evidence=True``; :data:`EVIDENCE_COLUMNS`, after the
@@ -39,10 +43,6 @@ columns                                 dtype    meaning
 ``c_diff_low``, ``c_diff_high``         float64  half-sampling interval of ``C_diff``
 ``t_diff_low``, ``t_diff_high``         float64  half-sampling interval of ``T_diff``
 ``c_sign_fraction``, ``t_sign_fraction``  float64  resamples with the observed sign
-``direction_index``                     float64  conditional-recurrence asymmetry beyond the
-                                                 surrogates' (positive: X -> Y)
-``direction_p``                         float64  its surrogate p-value, BH-adjusted
-``direction``                           str      ``"x->y"``, ``"y->x"`` or ``""``
 ``evidence``                            str      one of :data:`EVIDENCE_LABELS`
                                                  (``untestable``: the test could not have
                                                  rejected at ``alpha``)
@@ -80,6 +80,7 @@ import pandas as pd
 
 from funcnet.errors import ParameterError
 from funcnet.evidence.pairs import EVIDENCE_LABELS
+from funcnet.network.direction import DIRECTIONS
 
 __all__ = [
     "PAIR_KINDS",
@@ -88,6 +89,7 @@ __all__ = [
     "MEASURE_COLUMNS",
     "RESULT_COLUMNS",
     "RULE_COLUMNS",
+    "DIRECTION_COLUMNS",
     "PAIR_COLUMNS",
     "PAIR_DTYPES",
     "EVIDENCE_LABELS",
@@ -121,6 +123,8 @@ RESULT_COLUMNS: tuple[str, ...] = (
 )  # fmt: skip
 #: The columns the edge rule computes (:func:`funcnet.network.rule.pair_kinds`).
 RULE_COLUMNS: tuple[str, ...] = ("c_kind", "t_kind", "kind", "weight")
+#: The direction reading's columns (:func:`funcnet.network.direction.direction_columns`).
+DIRECTION_COLUMNS: tuple[str, ...] = ("direction", "direction_reason")
 
 _PAIR_DTYPES: dict[str, str] = {
     "x": "str",
@@ -134,6 +138,8 @@ _PAIR_DTYPES: dict[str, str] = {
     "t_kind": "str",
     "kind": "str",
     "weight": "float64",
+    "direction": "str",
+    "direction_reason": "str",
 }
 #: Column name -> pandas dtype of the pairs table, in column order.
 PAIR_DTYPES: Mapping[str, str] = MappingProxyType(_PAIR_DTYPES)
@@ -151,9 +157,6 @@ _EVIDENCE_DTYPES: dict[str, str] = {
     "t_diff_high": "float64",
     "c_sign_fraction": "float64",
     "t_sign_fraction": "float64",
-    "direction_index": "float64",
-    "direction_p": "float64",
-    "direction": "str",
     "evidence": "str",
     "evidence_reason": "str",
 }
@@ -180,11 +183,11 @@ _VOCABULARY: dict[str, tuple[str, ...]] = {
     "kind": PAIR_KINDS,
     "c_kind": MEASURE_KINDS,
     "t_kind": MEASURE_KINDS,
+    "direction": DIRECTIONS,
 }
 _EVIDENCE_VOCABULARY: dict[str, tuple[str, ...]] = {
     **_VOCABULARY,
     "evidence": EVIDENCE_LABELS,
-    "direction": ("x->y", "y->x", ""),
 }
 
 
@@ -228,7 +231,7 @@ def pairs_frame(columns: Mapping[str, Sequence[Any]]) -> pd.DataFrame:
     --------
     >>> columns = dict.fromkeys(PAIR_COLUMNS, [])
     >>> pairs_frame(columns).shape
-    (0, 22)
+    (0, 24)
     >>> pairs_frame({"x": []})
     Traceback (most recent call last):
         ...

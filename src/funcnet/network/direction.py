@@ -1,0 +1,253 @@
+"""A direction for each pair that survives what a recording fixes: prediction from the past.
+
+The paper's ``kind`` (:mod:`funcnet.network.rule`) reads the ISRN asymmetry, which never uses
+the timing of the two signals: circularly shifting Y leaves ``C_diff`` and ``T_diff`` unchanged
+(DESIGN section 1.6), so tested against a null that keeps each signal's structure and breaks
+their timing it never differs from that null. On real robot recordings its arrows point into
+the position set-point -- which nothing in a robot drives -- more often than out of it
+(:mod:`funcnet.network.setpoint`). The ``direction`` column reads something else: whether one
+signal's **past** improves the prediction of the other beyond the other's own past.
+
+The test (one pair, both ways)
+    For ``X -> Y``: the least-squares prediction of ``y[t]`` from ``1, y[t-1], ..., y[t-p]``
+    (restricted) and from those and ``x[t-1], ..., x[t-p]`` (full); the F statistic of the
+    residual sums of squares, ``((RSS_r - RSS_f) / p) / (RSS_f / (n - 2p - 1))``, ``n = N - p``
+    predicted samples, and its upper tail p-value on ``(p, n - 2p - 1)`` degrees of freedom
+    (a Granger test). ``p`` is the embedding span of the network, ``(dim - 1) * delay + 1``
+    samples: the past a state of the network already holds (21 samples with the defaults).
+
+The reading (abstaining where the data cannot tell)
+    ``x->y`` when X's past improves Y's prediction at ``alpha / 2`` and Y's does not improve
+    X's; ``y->x`` the reverse; ``none`` otherwise, with the reason: both ways (feedback, a
+    shared command, or a logging offset between the two channels), neither way, a window too
+    short for ``p`` lags, a degenerate pair, a multichannel node. ``alpha / 2``: the two
+    directions of a pair are two tests (Bonferroni); pairs are not adjusted against each
+    other (a pair's reading does not depend on how many other signals the network has).
+
+Why this test (measured, docs/direction.md)
+    A set-point computed ahead by a planner is predicted by its own past; a measured signal of
+    the axis is not, and the set-point's past improves it. Over the real recordings (the
+    SINUMERIK trace, both KUKA runs, every axis and phase) and the simulated plan (the 36
+    trials of the paper, moving phases) the reading points into the set-point for 1-3 % of the
+    set-point pairs and out of it for 30 % (real) and 53 % (simulated). Timing is no shortcut:
+    the lead of one signal's cross-map skill over the other's points from the current into the
+    position (an acceleration leads the position it produces), and the conditional-recurrence
+    index and convergent cross mapping need surrogates a smooth window does not hold.
+    Linear prediction assumes the relation is near linear over ``p`` samples; a nonlinear
+    coupling the linear past misses reads ``none``, not a wrong arrow.
+
+References
+----------
+C. W. J. Granger, "Investigating causal relations by econometric models and cross-spectral
+methods", Econometrica 37, 424-438 (1969).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from scipy import stats
+
+from funcnet.errors import ParameterError
+from funcnet.parameters import NetworkParameters
+
+__all__ = ["DIRECTIONS", "DIRECTION_ALPHA", "direction_lags", "prediction_p", "read_direction",
+           "direction_columns"]
+
+#: Values of the ``direction`` column.
+DIRECTIONS: tuple[str, ...] = ("x->y", "y->x", "none")
+
+#: Level of a pair's two tests together (each at half of it).
+DIRECTION_ALPHA = 0.05
+
+
+def direction_lags(parameters: NetworkParameters) -> int:
+    """The lags ``p`` of the test: the embedding span ``(dim - 1) * delay + 1``.
+
+    Examples
+    --------
+    >>> direction_lags(NetworkParameters()), direction_lags(NetworkParameters(delay=1))
+    (21, 3)
+    """
+    return (parameters.dim - 1) * parameters.delay + 1
+
+
+def _lagged(v: np.ndarray, p: int) -> np.ndarray:
+    n = v.size
+    return np.column_stack([v[p - k - 1 : n - k - 1] for k in range(p)])
+
+
+def prediction_p(x: Any, y: Any, lags: int) -> float:
+    """p-value that X's past improves the linear prediction of Y beyond Y's own past.
+
+    Parameters
+    ----------
+    x, y : array_like, shape (N,)
+        Equally long signals (standardized here: any affine scaling gives the same p-value).
+    lags : int
+        ``p``, samples of each past.
+
+    Returns
+    -------
+    float
+        The F test's upper-tail p-value; NaN when ``N - 3 p - 1 < 1`` (too short) or a signal
+        is constant.
+
+    Raises
+    ------
+    ParameterError
+        ``lags < 1`` or signals of unequal length.
+
+    References
+    ----------
+    Granger (1969).
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> x = rng.standard_normal(400)
+    >>> y = np.concatenate([[0.0], 0.8 * x[:-1]]) + 0.3 * rng.standard_normal(400)
+    >>> prediction_p(x, y, 2) < 1e-6, prediction_p(y, x, 2) > 0.05
+    (True, True)
+    """
+    if isinstance(lags, bool) or not isinstance(lags, (int, np.integer)) or lags < 1:
+        raise ParameterError.of("lags", f"must be an integer >= 1, got {lags!r}")
+    xs = np.asarray(x, dtype=np.float64).ravel()
+    ys = np.asarray(y, dtype=np.float64).ravel()
+    if xs.size != ys.size:
+        raise ParameterError.of("y", f"has {ys.size} samples, x has {xs.size}")
+    p = int(lags)
+    dfd = xs.size - p - (2 * p + 1)
+    if dfd < 1 or np.ptp(xs) == 0 or np.ptp(ys) == 0:
+        return float("nan")
+    xs = (xs - xs.mean()) / xs.std()
+    ys = (ys - ys.mean()) / ys.std()
+    target = ys[p:]
+    own = np.column_stack([np.ones(target.size), _lagged(ys, p)])
+    full = np.column_stack([own, _lagged(xs, p)])
+    rss = []
+    for design in (own, full):
+        residual = target - design @ np.linalg.lstsq(design, target, rcond=None)[0]
+        rss.append(float(residual @ residual))
+    if rss[1] <= 0.0:
+        return float("nan")
+    f = max(rss[0] - rss[1], 0.0) / p / (rss[1] / dfd)
+    return float(stats.f.sf(f, p, dfd))
+
+
+def _g(value: float) -> str:
+    return f"{value:.2g}"
+
+
+def read_direction(x: Any, y: Any, lags: int, *, alpha: float = DIRECTION_ALPHA,
+                   names: tuple[str, str] = ("X", "Y")) -> tuple[str, str]:
+    """The direction of one pair and why (module notes).
+
+    Parameters
+    ----------
+    x, y : array_like, shape (N,)
+    lags : int
+        ``p`` (:func:`direction_lags`).
+    alpha : float in (0, 1)
+        Level of the pair's two tests together; each is decided at ``alpha / 2``.
+    names : (str, str)
+        The signals' names, for the reason.
+
+    Returns
+    -------
+    (str, str)
+        One of :data:`DIRECTIONS` and one sentence saying why.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> x = rng.standard_normal(400)
+    >>> y = np.concatenate([[0.0], 0.8 * x[:-1]]) + 0.3 * rng.standard_normal(400)
+    >>> read_direction(x, y, 2, names=("RP", "AC"))
+    ('x->y', "RP's past improves AC's prediction (p 3.8e-181), AC's does not improve RP's (p 0.6)")
+    >>> read_direction(x, rng.standard_normal(400), 2)[0]
+    'none'
+    """
+    if not 0.0 < alpha < 1.0:
+        raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha!r}")
+    a, b = names
+    forward = prediction_p(x, y, lags)
+    backward = prediction_p(y, x, lags)
+    if np.isnan(forward) or np.isnan(backward):
+        n = int(np.size(x))
+        return "none", (f"window too short or constant: {n} samples for {lags} lags "
+                        f"(needs at least {4 * lags + 2})")
+    level = alpha / 2
+    fwd, bwd = forward <= level, backward <= level
+    if fwd and not bwd:
+        return "x->y", (f"{a}'s past improves {b}'s prediction (p {_g(forward)}), {b}'s does "
+                        f"not improve {a}'s (p {_g(backward)})")
+    if bwd and not fwd:
+        return "y->x", (f"{b}'s past improves {a}'s prediction (p {_g(backward)}), {a}'s does "
+                        f"not improve {b}'s (p {_g(forward)})")
+    if fwd and bwd:
+        return "none", (f"each past improves the other's prediction (p {_g(forward)}, "
+                        f"{_g(backward)}): feedback, a shared command or a logging offset")
+    return "none", (f"neither past improves the other's prediction (p {_g(forward)}, "
+                    f"{_g(backward)})")
+
+
+def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
+                      parameters: NetworkParameters,
+                      alpha: float = DIRECTION_ALPHA) -> dict[str, list[str]]:
+    """``direction`` and ``direction_reason`` of every row of a pairs table.
+
+    Parameters
+    ----------
+    pairs : pandas.DataFrame
+        At least ``x``, ``y`` and ``degenerate``.
+    signals : mapping of str to array_like
+        Each node's samples, shape (N,) or (N, c) (a multichannel node reads ``none``).
+    parameters : NetworkParameters
+        Its ``dim`` and ``delay`` set the lags (:func:`direction_lags`).
+    alpha : float
+        As :func:`read_direction`.
+
+    Returns
+    -------
+    dict
+        ``{"direction": [...], "direction_reason": [...]}``, in the rows' order.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(1)
+    >>> x = rng.standard_normal(300)
+    >>> y = np.concatenate([[0.0], x[:-1]]) + 0.5 * rng.standard_normal(300)
+    >>> pairs = pd.DataFrame({"x": ["A"], "y": ["B"], "degenerate": [False]})
+    >>> direction_columns(pairs, {"A": x, "B": y}, NetworkParameters(delay=1))["direction"]
+    ['x->y']
+    """
+    lags = direction_lags(parameters)
+    out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
+    for x, y, flagged in zip(pairs["x"], pairs["y"], pairs["degenerate"], strict=True):
+        a, b = np.asarray(signals[x], dtype=np.float64), np.asarray(signals[y],
+                                                                     dtype=np.float64)
+        if bool(flagged):
+            reading = ("none", "degenerate pair: too few distinct states")
+        elif (a.ndim > 1 and a.shape[1] > 1) or (b.ndim > 1 and b.shape[1] > 1):
+            reading = ("none", "a multichannel node: the test reads one channel per node")
+        else:
+            reading = read_direction(a, b, lags, alpha=alpha, names=(str(x), str(y)))
+        out["direction"].append(reading[0])
+        out["direction_reason"].append(reading[1])
+    return out
+
+
+def check_directions(values: Sequence[str]) -> None:
+    """Raise a :class:`ParameterError` for a value outside :data:`DIRECTIONS`.
+
+    Examples
+    --------
+    >>> check_directions(["none", "x->y"])
+    """
+    bad = sorted(set(values) - set(DIRECTIONS))
+    if bad:
+        raise ParameterError.of("direction", f"holds {bad}; values are {list(DIRECTIONS)}")
