@@ -15,7 +15,12 @@ from typing import Annotated, Any
 import typer
 
 from funcnet.cli.messages import progress_bar, reported_errors
-from funcnet.cli.network_output import network_files, print_pairs, write_network
+from funcnet.cli.network_output import (
+    network_files,
+    print_pairs,
+    print_setpoint_check,
+    write_network,
+)
 from funcnet.cli.options import (
     Alpha,
     Axis,
@@ -146,7 +151,10 @@ def network(
     A negative difference reads as X -> Y (kind x->y); it may reflect how differently the two
     signals fill their phase space rather than coupling (README, "Direction"). Without -o the
     pairs table is printed: the main columns as a table on a terminal, every column as plain
-    text when piped. Degenerate pairs (too few distinct states) are flagged and are no edges
+    text when piped. First comes the set-point check: how often the rule's arrows and the
+    direction reading point into the position set-point RP (which nothing drives) and out of
+    it. Every pair also gets a direction (x->y, y->x or none, with its reason): whether one
+    signal's past improves the prediction of the other beyond its own past (docs/direction.md). Degenerate pairs (too few distinct states) are flagged and are no edges
     unless --keep-degenerate.
 
     Without --phase or --window: one network per detected phase of every move (standstill
@@ -194,6 +202,7 @@ def network(
             )
             if evidence_keywords is not None:
                 nets = window_evidence(recording, nets, chosen, **evidence_keywords)
+        print_setpoint_check(list(nets.values()), tables=output is None)
         if output is None:
             for net in nets.values():
                 print_pairs(net)

@@ -16,11 +16,11 @@ import typer
 
 from funcnet.cli.messages import is_terminal
 
-__all__ = ["network_files", "print_pairs", "write_network"]
+__all__ = ["network_files", "print_pairs", "print_setpoint_check", "write_network"]
 
 
 # The pairs-table columns shown on a terminal; piped output and -o .json hold them all.
-_MAIN_COLUMNS = ("x", "y", "kind", "weight", "c_diff", "t_diff")
+_MAIN_COLUMNS = ("x", "y", "kind", "direction", "weight", "c_diff", "t_diff")
 _WIDE_COLUMNS = ("c_xy", "c_yx", "t_xy", "t_yx", "eps_ordered", "rate_exceeded")
 _FLAG_COLUMN = "degenerate"
 # With --evidence, the terminal also shows the coupling test's p-value and each pair's reading.
@@ -83,6 +83,26 @@ def print_pairs(net: Any) -> None:
     if console.measure(table, options=console.options.update_width(10_000)).maximum > console.width:
         table = _pairs_table(net, _shown_columns(narrow=True, evidence=evidence), ".3g")
     console.print(table)
+
+
+def setpoint_lines(nets: Sequence[Any]) -> list[str]:
+    """The set-point check of the networks (:func:`funcnet.network.setpoint_check`), for the
+    rule's arrows and for ``direction``, one sentence each; nothing without a set-point."""
+    from funcnet.network.setpoint import setpoint_check
+
+    checks = [setpoint_check(nets, column=column) for column in ("kind", "direction")]
+    if not checks[0].pairs:
+        return [checks[0].sentence()]
+    where = f" (over {len(nets)} networks)" if len(nets) > 1 else ""
+    return [f"Set-point check{where}: {checks[0].sentence()}", checks[1].sentence()]
+
+
+def print_setpoint_check(nets: Sequence[Any], *, tables: bool) -> None:
+    """The set-point check before anything else: on stdout above a terminal's tables; on
+    stderr when stdout is piped or files are written (stdout stays the table or the files)."""
+    to_stdout = tables and is_terminal(sys.stdout)
+    for line in setpoint_lines(nets):
+        typer.echo(line, err=not to_stdout)
 
 
 def write_network(net: Any, output: Path, inches: tuple[float, float], trace: Path) -> None:

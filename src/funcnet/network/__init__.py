@@ -9,6 +9,8 @@ module             what it holds
 ``edge_evidence``  :func:`add_evidence`: the evidence columns of a network already computed
 ``readwrite``      JSON, GraphML, networkx
 ``stability``      :func:`edge_stability`: how many settings of a grid keep each pair's kind
+``direction``      each pair's ``direction``: whether one past improves the other's prediction
+``setpoint``       :func:`setpoint_check`: arrows into and out of the set-points, counted
 =================  ==========================================================================
 
 ``functional_network(..., evidence=True)`` adds the evidence columns of :mod:`funcnet.evidence`
@@ -43,6 +45,11 @@ _EXPORTS = {
     "kinds_for": "funcnet.network.rule",
     "pair_kinds": "funcnet.network.rule",
     "edges_from_pairs": "funcnet.network.rule",
+    "DIRECTIONS": "funcnet.network.direction",
+    "DIRECTION_COLUMNS": "funcnet.network.schema",
+    "read_direction": "funcnet.network.direction",
+    "SetpointCheck": "funcnet.network.setpoint",
+    "setpoint_check": "funcnet.network.setpoint",
     "EdgeStability": "funcnet.network.stability",
     "edge_stability": "funcnet.network.stability",
 }
