@@ -321,10 +321,13 @@ def test_to_networkx_keeps_every_node_and_doubles_bidirectional_edges(fake_measu
     assert isinstance(graph, nx.DiGraph)
     assert list(graph.nodes) == ["A", "B", "C", "D"]  # D has no edge, only conflicts
     assert sorted(graph.edges) == [("A", "B"), ("B", "C"), ("C", "A"), ("C", "B")]
-    assert graph.edges["C", "A"] == {"weight": 0.2, "kind": "directed", "degenerate": False}
+    arc = graph.edges["C", "A"]
+    assert {k: arc[k] for k in ("weight", "kind", "degenerate")} == {
+        "weight": 0.2, "kind": "directed", "degenerate": False}
+    assert arc["direction"] == "none" and "too short" in arc["direction_reason"]
     assert (
-        graph.edges["B", "C"]
-        == graph.edges["C", "B"]
+        {k: graph.edges["B", "C"][k] for k in ("weight", "kind", "degenerate")}
+        == {k: graph.edges["C", "B"][k] for k in ("weight", "kind", "degenerate")}
         == {"weight": 0.015, "kind": "bidirectional", "degenerate": False}
     )
     assert graph.graph["label"] == "crafted"
@@ -408,7 +411,7 @@ def test_degenerate_pairs_are_flagged_keep_their_kind_and_survive_json(fake_meas
     net = functional_network(noise(3), names=["RP", "AP", "V"])
     assert list(net.pairs.columns) == [
         "x", "y", *MEASURE_COLUMNS, "eps_ordered", "rate_exceeded", "degenerate",
-        "degenerate_reason", "c_kind", "t_kind", "kind", "weight",
+        "degenerate_reason", "c_kind", "t_kind", "kind", "weight", "direction", "direction_reason",
     ]  # fmt: skip
     assert str(net.pairs["degenerate"].dtype) == "bool"
     assert list(net.pairs["degenerate"]) == [True, False, True]

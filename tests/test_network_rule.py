@@ -52,6 +52,8 @@ def hand_pairs(rows, *, degenerate=None):
         c_kind=["bidirectional"] * n,
         t_kind=["bidirectional"] * n,
         kind=["bidirectional"] * n,
+        direction=["none"] * n,
+        direction_reason=[""] * n,
     )
     return pairs_frame(columns)
 
@@ -70,6 +72,7 @@ def test_schema_is_the_one_the_plan_lists():
         "x", "y", "c_xy", "c_yx", "t_xy", "t_yx", "c_diff", "t_diff", "eps_x", "eps_y",
         "eps_xy", "achieved_rr_x", "achieved_rr_y", "achieved_cr", "eps_ordered",
         "rate_exceeded", "degenerate", "degenerate_reason", "c_kind", "t_kind", "kind", "weight",
+        "direction", "direction_reason",
     )  # fmt: skip
     assert EDGE_COLUMNS == ("source", "target", "weight", "kind", "degenerate")
     assert PAIR_KINDS == ("x->y", "y->x", "bidirectional", "conflict")

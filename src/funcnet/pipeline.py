@@ -45,10 +45,10 @@ from funcnet.network import (
     functional_network,
     pair_kinds,
 )
-from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.direction import direction_columns
-from funcnet.normalization import normalize as normalize_signals
+from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.schema import DIRECTION_COLUMNS, RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
+from funcnet.normalization import normalize as normalize_signals
 from funcnet.parameters import NetworkParameters, resolve
 from funcnet.robot.preprocess import staircase_warning
 from funcnet.robot.recording import Recording

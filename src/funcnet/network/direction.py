@@ -93,8 +93,8 @@ def prediction_p(x: Any, y: Any, lags: int) -> float:
     Returns
     -------
     float
-        The F test's upper-tail p-value; NaN when ``N - 3 p - 1 < 1`` (too short) or a signal
-        is constant.
+        The F test's upper-tail p-value; NaN when ``N - 3 p - 1 < 1`` (too short), a signal
+        is constant or the full prediction is exact.
 
     Raises
     ------
@@ -178,8 +178,10 @@ def read_direction(x: Any, y: Any, lags: int, *, alpha: float = DIRECTION_ALPHA,
     backward = prediction_p(y, x, lags)
     if np.isnan(forward) or np.isnan(backward):
         n = int(np.size(x))
-        return "none", (f"window too short or constant: {n} samples for {lags} lags "
-                        f"(needs at least {4 * lags + 2})")
+        if n < 3 * lags + 2:
+            return "none", (f"window too short: {n} samples for {lags} lags (needs at least "
+                            f"{3 * lags + 2})")
+        return "none", "a signal constant or predicted exactly by its own past: nothing to test"
     level = alpha / 2
     fwd, bwd = forward <= level, backward <= level
     if fwd and not bwd:

@@ -42,7 +42,14 @@ __all__ = [
     "network_title",
     "save_network",
     "edge_evidence",
+    "direction_edges",
+    "ARROWS",
 ]
+
+#: Whose arrows a drawing shows: the paper's rule (``kind``) or the ``direction`` reading.
+ARROWS = ("rule", "direction")
+#: An undecided pair (``direction`` ``none``) under ``arrows="direction"``: a thin pale line.
+UNDECIDED_COLOR = "0.8"
 
 #: Readings of :data:`funcnet.network.schema.EVIDENCE_LABELS` whose pair the coupling test did
 #: not show coupled: their edges are drawn dotted and pale (the paper's arrow, nothing more).
@@ -143,6 +150,47 @@ def network_edges(net: FunctionalNetwork) -> pd.DataFrame:
     return net.edges
 
 
+def direction_edges(net: FunctionalNetwork) -> pd.DataFrame:
+    """The edges of the ``direction`` reading: one per pair, ``directed`` from the signal
+    whose past improves the other's prediction, ``none`` (a line, no arrow) where undecided;
+    degenerate pairs left out.
+
+    Parameters
+    ----------
+    net : FunctionalNetwork
+        A network whose pairs table has ``direction`` (:mod:`funcnet.network.direction`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``source, target, weight, kind, degenerate``; ``kind`` ``directed`` or
+        ``none``, ``weight`` the pair's (Eq. 13).
+
+    Examples
+    --------
+    >>> from funcnet.network import FunctionalNetwork
+    >>> pairs = pd.DataFrame({"x": ["A", "A"], "y": ["B", "C"], "kind": ["x->y", "x->y"],
+    ...                       "weight": [0.2, 0.4], "direction": ["y->x", "none"]})
+    >>> direction_edges(FunctionalNetwork.from_pairs(pairs))[["source", "target", "kind"]]
+      source target      kind
+    0      B      A  directed
+    1      A      C      none
+    """
+    pairs = net.pairs
+    if "direction" not in pairs.columns:
+        raise ParameterError.of("net", "has no direction column: draw it with arrows='rule'")
+    pairs = pairs[~pairs["degenerate"].eq(True)] if "degenerate" in pairs.columns else pairs
+    backward = pairs["direction"].eq("y->x").to_numpy()
+    x, y = pairs["x"].to_numpy(dtype=object), pairs["y"].to_numpy(dtype=object)
+    return pd.DataFrame({
+        "source": np.where(backward, y, x).astype(str),
+        "target": np.where(backward, x, y).astype(str),
+        "weight": pairs["weight"].to_numpy(dtype=np.float64),
+        "kind": np.where(pairs["direction"].isin(["x->y", "y->x"]), "directed", "none"),
+        "degenerate": np.zeros(len(pairs), dtype=bool),
+    })
+
+
 def network_nodes(net: FunctionalNetwork) -> list[str]:
     """The nodes of a network, in its order.
 
@@ -213,6 +261,7 @@ def plot_network(
     fontsize: float = 10.0,
     legend: bool = True,
     groups: Mapping[str, Sequence[str]] | None = None,
+    arrows: str = "rule",
 ) -> Axes:
     """Draw a functional network in a circular layout (paper section 3.4, Fig. 9-11).
 
@@ -250,6 +299,11 @@ def plot_network(
         placed together on the circle, a gap between groups, its name outside the circle and
         its nodes labelled without the ``"<group>."`` prefix; an edge within a group is then a
         short chord of its sector, one between groups crosses the circle. Replaces ``nodes``.
+    arrows : {"rule", "direction"}
+        ``"rule"`` (default, the paper's figures): the edges of the rule (``kind``);
+        ``"direction"``: the ``direction`` reading's (:func:`direction_edges`): an arrow where
+        one past improves the other's prediction, a thin pale line (gid
+        ``edge:X->Y:none``) where undecided.
 
     Returns
     -------
@@ -314,13 +368,24 @@ def plot_network(
             middle = float(np.mean(placed))
             ax.text(1.2 * np.cos(middle), 1.2 * np.sin(middle), str(group), ha="center",
                     va="center", fontsize=fontsize + 1, fontweight="bold", gid=f"group:{group}")
-    edges = network_edges(net)
+    if arrows not in ARROWS:
+        raise ParameterError.of("arrows", f"must be one of {list(ARROWS)}, got {arrows!r}")
+    edges = network_edges(net) if arrows == "rule" else direction_edges(net)
     readings = edge_evidence(net, edges)
     for k, edge in enumerate(edges.itertuples(index=False)):
         bidirectional = edge.kind == "bidirectional"
         width = max(min_width, width_scale * edge.weight)
         color = BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR
         style = "-"
+        if edge.kind == "none":  # undecided: a line, no head, no weight to read
+            line = FancyArrowPatch(
+                *_trim(position[edge.source], position[edge.target], radius[edge.source],
+                       radius[edge.target]),
+                arrowstyle="-", linewidth=min_width, color=UNDECIDED_COLOR,
+                connectionstyle="arc3,rad=0.08", zorder=1)
+            line.set_gid(f"edge:{edge.source}->{edge.target}:none")
+            ax.add_patch(line)
+            continue
         reading = "" if readings is None else readings[k]
         if reading in NO_COUPLING_EVIDENCE:
             color = UNCOUPLED_BIDIRECTIONAL_COLOR if bidirectional else UNCOUPLED_COLOR
@@ -356,6 +421,11 @@ def plot_network(
         handles = network_legend_handles(width_scale,
                                          degenerate=bool(edges["degenerate"].any()),
                                          evidence=readings is not None)
+        if arrows == "direction":
+            handles[:2] = [
+                Line2D([], [], color=DIRECTED_COLOR, linewidth=1.5,
+                       label="direction: its past predicts the other"),
+                Line2D([], [], color=UNDECIDED_COLOR, linewidth=1.5, label="undecided")]
         ax.legend(handles=handles, loc="upper center",
                   bbox_to_anchor=(0.5, 0.0), ncol=2, fontsize=max(9.0, fontsize - 1), frameon=False,
                   handlelength=2.5)
@@ -475,7 +545,7 @@ def network_title(net: Any, source: str | None = None) -> str:
 
 def save_network(net: Any, path: str | os.PathLike[str], *,
                  size: tuple[float, float] = (7.0, 7.5), dpi: int = 100,
-                 title: str | None = None) -> Path:
+                 title: str | None = None, arrows: str = "direction") -> Path:
     """Draw a network into an image file (PNG, SVG or PDF), titled and with its legend.
 
     Parameters
@@ -490,6 +560,9 @@ def save_network(net: Any, path: str | os.PathLike[str], *,
         Resolution of a PNG.
     title : str, optional
         Default :func:`network_title`: trace, window, parameters.
+    arrows : {"direction", "rule"}
+        Whose arrows (:func:`plot_network`): by default the ``direction`` reading's; a
+        network without that column (a study's older rows) is drawn with the rule's.
 
     Returns
     -------
@@ -519,7 +592,9 @@ def save_network(net: Any, path: str | os.PathLike[str], *,
         raise ParameterError.of("size", f"must be two positive sizes in inches, got {size!r}")
     fig = Figure(figsize=(float(size[0]), float(size[1])), dpi=dpi, layout="constrained")
     ax = fig.add_subplot()
-    plot_network(net, ax, legend=True)
+    if "direction" not in net.pairs.columns:
+        arrows = "rule"
+    plot_network(net, ax, legend=True, arrows=arrows)
     ax.set_title(network_title(net) if title is None else title, fontsize=10)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format=suffix[1:], dpi=dpi)

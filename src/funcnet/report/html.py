@@ -209,3 +209,22 @@ def step(progress: Progress, done: int, total: int, description: str) -> None:
         progress(done, total, description)
 
 
+
+
+def setpoint_html(networks: Any) -> str:
+    """How far the arrows can be trusted, first on a page: the set-point check
+    (:func:`funcnet.network.setpoint_check`) of the rule's arrows and of the ``direction``
+    reading over the page's networks (or pairs tables), one paragraph."""
+    from funcnet.network.setpoint import setpoint_check
+
+    tables = list(networks.values()) if isinstance(networks, Mapping) else list(networks)
+    if not tables:
+        return ""
+    sentences = [setpoint_check(tables, column="kind").sentence()]
+    if all("direction" in getattr(t, "pairs", t).columns for t in tables):
+        sentences.append(setpoint_check(tables, column="direction").sentence())
+        sentences.append("The drawings show the direction reading's arrows (a signal whose "
+                         "past improves the other's prediction); undecided pairs are pale "
+                         "lines.")
+    return ('<p class="verdict" id="setpoint-check"><b>How far the arrows can be trusted.</b> '
+            + escape(" ".join(sentences)) + "</p>")

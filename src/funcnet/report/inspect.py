@@ -48,6 +48,7 @@ from funcnet.report.html import (
     page,
     pairs_table,
     provenance,
+    setpoint_html,
     step,
     table,
 )
@@ -134,9 +135,10 @@ def _network_tables(ins: TraceInspection) -> str:
         note = f"; left out (constant): {', '.join(dropped)}" if dropped else ""
         if w.label in partial:
             note += f"; without its {partial[w.label]} (too short: see problems)"
-        columns = [c for c in ("x", "y", "kind", "weight", "c_diff", "t_diff", "degenerate",
-                               "evidence", "coupling_p", "surrogates", "direction",
-                               "c_diff_low", "c_diff_high", "evidence_reason")
+        columns = [c for c in ("x", "y", "kind", "direction", "weight", "c_diff", "t_diff",
+                               "degenerate", "evidence", "coupling_p", "surrogates",
+                               "c_diff_low", "c_diff_high", "evidence_reason",
+                               "direction_reason")
                    if c in net.pairs.columns]
         frame = net.pairs[columns].assign(kind=net.pairs["kind"].map(
             lambda k: f"{ARROWS.get(k, '')} {k}"))
@@ -164,10 +166,11 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
                                             if ins.gaps else "."))
     add(1, "networks", figure_networks,
         "Figure 2 — the functional network of every phase window (rows: moves; columns: "
-        "phases), each node at the same place in every panel. Black arrow: directed edge X → "
-        "Y (C_diff and T_diff agree, |diff| ≥ μ); red: bidirectional (|diff| < μ: mutual or no "
-        "coupling); width ∝ weight (Eq. 13); no line: conflict (the measures disagree) or a "
-        "degenerate pair.")
+        "phases), each node at the same place in every panel. Black arrow: the direction "
+        "reading X → Y (X's past improves Y's prediction, Y's does not improve X's); pale "
+        "line: undecided (the pairs table's direction_reason says why); width ∝ weight "
+        "(Eq. 13); no line: a degenerate pair. The rule's arrows (kind) are in the pairs "
+        "tables and Figures 3–4.")
     add(2, "timeline", figure_timeline,
         "Figure 3 — edge timeline: every pair's edge kind (marker) and weight (area) in each "
         "window, windows in time order and equally spaced, shaded by phase. A pair that keeps "
@@ -247,6 +250,7 @@ def write_inspection(
                          "<code>evidence</code>: all of it).</p>" + table(partial))
     body = [
         f"<h1>What the axis does — {escape(name)}</h1>",
+        setpoint_html(ins.networks),
         f"<section id=\"summary\"><h2>Summary</h2>{summary_html(ins)}</section>",
         contents(sections),
         "<h2 id=\"figures\">Figures</h2>", *figures,
@@ -301,7 +305,7 @@ def _figure(ins: RobotInspection, label: str) -> Any:
     fig = Figure(figsize=(9, 9.6), dpi=100, layout="constrained")
     ax = fig.add_subplot()
     plot_network(ins.networks[label], ax, groups=_groups(ins.signals), node_size=0.09,
-                 fontsize=9, title=label)
+                 fontsize=9, title=label, arrows="direction")
     return fig
 
 
@@ -357,7 +361,8 @@ def write_robot_inspection(
         caption = (f"The robot network of {label}: every axis's signals, grouped per axis "
                    "(each axis a sector, its name outside the circle); an edge within a sector "
                    "is within an axis, one across the circle between axes. Black arrow: "
-                   "directed; red: bidirectional; width ∝ weight (Eq. 13).")
+                   "the direction reading (the source's past improves the target's "
+                   "prediction); pale line: undecided; width ∝ weight (Eq. 13).")
         network_parts.append(figure_html(out, f"robot-network-{k + 1}", _figure(ins, label),
                                          caption))
         network_parts.append(f"<p>{escape(_scope_counts(pairs))}.</p>")
@@ -368,6 +373,7 @@ def write_robot_inspection(
                              + "</details>")
     body = [
         f"<h1>What the robot does — {escape(name)}</h1>",
+        setpoint_html(ins.networks),
         f"<section id=\"axes\"><h2>Each axis</h2><p>{len(ins.recording.axes)} axes, "
         f"{ins.recording.duration:.1f} s sampled every {ins.recording.sample_period * 1000:g} "
         f"ms. {escape(gaps + ' ' if gaps else '')}Each axis's own report (moves, a network per "

@@ -168,7 +168,8 @@ def figure_networks(inspection: TraceInspection) -> Any:
         if net is None:
             plot.plot_no_network(ax, title)
             continue
-        plot.plot_network(net, ax, nodes=list(inspection.signals), title=title, legend=False)
+        plot.plot_network(net, ax, nodes=list(inspection.signals), title=title, legend=False,
+                          arrows="direction")
         ax.set_facecolor(plot.phase_color(w.phase))
         ax.set_axis_on()
         ax.set_xticks([])

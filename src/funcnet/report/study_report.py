@@ -37,6 +37,7 @@ from funcnet.report.html import (
     page,
     pairs_table,
     provenance,
+    setpoint_html,
     step,
     table,
 )
@@ -295,7 +296,8 @@ def _network_grid(windows: Sequence[tuple[tuple[Any, ...], pd.DataFrame]], name:
         # sliding windows are labelled by their span already
         title = label if str(label).endswith(" s") else f"{label}\n{t0:.2f}–{t1:.2f} s"
         net = network_from_rows(pairs)  # its edges under its own degenerate policy
-        plot.plot_network(net, ax, title=title, fontsize=9, legend=False)
+        plot.plot_network(net, ax, title=title, fontsize=9, legend=False,
+                          arrows="direction" if "direction" in net.pairs.columns else "rule")
         ax.set_facecolor(plot.phase_color(label, 99))
         edges = plot.network_edges(net)
         degenerate |= bool(edges["degenerate"].any())
@@ -400,8 +402,10 @@ def write_report(
                                  _network_grid(windows, f"{first} ({label})"),
                                  f"Example: the networks of recording {first} ({label}), "
                                  f"{min(len(windows), _GRID)} of its {len(windows)} windows. "
-                                 "Black arrow: directed; red: bidirectional (mutual or no "
-                                 "coupling); width ∝ weight (Eq. 13)."
+                                 "Black arrow: the direction reading (the source's past "
+                                 "improves the target's prediction); pale line: undecided "
+                                 "(rows without a direction column: the rule's arrows, red "
+                                 "bidirectional); width ∝ weight (Eq. 13)."
                                  + (" Dotted, pale: the coupling test does not show the pair "
                                     "coupled (asymmetry-only or not-coupled); dash-dotted, "
                                     "paler: untestable (the test could not have rejected)."
@@ -432,6 +436,7 @@ def write_report(
     kind_text = ", ".join(f"{n} {k}" for k, n in kinds.value_counts().items())
     summary = [
         f"<h1>funcnet study report — {escape(results.resolve().name)}</h1>",
+        setpoint_html([part for _, part in rows.groupby(_WINDOW_KEYS, sort=False)]),
         '<section id="summary"><h2>Summary</h2>',
         f"<p>{len(recordings)} recording(s), {n_networks} networks ({len(rows)} pairs: "
         f"{escape(kind_text)}) over {len(settings)} parameter set(s)"
