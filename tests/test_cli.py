@@ -114,8 +114,9 @@ def test_network_prints_every_pair_of_the_real_trace(real_trace) -> None:
     assert result.exit_code == 0, result.output
     printed = pd.read_fwf(io.StringIO(result.stdout))
     expected = _library_network(real_trace, 7.0, 8.0, signals=["RP", "AP", "AC", "V"]).pairs
-    assert list(printed.columns) == list(expected.columns)
-    columns = ["x", "y", "kind"]
+    # every column but direction_reason, a sentence (-o pairs.csv keeps it)
+    assert list(printed.columns) == [c for c in expected.columns if c != "direction_reason"]
+    columns = ["x", "y", "kind", "direction"]
     assert printed[columns].values.tolist() == expected[columns].values.tolist()
     np.testing.assert_allclose(printed["c_diff"], expected["c_diff"], atol=1e-6)
     # The real trace's AP is a 4 ms staircase: the warning is one plain line.
@@ -230,14 +231,15 @@ def test_network_table_on_a_narrow_terminal(trial: Path, monkeypatch) -> None:
         if line.startswith("│")
     ]
     expected = _library_network(trial, 0.5, 1.1).pairs
-    columns = ["x", "y", "kind", "weight", "c_diff", "t_diff"]
-    assert [row[:3] for row in rows] == expected[columns[:3]].values.tolist()
-    printed = np.array([[float(cell) for cell in row[3:6]] for row in rows])
-    assert printed.shape == (len(expected), 3)
+    # narrow: the weight is left out, the direction kept
+    columns = ["x", "y", "kind", "direction", "c_diff", "t_diff"]
+    assert [row[:4] for row in rows] == expected[columns[:4]].values.tolist()
+    printed = np.array([[float(cell) for cell in row[4:6]] for row in rows])
+    assert printed.shape == (len(expected), 2)
     # The degenerate flag is shown however narrow the terminal.
     assert [row[6] for row in rows] == [str(flag) for flag in expected["degenerate"]]
     # 3 significant digits of every number
-    np.testing.assert_allclose(printed, expected[columns[3:]].to_numpy(), rtol=5e-3, atol=1e-12)
+    np.testing.assert_allclose(printed, expected[columns[4:]].to_numpy(), rtol=5e-3, atol=1e-12)
 
 
 def test_network_options_are_checked_before_the_trace_is_read(trial: Path, tmp_path) -> None:
@@ -449,7 +451,11 @@ def test_network_progress_only_on_a_terminal_unless_quiet(
     env = {"TTY_COMPATIBLE": "1", "TTY_INTERACTIVE": "1"}
     result = runner.invoke(app, [*arguments, *(["--quiet"] if quiet else [])], env=env)
     assert result.exit_code == 0, result.output
-    assert result.stdout == f"wrote {out}\n" and out.is_file()
+    # the set-point check first (RP and AP: one set-point pair), then the file written
+    check, wrote = result.stdout.splitlines()[:2], result.stdout.splitlines()[2:]
+    assert check[0].startswith("Set-point check: Here the rule's arrows point into the set-point")
+    assert "direction reading" in check[1] and "of 1 set-point pairs" in check[1]
+    assert wrote == [f"wrote {out}"] and out.is_file()
     bar = "━" in result.stderr and "network" in result.stderr
     assert bar == drawn, result.stderr
     if not drawn:

@@ -150,3 +150,22 @@ def test_direction_always_in_the_table_and_files(tmp_path):
     assert old.pairs.loc[0, "direction"] == "none"
     assert "written before" in old.pairs.loc[0, "direction_reason"]
     assert "direction_index" not in old.pairs.columns
+
+
+def test_drawings_take_the_direction_and_keep_the_rule_one_option_away():
+    from funcnet.plot import plot_network
+
+    pairs = pd.DataFrame({"x": ["RP", "RP", "AP"], "y": ["AP", "AC", "AC"],
+                          "kind": ["y->x", "y->x", "bidirectional"], "weight": [0.2, 0.1, 0.0],
+                          "direction": ["x->y", "none", "y->x"]})
+    net = FunctionalNetwork.from_pairs(pairs)
+
+    def gids(ax):
+        return sorted(p.get_gid() for p in ax.patches if p.get_gid().startswith("edge:"))
+
+    assert gids(plot_network(net, arrows="direction")) == [
+        "edge:AC->AP:directed", "edge:RP->AC:none", "edge:RP->AP:directed"]
+    assert gids(plot_network(net)) == gids(plot_network(net, arrows="rule")) == [
+        "edge:AC->RP:directed", "edge:AP->AC:bidirectional", "edge:AP->RP:directed"]
+    with pytest.raises(Exception, match="arrows"):
+        plot_network(net, arrows="kind")

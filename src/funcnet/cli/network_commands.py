@@ -134,6 +134,13 @@ def network(
         typer.Option("--force", metavar="",
                      help="Compute even when the forecast is over a minute or 4 GiB."),
     ] = False,
+    arrows: Annotated[
+        str,
+        typer.Option("--arrows", metavar="WHOSE",
+                     help="Arrows of a drawing: direction (the direction reading: one "
+                     "signal's past improves the other's prediction; undecided pairs pale "
+                     "lines) or rule (the paper's mu rule, kind)."),
+    ] = "direction",
     evidence: Evidence = False,
     surrogates: Surrogates = None,
     alpha: Alpha = 0.05,
@@ -174,6 +181,8 @@ def network(
         inches = parse_size(size)
         evidence_keywords = evidence_settings(evidence, surrogates, alpha, seed, resamples,
                                               edge_rule, surrogate_method)
+        if arrows not in ("direction", "rule"):
+            raise ParameterError(f"--arrows must be direction or rule, got {arrows!r}")
         if output is not None and output.suffix.lower() not in _NETWORK_SUFFIXES:
             raise ParameterError(
                 f"-o {output}: unknown format, use one of {', '.join(_NETWORK_SUFFIXES)}"
@@ -210,7 +219,7 @@ def network(
             return
         written = network_files(output, list(nets))
         for net, path in zip(nets.values(), written, strict=True):
-            write_network(net, path, inches, trace)
+            write_network(net, path, inches, trace, arrows=arrows)
     for path in written:
         typer.echo(f"wrote {path}")
 

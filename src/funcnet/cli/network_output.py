@@ -1,8 +1,9 @@
 """What ``funcnet network`` writes: the printed pairs table and the network files.
 
 On a terminal the pairs table is a rich table of its main columns; piped, every column as plain
-text. ``-o`` writes JSON, GraphML, the pairs table as CSV, or a drawing; for several windows one
-file per window, named after it.
+text but ``direction_reason`` (a sentence; ``-o pairs.csv`` keeps it). The set-point check
+comes first. ``-o`` writes JSON, GraphML, the pairs table as CSV, or a drawing; for several
+windows one file per window, named after it.
 """
 
 from __future__ import annotations
@@ -40,8 +41,9 @@ _EVIDENCE_CAPTION = (
 
 def _shown_columns(narrow: bool, evidence: bool = False) -> list[str]:
     """The columns of a terminal's table (all names of funcnet.network.schema's pairs, and
-    with ``evidence`` two of its evidence columns)."""
-    groups = (_MAIN_COLUMNS, () if narrow else _WIDE_COLUMNS, (_FLAG_COLUMN,),
+    with ``evidence`` two of its evidence columns); a narrow terminal leaves out the weight."""
+    main = [c for c in _MAIN_COLUMNS if not (narrow and c == "weight")]
+    groups = (main, () if narrow else _WIDE_COLUMNS, (_FLAG_COLUMN,),
               _EVIDENCE_SHOWN if evidence else ())
     return [name for group in groups for name in group]
 
@@ -72,7 +74,9 @@ def print_pairs(net: Any) -> None:
 
     evidence = "evidence" in net.pairs.columns
     if not is_terminal(sys.stdout):
-        columns = [*PAIR_COLUMNS, *(EVIDENCE_COLUMNS if evidence else ())]
+        # direction_reason is a sentence: whitespace-separated text cannot hold it (-o .csv)
+        columns = [*(c for c in PAIR_COLUMNS if c != "direction_reason"),
+                   *(EVIDENCE_COLUMNS if evidence else ())]
         typer.echo(net.pairs.loc[:, columns].to_string(index=False))
         return
     from rich.console import Console
@@ -98,14 +102,26 @@ def setpoint_lines(nets: Sequence[Any]) -> list[str]:
 
 
 def print_setpoint_check(nets: Sequence[Any], *, tables: bool) -> None:
-    """The set-point check before anything else: on stdout above a terminal's tables; on
-    stderr when stdout is piped or files are written (stdout stays the table or the files)."""
-    to_stdout = tables and is_terminal(sys.stdout)
+    """The set-point check before anything else, on stdout (above a terminal's tables, wrapped
+    to its width; before the files written); on stderr when the table is piped, which then
+    stays plain columns."""
+    if tables and not is_terminal(sys.stdout):
+        for line in setpoint_lines(nets):
+            typer.echo(line, err=True)
+        return
+    if tables:
+        from rich.console import Console
+
+        console = Console()
+        for line in setpoint_lines(nets):
+            console.print(line, markup=False, highlight=False)
+        return
     for line in setpoint_lines(nets):
-        typer.echo(line, err=not to_stdout)
+        typer.echo(line)
 
 
-def write_network(net: Any, output: Path, inches: tuple[float, float], trace: Path) -> None:
+def write_network(net: Any, output: Path, inches: tuple[float, float], trace: Path, *,
+                  arrows: str = "direction") -> None:
     suffix = output.suffix.lower()
     if suffix in (".json", ".graphml"):
         net.write(output)
@@ -120,7 +136,8 @@ def write_network(net: Any, output: Path, inches: tuple[float, float], trace: Pa
     matplotlib.use("Agg")
     from funcnet.plot import network_title, save_network
 
-    save_network(net, output, size=inches, title=network_title(net, source=str(trace)))
+    save_network(net, output, size=inches, title=network_title(net, source=str(trace)),
+                 arrows=arrows)
 
 
 def network_files(output: Path, labels: Sequence[str]) -> list[Path]:

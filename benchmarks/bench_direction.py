@@ -1,0 +1,251 @@
+"""Benchmark of the direction reading against what a recording fixes: nothing drives a set-point.
+
+Run from the repository root::
+
+    PYTHONPATH=src python -m benchmarks.bench_direction [--plan DIR] [--seed N] [--candidates]
+
+For every real recording in ``../shared/data`` -- the SINUMERIK trace (its phase windows), both
+KUKA KR 300 runs (``examples/kuka-kr300-channels.toml``; every axis's phase windows, and the
+whole robot as one network), the UR5 runs when their reader and ``examples/ur5-channels.toml``
+are present -- and for a simulated plan (the paper's 36 trials, ``funcnet simulate``, moving
+phases), the networks ``funcnet network`` computes with the defaults, and per recording and
+pair type the arrows into and out of the set-point RP (and between two set-points), for the
+paper's rule (``kind``) and for ``direction`` (:func:`funcnet.network.setpoint_check`).
+
+The cost: each window's network is timed (``window_networks``, which reads the direction too)
+and the direction reading alone on the same windows (``direction_columns``); the rule alone is
+their difference, and the ratio (rule + direction) / rule is printed per recording (target:
+at most 2).
+
+``--candidates`` adds the methods the direction was chosen among, over the same set-point
+pairs: the prediction test at 3 and 10 lags beside the embedding span, and the lead of the
+cross-map skill (lagged convergent cross mapping, Ye et al. 2015; lead = the lag of the best
+skill, both ways agreeing, at least 2 samples).
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from benchmarks.bench_core import Run
+
+REPO = Path(__file__).resolve().parents[1]
+DATA = REPO.parent / "shared" / "data"
+KUKA_CHANNELS = REPO / "examples" / "kuka-kr300-channels.toml"
+UR5_CHANNELS = REPO / "examples" / "ur5-channels.toml"
+
+
+def recordings(plan: Path) -> Iterator[tuple[str, str, Any]]:
+    """(group, name, recording) of every recording, one axis at a time, then whole robots."""
+    from funcnet.robot import read_recording
+
+    yield "SINUMERIK", "axis 7", read_recording(DATA / "sinumerik" / "axis7-braking-trace.xml")
+    for run in "AB":
+        path = DATA / "kuka-kr300" / f"kr300-run-{run}.mat"
+        for axis in range(1, 7):
+            yield f"KUKA run {run}", f"axis {axis}", read_recording(
+                path, channels=KUKA_CHANNELS, axis=axis)
+        yield f"KUKA run {run}", "robot", read_recording(path, channels=KUKA_CHANNELS)
+    ur5 = DATA / "ur5"
+    if UR5_CHANNELS.exists():
+        for folder in sorted(p for p in ur5.iterdir() if p.is_dir()):
+            whole = read_recording(folder, channels=UR5_CHANNELS)
+            for axis in whole.axes:
+                yield f"UR5 {folder.name}", f"axis {axis}", read_recording(
+                    folder, channels=UR5_CHANNELS, axis=axis)
+            yield f"UR5 {folder.name}", "robot", whole
+    for path in sorted(plan.glob("*.xml")):
+        yield "simulated plan", path.stem, read_recording(path)
+
+
+def windows_of(recording: Any) -> list[Any]:
+    """The windows ``funcnet network`` takes by default: every phase of a move; a recording of
+    several axes as one window (where every signal has a value)."""
+    from funcnet.robot import complete_span, detect_phases, phase_windows
+
+    if recording.axes:
+        return [complete_span(recording)]
+    return list(phase_windows(detect_phases(recording)))
+
+
+def networks_and_cost(recording: Any) -> tuple[list[Any], float, float]:
+    """The default networks of a recording, their time (s) and the direction reading's."""
+    from funcnet.network.direction import direction_columns
+    from funcnet.normalization import normalize
+    from funcnet.pipeline import window_networks
+
+    windows = windows_of(recording)
+    start = time.perf_counter()
+    nets = window_networks(recording, windows, constant="drop", errors="collect")
+    total = time.perf_counter() - start
+    start = time.perf_counter()
+    spans = {w.label: w for w in windows}
+    for label, net in nets.items():
+        span = spans[label]
+        part = recording.window(span.start, span.stop).data[list(net.nodes)]
+        signals = dict(zip(net.nodes, normalize(part.to_numpy(np.float64),
+                                                net.parameters.normalize).T, strict=True))
+        direction_columns(net.pairs, signals, net.parameters)
+    return list(nets.values()), total, time.perf_counter() - start
+
+
+def counts(nets: list[Any], column: str) -> dict[str, tuple[int, int, int]]:
+    from funcnet.network.setpoint import setpoint_check
+
+    check = setpoint_check(nets, column=column)
+    return {c.pair_type: (c.into, c.out, c.undirected) for c in check.counts}
+
+
+def _cell(into: int, out: int, pairs: int) -> str:
+    return f"{into} / {out} of {pairs}" if pairs else "-"
+
+
+def candidate_rows(nets: list[Any], recording: Any, windows: list[Any]) -> list[dict[str, Any]]:
+    """Per set-point pair, the candidate methods' readings (``--candidates``)."""
+    from funcnet.network.direction import direction_lags, read_direction
+    from funcnet.network.setpoint import node_role
+
+    spans = {w.label: w for w in windows}
+    rows = []
+    for net in nets:
+        span = spans[net.label]
+        part = recording.window(span.start, span.stop).data
+        for x, y, flagged in zip(net.pairs["x"], net.pairs["y"], net.pairs["degenerate"],
+                                 strict=True):
+            roles = node_role(x), node_role(y)
+            if flagged or "RP" not in roles or roles == ("RP", "RP"):
+                continue
+            setpoint, other = (x, y) if roles[0] == "RP" else (y, x)
+            a = part[setpoint].to_numpy(np.float64)
+            b = part[other].to_numpy(np.float64)
+            row = {"type": node_role(other)}
+            for lags in (3, 10, direction_lags(net.parameters)):
+                reading = read_direction(a, b, lags)[0]
+                row[f"prediction, {lags} lags"] = {"x->y": "out", "y->x": "into"}.get(reading,
+                                                                                    "none")
+            row["cross-map lead"] = _ccm_lead(a, b, net.parameters.dim, net.parameters.delay)
+            rows.append(row)
+    return rows
+
+
+def _embed(x: np.ndarray, m: int, tau: int) -> np.ndarray:
+    n = x.size - (m - 1) * tau
+    return np.column_stack([x[(m - 1 - k) * tau:(m - 1 - k) * tau + n] for k in range(m)])
+
+
+def _skill_by_lag(target: np.ndarray, source: np.ndarray, m: int, tau: int,
+                  lags: range) -> np.ndarray:
+    """Simplex cross-map skill of ``target(t + l)`` from ``source``'s shadow manifold at t."""
+    from scipy.spatial import cKDTree
+
+    states = _embed(source, m, tau)
+    t = np.arange((m - 1) * tau, source.size)
+    distance, index = cKDTree(states).query(states, k=m + 2)
+    distance, index = distance[:, 1:], index[:, 1:]
+    weights = np.exp(-distance / np.maximum(distance[:, :1], 1e-12))
+    weights /= weights.sum(axis=1, keepdims=True)
+    skill = np.full(len(lags), np.nan)
+    for k, lag in enumerate(lags):
+        at, near = t + lag, t[index] + lag
+        good = (at >= 0) & (at < target.size) & np.all((near >= 0) & (near < target.size), 1)
+        if good.sum() >= 10:
+            estimate = (weights[good] * target[near[good]]).sum(axis=1)
+            observed = target[at[good]]
+            if estimate.std() > 0 and observed.std() > 0:
+                skill[k] = np.corrcoef(estimate, observed)[0, 1]
+    return skill
+
+
+def _ccm_lead(setpoint: np.ndarray, other: np.ndarray, m: int, tau: int) -> str:
+    """out: the set-point leads by >= 2 samples both ways; into: it lags; none otherwise."""
+    tau = tau if setpoint.size > 20 * tau else 1
+    lags = range(-20, 21)
+    try:
+        back = _skill_by_lag(setpoint, other, m, tau, lags)  # best at -lead
+        ahead = _skill_by_lag(other, setpoint, m, tau, lags)  # best at +lead
+    except ValueError:
+        return "none"
+    if np.isnan(back).all() or np.isnan(ahead).all():
+        return "none"
+    lead_a = -lags[int(np.nanargmax(back))]
+    lead_b = lags[int(np.nanargmax(ahead))]
+    if lead_a >= 2 and lead_b >= 2:
+        return "out"
+    if lead_a <= -2 and lead_b <= -2:
+        return "into"
+    return "none"
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--plan", type=Path, default=Path("/tmp/funcnet-direction-plan"),
+                        help="folder of the simulated plan (written when missing)")
+    parser.add_argument("--seed", type=int, default=0, help="noise seed of the simulated plan")
+    parser.add_argument("--candidates", action="store_true",
+                        help="also the candidate methods over the set-point pairs")
+    args = parser.parse_args(argv)
+    from funcnet.robot import paper_plan, write_plan
+
+    run = Run()
+    run.header("Direction against the set-point: rule vs direction, per recording")
+    write_plan(paper_plan(), args.plan, seed=args.seed, workers=1)
+    groups: dict[str, dict[str, Any]] = {}
+    candidates: list[dict[str, Any]] = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for group, name, recording in recordings(args.plan):
+            nets, total, direction = networks_and_cost(recording)
+            scope = "robot" if name == "robot" else "axes"
+            entry = groups.setdefault(f"{group} ({scope})", {"nets": [], "total": 0.0,
+                                                              "direction": 0.0})
+            entry["nets"] += nets
+            entry["total"] += total
+            entry["direction"] += direction
+            if args.candidates and scope == "axes":
+                for row in candidate_rows(nets, recording, windows_of(recording)):
+                    candidates.append({"group": "simulated" if group == "simulated plan"
+                                       else "real", **row})
+    print("\n| recording | networks | set-point pairs | rule: into / out | direction: into / "
+          "out | rule: into by pair type | direction: into / out by pair type | cost "
+          "(rule + direction) / rule |")
+    print("|---|---|---|---|---|---|---|---|")
+    for label, entry in groups.items():
+        nets = entry["nets"]
+        rule, direction = counts(nets, "kind"), counts(nets, "direction")
+        pairs = sum(sum(v) for v in rule.values())
+        rule_in, rule_out = (sum(v[i] for v in rule.values()) for i in (0, 1))
+        dir_in, dir_out = (sum(v[i] for v in direction.values()) for i in (0, 1))
+        by_type_rule = ", ".join(f"{k} {v[0]}/{v[1]}" for k, v in rule.items())
+        by_type_dir = ", ".join(f"{k} {v[0]}/{v[1]}" for k, v in direction.items())
+        rule_only = entry["total"] - entry["direction"]
+        ratio = entry["total"] / rule_only if rule_only > 0 else float("nan")
+        print(f"| {label} | {len(nets)} | {pairs} | {_cell(rule_in, rule_out, pairs)} | "
+              f"{_cell(dir_in, dir_out, pairs)} ({dir_in / max(pairs, 1):.1%} into, "
+              f"{dir_out / max(pairs, 1):.1%} out) | {by_type_rule} | {by_type_dir} | "
+              f"{ratio:.3f} ({entry['total']:.1f} s) |")
+    if candidates:
+        frame = pd.DataFrame(candidates)
+        methods = [c for c in frame.columns if c not in ("group", "type")]
+        print("\nCandidates over the set-point pairs of the axes' phase windows (into / out "
+              "share of the pairs):\n")
+        print("| data | pairs | " + " | ".join(methods) + " |")
+        print("|---|---|" + "---|" * len(methods))
+        for group, part in frame.groupby("group"):
+            cells = [f"{(part[m] == 'into').mean():.1%} / {(part[m] == 'out').mean():.1%}"
+                     for m in methods]
+            print(f"| {group} | {len(part)} | " + " | ".join(cells) + " |")
+    run.footer("PYTHONPATH=src python -m benchmarks.bench_direction"
+               + (" --candidates" if args.candidates else "")
+               + (f" --seed {args.seed}" if args.seed else ""))
+
+
+if __name__ == "__main__":
+    main()
