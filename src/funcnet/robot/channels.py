@@ -81,6 +81,9 @@ class SignalInfo:
     unit : str or None
         The physical unit (``"deg"``, ``"N m"``) where the file or the channel map states it;
         a torque standing in the role of the current AC shows its unit here.
+    converted_from : str or None
+        The unit the file holds, when the values were converted to ``unit``
+        (:func:`funcnet.robot.units.in_degrees`: rad to deg).
     """
 
     name: str
@@ -88,6 +91,7 @@ class SignalInfo:
     data_type: str | None
     interval: float
     unit: str | None = None
+    converted_from: str | None = None
 
 
 @dataclass(frozen=True)
