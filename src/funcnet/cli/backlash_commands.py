@@ -58,7 +58,6 @@ def backlash(
                 f"-o {output}: unknown format, use one of {', '.join(_BACKLASH_SUFFIXES)}"
             )
         from funcnet.diagnosis import diagnose_backlash, write_results
-
         from funcnet.robot.channels import channel_map
 
         with progress_bar(quiet, "backlash"):

@@ -67,9 +67,9 @@ from funcnet.report.inspect_text import (
 )
 from funcnet.report.repetitions_page import write_repetitions
 from funcnet.robot import read_trace
-from funcnet.robot.units import in_degrees
 from funcnet.robot.axes import split_qualified
 from funcnet.robot.grid import format_spans
+from funcnet.robot.units import in_degrees
 
 __all__ = ["inspect_trace", "write_inspection", "write_robot_inspection", "READING_AN_ARROW"]
 
