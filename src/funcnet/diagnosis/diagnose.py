@@ -203,6 +203,8 @@ class BacklashResult:
     @property
     def score_unit(self) -> str:
         """``"deg"`` for ``motor_hysteresis``; ``"1"`` (a sum of robust z-scores) otherwise."""
+        if self.score_indicator == "none":  # one encoder: no score
+            return "none"
         return "deg" if self.score_indicator == SCORE else "1"
 
     def to_dict(self) -> dict[str, Any]:
