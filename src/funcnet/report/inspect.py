@@ -153,6 +153,8 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
 
     def add(k: int, name: str, make: Any, caption: str) -> None:
         step(progress, k, steps, f"figure: {name}")
+        if not ins.networks and name in ("networks", "timeline", "evidence"):
+            return  # no network (an axis at rest): the summary says why
         fig = make(ins)
         if fig is not None:
             figures.append((name, caption, figure_html(out, name, fig, caption)))

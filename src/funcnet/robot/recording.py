@@ -373,6 +373,8 @@ def _assemble(path: Path, grid: GridSignals, cmap: ChannelMap) -> Recording:
     low, high = np.fmin.reduce(values, axis=0), np.fmax.reduce(values, axis=0)
     # One tick says nothing about constancy.
     constant = ~(high > low) if len(values) > 1 else np.zeros(len(columns), dtype=bool)
+    # A set-point that never moves is kept: it says the axis rests, which a page reports.
+    constant &= np.array([split_qualified(c)[1] != "RP" for c in columns], dtype=bool)
     if constant.all():
         raise TraceFormatError(
             path, f"every signal is constant over the whole recording ({_listed(columns)})"
