@@ -207,3 +207,98 @@ def test_cli_on_a_folder_and_its_one_line_errors(tmp_path):
     bare = runner.invoke(app, ["network", str(run)])
     assert bare.exit_code == 2 and bare.stderr.count("\n") == 1
     assert "is a directory" in bare.stderr
+
+
+def _resting(tmp_path: Path) -> Path:
+    """A run in which the arm never moves: the set-point holds, AP jitters, currents hold."""
+    run = tmp_path / "rest"
+    run.mkdir()
+    rng = np.random.default_rng(3)
+    jitter = rng.normal(0, 2e-5, (400, 6))
+    files = {
+        "log_q_target.csv": lambda k, j: 0.3 * j,
+        "log_q_actual.csv": lambda k, j: 0.3 * j + jitter[k, j],
+        "log_qd_target.csv": lambda k, j: 0.0,
+        "log_qd_actual.csv": lambda k, j: jitter[k, j] * 100,
+        "log_i_target.csv": lambda k, j: 1.0 * j + jitter[k, j],
+        "log_i_actual.csv": lambda k, j: 2.0 * j + jitter[k, j],
+        "log_m_target.csv": lambda k, j: 3.0 * j + jitter[k, j],
+    }
+    for name, value in files.items():
+        (run / name).write_text("\n".join(_rows(400, 0.008, value)) + "\n")
+    return run, jitter
+
+
+def test_an_arm_at_rest_gets_a_page_that_says_so(tmp_path):
+    run, jitter = _resting(tmp_path)
+    out = tmp_path / "page"
+    result = runner.invoke(app, ["inspect", str(run), "--channels", str(UR5_MAP), "--axis", "3",
+                                 "--no-evidence", "-q", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    page = (out / "index.html").read_text()
+    assert "What axis 3 (elbow) does" in page
+    assert "the set-point never moves: the axis rests over the whole recording" in page
+    # |RP - AP| at rest in arcsec of the converted degrees, from the files as written
+    rp = np.loadtxt(run / "log_q_target.csv", delimiter=",")[:, 3]
+    ap = np.loadtxt(run / "log_q_actual.csv", delimiter=",")[:, 3]
+    mean = np.mean(np.abs(rp - ap)) * 180 / math.pi * 3600
+    assert f"|RP − AP| {mean:.3g} arcsec on average" in page
+    assert "AC 4 A on average" in page  # 2.0 * j with j = 2, as written
+
+
+def test_network_leaves_out_phases_too_short_for_the_embedding(tmp_path):
+    from funcnet.robot import detect_phases, phase_windows
+
+    run = _folder(tmp_path, cut=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RecordingWarning)
+        rec = read_recording(run, channels=UR5_MAP, axis=1)
+    windows = list(phase_windows(detect_phases(rec)))
+    need = (3 - 1) * 5 + 7  # dim 3, delay 5
+    lengths = {w.label: int(round((w.stop - w.start) / rec.sample_period)) for w in windows}
+    short = [label for label, n in lengths.items() if n < need]
+    assert short and len(short) < len(windows)  # the case is there to test
+    out = tmp_path / "net.json"
+    result = runner.invoke(app, ["network", str(run), "--channels", str(UR5_MAP), "--axis", "1",
+                                 "--delay", "5", "--signals", "RP,AP",
+                                 "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    line, = [x for x in result.stderr.splitlines() if f"shorter than the {need} samples" in x]
+    for label in short:
+        assert f"{label!r} ({lengths[label]} samples)" in line
+    assert len(list(tmp_path.glob("net-*.json"))) == len(windows) - len(short)
+
+
+def test_detrended_without_mp_leaves_torsion_out_before_computing(tmp_path):
+    from funcnet.inspection import inspect_recording
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RecordingWarning)
+        rec, _ = in_degrees(read_trace(_folder(tmp_path, cut=False), channels=UR5_MAP, axis=1))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        found = inspect_recording(rec, signals=["FE", "TORSION", "V", "RC", "AC"],
+                                  evidence=False, backlash=False, delay=2)
+    assert found.signals == ("FE", "V", "RC", "AC")
+    said = [w.message for w in caught if getattr(w.message, "problem", "") == "missing_signal"]
+    assert len(said) == 1 and "TORSION (MP - AP) needs MP" in str(said[0])
+
+
+def test_a_study_skips_and_lists_windows_where_the_arm_stands_still(tmp_path):
+    run = _folder(tmp_path, cut=False)
+    rest, _ = _resting(tmp_path)
+    study = tmp_path / "study.toml"
+    study.write_text(
+        'signals = ["RP", "AP", "AC"]\nconstant = "drop"\n[recordings]\n'
+        f'paths = ["{run.name}", "{rest.name}"]\n'
+        f'channels = "{UR5_MAP}"\naxis = 1\n'
+        '[[windows]]\nkind = "range"\nstart = 0.0\nstop = 0.79\n'
+        '[network]\ndelay = 2\n')
+    out = tmp_path / "out"
+    result = runner.invoke(app, ["study", str(study), "--out", str(out), "-q"])
+    assert result.exit_code == 0, result.output
+    run_record = json.loads((out / "study.json").read_text())["run"]
+    assert run_record["failures"] == []
+    skipped, = run_record["skipped"]
+    assert skipped["recording"].startswith("rest") and "stands still" in skipped["message"]
+    assert "skipped: 1 window(s) where the axis stands still" in result.stderr

@@ -496,7 +496,7 @@ def _one_encoder(
     return BacklashResult(
         path=where, score_indicator="none", backlash_score=None, score_spread=None,
         lost_motion=None, lost_motion_spread=None, reversals=tuple(results), reading=None,
-        message=message, reading_reason=need, lost_motion_reason="one encoder: " + need,
+        message=message, reading_reason=need, lost_motion_reason="one encoder per joint, no MP",
         segments=segmented.segments, left_out=segmented.left_out, units=units.note or None,
     )
 
