@@ -478,7 +478,8 @@ def inspect_trace(
 
     def inspected(path: Any, folder: Path) -> TraceInspection | RobotInspection:
         # Thresholds, arcmin and arcsec are in degrees: angles in rad converted (said).
-        recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis))
+        recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis,
+                                             keep_setpoint=True))
         found: TraceInspection | RobotInspection
         if recording.axes:
             found = inspect_robot(recording, signals=signals, parameters=p, evidence=evidence,
