@@ -56,12 +56,15 @@ def test_inspect_real_trace_end_to_end(real_report, tmp_path):
     assert len(images) >= 4
     assert all(not Path(str(i["src"])).is_absolute() for i in images)
     assert all(i.get("alt") for i in images), "every figure has a caption"
-    # the summary comes first, then the contents, then the figures
-    order = [text.index(s) for s in ('id="summary"', 'class="toc"', "<img")]
+    # the set-point check comes first, then the summary, the contents, the figures
+    order = [text.index(s) for s in ('id="setpoint-check"', 'id="summary"', 'class="toc"',
+                                     "<img")]
     assert order == sorted(order)
     assert "3 time(s)" in text  # three moves in the real trace
     assert "lost motion" in text and "arcsec" in text
     assert "Reading an arrow" in text
+    assert "Here the rule&#x27;s arrows point into the set-point" in text
+    assert "Here the direction reading points into the set-point" in text
     assert "Values are missing" not in text and "a gap" not in text  # the trace has none
     for label in ("early spin-up 1", "cruise 2", "braking 3"):
         assert label in text

@@ -224,6 +224,17 @@ def test_study_report_networks_timeline_and_chromium(tiny_study, tmp_path):
     pair_tables = [t for t in tables if {"x", "y", "kind"} <= set(t.columns)]
     assert len(pair_tables) == rows.groupby(["window", "start"]).ngroups
     assert sum(len(t) for t in pair_tables) == len(rows)
+    # the set-point check first, counted over every row: into RP is the arrow toward it
+    text = page.read_text(encoding="utf-8")
+    assert text.index('id="setpoint-check"') < text.index('id="summary"')
+    plain = rows[~rows["degenerate"].astype(bool)]
+    into = int((((plain["y"] == "RP") & (plain["kind"] == "x->y"))
+                | ((plain["x"] == "RP") & (plain["kind"] == "y->x"))).sum())
+    out = int((((plain["x"] == "RP") & (plain["kind"] == "x->y"))
+               | ((plain["y"] == "RP") & (plain["kind"] == "y->x"))).sum())
+    times = {0: "0 times", 1: "once"}
+    assert (f"arrows point into the set-point {times.get(into, f'{into} times')} and out of "
+            f"it {times.get(out, f'{out} times')}") in text.replace("&#x27;", "'")
 
 
 @pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")

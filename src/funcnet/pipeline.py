@@ -465,9 +465,9 @@ def _batched_networks(
     columns.update({**dict.fromkeys(RULE_COLUMNS, [""] * n_rows), "weight": [0.0] * n_rows})
     readings: dict[str, list[str]] = {name: [] for name in DIRECTION_COLUMNS}
     for w in range(len(windows)):
-        rows = slice(w * n_pairs, (w + 1) * n_pairs)
+        mine = slice(w * n_pairs, (w + 1) * n_pairs)
         read = direction_columns(
-            pd.DataFrame({name: columns[name][rows] for name in ("x", "y", "degenerate")}),
+            pd.DataFrame({name: columns[name][mine] for name in ("x", "y", "degenerate")}),
             # normalized as functional_network's nodes are: the same bits, the same reading
             dict(zip(result.names, normalize_signals(parts[w], p.normalize).T, strict=True)),
             p)
