@@ -26,6 +26,7 @@ skill, both ways agreeing, at least 2 samples).
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 import warnings
 from collections.abc import Iterator
@@ -203,6 +204,8 @@ def main(argv: list[str] | None = None) -> None:
         warnings.simplefilter("ignore")
         for group, name, recording in recordings(args.plan):
             nets, total, direction = networks_and_cost(recording)
+            print(f"{group}, {name}: {len(nets)} networks, {total:.1f} s", file=sys.stderr,
+                  flush=True)
             scope = "robot" if name == "robot" else "axes"
             entry = groups.setdefault(f"{group} ({scope})", {"nets": [], "total": 0.0,
                                                               "direction": 0.0})
