@@ -62,9 +62,27 @@ def recordings(plan: Path) -> Iterator[tuple[str, str, Any]]:
             for axis in whole.axes:
                 yield f"UR5 {folder.name}", f"axis {axis}", read_recording(
                     folder, channels=UR5_CHANNELS, axis=axis)
-            yield f"UR5 {folder.name}", "robot", whole
+            if _within_cost(whole):
+                yield f"UR5 {folder.name}", "robot", whole
+            else:
+                print(f"UR5 {folder.name}, robot: over the command line's cost limit (a minute "
+                      "or 4 GiB forecast; funcnet network refuses it without --force): not "
+                      "computed", file=sys.stderr, flush=True)
     for path in sorted(plan.glob("*.xml")):
         yield "simulated plan", path.stem, read_recording(path)
+
+
+def _within_cost(recording: Any) -> bool:
+    """Whether ``funcnet network`` computes the recording's default network without --force."""
+    from funcnet.cli.selection import check_cost
+    from funcnet.errors import FuncnetError
+    from funcnet.parameters import NetworkParameters
+
+    try:
+        check_cost(recording, windows_of(recording), None, NetworkParameters(), False)
+    except FuncnetError:
+        return False
+    return True
 
 
 def windows_of(recording: Any) -> list[Any]:
