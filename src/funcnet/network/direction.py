@@ -119,22 +119,49 @@ def prediction_p(x: Any, y: Any, lags: int) -> float:
     ys = np.asarray(y, dtype=np.float64).ravel()
     if xs.size != ys.size:
         raise ParameterError.of("y", f"has {ys.size} samples, x has {xs.size}")
-    p = int(lags)
-    dfd = xs.size - p - (2 * p + 1)
-    if dfd < 1 or np.ptp(xs) == 0 or np.ptp(ys) == 0:
+    past_x, past_y = _Past.of(xs, int(lags)), _Past.of(ys, int(lags))
+    return _p_value(past_x, past_y)
+
+
+class _Past:
+    """A signal standardized, its lagged design ``1, v[t-1..t-p]``, and the residual sum of
+    squares of its prediction from its own past (shared by every pair it is the target of)."""
+
+    def __init__(self, values: np.ndarray | None, lags: int) -> None:
+        self.lags = lags
+        self.values = values
+        self.size = 0 if values is None else values.size
+        if values is None:
+            return
+        self.target = values[lags:]
+        self.own = np.column_stack([np.ones(self.target.size), _lagged(values, lags)])
+        self.rss = _rss(self.own, self.target)
+
+    @classmethod
+    def of(cls, v: np.ndarray, lags: int) -> _Past:
+        # too short (N - 3p - 1 < 1) or constant: nothing to test (values None)
+        if v.size - 3 * lags - 1 < 1 or np.ptp(v) == 0:
+            empty = cls(None, lags)
+            empty.size = v.size
+            return empty
+        return cls((v - v.mean()) / v.std(), lags)
+
+
+def _rss(design: np.ndarray, target: np.ndarray) -> float:
+    residual = target - design @ np.linalg.lstsq(design, target, rcond=None)[0]
+    return float(residual @ residual)
+
+
+def _p_value(x: _Past, y: _Past) -> float:
+    """p-value that X's past improves Y's prediction beyond Y's own (both prepared)."""
+    if x.values is None or y.values is None:
         return float("nan")
-    xs = (xs - xs.mean()) / xs.std()
-    ys = (ys - ys.mean()) / ys.std()
-    target = ys[p:]
-    own = np.column_stack([np.ones(target.size), _lagged(ys, p)])
-    full = np.column_stack([own, _lagged(xs, p)])
-    rss = []
-    for design in (own, full):
-        residual = target - design @ np.linalg.lstsq(design, target, rcond=None)[0]
-        rss.append(float(residual @ residual))
-    if rss[1] <= 0.0:
+    p = y.lags
+    dfd = y.values.size - p - (2 * p + 1)
+    full = _rss(np.column_stack([y.own, x.own[:, 1:]]), y.target)
+    if full <= 0.0:
         return float("nan")
-    f = max(rss[0] - rss[1], 0.0) / p / (rss[1] / dfd)
+    f = max(y.rss - full, 0.0) / p / (full / dfd)
     return float(stats.f.sf(f, p, dfd))
 
 
@@ -173,11 +200,22 @@ def read_direction(x: Any, y: Any, lags: int, *, alpha: float = DIRECTION_ALPHA,
     """
     if not 0.0 < alpha < 1.0:
         raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha!r}")
+    xs, ys = (np.asarray(v, dtype=np.float64).ravel() for v in (x, y))
+    if xs.size != ys.size:
+        raise ParameterError.of("y", f"has {ys.size} samples, x has {xs.size}")
+    if isinstance(lags, bool) or not isinstance(lags, (int, np.integer)) or lags < 1:
+        raise ParameterError.of("lags", f"must be an integer >= 1, got {lags!r}")
+    return _reading(_Past.of(xs, int(lags)), _Past.of(ys, int(lags)), alpha, names)
+
+
+def _reading(px: _Past, py: _Past, alpha: float, names: tuple[str, str]) -> tuple[str, str]:
+    """:func:`read_direction` of two prepared pasts."""
+    lags = px.lags
     a, b = names
-    forward = prediction_p(x, y, lags)
-    backward = prediction_p(y, x, lags)
+    forward = _p_value(px, py)
+    backward = _p_value(py, px)
     if np.isnan(forward) or np.isnan(backward):
-        n = int(np.size(x))
+        n = px.size
         if n < 3 * lags + 2:
             return "none", (f"window too short: {n} samples for {lags} lags (needs at least "
                             f"{3 * lags + 2})")
@@ -228,16 +266,29 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
     ['x->y']
     """
     lags = direction_lags(parameters)
+    if not 0.0 < alpha < 1.0:
+        raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha!r}")
     out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
+    pasts: dict[Any, _Past | None] = {}  # each node prepared once for all its pairs
+
+    def past(name: Any) -> _Past | None:
+        if name not in pasts:
+            v = np.asarray(signals[name], dtype=np.float64)
+            pasts[name] = (None if v.ndim > 1 and v.shape[1] > 1
+                           else _Past.of(v.ravel(), lags))
+        return pasts[name]
+
     for x, y, flagged in zip(pairs["x"], pairs["y"], pairs["degenerate"], strict=True):
-        a, b = np.asarray(signals[x], dtype=np.float64), np.asarray(signals[y],
-                                                                     dtype=np.float64)
         if bool(flagged):
             reading = ("none", "degenerate pair: too few distinct states")
-        elif (a.ndim > 1 and a.shape[1] > 1) or (b.ndim > 1 and b.shape[1] > 1):
+            out["direction"].append(reading[0])
+            out["direction_reason"].append(reading[1])
+            continue
+        px, py = past(x), past(y)
+        if px is None or py is None:
             reading = ("none", "a multichannel node: the test reads one channel per node")
         else:
-            reading = read_direction(a, b, lags, alpha=alpha, names=(str(x), str(y)))
+            reading = _reading(px, py, alpha, (str(x), str(y)))
         out["direction"].append(reading[0])
         out["direction_reason"].append(reading[1])
     return out
