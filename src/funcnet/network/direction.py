@@ -26,13 +26,15 @@ The reading (abstaining where the data cannot tell)
 
 Why this test (measured, docs/direction.md)
     A set-point computed ahead by a planner is predicted by its own past; a measured signal of
-    the axis is not, and the set-point's past improves it. Over the real recordings (the
-    SINUMERIK trace, both KUKA runs, every axis and phase) and the simulated plan (the 36
-    trials of the paper, moving phases) the reading points into the set-point for 1-3 % of the
-    set-point pairs and out of it for 30 % (real) and 53 % (simulated). Timing is no shortcut:
-    the lead of one signal's cross-map skill over the other's points from the current into the
-    position (an acceleration leads the position it produces), and the conditional-recurrence
-    index and convergent cross mapping need surrogates a smooth window does not hold.
+    the axis is not, and the set-point's past improves it. Over the SINUMERIK trace and both
+    KUKA runs (every axis and phase, and the whole robot) the reading points into a set-point
+    for 0.4-4.8 % of the set-point pairs and out of it for 10-58 %; on the simulated plan (the
+    36 trials of the paper, moving phases) 1.8 % into and 57 % out. On the UR5 runs, read after
+    the method was fixed, 5-14 %: their current set-point RC carries the planner's
+    feed-forward. Timing is no shortcut: the lead of one signal's cross-map skill over the
+    other's points from the current into the position (an acceleration leads the position it
+    produces), and the conditional-recurrence index and convergent cross mapping need
+    surrogates a smooth window does not hold.
     Linear prediction assumes the relation is near linear over ``p`` samples; a nonlinear
     coupling the linear past misses reads ``none``, not a wrong arrow.
 
