@@ -23,6 +23,7 @@ from funcnet.cli.options import (
     EdgeRule,
     Evidence,
     EvidenceSeed,
+    Intervals,
     NetworkOptions,
     Quiet,
     Resamples,
@@ -136,6 +137,7 @@ def network(
     resamples: Resamples = 200,
     edge_rule: EdgeRule = "paper",
     surrogate_method: SurrogateMethod = "shift",
+    intervals: Intervals = "testable",
     verbose: Verbose = False,
     quiet: Quiet = False,
 ) -> None:
@@ -164,7 +166,7 @@ def network(
     with reported_errors(verbose=verbose):
         inches = parse_size(size)
         evidence_keywords = evidence_settings(evidence, surrogates, alpha, seed, resamples,
-                                              edge_rule, surrogate_method)
+                                              edge_rule, surrogate_method, intervals)
         if output is not None and output.suffix.lower() not in _NETWORK_SUFFIXES:
             raise ParameterError(
                 f"-o {output}: unknown format, use one of {', '.join(_NETWORK_SUFFIXES)}"

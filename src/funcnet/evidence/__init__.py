@@ -54,6 +54,8 @@ _EXPORTS = {
     "interval_from": "funcnet.evidence.interval",
     "interval_kind": "funcnet.evidence.interval",
     "pairwise_evidence": "funcnet.evidence.pairs",
+    "planned_surrogates": "funcnet.evidence.dependence",
+    "INTERVAL_SCOPES": "funcnet.evidence.pairs",
     "repetition_evidence": "funcnet.evidence.repetitions",
     "repetition_tests": "funcnet.evidence.repetitions",
     "repetitions_needed": "funcnet.evidence.repetitions",

@@ -88,6 +88,7 @@ __all__ = [
     "decorrelation_time",
     "shift_plan",
     "surrogate_plan",
+    "planned_surrogates",
     "check_surrogate_method",
     "dependence_test",
     "recurrent_pairs",
@@ -288,6 +289,53 @@ def surrogate_plan(method: str, a_y: np.ndarray, surrogates: int, *, min_shift: 
                                     "the signals are too short to test")
         return twin_plan(a_y, surrogates, seed=seed)
     return shift_plan(m, surrogates, min_shift=min_shift)
+
+
+def planned_surrogates(method: str, n_states: int, surrogates: int, *,
+                       min_shift: int = 1) -> int:
+    """``K``, the surrogates a test of ``n_states`` states will hold, before any recurrence.
+
+    What :func:`surrogate_plan` gives, from the sizes alone: the shift lattice's ``2 k``
+    (:func:`shift_plan`), or ``surrogates`` twins; 0 where the window is too short to test.
+    Whether a pair can reach a level is thus known before anything is computed
+    (:func:`funcnet.evidence.reading.untestable`).
+
+    Parameters
+    ----------
+    method : {"shift", "twin"}
+    n_states : int
+        ``M``, states per signal.
+    surrogates : int
+        ``K`` asked.
+    min_shift : int
+        ``s0`` of the shift lattice (ignored by twins).
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ParameterError
+        Unknown ``method`` or ``surrogates < 1``.
+
+    Examples
+    --------
+    >>> planned_surrogates("shift", 140, 99, min_shift=20), planned_surrogates("twin", 140, 99)
+    (6, 99)
+    >>> planned_surrogates("shift", 30, 99, min_shift=20)  # no window of 20 states is left
+    0
+    """
+    method = check_surrogate_method(method)
+    if isinstance(surrogates, bool) or not isinstance(surrogates, (int, np.integer)) or \
+            surrogates < 1:
+        raise ParameterError.of("surrogates", f"must be an integer >= 1, got {surrogates!r}")
+    if method == "twin":
+        return int(surrogates) if n_states >= MIN_WINDOW else 0
+    try:
+        return shift_plan(int(n_states), int(surrogates), min_shift=min_shift).surrogates
+    except ParameterError:
+        return 0
 
 
 @dataclass(frozen=True)

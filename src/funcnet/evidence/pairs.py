@@ -41,6 +41,7 @@ from funcnet.evidence.dependence import (
     decorrelation_time,
     default_surrogates,
     dependence_test,
+    planned_surrogates,
     recurrent_pairs,
     surrogate_plan,
 )
@@ -53,12 +54,15 @@ from funcnet.recurrence import (
     cross_recurrence,
 )
 
-__all__ = ["EVIDENCE_LABELS", "PairEvidence", "pairwise_evidence", "evidence_label",
-           "check_evidence_arguments"]
+__all__ = ["EVIDENCE_LABELS", "INTERVAL_SCOPES", "PairEvidence", "pairwise_evidence",
+           "evidence_label", "check_evidence_arguments"]
 
 #: The readings of a pair (the ``evidence`` column).
 EVIDENCE_LABELS: tuple[str, ...] = ("coupled-directed", "coupled", "not-coupled",
                                     "asymmetry-only", "untestable")
+#: The pairs whose asymmetry intervals are drawn: those whose coupling test can reach the level
+#: (``"testable"``, the default: an untestable pair's intervals are never read), or every pair.
+INTERVAL_SCOPES: tuple[str, ...] = ("testable", "all")
 
 
 @dataclass(frozen=True)
@@ -158,11 +162,11 @@ def _check_alpha(alpha: Any) -> float:
 
 
 def check_evidence_arguments(surrogates: Any, alpha: Any, resamples: Any,
-                             surrogate_method: Any = "shift") -> None:
+                             surrogate_method: Any = "shift", intervals: Any = "testable") -> None:
     """Raise a :class:`ParameterError` naming the first bad evidence argument.
 
     ``resamples=0`` is allowed (no intervals); ``surrogate_method`` is ``"shift"`` or
-    ``"twin"``.
+    ``"twin"``; ``intervals`` one of :data:`INTERVAL_SCOPES`.
 
     Examples
     --------
@@ -179,6 +183,9 @@ def check_evidence_arguments(surrogates: Any, alpha: Any, resamples: Any,
             resamples < 0:
         raise ParameterError.of("resamples", f"must be an integer >= 0, got {resamples!r}")
     check_surrogate_method(surrogate_method)
+    if intervals not in INTERVAL_SCOPES:
+        raise ParameterError.of("intervals", f"must be one of {list(INTERVAL_SCOPES)}, got "
+                                f"{intervals!r}")
 
 
 def pairwise_evidence(
@@ -192,6 +199,7 @@ def pairwise_evidence(
     resamples: int = 200,
     level: float = 0.95,
     surrogate_method: str = "shift",
+    intervals: str = "testable",
     **overrides: Any,
 ) -> dict[tuple[Any, Any], PairEvidence]:
     """Coupling test, intervals and direction of every pair ``i < j`` of equally long signals.
@@ -223,6 +231,13 @@ def pairwise_evidence(
         Surrogates of the dependence test: the non-circular time-shift lattice (default) or
         twin surrogates of the second signal of each pair (Thiel et al. 2006;
         :mod:`funcnet.evidence.surrogates`; where each is valid: docs/evidence.md).
+    intervals : {"testable", "all"}
+        Whose intervals are drawn (:data:`INTERVAL_SCOPES`): ``"testable"`` those of the pairs
+        whose coupling test can reach ``alpha``, decided from the window's size before any
+        measure (:func:`~funcnet.evidence.dependence.planned_surrogates`,
+        :func:`~funcnet.evidence.reading.untestable`); an untestable pair's intervals are NaN
+        as with ``resamples=0``. ``"all"``: every pair's. A pair's interval is the same number
+        either way (each pair's resamples depend on its two signals alone).
     **overrides
         Fields of ``parameters`` (pair fields only).
 
@@ -257,8 +272,21 @@ def pairwise_evidence(
     ...                          resamples=0, surrogate_method="twin")[("x", "y")]
     >>> twin.coupled, twin.surrogates, bool(np.isnan(twin.c_diff_low))
     (True, 99, True)
+
+    Nine surrogates cannot reach 0.05 (``1 / 10``): no interval unless asked for.
+
+    >>> few = pairwise_evidence([data[:, 0], data[:, 1]], names=["x", "y"], delay=1,
+    ...                         resamples=20, surrogates=9)[("x", "y")]
+    >>> few.surrogates, bool(np.isnan(few.c_diff_low))
+    (10, True)
+    >>> every = pairwise_evidence([data[:, 0], data[:, 1]], names=["x", "y"], delay=1,
+    ...                           resamples=20, surrogates=9, intervals="all")[("x", "y")]
+    >>> bool(every.c_diff_low <= every.c_diff <= every.c_diff_high)
+    True
     """
-    check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
+    from funcnet.evidence.reading import untestable  # it reads this module's labels
+
+    check_evidence_arguments(surrogates, alpha, resamples, surrogate_method, intervals)
     alpha = float(alpha)
     p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
     signals = list(signals)
@@ -285,6 +313,13 @@ def pairwise_evidence(
     recurrent = [recurrent_pairs(d) for d in dense] if surrogate_method == "shift" else None
     decorrelation = [decorrelation_time(s) for s in signals]
     span = (p.dim - 1) * p.delay + 1
+    # Whether each pair can reach alpha is known from the sizes: the intervals of those that
+    # cannot are not drawn (unless asked for).
+    n_states = int(np.shape(states[0])[0])
+    planned = [planned_surrogates(surrogate_method, n_states, k,
+                                  min_shift=max(decorrelation[i], decorrelation[j], span))
+               for i in range(n) for j in range(i + 1, n)]
+    drawn = ~untestable(planned, alpha) if intervals == "testable" else np.ones(n_pairs, bool)
     raw: list[dict[str, Any]] = []
     for i in range(n):
         for j in range(i + 1, n):
@@ -312,18 +347,18 @@ def pairwise_evidence(
             entry["observed"] = (measures.c_diff, measures.t_diff)
             entry["pair"] = (i, j)
             raw.append(entry)
-    if resamples:
+    for e in raw:
+        c_diff, t_diff = e["observed"]
+        e["interval"] = AsymmetryInterval.without_resamples(c_diff, t_diff, level=level)
+    chosen = [e for e, draw in zip(raw, drawn, strict=True) if draw]
+    if resamples and chosen:
         # One set of subsamples for the network: each signal is re-thresholded once per
         # resample.
-        intervals = asymmetry_intervals(states, [e["pair"] for e in raw],
-                                        [e["observed"] for e in raw], parameters=p,
-                                        resamples=resamples, level=level, seed=seed)
-        for e, interval in zip(raw, intervals, strict=True):
+        found = asymmetry_intervals(states, [e["pair"] for e in chosen],
+                                    [e["observed"] for e in chosen], parameters=p,
+                                    resamples=resamples, level=level, seed=seed)
+        for e, interval in zip(chosen, found, strict=True):
             e["interval"] = interval
-    else:
-        for e in raw:
-            c_diff, t_diff = e["observed"]
-            e["interval"] = AsymmetryInterval.without_resamples(c_diff, t_diff, level=level)
     coupling_p = benjamini_hochberg([e["p"] for e in raw])
     direction_p = benjamini_hochberg([e["index_p"] for e in raw])
     out: dict[tuple[Any, Any], PairEvidence] = {}

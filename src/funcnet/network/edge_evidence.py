@@ -62,7 +62,7 @@ def check_evidence_settings(**settings: Any) -> None:
     ----------
     **settings
         ``surrogates``, ``alpha``, ``seed``, ``resamples``, ``surrogate_method``,
-        ``edge_rule``; those not given take :func:`add_evidence`'s defaults.
+        ``edge_rule``, ``intervals``; those not given take :func:`add_evidence`'s defaults.
 
     Raises
     ------
@@ -84,17 +84,18 @@ def check_evidence_settings(**settings: Any) -> None:
     given = bound.arguments
     check_edge_rule(given["edge_rule"], evidence=True)
     check_evidence_arguments(given["surrogates"], given["alpha"], given["resamples"],
-                             given["surrogate_method"])
+                             given["surrogate_method"], given["intervals"])
 
 
 def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkParameters, *,
                      surrogates: int | None, alpha: float, seed: int, resamples: int,
-                     surrogate_method: str,
-                     edge_rule: str) -> tuple[pd.DataFrame, dict[str, Any]]:
+                     surrogate_method: str, edge_rule: str,
+                     intervals: str = "testable") -> tuple[pd.DataFrame, dict[str, Any]]:
     """A plain pairs table with the evidence columns, and the settings that made them.
 
     Under ``edge_rule="interval"`` the kinds follow the interval rule
-    (:func:`funcnet.evidence.interval_kind`).
+    (:func:`funcnet.evidence.interval_kind`), and every pair's intervals are drawn (the rule
+    reads them), whatever ``intervals``.
 
     Parameters
     ----------
@@ -104,7 +105,7 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
         The nodes' signals the table was computed from.
     p : NetworkParameters
         The network's parameters.
-    surrogates, alpha, seed, resamples, surrogate_method, edge_rule
+    surrogates, alpha, seed, resamples, surrogate_method, edge_rule, intervals
         As in :func:`funcnet.network.functional_network` (checked by the caller).
 
     Returns
@@ -112,13 +113,16 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
     (pandas.DataFrame, dict)
         The pairs table with the evidence columns, and the network's ``evidence`` settings.
     """
+    if edge_rule == "interval":
+        intervals = "all"
     found = pairwise_evidence(
         list(prepared.signals), names=list(prepared.names), parameters=p, surrogates=surrogates,
         alpha=alpha, seed=seed, resamples=resamples, surrogate_method=surrogate_method,
+        intervals=intervals,
     )
     settings = {"surrogates": surrogates, "alpha": float(alpha), "seed": int(seed),
                 "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule,
-                "surrogate_method": surrogate_method}
+                "surrogate_method": surrogate_method, "intervals": intervals}
     return _with_evidence(pairs, found, p, edge_rule, float(alpha)), settings
 
 
@@ -190,7 +194,8 @@ def with_readings(pairs: pd.DataFrame, alpha: float) -> pd.DataFrame:
 
 def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | None = None,
                  alpha: float = 0.05, seed: int = 0, resamples: int = 200,
-                 surrogate_method: str = "shift", edge_rule: str = "paper") -> FunctionalNetwork:
+                 surrogate_method: str = "shift", edge_rule: str = "paper",
+                 intervals: str = "testable") -> FunctionalNetwork:
     """The network with the evidence columns, from the data it was computed from.
 
     Equal to ``functional_network(data, ..., evidence=True, ...)`` with the network's nodes and
@@ -204,7 +209,7 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
         The samples the network was computed from: a DataFrame with a column per node (or per
         channel of a multichannel node; other columns are ignored), or, for one-column nodes
         only, an array with one column per node in node order.
-    surrogates, alpha, seed, resamples, surrogate_method, edge_rule
+    surrogates, alpha, seed, resamples, surrogate_method, edge_rule, intervals
         As in :func:`funcnet.network.functional_network`.
 
     Returns
@@ -241,7 +246,8 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     'coupled'
     """
     check_evidence_settings(surrogates=surrogates, alpha=alpha, resamples=resamples,
-                            surrogate_method=surrogate_method, edge_rule=edge_rule)
+                            surrogate_method=surrogate_method, edge_rule=edge_rule,
+                            intervals=intervals)
     if network.evidence is not None:
         raise ParameterError.of("network", "already has evidence columns")
     channels = network.channels or {node: (node,) for node in network.nodes}
@@ -266,6 +272,7 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     pairs, settings = evidence_columns(
         network.pairs, prepared, network.parameters, surrogates=surrogates, alpha=alpha,
         seed=seed, resamples=resamples, surrogate_method=surrogate_method, edge_rule=edge_rule,
+        intervals=intervals,
     )
     edges = edges_from_pairs(pairs, degenerate=network.parameters.degenerate)
     return dataclasses.replace(network, pairs=pairs, edges=edges, evidence=settings)

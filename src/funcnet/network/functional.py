@@ -397,6 +397,7 @@ def functional_network(
     resamples: int = 200,
     surrogate_method: str = "shift",
     edge_rule: str = "paper",
+    intervals: str = "testable",
     **overrides: Any,
 ) -> FunctionalNetwork:
     """Functional network of simultaneously sampled signals (section 2.3-2.4, 3.4).
@@ -453,6 +454,11 @@ def functional_network(
         ``"paper"`` (default): ``|diff| >= mu`` (section 2.4). ``"interval"`` (needs
         ``evidence=True``): a measure is directed only when its interval excludes 0 and
         ``|diff| >= mu``; ``c_kind``, ``t_kind`` and ``kind`` then follow this rule.
+    intervals : {"testable", "all"}
+        Whose intervals are drawn: by default only those of the pairs whose coupling test can
+        reach ``alpha`` (known from the window's size before anything is computed; the others'
+        are NaN: an untestable pair is unread); ``"all"`` every pair's. Under
+        ``edge_rule="interval"`` every pair's, whatever this says.
     **overrides
         Any parameter by name, applied to ``parameters`` (``delay=1``).
 
@@ -512,7 +518,7 @@ def functional_network(
     p = resolve(parameters, overrides)
     check_edge_rule(edge_rule, evidence)
     if evidence:
-        check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
+        check_evidence_arguments(surrogates, alpha, resamples, surrogate_method, intervals)
     prepared = prepared_signals(data, names, nodes, p.normalize)
     results = pairwise_cross_measures(list(prepared.signals), names=list(prepared.names),
                                       parameters=p, warn=warn)
@@ -522,6 +528,7 @@ def functional_network(
         pairs, settings = evidence_columns(
             pairs, prepared, p, surrogates=surrogates, alpha=alpha, seed=seed,
             resamples=resamples, surrogate_method=surrogate_method, edge_rule=edge_rule,
+            intervals=intervals,
         )
     channels = None if nodes is None else {
         name: tuple(prepared.columns[i] for i in group)
