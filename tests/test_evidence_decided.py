@@ -100,3 +100,21 @@ def test_a_network_whose_pairs_are_all_untestable_draws_no_interval_unless_asked
 def test_a_bad_intervals_option_is_named():
     with pytest.raises(ParameterError, match="intervals"):
         pairwise_evidence([np.arange(50.0), np.arange(50.0) ** 2], intervals="some")
+
+
+@pytest.mark.parametrize("n", [150, 1200])  # the batched engine's windows, and longer ones
+def test_the_tables_own_differences_give_the_intervals_computed_from_scratch(n):
+    data = _signals(n, 2)
+    names = ["s1", "s2", "r1", "r2"]
+    plain = functional_network(data, names=names, delay=1, warn=False)
+    net = add_evidence(plain, data, resamples=20, seed=5, intervals="all")
+    scaled = (data - data.min(axis=0)) / np.ptp(data, axis=0)  # min-max, as the network
+    fresh = pairwise_evidence([scaled[:, k] for k in range(4)], names=names, delay=1,
+                              resamples=20, seed=5, intervals="all")
+    for row in net.pairs.itertuples():
+        one = fresh[(row.x, row.y)]
+        assert (one.c_diff, one.t_diff) == (row.c_diff, row.t_diff)
+        assert (one.c_diff_low, one.c_diff_high, one.t_diff_low, one.t_diff_high) == (
+            row.c_diff_low, row.c_diff_high, row.t_diff_low, row.t_diff_high)
+        assert one.coupling_p == row.coupling_p or (
+            math.isnan(one.coupling_p) and math.isnan(row.coupling_p))

@@ -27,7 +27,7 @@ The reading of a pair (:func:`evidence_label`):
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -200,6 +200,7 @@ def pairwise_evidence(
     level: float = 0.95,
     surrogate_method: str = "shift",
     intervals: str = "testable",
+    observed: Mapping[tuple[Any, Any], tuple[float, float]] | None = None,
     **overrides: Any,
 ) -> dict[tuple[Any, Any], PairEvidence]:
     """Coupling test, intervals and direction of every pair ``i < j`` of equally long signals.
@@ -238,6 +239,10 @@ def pairwise_evidence(
         :func:`~funcnet.evidence.reading.untestable`); an untestable pair's intervals are NaN
         as with ``resamples=0``. ``"all"``: every pair's. A pair's interval is the same number
         either way (each pair's resamples depend on its two signals alone).
+    observed : mapping, optional
+        ``{(name_i, name_j): (c_diff, t_diff)}``: the pairs' differences already computed on
+        these signals with these parameters (a network's pairs table); default computed here.
+        Given, no cross recurrence is computed but for the intervals.
     **overrides
         Fields of ``parameters`` (pair fields only).
 
@@ -323,10 +328,15 @@ def pairwise_evidence(
     raw: list[dict[str, Any]] = []
     for i in range(n):
         for j in range(i + 1, n):
-            cr_ij = cross_recurrence(states[i], states[j], cr=cr, eps=cross_eps, parameters=p,
-                                     names=(called[i], called[j]))
-            measures = isrn_measures(autos[i], autos[j], cr_ij,
-                                     parameters=p.for_pair(i, j))
+            if observed is None:
+                cr_ij = cross_recurrence(states[i], states[j], cr=cr, eps=cross_eps,
+                                         parameters=p, names=(called[i], called[j]))
+                measures = isrn_measures(autos[i], autos[j], cr_ij,
+                                         parameters=p.for_pair(i, j))
+                differences = (measures.c_diff, measures.t_diff)
+            else:
+                c_diff, t_diff = observed[(keys[i], keys[j])]
+                differences = (float(c_diff), float(t_diff))
             try:
                 plan = surrogate_plan(
                     surrogate_method, dense[j], k,
@@ -344,7 +354,7 @@ def pairwise_evidence(
                     recurrent=None if recurrent is None else (recurrent[i], recurrent[j]))
                 entry.update(statistic=test.statistic, p=test.p_value, k=test.surrogates,
                              index=test.direction_index, index_p=test.direction_p)
-            entry["observed"] = (measures.c_diff, measures.t_diff)
+            entry["observed"] = differences
             entry["pair"] = (i, j)
             raw.append(entry)
     for e in raw:

@@ -115,10 +115,13 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
     """
     if edge_rule == "interval":
         intervals = "all"
+    # the table's own differences: the measures are not computed again
+    observed = {(str(x), str(y)): (float(c), float(t)) for x, y, c, t in zip(
+        pairs["x"], pairs["y"], pairs["c_diff"], pairs["t_diff"], strict=True)}
     found = pairwise_evidence(
         list(prepared.signals), names=list(prepared.names), parameters=p, surrogates=surrogates,
         alpha=alpha, seed=seed, resamples=resamples, surrogate_method=surrogate_method,
-        intervals=intervals,
+        intervals=intervals, observed=observed,
     )
     settings = {"surrogates": surrogates, "alpha": float(alpha), "seed": int(seed),
                 "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule,
