@@ -68,7 +68,9 @@ from funcnet.report.inspect_text import (
 from funcnet.report.repetitions_page import write_repetitions
 from funcnet.robot import read_trace
 from funcnet.robot.axes import split_qualified
+from funcnet.robot.channels import channel_map
 from funcnet.robot.grid import format_spans
+from funcnet.robot.units import in_degrees
 
 __all__ = ["inspect_trace", "write_inspection", "write_robot_inspection", "READING_AN_ARROW"]
 
@@ -152,6 +154,8 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
 
     def add(k: int, name: str, make: Any, caption: str) -> None:
         step(progress, k, steps, f"figure: {name}")
+        if not ins.networks and name in ("networks", "timeline", "evidence"):
+            return  # no network (an axis at rest): the summary says why
         fig = make(ins)
         if fig is not None:
             figures.append((name, caption, figure_html(out, name, fig, caption)))
@@ -204,6 +208,7 @@ def write_inspection(
     out_dir: str | os.PathLike[str],
     *,
     progress: Progress = None,
+    axis_label: str | None = None,
 ) -> Path:
     """Write the HTML page of one inspected trace (``index.html``, ``figures/*.png``).
 
@@ -214,6 +219,8 @@ def write_inspection(
         The page's folder.
     progress : callable, optional
         ``progress(done, total, description)``.
+    axis_label : str, optional
+        The axis as the channel map names it (``"axis 2 (shoulder)"``), in the title.
 
     Returns
     -------
@@ -246,7 +253,7 @@ def write_inspection(
                          "intervals, whose subsamples are shorter than the window; "
                          "<code>evidence</code>: all of it).</p>" + table(partial))
     body = [
-        f"<h1>What the axis does — {escape(name)}</h1>",
+        f"<h1>What {escape(axis_label or 'the axis')} does — {escape(name)}</h1>",
         f"<section id=\"summary\"><h2>Summary</h2>{summary_html(ins)}</section>",
         contents(sections),
         "<h2 id=\"figures\">Figures</h2>", *figures,
@@ -320,6 +327,7 @@ def write_robot_inspection(
     out_dir: str | os.PathLike[str],
     *,
     progress: Progress = None,
+    axis_names: tuple[str, ...] = (),
 ) -> Path:
     """Write the robot's page (``index.html``) and each axis's page (``axis-N/index.html``).
 
@@ -329,6 +337,8 @@ def write_robot_inspection(
     out_dir : path-like
     progress : callable, optional
         ``progress(done, total, description)``.
+    axis_names : tuple of str, optional
+        The axes' names, axis 1 first (the channel map's ``axis_names``), on the pages.
 
     Returns
     -------
@@ -337,13 +347,21 @@ def write_robot_inspection(
     """
     ins = inspection
     out = Path(out_dir)
+
+    def axis_label(axis: int) -> str:
+        return f"axis {axis}" + (f" ({axis_names[axis - 1]})" if axis <= len(axis_names) else "")
+
     for axis, one in ins.axes.items():
-        write_inspection(one, out / f"axis-{axis}", progress=progress)
+        write_inspection(one, out / f"axis-{axis}", progress=progress,
+                         axis_label=axis_label(axis) if axis_names else None)
     rows = _axis_rows(ins)
+    if axis_names:
+        rows.insert(1, "name", [axis_names[a - 1] if a <= len(axis_names) else ""
+                                for a in rows["axis"]])
     gaps = gaps_sentence(ins.recording.gaps, ins.recording.segments)
     gaps += " The robot network is one per segment." if gaps else ""
     links = "".join(
-        f'<li><a href="axis-{a}/index.html">axis {a}</a></li>' for a in ins.axes)
+        f'<li><a href="axis-{a}/index.html">{escape(axis_label(a))}</a></li>' for a in ins.axes)
     name = Path(ins.source).name
     network_parts = []
     for k, window in enumerate(ins.windows):
@@ -456,19 +474,24 @@ def inspect_trace(
         raise ParameterError.of("paths", "must name at least one trace file")
     p = resolve(parameters, overrides)
     out = Path(out_dir)
+    cmap = channel_map(channels)
 
     def inspected(path: Any, folder: Path) -> TraceInspection | RobotInspection:
-        recording = read_trace(path, channels=channels, axis=axis)
+        # Thresholds, arcmin and arcsec are in degrees: angles in rad converted (said).
+        recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis))
         found: TraceInspection | RobotInspection
         if recording.axes:
             found = inspect_robot(recording, signals=signals, parameters=p, evidence=evidence,
                                   progress=progress, evidence_options=evidence_options)
-            write_robot_inspection(found, folder, progress=progress)
+            write_robot_inspection(found, folder, progress=progress,
+                                   axis_names=cmap.axis_names)
         else:
             found = inspect_recording(recording, signals=signals, parameters=p,
                                       evidence=evidence, progress=progress,
                                       evidence_options=evidence_options)
-            write_inspection(found, folder, progress=progress)
+            write_inspection(found, folder, progress=progress,
+                             axis_label=cmap.axis_label(axis)
+                             if axis is not None and cmap.axis_names else None)
         return found
 
     if len(paths) == 1:
