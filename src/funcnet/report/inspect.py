@@ -62,10 +62,12 @@ from funcnet.report.inspect_figures import (
 from funcnet.report.inspect_text import (
     failed_windows,
     gaps_sentence,
+    lost_motion_cell,
     partial_evidence,
     summary_html,
 )
 from funcnet.report.repetitions_page import write_repetitions
+from funcnet.report.robot_summary import axis_findings
 from funcnet.robot import read_trace
 from funcnet.robot.axes import split_qualified
 from funcnet.robot.channels import channel_map
@@ -112,8 +114,8 @@ def _backlash_html(ins: TraceInspection) -> str:
 
     rows = [{"change": r.change.kind, "stop [s]": r.change.stop, "start [s]": r.change.start,
              "dwell [s]": r.change.dwell, "direction": "+" if r.change.direction > 0 else "−",
-             "lost motion [arcsec]": _fmt(None if r.lost_motion is None
-                                          else r.lost_motion * 3600),
+             "lost motion [arcsec]": lost_motion_cell(r.lost_motion, r.lost_motion_high,
+                                                      3600),
              "backlash score": _fmt(r.backlash_score)} for r in result.reversals]
     reading = result.reading.get("text", "") if result.reading else ""
     return (f"<p>{escape(result.message)}.{' ' + escape(reading) if reading else ''}</p>"
@@ -278,22 +280,21 @@ def write_inspection(
 # --- a recording of several axes: the robot's page and one page per axis
 
 
-def _axis_rows(ins: RobotInspection) -> pd.DataFrame:
-    rows = []
-    for axis in ins.recording.axes:
-        one = ins.axes.get(axis)
-        if one is None:
-            rows.append({"axis": axis, "moves": None, "networks": None,
-                         "backlash": ins.axis_errors.get(axis, ""), "lost motion [arcmin]": None})
-            continue
-        result = one.backlash
-        lost: float | str | None = None if result is None else round(60 * result.lost_motion, 3) \
-            if result.lost_motion is not None else f"none ({result.lost_motion_reason or 'no AP'})"
-        rows.append({
-            "axis": axis, "moves": len(one.moves), "networks": len(one.networks),
-            "backlash": result.message if result is not None else one.backlash_error,
-            "lost motion [arcmin]": lost})
-    return pd.DataFrame(rows)
+def _findings_html(ins: RobotInspection, axis_names: tuple[str, ...] = ()) -> str:
+    """The per-axis table, each axis linked to its page, and its notes said once."""
+    found = axis_findings(ins.axes, ins.axis_errors, tuple(ins.recording.axes), ins.source)
+    frame = found.table.copy()
+    if axis_names:
+        frame.insert(1, "name", [axis_names[int(a) - 1] if int(a) <= len(axis_names) else ""
+                                 for a in frame["axis"]])
+    html_table = table(frame)
+    for axis in ins.axes:  # the axis's number links to its own page
+        html_table = html_table.replace(
+            f"<td>{axis}</td>", f'<td><a href="axis-{axis}/index.html">{axis}</a></td>', 1)
+    items = "".join(
+        f"<li>{escape(text)} ({'axis' if len(axes) == 1 else 'axes'} "
+        f"{', '.join(map(str, axes))}).</li>" for text, axes in found.notes)
+    return html_table + (f"<ol class=\"notes\">{items}</ol>" if items else "")
 
 
 def _groups(nodes: tuple[str, ...]) -> dict[str, list[str]]:
@@ -354,14 +355,9 @@ def write_robot_inspection(
     for axis, one in ins.axes.items():
         write_inspection(one, out / f"axis-{axis}", progress=progress,
                          axis_label=axis_label(axis) if axis_names else None)
-    rows = _axis_rows(ins)
-    if axis_names:
-        rows.insert(1, "name", [axis_names[a - 1] if a <= len(axis_names) else ""
-                                for a in rows["axis"]])
+    findings = _findings_html(ins, axis_names)
     gaps = gaps_sentence(ins.recording.gaps, ins.recording.segments)
     gaps += " The robot network is one per segment." if gaps else ""
-    links = "".join(
-        f'<li><a href="axis-{a}/index.html">{escape(axis_label(a))}</a></li>' for a in ins.axes)
     name = Path(ins.source).name
     network_parts = []
     for k, window in enumerate(ins.windows):
@@ -388,9 +384,11 @@ def write_robot_inspection(
         f"<h1>What the robot does — {escape(name)}</h1>",
         f"<section id=\"axes\"><h2>Each axis</h2><p>{len(ins.recording.axes)} axes, "
         f"{ins.recording.duration:.1f} s sampled every {ins.recording.sample_period * 1000:g} "
-        f"ms. {escape(gaps + ' ' if gaps else '')}Each axis's own report (moves, a network per "
-        "phase, evidence, backlash): </p>"
-        f"<ul>{links}</ul>{table(rows)}</section>",
+        f"ms. {escape(gaps + ' ' if gaps else '')}An axis's number opens its own report "
+        "(moves, a network per phase, evidence, backlash). Peaks are over the moves; the lost "
+        "motion is the mean over the direction changes, ≤ a bound where the data do not "
+        "resolve it.</p>"
+        f"{findings}</section>",
         "<section id=\"robot\"><h2>The robot as one network</h2>",
         f"<p>Nodes: {escape(', '.join(ins.signals))}.</p>", *network_parts, "</section>",
         f"<section id=\"arrows\"><h2>Reading an arrow</h2><p>{escape(READING_AN_ARROW)}</p>"

@@ -354,9 +354,10 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
                     color=plot.signal_color("TORSION"), linewidth=1)  # fmt: skip
             where = change.start
         ax.axvline(where, color="0.3", linewidth=0.8, linestyle=":")
-        lost = reversal.lost_motion
+        lost, bound = reversal.lost_motion, reversal.lost_motion_high
         text = (f"lost motion {lost * 3600:.3g} arcsec" if lost is not None
-                else "no lost motion measured")
+                else f"lost motion ≤ {bound * 3600:.2g} arcsec (not resolved)"
+                if bound is not None else "no lost motion measured")
         ax.set_title(f"{change.kind} at {where:.2f} s\n{text}", fontsize=9)
         ax.set_xlabel("time [s]", fontsize=9)
         ax.tick_params(labelsize=9)

@@ -1,0 +1,157 @@
+"""The findings of a robot's page, first: one compact row per axis and the notes they share.
+
+What an engineer asks of each axis of a :class:`~funcnet.inspection.robot.RobotInspection`:
+how often it moves and turns, its peak speed, torque (or current) and following error, its lost
+motion (or the bound below which the data cannot resolve it), the gear's parts where they are
+measured, and anything unusual. Every sentence that explains a cell is a numbered note said
+once, with the axes it applies to: a reason shared by several axes is not repeated per row.
+No cell holds a file path or "None".
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from funcnet.inspection import TraceInspection
+from funcnet.report.inspect_text import lost_motion_cell
+
+__all__ = ["AxisFindings", "axis_findings"]
+
+
+@dataclass(frozen=True)
+class AxisFindings:
+    """The per-axis table and its notes.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        One row per axis; every cell a short string.
+    notes : tuple of (str, tuple of int)
+        Each note's text and the axes it applies to, in the order the table cites them
+        (``notes`` column: their numbers, from 1).
+    """
+
+    table: pd.DataFrame
+    notes: tuple[tuple[str, tuple[int, ...]], ...]
+
+
+def _number(value: Any, digits: int = 3) -> str:
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "—"
+    return f"{float(value):.{digits}g}"
+
+
+def _without_paths(text: str, source: str) -> str:
+    """A message without the recording's file (as given, and its name alone)."""
+    for where in (f"{source}: ", source, Path(source).name):
+        if where:
+            text = text.replace(where, "the recording")
+    return text.replace("the recording the recording", "the recording").strip()
+
+
+def _peak(moves: pd.DataFrame, column: str, scale: float = 1.0) -> str:
+    if column not in moves or not len(moves):
+        return "—"
+    return _number(float(moves[column].max()) * scale)
+
+
+def _torque_cell(one: TraceInspection) -> str:
+    if "peak |AC|" not in one.moves or not len(one.moves):
+        return "—"
+    info = one.recording.signals.get("AC")
+    unit = info.unit if info is not None and info.unit else "A"
+    return f"{_peak(one.moves, 'peak |AC|')} {unit}"
+
+
+def _gear_cell(result: Any, cite: Any) -> str:
+    parts = None if result is None else result.gear_parts
+    if parts is None:
+        return "—"
+    if parts.dead_zone is None:
+        if parts.reason:
+            cite(f"gear parts not told apart: {parts.reason}")
+        return "—"
+    return (f"dead zone {60 * parts.dead_zone:.2g}, friction "
+            f"{_number(None if parts.friction is None else 60 * parts.friction, 2)}")
+
+
+def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
+                  order: tuple[int, ...], source: str) -> AxisFindings:
+    """The per-axis table of a robot's page and its notes (module notes).
+
+    Parameters
+    ----------
+    axes : dict
+        Axis -> its :class:`~funcnet.inspection.TraceInspection`.
+    errors : dict
+        Axis -> why it could not be inspected.
+    order : tuple of int
+        The recording's axes, in order.
+    source : str
+        The recording's file: left out of every message.
+
+    Returns
+    -------
+    AxisFindings
+        Columns: ``axis``, ``moves``, ``direction changes``, ``peak speed [°/s]``,
+        ``peak torque or current``, ``peak following error [arcmin]``,
+        ``lost motion [arcmin]`` (a value, ``≤`` a bound where not resolved, or —),
+        ``gear dead zone, friction [arcmin]``, ``notes``.
+    """
+    notes: dict[str, list[int]] = {}
+    rows = []
+    for axis in order:
+        cited: list[int] = []
+
+        def cite(text: str, axis: int = axis, cited: list[int] = cited) -> None:
+            text = _without_paths(text, source).rstrip(".")
+            notes.setdefault(text, [])
+            if axis not in notes[text]:
+                notes[text].append(axis)
+            number = list(notes).index(text) + 1
+            if number not in cited:
+                cited.append(number)
+
+        one = axes.get(axis)
+        if one is None:
+            cite(f"not inspected: {errors.get(axis, 'no reason given')}")
+            rows.append({"axis": str(axis), "moves": "—", "direction changes": "—",
+                         "peak speed [°/s]": "—", "peak torque or current": "—",
+                         "peak following error [arcmin]": "—", "lost motion [arcmin]": "—",
+                         "gear dead zone, friction [arcmin]": "—",
+                         "notes": ", ".join(map(str, cited))})
+            continue
+        result = one.backlash
+        if result is None:
+            cite(f"no backlash diagnosis: {one.backlash_error or 'not asked for'}")
+            lost = "—"
+        else:
+            lost = lost_motion_cell(result.lost_motion, result.lost_motion_high, 60)
+            if result.lost_motion is None:
+                cite(f"lost motion: {result.lost_motion_reason or 'not measured'}")
+            if result.backlash_score is None:
+                cite(result.message)
+        gear = _gear_cell(result, cite)
+        networks = len(one.networks)
+        if networks < len(one.windows):
+            cite(f"{len(one.windows) - networks} of {len(one.windows)} phase windows without "
+                 "a network (too short or constant: see the axis's page)")
+        if not len(one.moves):
+            cite("the axis never moves")
+        rows.append({
+            "axis": str(axis), "moves": str(len(one.moves)),
+            "direction changes": str(len(one.turns) + len(one.turns_across_gaps)),
+            "peak speed [°/s]": _peak(one.moves, "peak speed"),
+            "peak torque or current": _torque_cell(one),
+            "peak following error [arcmin]": _peak(one.moves, "peak |FE|", 60.0),
+            "lost motion [arcmin]": lost,
+            "gear dead zone, friction [arcmin]": gear,
+            "notes": ", ".join(map(str, cited)),
+        })
+    return AxisFindings(table=pd.DataFrame(rows),
+                        notes=tuple((text, tuple(axes_)) for text, axes_ in notes.items()))
