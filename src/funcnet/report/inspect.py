@@ -31,14 +31,12 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
-from matplotlib.figure import Figure
 
 from funcnet._io import write_text_atomic
 from funcnet.errors import ParameterError
 from funcnet.inspection import TraceInspection, inspect_recording
 from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection, inspect_robot
 from funcnet.parameters import NetworkParameters, resolve
-from funcnet.plot import plot_network
 from funcnet.report.html import (
     Progress,
     contents,
@@ -67,9 +65,9 @@ from funcnet.report.inspect_text import (
     summary_html,
 )
 from funcnet.report.repetitions_page import write_repetitions
+from funcnet.report.robot_figures import figure_robot_matrix
 from funcnet.report.robot_summary import axis_findings
 from funcnet.robot import read_trace
-from funcnet.robot.axes import split_qualified
 from funcnet.robot.channels import channel_map
 from funcnet.robot.grid import format_spans
 from funcnet.robot.units import in_degrees
@@ -170,7 +168,8 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
                                             if ins.gaps else "."))
     add(1, "networks", figure_networks,
         "Figure 2 — the functional network of every phase window (rows: moves; columns: "
-        "phases), each node at the same place in every panel. Black arrow: directed edge X → "
+        "phases; where a move repeats a phase, every window its own panel in time order), "
+        "each node at the same place in every panel. Black arrow: directed edge X → "
         "Y (C_diff and T_diff agree, |diff| ≥ μ); red: bidirectional (|diff| < μ: mutual or no "
         "coupling); width ∝ weight (Eq. 13); no line: conflict (the measures disagree) or a "
         "degenerate pair.")
@@ -290,27 +289,16 @@ def _findings_html(ins: RobotInspection, axis_names: tuple[str, ...] = ()) -> st
     html_table = table(frame)
     for axis in ins.axes:  # the axis's number links to its own page
         html_table = html_table.replace(
-            f"<td>{axis}</td>", f'<td><a href="axis-{axis}/index.html">{axis}</a></td>', 1)
+            f"<tr><td>{axis}</td>", f'<tr><td><a href="axis-{axis}/index.html">{axis}</a></td>',
+            1)
     items = "".join(
         f"<li>{escape(text)} ({'axis' if len(axes) == 1 else 'axes'} "
         f"{', '.join(map(str, axes))}).</li>" for text, axes in found.notes)
     return html_table + (f"<ol class=\"notes\">{items}</ol>" if items else "")
 
 
-def _groups(nodes: tuple[str, ...]) -> dict[str, list[str]]:
-    groups: dict[str, list[str]] = {}
-    for name in nodes:
-        axis, _ = split_qualified(name)
-        groups.setdefault("common" if axis is None else f"A{axis}", []).append(name)
-    return groups
-
-
 def _figure(ins: RobotInspection, label: str) -> Any:
-    fig = Figure(figsize=(9, 9.6), dpi=100, layout="constrained")
-    ax = fig.add_subplot()
-    plot_network(ins.networks[label], ax, groups=_groups(ins.signals), node_size=0.09,
-                 fontsize=9, title=label)
-    return fig
+    return figure_robot_matrix(ins.networks[label], label)
 
 
 def _scope_counts(pairs: pd.DataFrame) -> str:
@@ -368,10 +356,11 @@ def write_robot_inspection(
                                  "</p>")
             continue
         pairs = ins.pairs[label]
-        caption = (f"The robot network of {label}: every axis's signals, grouped per axis "
-                   "(each axis a sector, its name outside the circle); an edge within a sector "
-                   "is within an axis, one across the circle between axes. Black arrow: "
-                   "directed; red: bidirectional; width ∝ weight (Eq. 13).")
+        caption = (f"The robot network of {label} as a matrix: row X, column Y, the axes in "
+                   "blocks (on the diagonal: within an axis; off it: between two axes), each "
+                   "block's signals in the same order. Blue: a directed edge X → Y in the "
+                   "rule's sense (row → column); red: bidirectional; darker: heavier (Eq. 13); "
+                   "a dot: the coupling test rejects independence.")
         network_parts.append(figure_html(out, f"robot-network-{k + 1}", _figure(ins, label),
                                          caption))
         network_parts.append(f"<p>{escape(_scope_counts(pairs))}.</p>")

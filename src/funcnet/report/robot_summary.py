@@ -11,6 +11,7 @@ No cell holds a file path or "None".
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -52,6 +53,20 @@ def _without_paths(text: str, source: str) -> str:
         if where:
             text = text.replace(where, "the recording")
     return text.replace("the recording the recording", "the recording").strip()
+
+
+def _general(message: str) -> str:
+    """A diagnosis's message as a note several axes can share: the counts the table holds
+    left out (``"no reversal (...): 3 in continuous motion ..."`` is the same finding on
+    every axis whatever the 3)."""
+    found = re.match(r"no reversal \(([^)]*)\)", message)
+    if found:
+        return (f"no reversal ({found.group(1)}): no motor-side backlash score, which is "
+                "calibrated on reversals only")
+    if message.startswith("one measured position per joint"):
+        # what it measures at each turn is on the axis's page
+        return message.split("; ")[0] + " (what each turn shows: the axis's page)"
+    return message
 
 
 def _peak(moves: pd.DataFrame, column: str, scale: float = 1.0) -> str:
@@ -132,10 +147,14 @@ def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
             lost = "—"
         else:
             lost = lost_motion_cell(result.lost_motion, result.lost_motion_high, 60)
-            if result.lost_motion is None:
-                cite(f"lost motion: {result.lost_motion_reason or 'not measured'}")
+            if result.lost_motion is None and result.lost_motion_high is not None:
+                terms = " and ".join(result.lost_motion_terms) or "error"
+                cite(f"lost motion ≤ a bound: below what the estimate resolves (its "
+                     f"{terms}); the interval reaches 0")
+            elif result.lost_motion is None:
+                cite(f"no lost motion: {result.lost_motion_reason or 'not measured'}")
             if result.backlash_score is None:
-                cite(result.message)
+                cite(_general(result.message))
         gear = _gear_cell(result, cite)
         networks = len(one.networks)
         if networks < len(one.windows):
