@@ -311,6 +311,24 @@ def _scope_counts(pairs: pd.DataFrame) -> str:
             "between axes")
 
 
+def _evidence_sentence(pairs: pd.DataFrame) -> str:
+    """What the evidence says of a robot network's pairs, in one sentence ("" without it)."""
+    if "evidence" not in pairs.columns:
+        return ""
+    counts = pairs["evidence"].value_counts()
+    said = ", ".join(f"{n} {label}" for label, n in counts.items())
+    blind = pairs[pairs["evidence"] == "untestable"]
+    why = ""
+    if len(blind):
+        reasons = blind["evidence_reason"].value_counts()
+        drawn = "c_diff_low" in blind and not blind["c_diff_low"].isna().all()
+        why = (f" Untestable: {reasons.index[0]}" + (" (the most common reason)"
+                                                     if len(reasons) > 1 else "")
+               + ("." if drawn else "; their asymmetry intervals are not drawn (--intervals "
+                  "all draws them)."))
+    return escape(f" Evidence: {said} of {len(pairs)} pairs.{why}")
+
+
 def write_robot_inspection(
     inspection: RobotInspection,
     out_dir: str | os.PathLike[str],
@@ -363,7 +381,8 @@ def write_robot_inspection(
                    "a dot: the coupling test rejects independence.")
         network_parts.append(figure_html(out, f"robot-network-{k + 1}", _figure(ins, label),
                                          caption))
-        network_parts.append(f"<p>{escape(_scope_counts(pairs))}.</p>")
+        network_parts.append(f"<p>{escape(_scope_counts(pairs))}.{_evidence_sentence(pairs)}"
+                             "</p>")
         shown = pairs_table(pairs)
         scope = table(pairs[["x", "y", "axis_x", "axis_y", "scope", "kind", "weight"]])
         network_parts.append("<details><summary>pairs with their scope</summary>" + scope

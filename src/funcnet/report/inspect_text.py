@@ -217,8 +217,12 @@ def _evidence_count(ins: TraceInspection) -> str:
              for net in ins.networks.values() if "evidence" in net.pairs.columns]
     k = pd.concat(blind) if blind else pd.Series(dtype=float)
     span = "" if not len(k) else str(k.min()) if k.min() == k.max() else f"{k.min()}–{k.max()}"
+    undrawn = any(net.pairs.loc[net.pairs["evidence"] == "untestable", "c_diff_low"].isna().all()
+                  and (net.pairs["evidence"] == "untestable").any()
+                  for net in ins.networks.values() if "evidence" in net.pairs.columns)
     note = (f"; untestable: the windows leave the test {span} surrogates, too few to reject "
-            "whatever the data" if span else "")
+            "whatever the data" + ("; their asymmetry intervals are not drawn" if undrawn
+                                   else "") if span else "")
     return f" (pairs over the windows: {text}{note})"
 
 

@@ -91,8 +91,18 @@ def _gear_cell(result: Any, cite: Any) -> str:
         if parts.reason:
             cite(f"gear parts not told apart: {parts.reason}")
         return "—"
-    return (f"dead zone {60 * parts.dead_zone:.2g}, friction "
-            f"{_number(None if parts.friction is None else 60 * parts.friction, 2)}")
+    return (f"dead zone {_part(parts.dead_zone, parts.dead_zone_low, parts.dead_zone_high)}, "
+            f"friction {_part(parts.friction, parts.friction_low, parts.friction_high)}")
+
+
+def _part(value: float | None, low: float | None, high: float | None) -> str:
+    """A gear part in arcmin: its value, or ``≤`` its bound where the interval reaches 0 (a
+    part of a lost motion is never negative)."""
+    if value is None:
+        return "—"
+    if low is not None and high is not None and low <= 0:
+        return f"≤ {60 * max(high, 0.0):.2g}"
+    return f"{60 * value:.2g}"
 
 
 def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
@@ -139,7 +149,7 @@ def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
                          "peak speed [°/s]": "—", "peak torque or current": "—",
                          "peak following error [arcmin]": "—", "lost motion [arcmin]": "—",
                          "gear dead zone, friction [arcmin]": "—",
-                         "notes": ", ".join(map(str, cited))})
+                         "notes": ", ".join(map(str, sorted(cited)))})
             continue
         result = one.backlash
         if result is None:
@@ -170,7 +180,7 @@ def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
             "peak following error [arcmin]": _peak(one.moves, "peak |FE|", 60.0),
             "lost motion [arcmin]": lost,
             "gear dead zone, friction [arcmin]": gear,
-            "notes": ", ".join(map(str, cited)),
+            "notes": ", ".join(map(str, sorted(cited))),
         })
     return AxisFindings(table=pd.DataFrame(rows),
                         notes=tuple((text, tuple(axes_)) for text, axes_ in notes.items()))
