@@ -367,10 +367,10 @@ def window_networks(
     drop = constant == "drop" and p.normalize is not None
     networks = WindowNetworks()
     failures = []
-    batched = _batched_networks(recording, windows, signals, p)
+    batched, found = _batched_networks(recording, windows, signals, p)
     for done, window in enumerate(windows, start=1):
-        if batched is not None:
-            networks[window.label] = batched[0][done - 1]
+        if window.label in batched:
+            networks[window.label] = batched[window.label]
         else:
             try:
                 networks[window.label] = _window_network(recording, window, signals, p, drop,
@@ -381,7 +381,11 @@ def window_networks(
                 failures.append(WindowFailure(window.label, "network", str(error)))
         if progress is not None:
             progress(done, len(windows), window.label)
-    found = batched[1] if batched is not None else window_warnings(networks)
+    # the per-window networks' warnings beside the batch's, in window order
+    order = {w.label: k for k, w in enumerate(windows)}
+    found += window_warnings({label: net for label, net in networks.items()
+                              if label not in batched})
+    found.sort(key=lambda warning: order.get(str(warning.window), -1))
     for warning in _summarized(found, where, len(windows)):
         warnings.warn(warning, stacklevel=caller_stacklevel())
     networks.failures = tuple(failures)
@@ -432,30 +436,33 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
 
 def _batched_networks(
     recording: Recording, windows: Sequence[Window], signals: Sequence[str], p: NetworkParameters
-) -> tuple[list[FunctionalNetwork], list[FuncnetWarning]] | None:
+) -> tuple[dict[str, FunctionalNetwork], list[FuncnetWarning]]:
     """The windows' networks through the batched engine (:func:`funcnet.batch.batch_pairs`),
-    equal (``==``) to :func:`_window_network`'s, and their :func:`window_warnings`; None where
-    it does not apply (no short window, explicit ``eps``, NaN or a constant signal in a window,
-    any error): the per-window path then computes them, and raises its located errors."""
+    equal (``==``) to :func:`_window_network`'s, by label, and their :func:`window_warnings`.
+
+    Windows with NaN or a constant signal are left out (the per-window path computes them and
+    raises or drops what it does); nothing where the batch does not apply (no short window,
+    explicit ``eps``, any error), and the per-window path computes every window."""
     values = recording.data[list(signals)].to_numpy(np.float64)
     times = recording.data.index.to_numpy()
     try:  # the rows Recording.window selects (and its errors: then the per-window path's)
         spans = [recording.window(w.start, w.stop).data.index[[0, -1]] for w in windows]
     except FuncnetError:
-        return None
+        return {}, []
     firsts = np.searchsorted(times, [span[0] for span in spans])
     parts = [values[first : int(np.searchsorted(times, span[1])) + 1]
              for first, span in zip(firsts.tolist(), spans, strict=True)]
+    kept = [k for k, part in enumerate(parts) if np.isfinite(part).all()
+            and not (p.normalize and (np.ptp(part, axis=0) == 0).any())]
+    windows = [windows[k] for k in kept]
+    parts = [parts[k] for k in kept]
     # Long windows inside the batch go through the per-window path; none short: no batch.
-    if not any(batch.applies(part.shape[0], p) for part in parts) or any(
-        not np.isfinite(part).all() or (p.normalize and (np.ptp(part, axis=0) == 0).any())
-        for part in parts
-    ):
-        return None
+    if not any(batch.applies(part.shape[0], p) for part in parts):
+        return {}, []
     try:
         result = batch.batch_pairs(parts, names=[str(s) for s in signals], parameters=p)
     except FuncnetError:
-        return None
+        return {}, []
     n_pairs, n_rows = len(result.pairs), len(windows) * len(result.pairs)
     columns: dict[str, list[Any]] = {"x": [x for x, _ in result.pairs] * len(windows),
                                      "y": [y for _, y in result.pairs] * len(windows)}
@@ -488,7 +495,7 @@ def _batched_networks(
                     "phase": window.phase, "offset": window.offset,
                     "source": recording.source, "dropped": ()},
         ))
-    return networks, found
+    return {str(w.label): net for w, net in zip(windows, networks, strict=True)}, found
 
 
 def _without(p: NetworkParameters, kept: Sequence[bool]) -> NetworkParameters:
