@@ -17,7 +17,7 @@ from funcnet.cli import app
 from funcnet.diagnosis import diagnose_backlash, diagnose_recording, write_results
 from funcnet.diagnosis.reversal_error import _blocks, fit_gear
 from funcnet.robot import Recording, SignalInfo, read_trace
-from funcnet.robot.sim import Trial, simulate_trial
+from funcnet.sim import Trial, simulate_trial
 
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 

@@ -27,7 +27,7 @@ runner = CliRunner()
 @pytest.fixture(scope="module")
 def trial(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A short simulated trial (about 3 s at 500 Hz) written as a SINUMERIK trace."""
-    from funcnet.robot import Trial, write_plan
+    from funcnet.sim import Trial, write_plan
 
     folder = tmp_path_factory.mktemp("cli") / "plan"
     write_plan([Trial("quick", "main", speed=350, tcp=1.6, step=1)], folder, workers=1)
@@ -545,7 +545,7 @@ def test_simulate_a_plan_file(tmp_path: Path) -> None:
 
 
 def test_simulate_knows_the_named_plans() -> None:
-    from funcnet.robot.sim import NAMED_PLANS
+    from funcnet.sim import NAMED_PLANS
 
     result = runner.invoke(app, ["simulate", "--help"], env={"COLUMNS": "200"})
     # the help is wrapped to the terminal, possibly after a hyphen
@@ -622,7 +622,7 @@ def tiny_demo(monkeypatch) -> list:
     import funcnet.report
     import funcnet.robot
     from funcnet._io import write_text_atomic
-    from funcnet.robot import Trial
+    from funcnet.sim import Trial
 
     # The whole paper plan takes minutes: the demo's wiring is tested on a one-trial plan.
     monkeypatch.setattr(
@@ -776,7 +776,7 @@ def test_network_refuses_a_forecast_over_the_limit_unless_forced(trial: Path, tm
 @pytest.fixture(scope="module")
 def henon_trace(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A CSV trace of two coupled Hénon maps (C = 0.6) and independent noise."""
-    from funcnet.systems import henon_pair
+    from funcnet.validation.systems import henon_pair
 
     x = henon_pair(800, 0.6, seed=1)
     trace = tmp_path_factory.mktemp("henon") / "henon.csv"

@@ -21,7 +21,7 @@ from funcnet.diagnosis import (
 )
 from funcnet.errors import ParameterError
 from funcnet.robot import read_trace
-from funcnet.robot.sim import Trial, simulate_trial, write_trace
+from funcnet.sim import Trial, simulate_trial, write_trace
 
 
 def _reversal_trace(tmp_path: Path, backlash_arcmin: float, name: str) -> tuple[Path, dict]:

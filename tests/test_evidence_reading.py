@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 from funcnet import functional_network
 from funcnet.evidence import EVIDENCE_LABELS, smallest_p_values, untestable
 from funcnet.network import FunctionalNetwork
-from funcnet.systems import henon_pair
+from funcnet.validation.systems import henon_pair
 
 
 def _bh_brute(p: list[float]) -> list[float]:

@@ -512,7 +512,7 @@ def test_pair_reading_tells_coupled_from_untestable_on_real_networks():
     from funcnet import functional_network
     from funcnet.evidence import untestable
     from funcnet.paper.coupling import pair_reading
-    from funcnet.systems import henon_pair
+    from funcnet.validation.systems import henon_pair
 
     x = henon_pair(800, 0.6, seed=1)
     data = pd.DataFrame({"X": x[:, 0], "Y": x[:, 1]})

@@ -52,7 +52,7 @@ delay = [5, 10]
 
 @pytest.fixture(scope="module")
 def plan_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    from funcnet.robot import Trial, write_plan
+    from funcnet.sim import Trial, write_plan
 
     folder = tmp_path_factory.mktemp("study") / "plan"
     trials = [Trial(name, "main", speed=350, tcp=tcp, step=1) for name, tcp in TRIALS]

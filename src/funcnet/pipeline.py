@@ -28,7 +28,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from funcnet import batch
+from funcnet.core import batch
+from funcnet.core.measures import CrossMeasures, threshold_warnings
 from funcnet.errors import (
     ChannelError,
     FuncnetError,
@@ -37,7 +38,6 @@ from funcnet.errors import (
     WindowError,
     caller_stacklevel,
 )
-from funcnet.measures import CrossMeasures, threshold_warnings
 from funcnet.network import (
     FunctionalNetwork,
     add_evidence,
@@ -433,7 +433,7 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
 def _batched_networks(
     recording: Recording, windows: Sequence[Window], signals: Sequence[str], p: NetworkParameters
 ) -> tuple[list[FunctionalNetwork], list[FuncnetWarning]] | None:
-    """The windows' networks through the batched engine (:func:`funcnet.batch.batch_pairs`),
+    """The windows' networks through the batched engine (:func:`funcnet.core.batch.batch_pairs`),
     equal (``==``) to :func:`_window_network`'s, and their :func:`window_warnings`; None where
     it does not apply (no short window, explicit ``eps``, NaN or a constant signal in a window,
     any error): the per-window path then computes them, and raises its located errors."""
@@ -533,7 +533,7 @@ def window_warnings(networks: Mapping[str, FunctionalNetwork]) -> list[FuncnetWa
     Returns
     -------
     list of FuncnetWarning
-        In window order, then as :func:`funcnet.measures.threshold_warnings` orders them: a
+        In window order, then as :func:`funcnet.core.measures.threshold_warnings` orders them: a
         :class:`~funcnet.errors.ThresholdWarning` for pairs whose ``eps_ordered`` is False
         (``problem="eps_order"``) and for pairs whose ``rate_exceeded`` is True, degenerate
         pairs aside (``"rate_exceeded"``), a :class:`~funcnet.errors.DegenerateWarning` for the

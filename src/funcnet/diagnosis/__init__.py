@@ -4,7 +4,7 @@
 :mod:`~funcnet.diagnosis.indicators` computes the backlash indicators at a reversal (physical
 baselines, motor-side functional-network features, the paper's signature),
 :mod:`~funcnet.diagnosis.two_encoder` the two-encoder lost motion among them,
-:mod:`~funcnet.diagnosis.sweep` simulates the sweep and scores the indicators against the
+:mod:`~funcnet.validation.sweep` simulates the sweep and scores the indicators against the
 truth, and :mod:`~funcnet.diagnosis.diagnose` diagnoses real traces
 (:func:`diagnose_backlash`; :mod:`~funcnet.diagnosis.segments` reads a recording with gaps
 segment by segment, :mod:`~funcnet.diagnosis.results` writes the diagnoses). Names are imported
@@ -33,10 +33,10 @@ _EXPORTS = {
     "lost_motion": "funcnet.diagnosis.two_encoder",
     "ArmStart": "funcnet.diagnosis.two_encoder",
     "first_start": "funcnet.diagnosis.two_encoder",
-    "run_sweep": "funcnet.diagnosis.sweep",
-    "folder_indicators": "funcnet.diagnosis.sweep",
-    "score_indicators": "funcnet.diagnosis.sweep",
-    "calibration": "funcnet.diagnosis.sweep",
+    "run_sweep": "funcnet.validation.sweep",
+    "folder_indicators": "funcnet.validation.sweep",
+    "score_indicators": "funcnet.validation.sweep",
+    "calibration": "funcnet.validation.sweep",
     "SCORE": "funcnet.diagnosis.diagnose",
     "MOTOR_LOOP_SCORE": "funcnet.diagnosis.diagnose",
     "BacklashResult": "funcnet.diagnosis.diagnose",

@@ -230,7 +230,7 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     --------
     >>> import numpy as np
     >>> from funcnet.network import functional_network
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.validation.systems import henon_pair
     >>> data = henon_pair(300, 0.6, seed=0)
     >>> plain = functional_network(data, names=["x", "y"], delay=1, warn=False)
     >>> full = add_evidence(plain, data, surrogates=19, resamples=0)

@@ -36,8 +36,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from funcnet.core.kinds import combine_kinds, combined_kinds, edge_kind, measure_kinds
 from funcnet.errors import ParameterError
-from funcnet.kinds import combine_kinds, combined_kinds, edge_kind, measure_kinds
 from funcnet.network.schema import PAIR_COLUMNS, PAIR_DTYPES, edges_frame
 from funcnet.parameters import NetworkParameters, resolve
 

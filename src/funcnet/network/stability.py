@@ -53,7 +53,7 @@ which each pair is degenerate, under either policy.
 **Work.** Settings that differ only in the rule's fields (``mu``, ``mu_c``, ``mu_t``,
 ``measure``) share one computation of the measures: the rule (:mod:`funcnet.network.rule`) is
 re-applied to the same ``C_diff`` and ``T_diff``. Every other distinct setting is one pass of
-the batched engine (:func:`funcnet.batch.batch_pairs`, bit-identical to
+the batched engine (:func:`funcnet.core.batch.batch_pairs`, bit-identical to
 :func:`~funcnet.network.functional_network`), or of :func:`functional_network` for nodes of
 several columns. The kinds are those of the paper's rule (``edge_rule="paper"``); the
 interval rule of the evidence is not varied here.
@@ -73,7 +73,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from funcnet.batch import batch_pairs
+from funcnet.core.batch import batch_pairs
 from funcnet.errors import FuncnetError, ParameterError, SignalError
 from funcnet.network._inputs import column_names, float_columns, node_groups
 from funcnet.network.functional import functional_network

@@ -1,6 +1,6 @@
 """The paper's section 4 analyses on a plan of simulated trials, every finding measured.
 
-:func:`run_paper_analyses` reads a plan (:func:`funcnet.robot.write_plan`), cuts each trial
+:func:`run_paper_analyses` reads a plan (:func:`funcnet.sim.write_plan`), cuts each trial
 into the paper's windows, computes the networks with :func:`funcnet.pipeline.window_networks`
 under one :class:`~funcnet.parameters.NetworkParameters` (:data:`PAPER_PARAMETERS` by default)
 and measures the findings (:mod:`funcnet.paper.evaluate`).
@@ -322,7 +322,7 @@ def run_paper_analyses(
 ) -> PaperAnalyses:
     """The paper's section 4 analyses on a plan of trials, with every finding measured.
 
-    Reads ``manifest.csv`` and the traces of ``plan_dir`` (:func:`funcnet.robot.write_plan`),
+    Reads ``manifest.csv`` and the traces of ``plan_dir`` (:func:`funcnet.sim.write_plan`),
     derives V from AP (Eq. 11-12) over each whole recording
     (:func:`funcnet.robot.read_recording`), detects the phases from RP
     (:func:`funcnet.robot.detect_phases`) and computes (:func:`funcnet.window_networks`):

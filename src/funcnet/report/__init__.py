@@ -28,7 +28,7 @@ from __future__ import annotations
 from funcnet._lazy import attach
 
 _EXPORTS = {
-    "build_demo_report": "funcnet.report.demo",
+    "build_demo_report": "funcnet.paper.demo",
     "write_report": "funcnet.report.study_report",
     "save_figure": "funcnet.report.html",
     "inspect_trace": "funcnet.report.inspect",

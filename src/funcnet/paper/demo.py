@@ -268,7 +268,7 @@ def build_demo_report(
     Parameters
     ----------
     plan_dir : path-like
-        A folder written by :func:`funcnet.robot.write_plan` (traces and ``manifest.csv``).
+        A folder written by :func:`funcnet.sim.write_plan` (traces and ``manifest.csv``).
     out_dir : path-like
         Report folder: ``index.html`` and ``figures/*.png`` are written there.
     progress : callable, optional
