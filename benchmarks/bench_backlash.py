@@ -1,4 +1,4 @@
-"""The backlash sweep and its indicator table (issue 11; docs/backlash.md).
+"""The backlash sweep and its indicator table (docs/backlash.md).
 
     .venv/bin/python benchmarks/bench_backlash.py            # full sweep, table, timings
     .venv/bin/python benchmarks/bench_backlash.py --calibrate  # also rewrite calibration.json
@@ -278,7 +278,7 @@ def with_fn(args: argparse.Namespace, out: list[str]) -> pd.DataFrame:
 
 
 def lost_motion_summary(sweep: pd.DataFrame) -> str:
-    """The two-encoder lost motion against the manifest's truth: the issue's target, per width.
+    """The two-encoder lost motion against the manifest's truth: the 5 % target, per width.
 
     Parameters
     ----------

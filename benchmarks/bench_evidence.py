@@ -1,4 +1,4 @@
-"""Benchmark of the edge evidence on systems with known coupling (issue 10): prints the tables.
+"""Benchmark of the edge evidence on systems with known coupling: prints the tables.
 
 Usage::
 

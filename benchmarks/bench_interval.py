@@ -1,4 +1,4 @@
-"""Calibration of the asymmetry interval (issue 10, item 1): prints the coverage table.
+"""Calibration of the asymmetry interval: prints the coverage table.
 
 Usage::
 

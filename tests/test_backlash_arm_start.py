@@ -1,4 +1,4 @@
-"""The axis's gear-arm parameters from the arm's first start from rest (issue 11).
+"""The axis's gear-arm parameters from the arm's first start from rest.
 
 :func:`funcnet.diagnosis.two_encoder.first_start` fits the resonance and the friction's Stribeck
 drop where the arm starts from a long rest; the two-encoder lost motion at a reversal then fits

@@ -1,4 +1,4 @@
-"""`funcnet backlash` (the SHELL owner's command) on the real trace: a result, exit 0 (issue 11)."""
+"""`funcnet backlash` on the real trace: a result, exit 0."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
 """The backlash diagnosis of a recording with gaps: read segment by segment, nothing across a gap,
-a direction change with a gap within what is read around it left out and said (issue 21, item 1).
+a direction change with a gap within what is read around it left out and said.
 """
 
 from __future__ import annotations

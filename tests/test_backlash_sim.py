@@ -1,4 +1,4 @@
-"""Physics of the simulator's new parts, each against its own parameters (issue 11)."""
+"""Physics of the simulator's new parts, each against its own parameters."""
 
 from __future__ import annotations
 

@@ -16,8 +16,7 @@ import pytest
 from typer.testing import CliRunner
 
 from funcnet import cli
-from funcnet.cli import app, messages, network_output, selection
-from funcnet.cli import options as cli_options
+from funcnet.cli import app, messages, network_output, options as cli_options, selection
 
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 
@@ -619,14 +618,14 @@ def test_study_on_a_local_cluster_and_bad_schedulers(trial: Path, tmp_path: Path
 @pytest.fixture
 def tiny_demo(monkeypatch) -> list:
     """The demo on a one-trial plan and a stand-in report builder; its calls are returned."""
-    import funcnet.report
-    import funcnet.robot
+    import funcnet.paper.demo
+    import funcnet.sim
     from funcnet._io import write_text_atomic
     from funcnet.sim import Trial
 
     # The whole paper plan takes minutes: the demo's wiring is tested on a one-trial plan.
     monkeypatch.setattr(
-        funcnet.robot, "paper_plan", lambda: [Trial("tiny", "main", speed=350, tcp=1.2, step=1)]
+        funcnet.sim, "paper_plan", lambda: [Trial("tiny", "main", speed=350, tcp=1.2, step=1)]
     )
     calls = []
 
@@ -638,7 +637,7 @@ def tiny_demo(monkeypatch) -> list:
         warnings.warn(ThresholdWarning("eps_xy is not below", problem="eps_order"), stacklevel=1)
         return write_text_atomic(Path(out_dir) / "index.html", "<html></html>")
 
-    monkeypatch.setattr(funcnet.report, "build_demo_report", build_demo_report)
+    monkeypatch.setattr(funcnet.paper.demo, "build_demo_report", build_demo_report)
     return calls
 
 
@@ -686,7 +685,7 @@ def test_whole_recording_starts_where_every_signal_has_a_value(real_trace, tmp_p
 
 
 # --------------------------------------------------------------------------------------------
-# issue 12: a quiet, consistent command line
+# a quiet, consistent command line
 
 
 def test_warnings_are_one_counted_line_and_verbose_lists_them(real_trace) -> None:

@@ -1,4 +1,4 @@
-"""Defects of the numerical core named by issue 8, each pinned by a test that failed before.
+"""Defects of the numerical core found in review, each pinned by a test that failed before.
 
 Also the contracts the reshape added to the core: one parameter bundle, metric aliases,
 multichannel nodes (against a brute-force reference), typed and pure threshold warnings.
@@ -16,8 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
 import funcnet.core.thresholds as order_statistic
 from funcnet.core.embedding import MIN_STATES, embed, signal_states

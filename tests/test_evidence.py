@@ -178,7 +178,7 @@ def test_false_positive_rate_on_uncoupled_pairs(name, batch, delay):
 
 
 def test_power_on_coupled_henon_maps():
-    # Target of issue 10: power >= 0.9 at C = 0.4, N = 500; measured 1.00 on 200 pairs.
+    # Target: power >= 0.9 at C = 0.4, N = 500; measured 1.00 on 200 pairs.
     p = p_values(systems.henon_pair(500, 0.4, seed=list(range(20))))
     assert int((p <= 0.05).sum()) >= 17
 

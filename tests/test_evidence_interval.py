@@ -1,4 +1,4 @@
-"""The asymmetry interval (issue 10, item 1): rate model, properties, calibration on fixed seeds.
+"""The asymmetry interval: rate model, properties, calibration on fixed seeds.
 
 The calibration bounds are for a handful of pairs (seeds 0-29, below the benchmark's validation
 seeds 2000-2199 and the 5000-5199 the fractions were chosen on); the full table is

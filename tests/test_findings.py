@@ -505,7 +505,7 @@ def test_degenerate_pairs_do_not_count_in_the_mean_edge_weight():
 
 
 # --------------------------------------------------------------------------------------------
-# coupling evidence of the claimed relations (issue 10)
+# coupling evidence of the claimed relations
 
 
 def test_pair_reading_tells_coupled_from_untestable_on_real_networks():

@@ -1,4 +1,4 @@
-"""Long windows (issue 9 item 4): the blocked triangle kernel, heavy ties, the cost forecast.
+"""Long windows: the blocked triangle kernel, heavy ties, the cost forecast.
 
 The blocked kernel must count exactly what the row-wise kernel counts (integers, any order);
 a signal that rests for a third of the window (tens of millions of pairs at distance 0 in a
@@ -20,8 +20,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
 import funcnet.core.measures as measures
 import funcnet.core.thresholds as order_statistic

@@ -14,8 +14,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
 import funcnet.core.thresholds as order_statistic
 from funcnet.core.embedding import embed, estimate_delay, estimate_dimension, signal_states

@@ -12,7 +12,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from funcnet.report import build_demo_report, write_report
+from funcnet.paper.demo import build_demo_report
+from funcnet.report import write_report
 
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
 WINDOW_WIDTH = 1300  # pixels; the report must read without sideways scrolling at this width

@@ -12,8 +12,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
 from funcnet.errors import ChannelError, ParameterError, RecordingWarning, TraceFormatError
 from funcnet.robot.channels import (

@@ -23,7 +23,7 @@ import warnings
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
@@ -47,7 +47,7 @@ from funcnet.network import (
 )
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.preprocess import staircase_warning
 from funcnet.robot.recording import Recording
 from funcnet.robot.windows import Window, paper_nodes, phase_windows
@@ -138,7 +138,7 @@ def _collects(errors: str) -> bool:
 def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwork],
                     windows: Sequence[Window], *, errors: str = "raise",
                     progress: Callable[[int, int, str], None] | None = None,
-                    **settings: Any) -> WindowNetworks:
+                    **settings: Unpack[EvidenceSettings]) -> WindowNetworks:
     """Each window's network with the evidence columns (:func:`funcnet.network.add_evidence`:
     the measures are not computed again).
 
@@ -228,7 +228,7 @@ def window_networks(
     constant: str = "error",
     errors: str = "raise",
     progress: Callable[[int, int, str], None] | None = None,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> WindowNetworks:
     """One functional network per window of a recording.
 

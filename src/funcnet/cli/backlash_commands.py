@@ -61,7 +61,11 @@ def backlash(
 
         with progress_bar(quiet, "backlash"):
             results = diagnose_backlash(*traces, channels=channels, axis=axis)
-        if output is not None:
+        if output is not None and output.suffix.lower() == ".html":
+            from funcnet.report import write_backlash_page
+
+            write_backlash_page(results, output)
+        elif output is not None:
             write_results(results, output)
     for result in results:
         where = result.path if result.axis is None else f"{result.path} axis {result.axis}"

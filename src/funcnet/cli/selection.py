@@ -122,7 +122,7 @@ def check_signals(names: list[str] | None, recording: Any, trace: Path) -> None:
     )
 
 
-#: Above either, one network is refused unless --force (issue 9: a forecast, not a promise).
+#: Above either, one network is refused unless --force (a forecast, not a promise).
 COST_LIMIT_SECONDS = 60.0
 COST_LIMIT_BYTES = 4 * 2**30
 

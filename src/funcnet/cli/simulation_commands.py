@@ -27,7 +27,7 @@ def demo(
     """
     # The report counts the analyses' warnings per problem: not printed once per trial here.
     with reported_errors(summarized=True):
-        from funcnet.report import build_demo_report
+        from funcnet.paper.demo import build_demo_report
         from funcnet.sim import paper_plan, write_plan
 
         plan_dir = out / "plan"

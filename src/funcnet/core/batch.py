@@ -30,7 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 
@@ -51,7 +51,7 @@ from funcnet.core.thresholds import (
     _unordered_rank,
 )
 from funcnet.errors import FuncnetError, ParameterError, SignalError
-from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
+from funcnet.parameters import PAIR_FIELDS, NetworkParameters, ParameterOverrides, resolve
 
 __all__ = ["DIRECT_MAX_STATES", "RESULT_FIELDS", "BatchPairs", "applies", "batch_pairs",
            "stacked_measures", "window_ranks", "windows_per_block", "batch_kernel_for"]
@@ -317,7 +317,7 @@ def batch_pairs(
     *,
     names: Sequence[str] | None = None,
     parameters: NetworkParameters | None = None,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> BatchPairs:
     """Pairs numbers of many windows in one compiled pass, as the per-window path gives them.
 

@@ -46,7 +46,7 @@ from __future__ import annotations
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import numba
 import numpy as np
@@ -81,7 +81,7 @@ from funcnet.errors import (
     ThresholdWarning,
     caller_stacklevel,
 )
-from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
+from funcnet.parameters import PAIR_FIELDS, NetworkParameters, ParameterOverrides, resolve
 
 __all__ = [
     "CrossMeasures",
@@ -483,7 +483,7 @@ def cross_measures(
     *,
     parameters: NetworkParameters | None = None,
     warn: bool = True,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> CrossMeasures:
     """Global cross-clustering and cross-transitivity of two signals, both directions.
 
@@ -625,7 +625,7 @@ def pairwise_cross_measures(
     names: Sequence[str] | None = None,
     parameters: NetworkParameters | None = None,
     warn: bool = True,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> dict[tuple[Any, Any], CrossMeasures]:
     """Cross measures of every pair ``i < j`` of equally long signals (a functional network).
 
@@ -744,7 +744,11 @@ def pairwise_cross_measures(
 
 
 def local_cross_clustering(
-    x: Any, y: Any, *, parameters: NetworkParameters | None = None, **overrides: Any
+    x: Any,
+    y: Any,
+    *,
+    parameters: NetworkParameters | None = None,
+    **overrides: Unpack[ParameterOverrides],
 ) -> tuple[np.ndarray, np.ndarray]:
     """Local cross-clustering of every node, both directions (Eq. 6).
 
@@ -785,7 +789,11 @@ def local_cross_clustering(
 
 
 def cross_degree(
-    x: Any, y: Any, *, parameters: NetworkParameters | None = None, **overrides: Any
+    x: Any,
+    y: Any,
+    *,
+    parameters: NetworkParameters | None = None,
+    **overrides: Unpack[ParameterOverrides],
 ) -> tuple[np.ndarray, np.ndarray]:
     """Cross-degree of every node, both directions (Eq. 7).
 

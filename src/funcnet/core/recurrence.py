@@ -72,7 +72,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, Unpack
 
 import numba
 import numpy as np
@@ -98,7 +98,9 @@ from funcnet.parameters import (
     METRICS,
     PAIR_FIELDS,
     RULES,
+    BlockOverrides,
     NetworkParameters,
+    ParameterOverrides,
     check_int,
     resolve,
 )
@@ -264,7 +266,7 @@ def auto_recurrence(
     eps: float | None = None,
     parameters: NetworkParameters | None = None,
     name: str = "x",
-    **overrides: Any,
+    **overrides: Unpack[BlockOverrides],
 ) -> PackedRecurrence:
     """Bit-packed recurrence adjacency ``A_X`` of embedded states (Eq. 2, 5).
 
@@ -364,7 +366,7 @@ def cross_recurrence(
     eps: float | None = None,
     parameters: NetworkParameters | None = None,
     names: tuple[str, str] = ("x", "y"),
-    **overrides: Any,
+    **overrides: Unpack[BlockOverrides],
 ) -> PackedRecurrence:
     """Bit-packed cross-recurrence matrix ``CR_XY`` of two sets of embedded states (Eq. 3).
 
@@ -487,7 +489,7 @@ def recurrence_matrix(
     rr: float | None = None,
     eps: float | None = None,
     parameters: NetworkParameters | None = None,
-    **overrides: Any,
+    **overrides: Unpack[BlockOverrides],
 ) -> np.ndarray:
     """Dense recurrence adjacency ``A_X`` of a signal (Eq. 2, 5), for small N and figures.
 
@@ -541,7 +543,7 @@ def cross_recurrence_matrix(
     cr: float | None = None,
     eps: float | None = None,
     parameters: NetworkParameters | None = None,
-    **overrides: Any,
+    **overrides: Unpack[BlockOverrides],
 ) -> np.ndarray:
     """Dense cross-recurrence matrix ``CR_XY`` of two signals (Eq. 3).
 
@@ -590,7 +592,11 @@ def cross_recurrence_matrix(
 
 
 def isrn_adjacency(
-    x: Any, y: Any, *, parameters: NetworkParameters | None = None, **overrides: Any
+    x: Any,
+    y: Any,
+    *,
+    parameters: NetworkParameters | None = None,
+    **overrides: Unpack[ParameterOverrides],
 ) -> np.ndarray:
     """Dense adjacency matrix of the inter-system recurrence network (Eq. 4).
 
@@ -711,7 +717,7 @@ def estimate_cost(
     parameters: NetworkParameters | None = None,
     *,
     threads: int | None = None,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> CostEstimate:
     """Forecast time and memory of one functional network of ``n_signals`` signals.
 

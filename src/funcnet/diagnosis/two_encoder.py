@@ -1,4 +1,4 @@
-"""The two-encoder lost motion at a direction change (issue 11; needs AP and MP).
+"""The two-encoder lost motion at a direction change (needs AP and MP).
 
 ``MP - AP`` changes across a reversal by the motor's travel while the arm rests -- the gear's
 dead zone plus its wind-up on both flanks -- plus what the arm still coasts forward after the

@@ -19,7 +19,7 @@ Surrogates: a lattice of non-circular time shifts on equal-length windows
     around: a circular shift joins the end of Y to its start, so the pairs of times that
     straddle the wrap get a different lag in Y than in X; two independent copies of the same
     oscillator recur at the same lags, the wrap destroys exactly that, and the circular test
-    rejected independence in about 20 % of such pairs (issue 10). With equal-length windows and
+    rejected independence in about 20 % of such pairs. With equal-length windows and
     no wrap, every surrogate is, when X and Y are independent and each is stationary, a draw
     of the same law as the observed window, whatever the signals' periods.
 

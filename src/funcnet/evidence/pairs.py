@@ -30,7 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 
@@ -49,7 +49,7 @@ from funcnet.evidence.dependence import (
     surrogate_plan,
 )
 from funcnet.evidence.interval import AsymmetryInterval, asymmetry_intervals
-from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
+from funcnet.parameters import PAIR_FIELDS, NetworkParameters, ParameterOverrides, resolve
 
 __all__ = ["EVIDENCE_LABELS", "PairEvidence", "pairwise_evidence", "evidence_label",
            "check_evidence_arguments"]
@@ -190,7 +190,7 @@ def pairwise_evidence(
     resamples: int = 200,
     level: float = 0.95,
     surrogate_method: str = "shift",
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> dict[tuple[Any, Any], PairEvidence]:
     """Coupling test, intervals and direction of every pair ``i < j`` of equally long signals.
 

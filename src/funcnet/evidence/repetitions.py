@@ -72,7 +72,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
@@ -89,7 +89,7 @@ from funcnet.evidence._kernels import _repetition_counts
 from funcnet.evidence.dependence import benjamini_hochberg, default_surrogates
 from funcnet.evidence.pairs import _check_alpha, _check_surrogates
 from funcnet.evidence.reading import evidence_readings
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
 
 __all__ = ["REPETITION_COLUMNS", "repetition_evidence", "repetition_tests", "repetitions_needed",
            "smallest_p_value", "EXHAUSTIVE_MAX"]
@@ -299,7 +299,7 @@ def repetition_tests(
     seed: int = 0,
     surrogates: int | None = None,
     residuals: bool = True,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> pd.DataFrame:
     """The repetition coupling test of every pair alone, unadjusted (module notes).
 
@@ -379,7 +379,7 @@ def repetition_evidence(
     surrogates: int | None = None,
     residuals: bool = True,
     level: float = 0.95,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> pd.DataFrame:
     """Evidence for every pair from ``R`` aligned repetitions of one motion (module notes).
 

@@ -20,7 +20,7 @@ import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Unpack
 
 import networkx as nx
 import pandas as pd
@@ -32,7 +32,7 @@ from funcnet.network._inputs import prepared_signals
 from funcnet.network.edge_evidence import check_edge_rule, evidence_columns
 from funcnet.network.rule import edges_from_pairs, pair_kinds
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
 
 __all__ = ["FunctionalNetwork", "functional_network"]
 
@@ -398,7 +398,7 @@ def functional_network(
     resamples: int = 200,
     surrogate_method: str = "shift",
     edge_rule: str = "paper",
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> FunctionalNetwork:
     """Functional network of simultaneously sampled signals (section 2.3-2.4, 3.4).
 

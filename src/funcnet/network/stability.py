@@ -68,7 +68,7 @@ import numbers
 from collections import Counter
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
@@ -78,7 +78,7 @@ from funcnet.errors import FuncnetError, ParameterError, SignalError
 from funcnet.network._inputs import column_names, float_columns, node_groups
 from funcnet.network.functional import functional_network
 from funcnet.network.rule import pair_kinds
-from funcnet.parameters import METRICS, PAIR_FIELDS, NetworkParameters, resolve
+from funcnet.parameters import METRICS, PAIR_FIELDS, NetworkParameters, ParameterOverrides, resolve
 
 __all__ = [
     "EdgeStability", "edge_stability", "default_grid", "check_grid", "GRID_FIELDS",
@@ -439,7 +439,7 @@ def edge_stability(
     parameters: NetworkParameters | None = None,
     grid: Mapping[Any, Sequence[Any]] | None = None,
     full: bool = False,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> EdgeStability:
     """Per pair, the fraction of a grid of settings that keep the kind it has at the base.
 

@@ -18,7 +18,7 @@ import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
@@ -31,7 +31,7 @@ from funcnet.paper.evaluate import (
     reversal_findings,
     velocity_findings,
 )
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.windows import PAPER_NODES
 
 __all__ = [
@@ -183,7 +183,7 @@ class PaperAnalyses:
                                   abs(float(trials.loc[a.trial, "tcp"]) - 1.6)))
 
 
-def _select(trials: pd.DataFrame, **where: Any) -> pd.DataFrame:
+def _select(trials: pd.DataFrame, **where: float | str | bool) -> pd.DataFrame:
     mask = np.ones(len(trials), dtype=bool)
     for column, value in where.items():
         column_values = trials[column]
@@ -307,6 +307,19 @@ def _analyse(name: str, path: Any, recording: Any,
     return TrialAnalysis(name, str(path), data, phases, windows, networks, errors, dropped)
 
 
+class AnalysisOptions(ParameterOverrides, total=False):
+    """The keywords of :func:`run_paper_analyses` besides the plan and the progress callback,
+    for functions that pass them on (:func:`funcnet.paper.demo.build_demo_report`)."""
+
+    parameters: NetworkParameters | None
+    signals: Sequence[str]
+    max_phase_length: float
+    fixed_lengths: Mapping[str, float] | None
+    reversal_width: float | None
+    timeline_width: float
+    timeline_step: float
+
+
 def run_paper_analyses(
     plan_dir: Any,
     *,
@@ -318,7 +331,7 @@ def run_paper_analyses(
     reversal_width: float | None = REVERSAL_WIDTH,
     timeline_width: float = 0.6,
     timeline_step: float = 0.2,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> PaperAnalyses:
     """The paper's section 4 analyses on a plan of trials, with every finding measured.
 

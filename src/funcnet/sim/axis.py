@@ -385,12 +385,13 @@ class AxisParameters:
         """Arm inertia about the axis in kg m^2 at TCP distance ``tcp`` (m)."""
         return self.arm_inertia_base + self.arm_tcp_mass * tcp**2
 
-    def replace(self, **changes: Any) -> AxisParameters:
+    def replace(self, **changes: float | str) -> AxisParameters:
         """A copy with ``changes`` applied (validated like the constructor)."""
         unknown = set(changes) - {f.name for f in dataclasses.fields(self)}
         if unknown:
             raise ParameterError(f"AxisParameters has no field(s) {sorted(unknown)}")
-        return dataclasses.replace(self, **changes)
+        fields: dict[str, Any] = dict(changes)  # each checked by __post_init__
+        return dataclasses.replace(self, **fields)
 
 
 #: Fields of :class:`AxisParameters` that take a word, and the words.
@@ -407,7 +408,7 @@ REAL_SENSOR_FIELDS = ("position_log_period", "arm_encoder_counts", "motor_encode
                       "cogging_torque")  # fmt: skip
 
 
-def real_axis_parameters(**changes: Any) -> AxisParameters:
+def real_axis_parameters(**changes: float | str) -> AxisParameters:
     """The axis with its sensors and logging set from the real 840D sl trace.
 
     The mechanics stay those of :class:`AxisParameters`; what a controller trace shows is set

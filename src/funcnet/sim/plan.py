@@ -138,7 +138,7 @@ OPTIONAL_MANIFEST_COLUMNS = ("arm_load", "profile")
 #: 1 arcmin in degrees: plans and manifests give ``backlash`` in degrees (full dead-zone width).
 ARCMIN = 1.0 / 60.0
 
-#: The backlash sweep's grid (issue 11): backlash in arcmin, speeds in deg/min, TCP in m,
+#: The backlash sweep's grid: backlash in arcmin, speeds in deg/min, TCP in m,
 #: friction and stiffness scales, noise seeds and noise scales (1: the real trace's level).
 SWEEP_GRID: dict[str, tuple[float, ...]] = {
     "backlash_arcmin": (0.0, 0.25, 0.5, 1.0, 2.0, 4.0),

@@ -28,8 +28,7 @@ from funcnet._io import write_text_atomic
 from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE, SCORE, load_calibration
 from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL, with_contact_score
 from funcnet.errors import ParameterError
-from funcnet.report.html import contents, escape, figure_html, page
-from funcnet.report.html import table as html_table
+from funcnet.report.html import contents, escape, figure_html, page, table as html_table
 from funcnet.validation.sweep import lost_motion_accuracy, score_indicators
 
 __all__ = ["SweepReport", "sweep_scores", "write_sweep_report", "roc_curve"]
@@ -282,9 +281,6 @@ def _signature_rates(table: pd.DataFrame) -> pd.DataFrame:
 def _figures(table: pd.DataFrame, scores: pd.DataFrame, score: str, best_fn: str | None,
              out_dir: Path, stem: str) -> list[tuple[str, Path]]:  # fmt: skip
     """ROC grid (noise level x speed) and scatter grid (indicator x speed); their elements."""
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     speeds = sorted(table["speed"].unique())
