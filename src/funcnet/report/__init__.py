@@ -1,4 +1,4 @@
-"""Static HTML reports: the paper's analyses on the simulated plan, a study's results, a trace.
+"""Static HTML reports: the paper's analyses [1]_ on the simulated plan, a study's results, a trace.
 
 Every report is one ``index.html`` with PNG figures beside it in ``figures/`` and nothing
 loaded from elsewhere (no CDN, no script, no web font), so the folder can be archived, mailed or

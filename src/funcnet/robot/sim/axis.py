@@ -245,7 +245,7 @@ class AxisParameters:
         ``"elastic"`` adds a third mass: the arm's TCP share ``arm_tcp_mass * r**2`` becomes a
         tip coupled to the hub (``arm_inertia_base``, which carries the bearing friction and
         the arm encoder) through ``link_stiffness`` and ``link_damping``: the standard
-        flexible-joint / flexible-link chain [4]_. ``"rigid"`` (default) is the two-mass model.
+        flexible-joint / flexible-link chain. ``"rigid"`` (default) is the two-mass model.
     link_stiffness : float
         N m/rad of the elastic link, 1.6e6: a first link mode near 10 Hz at 1.6 m, where large
         serial robots have their first structural modes (assumption).
