@@ -1,4 +1,4 @@
-"""The backlash sweep and its indicator table (issue 11; docs/backlash.md).
+"""The backlash sweep and its indicator table (docs/backlash.md).
 
     .venv/bin/python benchmarks/bench_backlash.py            # full sweep, table, timings
     .venv/bin/python benchmarks/bench_backlash.py --calibrate  # also rewrite calibration.json
@@ -9,7 +9,7 @@
     .venv/bin/python benchmarks/bench_backlash.py --with-fn --trials 500 --report /tmp/s.html
     .venv/bin/python benchmarks/bench_backlash.py --kuka         # the KUKA KR 300 runs' table
 
-Simulates :func:`funcnet.robot.sim.plan.backlash_sweep_plan` (1944 reversal trials: backlash x
+Simulates :func:`funcnet.sim.plan.backlash_sweep_plan` (1944 reversal trials: backlash x
 speed x TCP x friction x stiffness x 3 seeds x noise 1 and 2, sensors and logging of the real
 trace) and computes every physical indicator per trial; the functional-network features on a
 subset (``--with-fn``: on the whole sweep, with the coupling test, about two minutes on two
@@ -33,7 +33,11 @@ from scipy.signal import welch
 
 from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE, SCORE
 from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL
-from funcnet.diagnosis.sweep import (
+from funcnet.robot import detect_phases, read_trace
+from funcnet.sim.axis import simulate_trial
+from funcnet.sim.plan import backlash_sweep_plan
+from funcnet.sim.trial import Trial
+from funcnet.validation.sweep import (
     calibration,
     contact_reference,
     run_sweep,
@@ -41,10 +45,6 @@ from funcnet.diagnosis.sweep import (
     simulated_recording,
     with_contact_score,
 )
-from funcnet.robot import detect_phases, read_trace
-from funcnet.robot.sim.axis import simulate_trial
-from funcnet.robot.sim.plan import backlash_sweep_plan
-from funcnet.robot.sim.trial import Trial
 
 ROOT = Path(__file__).resolve().parents[1]
 CALIBRATION = ROOT / "src" / "funcnet" / "diagnosis" / "calibration.json"
@@ -269,7 +269,7 @@ def with_fn(args: argparse.Namespace, out: list[str]) -> pd.DataFrame:
         args.save.mkdir(parents=True, exist_ok=True)
         sweep.to_csv(args.save / "sweep_with_fn.csv", index=False)
     if args.report:
-        from funcnet.report.sweep_report import write_sweep_report
+        from funcnet.validation.sweep_report import write_sweep_report
 
         report = write_sweep_report(sweep, args.report, resamples=args.resamples,
                                     source=f"backlash_sweep_plan(), {len(plan)} trials")
@@ -278,7 +278,7 @@ def with_fn(args: argparse.Namespace, out: list[str]) -> pd.DataFrame:
 
 
 def lost_motion_summary(sweep: pd.DataFrame) -> str:
-    """The two-encoder lost motion against the manifest's truth: the issue's target, per width.
+    """The two-encoder lost motion against the manifest's truth: the 5 % target, per width.
 
     Parameters
     ----------

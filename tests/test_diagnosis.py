@@ -20,8 +20,9 @@ from funcnet.diagnosis import (
     write_results,
 )
 from funcnet.errors import ParameterError
+from funcnet.report import write_backlash_page
 from funcnet.robot import read_trace
-from funcnet.robot.sim import Trial, simulate_trial, write_trace
+from funcnet.sim import Trial, simulate_trial, write_trace
 
 
 def _reversal_trace(tmp_path: Path, backlash_arcmin: float, name: str) -> tuple[Path, dict]:
@@ -87,7 +88,7 @@ def test_several_traces_give_a_trend(tmp_path):
     assert table["path"].tolist() == [str(p) for p in (*paths, REAL)]
     scores = table["backlash_score"].tolist()
     assert scores[0] < scores[1] < scores[2] and np.isnan(scores[3])
-    page = write_results(results, tmp_path / "trend.html").read_text()
+    page = write_backlash_page(results, tmp_path / "trend.html").read_text()
     assert "<svg" in page and "t2.xml" in page
 
 
@@ -96,11 +97,15 @@ def test_no_path_and_a_wrong_suffix_are_parameter_errors(tmp_path):
         diagnose_backlash()
     with pytest.raises(ParameterError, match="json"):
         write_results([], tmp_path / "r.txt")
+    with pytest.raises(ParameterError, match="write_backlash_page"):
+        write_results([], tmp_path / "r.html")
+    with pytest.raises(ParameterError, match="html"):
+        write_backlash_page([], tmp_path / "r.json")
 
 
 def test_the_html_page_holds_the_trend(tmp_path):
     result = diagnose_recording(read_trace(REAL).window(0.0, 20.0), "first-move")
-    page = write_results([result], tmp_path / "r.html").read_text()
+    page = write_backlash_page([result], tmp_path / "r.html").read_text()
     assert "first-move" in page and "no direction change" in page and "model-based" in page
 
 

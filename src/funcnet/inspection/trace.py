@@ -27,7 +27,7 @@ import dataclasses
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any, Unpack
 
 import pandas as pd
 
@@ -35,19 +35,22 @@ from funcnet.errors import FuncnetError
 from funcnet.inspection.motion import motion_summary, segment_phases, turns_across_gaps
 from funcnet.network import FunctionalNetwork
 from funcnet.network.edge_evidence import check_evidence_settings
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.pipeline import WindowFailure, window_evidence, window_networks, window_warnings
 from funcnet.robot import PAPER_NODES, Recording, Window, phase_windows
 from funcnet.robot.load import prepare_recording
 from funcnet.robot.phases import Turn
 from funcnet.robot.preprocess import DERIVED_SIGNALS, staircase_signals
 
+if TYPE_CHECKING:  # the diagnosis loads when it runs
+    from funcnet.diagnosis.diagnose import BacklashResult
+
 __all__ = ["TraceInspection", "inspect_recording", "DETRENDED_NODES"]
 
 #: Detrended nodes (``funcnet inspect --detrended``): the positions' ramps replaced by the
 #: following error FE = RP - AP and the torsion TORSION = MP - AP, with V and the currents.
 #: In cruise the positions are ramps, which time-shift surrogates cannot treat as stationary
-#: (issue 10, item 5; docs/evidence.md).
+#: (docs/evidence.md).
 DETRENDED_NODES = ("FE", "TORSION", "V", "RC", "AC")
 
 # Phases summarized, not networked: the set-point is constant there.
@@ -93,8 +96,8 @@ class TraceInspection:
     problems : pandas.DataFrame
         The networks' flagged problems, counted: ``problem, windows, of, which, pairs
         (windows)``.
-    backlash : Any
-        The :class:`funcnet.diagnosis.BacklashResult`, or None.
+    backlash : BacklashResult or None
+        The backlash diagnosis (:func:`funcnet.diagnosis.diagnose_recording`), or None.
     backlash_error : str
         Why there is no diagnosis ("" when there is one).
     parameters : NetworkParameters
@@ -124,7 +127,7 @@ class TraceInspection:
     networks: dict[str, FunctionalNetwork]
     failures: tuple[WindowFailure, ...]
     problems: pd.DataFrame
-    backlash: Any
+    backlash: BacklashResult | None
     backlash_error: str
     parameters: NetworkParameters
     evidence: bool
@@ -173,8 +176,8 @@ def inspect_recording(
     interpolate: bool = True,
     backlash: bool = True,
     progress: Callable[[int, int, str], None] | None = None,
-    evidence_options: Mapping[str, Any] | None = None,
-    **overrides: Any,
+    evidence_options: EvidenceSettings | None = None,
+    **overrides: Unpack[ParameterOverrides],
 ) -> TraceInspection:
     """Summarize a recording's motion and compute a functional network per phase of each move.
 
@@ -237,7 +240,7 @@ def inspect_recording(
     started = time.perf_counter()
     p = resolve(parameters, overrides)
     if evidence:
-        check_evidence_settings(**dict(evidence_options or {}))
+        check_evidence_settings(**(evidence_options or EvidenceSettings()))
     where = recording.source or "<recording>"
     raw = recording
     _step(progress, 0, 4, "phases")
@@ -263,7 +266,7 @@ def inspect_recording(
             rec, networks, windows, errors="collect",
             progress=lambda k, n, label: _step(progress, 1 + len(windows) + k, total,
                                                f"evidence {label}"),
-            **dict(evidence_options or {}))
+            **(evidence_options or EvidenceSettings()))
         failures += networks.failures
     diagnosis, diagnosis_error = None, ""
     if backlash:

@@ -25,9 +25,9 @@ References
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
@@ -37,7 +37,7 @@ from funcnet._io import write_text_atomic
 from funcnet.errors import ParameterError
 from funcnet.inspection import TraceInspection, inspect_recording
 from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection, inspect_robot
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.plot import plot_network
 from funcnet.report.html import (
     Progress,
@@ -272,7 +272,7 @@ def write_inspection(
 
 
 def _axis_rows(ins: RobotInspection) -> pd.DataFrame:
-    rows = []
+    rows: list[dict[str, object]] = []
     for axis in ins.recording.axes:
         one = ins.axes.get(axis)
         if one is None:
@@ -404,9 +404,9 @@ def inspect_trace(
     channels: Any = None,
     axis: int | None = None,
     progress: Progress = None,
-    evidence_options: Mapping[str, Any] | None = None,
+    evidence_options: EvidenceSettings | None = None,
     repeated: bool = False,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> Path:
     """Read traces and write the engineer's report of each (and an index for several).
 

@@ -1,10 +1,10 @@
-"""Robot-axis controller traces: reading, preprocessing, phases and windows; a simulated axis.
+"""Robot-axis controller traces: reading, preprocessing, phases and windows.
 
 Everything here sits below the numerical core and imports none of it: a trace becomes a
 :class:`Recording` (:func:`read_trace`, :func:`read_recording`), its phases and windows are
 tables and :class:`Window` lists. Networks per window are made by
 :func:`funcnet.window_networks` (:mod:`funcnet.pipeline`). The simulated axis lives in
-:mod:`funcnet.robot.sim`. Names are imported lazily.
+:mod:`funcnet.sim`, which this package never imports. Names are imported lazily.
 
 Examples
 --------
@@ -14,6 +14,8 @@ Examples
 """
 
 from __future__ import annotations
+
+from typing import TYPE_CHECKING
 
 from funcnet._lazy import attach
 
@@ -44,17 +46,45 @@ _EXPORTS = {
     "complete_span": "funcnet.robot.windows",
     "Repetitions": "funcnet.robot.repeats",
     "find_repetitions": "funcnet.robot.repeats",
-    "AxisParameters": "funcnet.robot.sim.axis",
-    "SimulatedTrial": "funcnet.robot.sim.axis",
-    "simulate_trial": "funcnet.robot.sim.axis",
-    "write_trace": "funcnet.robot.sim.writer",
-    "Trial": "funcnet.robot.sim.trial",
-    "real_axis_parameters": "funcnet.robot.sim.axis",
-    "paper_plan": "funcnet.robot.sim.plan",
-    "backlash_sweep_plan": "funcnet.robot.sim.plan",
-    "named_plan": "funcnet.robot.sim.plan",
-    "read_plan": "funcnet.robot.sim.plan",
-    "write_plan": "funcnet.robot.sim.plan",
 }
+
+
+
+if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
+    from funcnet.robot.channels import (
+        DEFAULT_CHANNEL_MAP as DEFAULT_CHANNEL_MAP,
+        ChannelMap as ChannelMap,
+        SignalInfo as SignalInfo,
+    )
+    from funcnet.robot.load import read_recording as read_recording
+    from funcnet.robot.phases import (
+        PHASES as PHASES,
+        Turn as Turn,
+        detect_phases as detect_phases,
+        direction_changes as direction_changes,
+        phase_table as phase_table,
+    )
+    from funcnet.robot.preprocess import (
+        add_derived_signals as add_derived_signals,
+        resample as resample,
+        trim as trim,
+        velocity as velocity,
+    )
+    from funcnet.robot.recording import Recording as Recording, read_trace as read_trace
+    from funcnet.robot.repeats import (
+        Repetitions as Repetitions,
+        find_repetitions as find_repetitions,
+    )
+    from funcnet.robot.windows import (
+        PAPER_NODES as PAPER_NODES,
+        Window as Window,
+        complete_span as complete_span,
+        fixed_windows as fixed_windows,
+        paper_nodes as paper_nodes,
+        phase_windows as phase_windows,
+        reversal_windows as reversal_windows,
+        sliding_windows as sliding_windows,
+        span_window as span_window,
+    )
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)
