@@ -1,4 +1,4 @@
-"""The backlash sweep and its indicator table (docs/backlash.md).
+"""The backlash sweep and its indicator table (docs/validation/backlash.md).
 
     .venv/bin/python benchmarks/bench_backlash.py            # full sweep, table, timings
     .venv/bin/python benchmarks/bench_backlash.py --calibrate  # also rewrite calibration.json

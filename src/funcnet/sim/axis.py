@@ -412,7 +412,8 @@ def real_axis_parameters(**changes: float | str) -> AxisParameters:
     """The axis with its sensors and logging set from the real 840D sl trace.
 
     The mechanics stay those of :class:`AxisParameters`; what a controller trace shows is set
-    from ``axis7-braking-trace.xml`` (see ``docs/backlash.md`` for the side-by-side table):
+    from ``axis7-braking-trace.xml`` (see ``docs/validation/backlash.md`` for the side-by-side
+    table):
 
     - ``position_log_period = 0.004``: ``measPos1/2`` are IPO signals (4 ms);
     - ``arm_encoder_counts = 2**22``: ``measPos2`` steps by 8-9e-5 deg (360 / 2**22 =
