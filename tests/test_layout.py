@@ -738,3 +738,63 @@ def test_data_files_ship_with_the_package() -> None:
     unshipped = [str(p.relative_to(PACKAGE)) for p in data
                  if not any(p.match(pattern) for pattern in patterns)]
     assert not unshipped, f"data files no package-data pattern of pyproject.toml ships: {unshipped}"
+
+
+# --------------------------------------------------------------------------------------------
+# what an editor and a type checker see
+
+
+def test_no_catch_all_keywords() -> None:
+    # `**overrides: Any` hides the keywords a user may pass: spell them out, or type them against
+    # one contract (``Unpack[ParameterOverrides]``, PEP 692).
+    hidden = []
+    for name in modules():
+        for node in ast.walk(_tree(name)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and node.args.kwarg:
+                annotation = node.args.kwarg.annotation
+                if annotation is None or ast.unparse(annotation) == "Any":
+                    hidden.append(f"{name}.{node.name}(**{node.args.kwarg.arg})")
+    assert not hidden, hidden
+
+
+def test_the_keyword_contracts_match_the_parameters() -> None:
+    import typing
+
+    from funcnet.parameters import BlockOverrides, NetworkParameters, ParameterOverrides
+
+    fields = typing.get_type_hints(NetworkParameters)
+    keywords = typing.get_type_hints(ParameterOverrides)
+    assert keywords == {name: fields[name] for name in NetworkParameters.names()}
+    assert set(typing.get_type_hints(BlockOverrides)) == set(keywords) - {"rr", "cr", "eps"}
+
+
+def test_the_package_ships_its_types() -> None:
+    assert (PACKAGE / "py.typed").is_file()
+    config = tomllib.loads((SRC.parent / "pyproject.toml").read_text())["tool"]["setuptools"]
+    assert "py.typed" in config["package-data"]["funcnet"]
+    # every lazy export is visible to a type checker: the package's TYPE_CHECKING imports
+    for package in modules():
+        table = lazy_table(package)
+        if not table:
+            continue
+        seen: dict[str, str] = {}
+        for node in _tree(package).body:
+            if isinstance(node, ast.If) and _is_type_checking(node.test):
+                for child in node.body:
+                    if isinstance(child, ast.ImportFrom) and child.module:
+                        seen.update({a.asname or a.name: child.module for a in child.names})
+        assert seen == table, f"{package}: TYPE_CHECKING imports differ from _EXPORTS"
+
+
+def test_no_private_module_of_a_third_party_package() -> None:
+    private = []
+    for name in modules():
+        for node in ast.walk(_tree(name)):
+            targets = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                       [node.module] if isinstance(node, ast.ImportFrom) and node.module
+                       and node.level == 0 else [])
+            for target in targets:
+                parts = target.split(".")
+                if parts[0] != "funcnet" and any(p.startswith("_") for p in parts[1:]):
+                    private.append(f"{name}: {target}")
+    assert not private, private

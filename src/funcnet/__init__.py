@@ -45,6 +45,7 @@ _EXPORTS = {
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.core.embedding import (
         embed as embed,

@@ -63,6 +63,7 @@ _EXPORTS = {
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.core.batch import batch_pairs as batch_pairs
     from funcnet.core.embedding import (

@@ -52,6 +52,7 @@ _EXPORTS = {
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.diagnosis.diagnose import (
         MOTOR_LOOP_SCORE as MOTOR_LOOP_SCORE,

@@ -70,6 +70,7 @@ _EXPORTS = {
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.evidence.dependence import (
         SURROGATE_METHODS as SURROGATE_METHODS,

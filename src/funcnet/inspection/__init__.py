@@ -8,8 +8,10 @@ computed, and the backlash diagnosis (:func:`inspect_recording`, a :class:`Trace
 :mod:`~funcnet.inspection.robot` does it for each axis of a recording of several axes and adds
 the robot-wide network, its pairs told apart within and between axes (:func:`inspect_robot`).
 :mod:`~funcnet.inspection.repeated` reads the repetitions of one motion in the traces together
-(:func:`inspect_repetitions`).
-Names are imported lazily.
+(:func:`inspect_repetitions`, :func:`repetitions_of` the inspections).
+:mod:`~funcnet.inspection.files` reads a trace file and inspects it as one axis or as a robot
+(:func:`inspect_file`). The report (:mod:`funcnet.report`) only draws what these return. Names
+are imported lazily.
 
 Examples
 --------
@@ -35,11 +37,15 @@ _EXPORTS = {
     "pair_scope": "funcnet.inspection.robot",
     "RepeatedInspection": "funcnet.inspection.repeated",
     "inspect_repetitions": "funcnet.inspection.repeated",
+    "repetitions_of": "funcnet.inspection.repeated",
+    "inspect_file": "funcnet.inspection.files",
 }
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
+    from funcnet.inspection.files import inspect_file as inspect_file
     from funcnet.inspection.motion import (
         motion_summary as motion_summary,
         numbered_moves as numbered_moves,
@@ -47,6 +53,7 @@ if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.inspection.repeated import (
         RepeatedInspection as RepeatedInspection,
         inspect_repetitions as inspect_repetitions,
+        repetitions_of as repetitions_of,
     )
     from funcnet.inspection.robot import (
         RobotInspection as RobotInspection,

@@ -29,6 +29,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Unpack
 
+import numpy as np
 import pandas as pd
 
 from funcnet.errors import FuncnetError
@@ -112,6 +113,11 @@ class TraceInspection:
         The set-point's direction changes across a gap, which no segment holds
         (:func:`~funcnet.inspection.motion.turns_across_gaps`): the end of the move before and
         the start of the next, the other way.
+    reversal_residual : ndarray or None
+        Per sample of ``recording``, deg: ``MP - AP`` less the gear's wind-up and the encoders'
+        skew (:func:`funcnet.diagnosis.reversal_error.unexplained` with the diagnosis's gear
+        fit), what the reversal error steps at a direction change in continuous motion; None
+        without a gear fit or without both encoders.
     """
 
     source: str
@@ -135,6 +141,8 @@ class TraceInspection:
     elapsed: float
     recording: Recording = dataclasses.field(repr=False)
     turns_across_gaps: tuple[tuple[float, float], ...] = ()
+    reversal_residual: np.ndarray | None = dataclasses.field(default=None, repr=False,
+                                                             compare=False)
 
     def failed(self, part: str) -> dict[str, str]:
         """Window label -> why, for the windows that lack ``part`` (``"network"``,
@@ -301,7 +309,17 @@ def inspect_recording(
         elapsed=time.perf_counter() - started,
         recording=rec,
         turns_across_gaps=turns_across_gaps(moves, raw.gaps),
+        reversal_residual=_reversal_residual(rec, diagnosis),
     )
+
+
+def _reversal_residual(rec: Recording, diagnosis: BacklashResult | None) -> np.ndarray | None:
+    """What the reversal error steps, on the recording the networks were computed on."""
+    if diagnosis is None or diagnosis.gear is None or not {"AP", "MP"} <= set(rec.data.columns):
+        return None
+    from funcnet.diagnosis.reversal_error import unexplained
+
+    return unexplained(rec, diagnosis.gear)
 
 
 def _step(progress: Callable[[int, int, str], None] | None, done: int, total: int,

@@ -51,6 +51,7 @@ _EXPORTS = {
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.network.edge_evidence import add_evidence as add_evidence
     from funcnet.network.functional import (

@@ -65,6 +65,7 @@ _EXPORTS = {
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.paper.analyses import (
         PAPER_PARAMETERS as PAPER_PARAMETERS,

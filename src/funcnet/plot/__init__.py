@@ -72,6 +72,7 @@ _EXPORTS = {
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.plot.network_diagram import (
         NO_COUPLING_EVIDENCE as NO_COUPLING_EVIDENCE,

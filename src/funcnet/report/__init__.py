@@ -41,6 +41,7 @@ _EXPORTS = {
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.report.backlash_page import write_backlash_page as write_backlash_page
     from funcnet.report.html import save_figure as save_figure

@@ -50,6 +50,7 @@ _EXPORTS = {
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.robot.channels import (
         DEFAULT_CHANNEL_MAP as DEFAULT_CHANNEL_MAP,

@@ -47,6 +47,7 @@ _EXPORTS = {
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.sim.axis import (
         MAX_TRIAL_DURATION as MAX_TRIAL_DURATION,

@@ -43,6 +43,7 @@ _EXPORTS = {
 
 
 
+
 if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
     from funcnet.study.provenance import package_versions as package_versions
     from funcnet.study.run import (
