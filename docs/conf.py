@@ -39,7 +39,7 @@ myst_enable_extensions = ["dollarmath"]
 # The API reference: members in the order of the source, every package's public names.
 autodoc_member_order = "bysource"
 autodoc_typehints = "none"  # numpydoc's Parameters sections state the types
-autodoc_default_options = {"members": True, "show-inheritance": False}
+autodoc_default_options = {"members": True}
 
 # numpydoc: class members are documented by autodoc, not listed again in a summary table.
 numpydoc_show_class_members = False
@@ -49,3 +49,5 @@ numpydoc_xref_param_type = False
 html_theme = "alabaster"
 html_title = f"funcnet {release}"
 html_static_path: list[str] = []
+# Wide enough for the pairs tables and command lines of the guide.
+html_theme_options = {"page_width": "1240px", "sidebar_width": "240px"}
