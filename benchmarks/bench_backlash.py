@@ -32,18 +32,17 @@ import pandas as pd
 from scipy.signal import welch
 
 from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE, SCORE
-from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL
+from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL, with_contact_score
 from funcnet.robot import detect_phases, read_trace
 from funcnet.sim.axis import simulate_trial
 from funcnet.sim.plan import backlash_sweep_plan
 from funcnet.sim.trial import Trial
 from funcnet.validation.sweep import (
-    calibration,
     contact_reference,
+    derive_calibration,
     run_sweep,
     score_indicators,
     simulated_recording,
-    with_contact_score,
 )
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -186,16 +185,12 @@ def _write_calibration(sweep: pd.DataFrame, motor: pd.DataFrame, source: str) ->
         if "peak_speed" not in table_:  # tables saved before the column existed: a 1 deg step
             table_ = table_.assign(peak_speed=np.minimum(table_["speed"], round(60 / 0.85, 1)))
         tables.append(table_)
-    cal = calibration(tables[0], SCORE)
-    cal["source"] = (
-        f"benchmarks/bench_backlash.py --calibrate: {source}, {len(sweep)} trials, noise 1 and "
-        "2 pooled, quantiles over TCP, friction, stiffness and seeds"
-    )
-    reference = contact_reference(tables[1])
-    cal["motor_loop"] = calibration(with_contact_score(tables[1], reference), MOTOR_LOOP_SCORE)
-    cal["motor_loop"]["reference"] = reference
-    cal["motor_loop"]["source"] = (
-        f"backlash_sweep_plan(position_feedback='motor', seeds=(1,)), {len(motor)} trials"
+    cal = derive_calibration(
+        tables[0], tables[1],
+        source=(f"benchmarks/bench_backlash.py --calibrate: {source}, {len(sweep)} trials, "
+                "noise 1 and 2 pooled, quantiles over TCP, friction, stiffness and seeds"),
+        motor_source=(f"backlash_sweep_plan(position_feedback='motor', seeds=(1,)), "
+                      f"{len(motor)} trials"),
     )
     CALIBRATION.write_text(json.dumps(cal, indent=1) + "\n", encoding="utf-8")
     print(f"wrote {CALIBRATION}")

@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import REAL_TRACE as REAL
@@ -117,3 +118,44 @@ def test_direction_changes_of_the_real_trace():
 def test_the_calibration_ships_with_the_package():
     cal = load_calibration()
     assert cal["indicator"] == SCORE and set(cal["levels"]) == {"35", "70.6"}
+
+
+def _shape(value):
+    """The nesting of a JSON value: dict keys' shapes, list lengths, leaf types."""
+    if isinstance(value, dict):
+        return {key: _shape(item) for key, item in value.items()}
+    if isinstance(value, list):
+        return [len(value), sorted({type(v).__name__ for v in value})]
+    return type(value).__name__
+
+
+def test_the_shipped_calibration_is_what_derive_calibration_makes():
+    # A small fixture sweep in the shipped calibration's grid (speeds, widths): the derivation
+    # gives a file of the shipped file's shape, with levels equal to plain quantiles.
+    from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE
+    from funcnet.validation.sweep import derive_calibration
+
+    shipped = load_calibration()
+    rng = np.random.default_rng(0)
+    speeds = [float(s) for s in shipped["levels"]]
+    widths = [float(b) for b in shipped["levels"]["35"]]
+    rows = [{"peak_speed": s, "backlash_arcmin": b, SCORE: b / 60 + rng.normal(0, 0.002),
+             "motor_travel": 1 + b + rng.normal(0, 0.1), "current_step": rng.normal(0.5, 0.1)}
+            for s in speeds for b in widths for _ in range(7)]
+    sweep = pd.DataFrame(rows)
+    cal = derive_calibration(sweep, sweep, source="fixture", motor_source="fixture")
+    shipped_shape, derived_shape = _shape(shipped), _shape(cal)
+    for part in (shipped_shape, derived_shape):
+        part.pop("source"), part["motor_loop"].pop("source")
+    assert derived_shape == shipped_shape
+    for s in speeds:
+        for b in widths:
+            values = sweep[(sweep.peak_speed == s) & (sweep.backlash_arcmin == b)][SCORE]
+            expected = np.quantile(values.to_numpy(), cal["quantiles"])
+            assert cal["levels"][f"{s:g}"][f"{b:g}"] == pytest.approx(expected)
+    healthy = sweep[(sweep.backlash_arcmin == 0) & (sweep.peak_speed == speeds[0])]
+    median, iqr = cal["motor_loop"]["reference"][f"{speeds[0]:g}"]["motor_travel"]
+    assert median == pytest.approx(healthy.motor_travel.median())
+    assert iqr == pytest.approx(healthy.motor_travel.quantile(0.75)
+                                - healthy.motor_travel.quantile(0.25))
+    assert cal["motor_loop"]["indicator"] == MOTOR_LOOP_SCORE

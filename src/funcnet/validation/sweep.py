@@ -35,6 +35,7 @@ from funcnet.diagnosis.indicators import (
     CONTACT_FEATURES,
     INDICATORS,
     reversal_indicators,
+    with_contact_score,
 )
 from funcnet.diagnosis.reversal_error import fit_gear, reversal_error
 from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
@@ -59,6 +60,7 @@ __all__ = [
     "run_sweep",
     "score_indicators",
     "calibration",
+    "derive_calibration",
     "lost_motion_accuracy",
     "CONTRASTS",
 ]
@@ -506,6 +508,39 @@ def calibration(
             for b, g in group.groupby("backlash_arcmin", sort=True)
         }
     return {"indicator": indicator, "quantiles": list(quantiles), "by": by, "levels": levels}
+
+
+def derive_calibration(sweep: pd.DataFrame, motor: pd.DataFrame, *, source: str = "",
+                       motor_source: str = "") -> dict[str, Any]:
+    """The calibration the diagnosis ships (``diagnosis/calibration.json``), from two sweeps.
+
+    Parameters
+    ----------
+    sweep : DataFrame
+        The main sweep (:func:`run_sweep` of :func:`funcnet.sim.backlash_sweep_plan`): the
+        arm-side score's levels.
+    motor : DataFrame
+        The sweep of an axis whose position loop reads the motor encoder: the motor-side
+        score's levels and its no-backlash reference.
+    source, motor_source : str
+        How each sweep was made (kept in the file).
+
+    Returns
+    -------
+    dict
+        :func:`calibration` of :data:`~funcnet.diagnosis.diagnose.SCORE` with ``source``, and
+        under ``motor_loop`` that of :data:`~funcnet.diagnosis.diagnose.MOTOR_LOOP_SCORE` with
+        its ``reference`` (:func:`contact_reference`) and ``source``: JSON-ready.
+    """
+    from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE, SCORE
+
+    cal = calibration(sweep, SCORE)
+    cal["source"] = source
+    reference = contact_reference(motor)
+    cal["motor_loop"] = calibration(with_contact_score(motor, reference), MOTOR_LOOP_SCORE)
+    cal["motor_loop"]["reference"] = reference
+    cal["motor_loop"]["source"] = motor_source
+    return cal
 
 
 def contact_reference(table: pd.DataFrame, *, by: str = "peak_speed") -> dict[str, Any]:
