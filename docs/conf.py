@@ -12,13 +12,13 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
-# Figures are drawn by some imports' defaults: never open a window while building.
+# Autodoc imports the plotting modules, and with them matplotlib: keep it headless.
 os.environ.setdefault("MPLBACKEND", "Agg")
 
 import funcnet  # noqa: E402
 
 project = "funcnet"
-author = "funcnet authors"
+author = "the funcnet authors"
 release = funcnet.__version__
 version = release
 
@@ -34,7 +34,6 @@ root_doc = "index"
 
 # Markdown: `#` headings become link targets, so guide pages can link to a section.
 myst_heading_anchors = 3
-myst_enable_extensions = ["dollarmath"]
 
 # The API reference: members in the order of the source, every package's public names.
 autodoc_member_order = "bysource"
