@@ -771,19 +771,19 @@ def test_the_keyword_contracts_match_the_parameters() -> None:
 def test_the_package_ships_its_types() -> None:
     assert (PACKAGE / "py.typed").is_file()
     config = tomllib.loads((SRC.parent / "pyproject.toml").read_text())["tool"]["setuptools"]
-    assert "py.typed" in config["package-data"]["funcnet"]
-    # every lazy export is visible to a type checker: the package's TYPE_CHECKING imports
+    assert {"py.typed", "*.pyi"} <= set(config["package-data"]["*"])
+    # every lazy export is visible to a type checker: a stub beside each lazy __init__
     for package in modules():
         table = lazy_table(package)
         if not table:
             continue
+        stub = modules()[package].with_suffix(".pyi")
+        assert stub.is_file(), f"{package} has a lazy table and no {stub.name}"
         seen: dict[str, str] = {}
-        for node in _tree(package).body:
-            if isinstance(node, ast.If) and _is_type_checking(node.test):
-                for child in node.body:
-                    if isinstance(child, ast.ImportFrom) and child.module:
-                        seen.update({a.asname or a.name: child.module for a in child.names})
-        assert seen == table, f"{package}: TYPE_CHECKING imports differ from _EXPORTS"
+        for node in ast.parse(stub.read_text(encoding="utf-8")).body:
+            if isinstance(node, ast.ImportFrom) and node.module:
+                seen.update({a.asname or a.name: node.module for a in node.names})
+        assert seen == table, f"{package}: {stub.name} differs from _EXPORTS"
 
 
 def test_no_private_module_of_a_third_party_package() -> None:

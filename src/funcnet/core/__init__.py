@@ -41,8 +41,6 @@ Examples
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from funcnet._lazy import attach
 
 _EXPORTS = {
@@ -60,29 +58,5 @@ _EXPORTS = {
     "edge_kind": "funcnet.core.kinds",
     "batch_pairs": "funcnet.core.batch",
 }
-
-
-
-
-if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
-    from funcnet.core.batch import batch_pairs as batch_pairs
-    from funcnet.core.embedding import (
-        embed as embed,
-        estimate_delay as estimate_delay,
-        estimate_dimension as estimate_dimension,
-    )
-    from funcnet.core.kinds import edge_kind as edge_kind
-    from funcnet.core.measures import (
-        cross_measures as cross_measures,
-        isrn_measures as isrn_measures,
-    )
-    from funcnet.core.normalization import normalize as normalize
-    from funcnet.core.recurrence import (
-        auto_recurrence as auto_recurrence,
-        cross_recurrence as cross_recurrence,
-        estimate_cost as estimate_cost,
-        isrn_adjacency as isrn_adjacency,
-    )
-    from funcnet.core.thresholds import signal_thresholds as signal_thresholds
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

@@ -22,8 +22,6 @@ Examples
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from funcnet._lazy import attach
 
 _EXPORTS = {
@@ -40,30 +38,5 @@ _EXPORTS = {
     "repetitions_of": "funcnet.inspection.repeated",
     "inspect_file": "funcnet.inspection.files",
 }
-
-
-
-
-if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
-    from funcnet.inspection.files import inspect_file as inspect_file
-    from funcnet.inspection.motion import (
-        motion_summary as motion_summary,
-        numbered_moves as numbered_moves,
-    )
-    from funcnet.inspection.repeated import (
-        RepeatedInspection as RepeatedInspection,
-        inspect_repetitions as inspect_repetitions,
-        repetitions_of as repetitions_of,
-    )
-    from funcnet.inspection.robot import (
-        RobotInspection as RobotInspection,
-        inspect_robot as inspect_robot,
-        pair_scope as pair_scope,
-    )
-    from funcnet.inspection.trace import (
-        DETRENDED_NODES as DETRENDED_NODES,
-        TraceInspection as TraceInspection,
-        inspect_recording as inspect_recording,
-    )
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

@@ -27,8 +27,6 @@ References
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from funcnet._lazy import attach
 
 _EXPORTS = {
@@ -38,17 +36,5 @@ _EXPORTS = {
     "write_inspection": "funcnet.report.inspect",
     "write_backlash_page": "funcnet.report.backlash_page",
 }
-
-
-
-
-if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
-    from funcnet.report.backlash_page import write_backlash_page as write_backlash_page
-    from funcnet.report.html import save_figure as save_figure
-    from funcnet.report.inspect import (
-        inspect_trace as inspect_trace,
-        write_inspection as write_inspection,
-    )
-    from funcnet.report.study_report import write_report as write_report
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

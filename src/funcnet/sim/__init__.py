@@ -16,8 +16,6 @@ Examples
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from funcnet._lazy import attach
 
 _EXPORTS = {
@@ -44,34 +42,5 @@ _EXPORTS = {
     "write_trace": "funcnet.sim.writer",
     "role_names": "funcnet.sim.writer",
 }
-
-
-
-
-if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
-    from funcnet.sim.axis import (
-        MAX_TRIAL_DURATION as MAX_TRIAL_DURATION,
-        AxisParameters as AxisParameters,
-        SimulatedTrial as SimulatedTrial,
-        effective_parameters as effective_parameters,
-        real_axis_parameters as real_axis_parameters,
-        setpoint_profile as setpoint_profile,
-        simulate_trial as simulate_trial,
-        trial_duration as trial_duration,
-    )
-    from funcnet.sim.plan import (
-        ARCMIN as ARCMIN,
-        MANIFEST_COLUMNS as MANIFEST_COLUMNS,
-        NAMED_PLANS as NAMED_PLANS,
-        OPTIONAL_MANIFEST_COLUMNS as OPTIONAL_MANIFEST_COLUMNS,
-        backlash_sweep_plan as backlash_sweep_plan,
-        continuous_sweep_plan as continuous_sweep_plan,
-        named_plan as named_plan,
-        paper_plan as paper_plan,
-        read_plan as read_plan,
-        write_plan as write_plan,
-    )
-    from funcnet.sim.trial import FAULT_KNOBS as FAULT_KNOBS, Trial as Trial
-    from funcnet.sim.writer import role_names as role_names, write_trace as write_trace
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

@@ -22,8 +22,6 @@ Modules, in the order the data flows through them:
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from funcnet._lazy import attach
 
 _EXPORTS = {
@@ -40,28 +38,5 @@ _EXPORTS = {
     "parameter_grid": "funcnet.study.spec",
     "run_study": "funcnet.study.run",
 }
-
-
-
-
-if TYPE_CHECKING:  # what the lazy table exports, for type checkers and editors
-    from funcnet.study.provenance import package_versions as package_versions
-    from funcnet.study.run import (
-        StudyResult as StudyResult,
-        TaskFailure as TaskFailure,
-        run_study as run_study,
-    )
-    from funcnet.study.spec import (
-        WINDOW_KINDS as WINDOW_KINDS,
-        Study as Study,
-        WindowSpec as WindowSpec,
-        load_study as load_study,
-        parameter_grid as parameter_grid,
-    )
-    from funcnet.study.store import (
-        PARAMETER_COLUMNS as PARAMETER_COLUMNS,
-        load_results as load_results,
-        network_from_rows as network_from_rows,
-    )
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)
