@@ -3,8 +3,8 @@
 :func:`inspect_repetitions` finds the repetitions of the most repeated motion in the inspected
 recordings (:func:`funcnet.robot.find_repetitions`) and reads every pair per phase with the
 repetition test (:func:`funcnet.repetition_evidence`): coupling beyond the command, which one
-short window cannot test (docs/evidence.md, sections 5 and 7). With too few repetitions it says
-how many a decision needs.
+short window cannot test (docs/validation/evidence.md, sections 5 and 7). With too few repetitions
+it says how many a decision needs.
 """
 
 from __future__ import annotations
