@@ -65,7 +65,7 @@ def _general(message: str) -> str:
                 "calibrated on reversals only")
     if message.startswith("one measured position per joint"):
         # what it measures at each turn is on the axis's page
-        return message.split("; ")[0] + " (what each turn shows: the axis's page)"
+        return message.split("; ")[0] + "; what each turn shows is on the axis's page"
     return message
 
 
