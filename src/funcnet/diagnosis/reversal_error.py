@@ -501,7 +501,7 @@ def reversal_error(
     >>> error = reversal_error(rec, change)
     >>> round(error.lost_motion, 3), error.noise < 0.001, error.traversed
     (0.02, True, True)
-    >>> error.terms, bool(error.high - error.lost_motion >= error.noise + error.bias)
+    >>> error.terms, math.isclose(error.high, error.lost_motion + error.noise + error.bias)
     (('noise', 'motor friction bias'), True)
     """
     if not (window > 0 and resamples >= 0 and 0 < level < 1):
