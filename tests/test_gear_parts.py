@@ -17,9 +17,9 @@ from funcnet.cli import app
 from funcnet.diagnosis import diagnose_recording
 from funcnet.diagnosis.dead_zone import gear_parts
 from funcnet.diagnosis.reversals import motor_side_recording
-from funcnet.diagnosis.sweep import simulated_recording
 from funcnet.robot import Recording, SignalInfo, read_trace
-from funcnet.robot.sim import Trial, simulate_trial
+from funcnet.sim import Trial, simulate_trial
+from funcnet.validation.sweep import simulated_recording
 
 KUKA = SHARED / "data" / "kuka-kr300"
 KUKA_MAP = REPO / "examples" / "kuka-kr300-channels.toml"
@@ -68,7 +68,7 @@ def test_a_load_on_one_flank_is_said():
 def test_the_simulators_dead_zone_is_followed_where_the_torque_changes_sign():
     """Unloaded smooth trials at 175 deg/min and 2 m: the dead-zone term follows the backlash
     (the motor's own friction in the current reads it up to 0.25 arcmin high; 4 arcmin about 12 %
-    low): docs/backlash.md, section 5.1."""
+    low): docs/validation/backlash.md, section 5.1."""
     found = {}
     for arcmin in (0.0, 1.0, 4.0):
         trial = Trial("s", "s", speed=175, tcp=2.0, step=1, profile="smooth",

@@ -186,7 +186,7 @@ def network(
             if list_phases:
                 print_phases(recording, trace)
                 return
-            from funcnet.embedding import MIN_STATES
+            from funcnet.core.embedding import MIN_STATES
 
             chosen = chosen_windows(
                 recording, trace, phase, whole, bounds,
@@ -272,9 +272,6 @@ def _write(frames: list[Any], results: list[Any], labels: list[str], output: Pat
             else:
                 table.to_parquet(tmp, index=False)
         return [output]
-    import matplotlib
-
-    matplotlib.use("Agg")
     from funcnet.plot import plot_stability
 
     written = network_files(output, labels)

@@ -2,7 +2,7 @@
 
 :func:`diagnose_backlash` reads traces (SINUMERIK XML, CSV, Parquet), finds the direction
 changes of the set-point, computes at each reversal the motor-side indicator the simulated
-sweep supports best (:data:`SCORE`, see ``docs/backlash.md``) and, when the trace has the
+sweep supports best (:data:`SCORE`, see ``docs/validation/backlash.md``) and, when the trace has the
 arm-side encoder AP, the two-encoder lost motion; and reads the score on the sweep's
 calibration, which ships with the package (``calibration.json``, written by
 ``benchmarks/bench_backlash.py --calibrate``). The reading is **model-based**: it says which
@@ -25,7 +25,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet.diagnosis.dead_zone import GearParts, gear_parts
-from funcnet.diagnosis.indicators import reversal_indicators
+from funcnet.diagnosis.indicators import reversal_indicators, with_contact_score
 from funcnet.diagnosis.reversal_error import (
     GearFit,
     fit_gear,
@@ -41,7 +41,6 @@ from funcnet.diagnosis.segments import (
     segment_part,
     segments_note,
 )
-from funcnet.diagnosis.sweep import with_contact_score
 from funcnet.diagnosis.two_encoder import lost_motion
 from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
@@ -62,17 +61,17 @@ __all__ = [
 
 #: The indicator reported as ``backlash_score`` when the trace has the arm encoder AP (so the
 #: position loop can read it, as on the paper's robot): the motor-side indicator with the best
-#: detection on the simulated sweep (``docs/backlash.md``).
+#: detection on the simulated sweep (``docs/validation/backlash.md``).
 SCORE = "motor_hysteresis"
 #: ``backlash_score`` of a trace without AP: its position loop must read the motor encoder,
 #: where ``motor_hysteresis`` sees nothing; the best motor-side indicator of that sweep
-#: (:func:`funcnet.diagnosis.sweep.with_contact_score`: motor travel to the gear's contact and
+#: (:func:`funcnet.diagnosis.indicators.with_contact_score`: motor travel to the gear's contact and
 #: the current's step there, each against the sweep's no-backlash trials).
 MOTOR_LOOP_SCORE = "motor_contact"
 
 #: What every reading says about itself.
 MODEL_NOTE = (
-    "model-based: read on the simulated sweep (funcnet.robot.sim), not on this machine; a "
+    "model-based: read on the simulated sweep (funcnet.sim), not on this machine; a "
     "real axis differs in its mechanics, tuning and noise"
 )
 
@@ -100,7 +99,7 @@ class ReversalResult:
     lost_motion_low, lost_motion_high : float or None
         deg, the lost motion's interval: at a continuous change the bootstrap's 95 %; where the
         arm rests, the simulated sweep's validated accuracy (5 % or two arm-encoder steps,
-        whichever is more; docs/backlash.md section 3.1).
+        whichever is more; docs/validation/backlash.md section 3.1).
     """
 
     change: DirectionChange
@@ -560,7 +559,7 @@ def diagnose_backlash(
     Examples
     --------
     >>> import pathlib, tempfile
-    >>> from funcnet.robot.sim import Trial, simulate_trial, write_trace
+    >>> from funcnet.sim import Trial, simulate_trial, write_trace
     >>> sim = simulate_trial(Trial("rev", "s", speed=175, tcp=1.6, step=1, reverse=True,
     ...                            backlash=2 / 60, sensors="real", seed=1))
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "rev.xml"

@@ -94,7 +94,7 @@ class Outcome:
     skipped: str | None = None
 
 
-def content_key(**content: Any) -> str:
+def content_key(**content: object) -> str:
     """The SHA-256 of ``content`` as canonical JSON: a task's key.
 
     Parameters
