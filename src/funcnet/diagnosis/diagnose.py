@@ -653,7 +653,9 @@ def diagnose_backlash(
     if not paths:
         raise ParameterError.of("paths", "give at least one trace")
     cal = load_calibration() if calibration is None else calibration
-    recordings = [(path, read_trace(path, channels=channels, axis=axis)) for path in paths]
+    # a set-point that never moves is kept: an axis at rest is a result, not a missing RP
+    recordings = [(path, read_trace(path, channels=channels, axis=axis, keep_setpoint=True))
+                  for path in paths]
     return [
         replace(diagnose_recording(rec if n is None else rec.for_axis(n), str(path),
                                    calibration=cal, max_dwell=max_dwell), axis=n)

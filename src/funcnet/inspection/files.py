@@ -64,8 +64,10 @@ def inspect_file(
         ...
     funcnet.errors.TraceError: missing.xml: no such file
     """
-    # Thresholds, arcmin and arcsec are in degrees: angles in rad converted (said).
-    recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis))
+    # Thresholds, arcmin and arcsec are in degrees: angles in rad converted (said); a
+    # set-point that never moves is kept, for the page of an axis at rest.
+    recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis,
+                                         keep_setpoint=True))
     if recording.axes:
         return inspect_robot(recording, signals=signals, parameters=parameters,
                              evidence=evidence, progress=progress,

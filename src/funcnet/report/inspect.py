@@ -149,6 +149,24 @@ def _network_tables(ins: TraceInspection) -> str:
     return "".join(parts)
 
 
+def _move_units(ins: TraceInspection) -> dict[str, str]:
+    """The moves table's columns with the unit each holds (positions in degrees, or of
+    unknown unit; the current's as the recording states it)."""
+    from funcnet.robot.units import UNKNOWN, unit_of
+
+    signals = ins.recording.signals
+    rp = signals.get("RP")
+    deg = rp is None or unit_of(rp) != UNKNOWN
+    position, speed = ("°", "°/s") if deg else ("unit unknown", "unit unknown per s")
+    ac = signals.get("AC")
+    current = unit_of(ac) if ac is not None else UNKNOWN
+    units = {"start": "s", "stop": "s", "duration": "s", "distance": position,
+             "peak speed": speed, "peak V": speed, "peak |FE|": position,
+             "final |FE|": position,
+             "peak |AC|": "unit unknown" if current == UNKNOWN else current}
+    return {column: f"{column} [{unit}]" for column, unit in units.items()}
+
+
 def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list[str]:
     """The body of one trace's page (figures written to ``out/figures``)."""
     steps = 6
@@ -164,7 +182,9 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
 
     add(0, "motion", figure_motion,
         "Figure 1 — the motion. Top: the set-point RP over the whole trace, the moves named. "
-        "Below, each move zoomed: positions, arm-side speed V (Eq. 11–12 on AP), current AC "
+        "Below, each move zoomed: positions, "
+        + ("measured speed V" if "V" in ins.recording.roles
+           else "arm-side speed V (Eq. 11–12 on AP)") + ", current AC "
         "and following error RP − AP. Shading: the detected phase (same colour for the same "
         "kind of phase in every figure)" + ("; dark grey: a gap, where values are missing."
                                             if ins.gaps else "."))
@@ -265,9 +285,11 @@ def write_inspection(
         f"<section id=\"backlash\"><h2>Backlash and lost motion</h2>{_backlash_html(ins)}"
         "</section>",
         "<section id=\"phases\"><h2>Moves and phases</h2>",
-        table(ins.moves.round(4)) if len(ins.moves) else "<p>No move.</p>",
+        table(ins.moves.round(4).rename(columns=_move_units(ins))) if len(ins.moves)
+        else "<p>No move.</p>",
         "<details><summary>every phase</summary>",
-        table(ins.phases[["phase", "move", "start", "stop", "duration"]]),
+        table(ins.phases[["phase", "move", "start", "stop", "duration"]].rename(
+            columns={c: f"{c} [s]" for c in ("start", "stop", "duration")})),
         "</details></section>",
         f"<section id=\"problems\"><h2>Problems flagged</h2>{problem_html}</section>",
         f"<section id=\"networks\"><h2>Pairs tables</h2>{_network_tables(ins)}</section>",

@@ -171,10 +171,16 @@ def summary_html(ins: TraceInspection) -> str:
             facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} per s "
                          "(the position's unit is unknown)")
         if "peak |AC|" in moves:
+            from funcnet.robot.units import UNKNOWN, unit_of
+
             info = ins.recording.signals.get("AC")
-            unit = info.unit if info is not None and info.unit else "A"
-            what = "current" if unit.endswith("A") else "torque" if "N" in unit else "value"
-            facts.append(f"peak {what} |AC| {moves['peak |AC|'].max():.3g} {unit}")
+            unit = unit_of(info) if info is not None else UNKNOWN
+            if unit == UNKNOWN:
+                facts.append(f"peak |AC| {moves['peak |AC|'].max():.3g} (no unit stated)")
+            else:
+                what = ("current" if unit.endswith("A") else "torque" if "N" in unit
+                        else "value")
+                facts.append(f"peak {what} |AC| {moves['peak |AC|'].max():.3g} {unit}")
         if "peak |FE|" in moves and position != "deg":
             facts.append(f"peak following error |RP − AP| {moves['peak |FE|'].max():.3g} "
                          "(the position's unit is unknown)")
