@@ -226,7 +226,7 @@ def _networks(batched: bool, monkeypatch: pytest.MonkeyPatch, *args: Any,
               **kwargs: Any) -> tuple[dict[str, Any], list[FuncnetWarning]]:
     with monkeypatch.context() as patch:
         if not batched:
-            patch.setattr(funcnet.pipeline, "_batched_networks", lambda *a, **k: None)
+            patch.setattr(funcnet.pipeline, "_batched_networks", lambda *a, **k: ({}, []))
         calls: list[int] = []
         original = funcnet.core.batch.batch_pairs
         patch.setattr(funcnet.core.batch, "batch_pairs",
@@ -269,8 +269,12 @@ def test_window_networks_falls_back_where_the_batch_does_not_apply(
     data.loc[data.index < 0.5, "V"] = 1.0  # constant in the first window
     still = Recording(data, {}, rec.signals, source="trace.csv", sample_period=0.002)
     windows = [Window("still", 0.1, 0.4), Window("moving", 1.0, 1.3)]
+    # a window with a constant signal goes the per-window way; the others stay in the batch
+    single, single_warnings = _networks(False, monkeypatch, still, windows, constant="drop")
+    mixed, mixed_warnings = _networks(True, monkeypatch, still, windows, constant="drop")
+    assert mixed == single and mixed["still"].window["dropped"] == ("V",)
+    _same_warnings(mixed_warnings, single_warnings)
     for args, kwargs in (
-        ((still, windows), {"constant": "drop"}),
         ((rec, [Window("long", 0.1, 2.0)]), {}),
         ((rec, windows), {"eps": (0.2, 0.1)}),
     ):

@@ -90,10 +90,14 @@ def _backlash_numbers(result: Any) -> str:
         spread = "" if result.score_spread is None else f" ± {result.score_spread:.3g}"
         score = f"backlash_score {result.backlash_score:.4g}{spread} deg ({result.score_indicator})"
     if result.lost_motion is None:
-        return f"{score}; lost_motion none ({result.lost_motion_reason or 'no AP'})"
-    # Backlash is read in arcmin (1/60 deg); the JSON keeps degrees, as the manifest does.
-    spread = "" if result.lost_motion_spread is None else f" ± {60 * result.lost_motion_spread:.2f}"
-    line = f"{score}; lost_motion {60 * result.lost_motion:.2f}{spread} arcmin"
+        line = f"{score}; lost_motion none ({result.lost_motion_reason or 'no AP'})"
+        if result.lost_motion_high is None:  # nothing measured: no gear either
+            return line
+    else:
+        # Backlash is read in arcmin (1/60 deg); the JSON keeps degrees, as the manifest does.
+        spread = ("" if result.lost_motion_spread is None
+                  else f" ± {60 * result.lost_motion_spread:.2f}")
+        line = f"{score}; lost_motion {60 * result.lost_motion:.2f}{spread} arcmin"
     parts = result.gear_parts
     if parts is not None and parts.dead_zone is not None:
         line += (f" (over the run, where the torque changes sign: dead zone "

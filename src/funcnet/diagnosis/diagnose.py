@@ -9,6 +9,9 @@ calibration, which ships with the package (``calibration.json``, written by
 backlash widths gave such values on the simulated axis, not on this machine. The results are
 written by :mod:`~funcnet.diagnosis.results` (JSON, the trend table and its page). A recording
 with gaps is read segment by segment (:mod:`~funcnet.diagnosis.segments`).
+
+Length: over 600 lines because the two-encoder and the one-encoder diagnosis, their results and
+the lost motion's bound belong together.
 """
 
 from __future__ import annotations

@@ -8,6 +8,7 @@ from funcnet.evidence.dependence import (
     decorrelation_time as decorrelation_time,
     default_surrogates as default_surrogates,
     dependence_test as dependence_test,
+    planned_surrogates as planned_surrogates,
     shift_plan as shift_plan,
     surrogate_plan as surrogate_plan,
 )
@@ -22,6 +23,7 @@ from funcnet.evidence.interval import (
 )
 from funcnet.evidence.pairs import (
     EVIDENCE_LABELS as EVIDENCE_LABELS,
+    INTERVAL_SCOPES as INTERVAL_SCOPES,
     PairEvidence as PairEvidence,
     check_evidence_arguments as check_evidence_arguments,
     evidence_label as evidence_label,

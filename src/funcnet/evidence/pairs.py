@@ -287,8 +287,6 @@ def pairwise_evidence(
     >>> bool(every.c_diff_low <= every.c_diff <= every.c_diff_high)
     True
     """
-    from funcnet.evidence.reading import untestable  # it reads this module's labels
-
     check_evidence_arguments(surrogates, alpha, resamples, surrogate_method, intervals)
     alpha = float(alpha)
     p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
@@ -322,7 +320,11 @@ def pairwise_evidence(
     planned = [planned_surrogates(surrogate_method, n_states, k,
                                   min_shift=max(decorrelation[i], decorrelation[j], span))
                for i in range(n) for j in range(i + 1, n)]
-    drawn = ~untestable(planned, alpha) if intervals == "testable" else np.ones(n_pairs, bool)
+    # the least p-value each can reach, BH-adjusted (funcnet.evidence.reading.untestable)
+    k_planned = np.asarray(planned, dtype=np.float64)
+    with np.errstate(divide="ignore"):
+        least = benjamini_hochberg(np.where(k_planned > 0, 1.0 / (k_planned + 1.0), np.nan))
+    drawn = least <= alpha if intervals == "testable" else np.ones(n_pairs, bool)
     raw: list[dict[str, Any]] = []
     for i in range(n):
         for j in range(i + 1, n):
