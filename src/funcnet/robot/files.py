@@ -367,10 +367,16 @@ def _joined(
         table = tables[file]
         _, ticks = grids[file]
         # The file's samples on the common grid: tick 0 is `start`.
+        rows: slice | None = None
         if ticks is not None:
             offset = int(round((table.time[0] - start) / period))
             ticks = ticks + offset
             inside = (ticks >= 0) & (ticks < n_ticks)
+            # every tick of the span present once, in order: the rows are a slice
+            first = int(np.argmax(inside)) if inside.any() else 0
+            if (inside.sum() == n_ticks and ticks[first] == 0
+                    and ticks[first + n_ticks - 1] == n_ticks - 1):
+                rows = slice(first, first + n_ticks)
         for layout in layouts:
             role = cmap.role_of(layout.signal)
             base = role or layout.signal
@@ -394,6 +400,8 @@ def _joined(
                 if ticks is None:  # off its grid, interpolated onto the common one
                     grid_time = start + np.arange(n_ticks) * period
                     on = np.interp(grid_time, table.time, raw, left=np.nan, right=np.nan)
+                elif rows is not None:
+                    on = raw[rows]
                 else:
                     on = np.full(n_ticks, np.nan)
                     on[ticks[inside]] = raw[inside]
