@@ -327,3 +327,22 @@ def test_repetitions_say_why_a_move_was_not_taken():
     theirs, first = map(int, re.findall(r"(\d+) samples long against (\d+)", why)[0])
     # the moves as written, 3.0 s and 1.5 s at 10 ms, give or take their edge samples
     assert abs(theirs - 300) <= 4 and abs(first - 150) <= 4
+
+
+def test_files_that_start_late_are_read_from_the_first_stamp_all_share(tmp_path):
+    from funcnet.robot.channels import ChannelMap
+    from funcnet.robot.files import read_signal_files
+    from funcnet.robot.layout import signal_files
+
+    (tmp_path / "q.csv").write_text("".join(f"{k * 0.008:.3f}, {k}\n" for k in range(6)))
+    (tmp_path / "i.csv").write_text("".join(f"{k * 0.008:.3f}, {10 * k}\n" for k in range(2, 8)))
+    files = signal_files({"q": "q.csv", "i": "i.csv"}, {"columns": [1]}, "m.toml")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        grid = read_signal_files(tmp_path, ChannelMap({"q": "RP"}, files=files), None)
+    said, = [str(w.message) for w in caught]
+    assert "files start and end at different times" in said
+    assert "q.csv (first at 0 s)" in said and "i.csv (last at 0.056 s)" in said
+    # ticks 2-5 are the ones both files hold: a plain loop over them
+    assert grid.t0 == pytest.approx(0.016)
+    assert grid.values.tolist() == [[float(k), 10.0 * k] for k in range(2, 6)]

@@ -314,8 +314,8 @@ def read_signal_files(
     if beyond:
         warnings.warn(
             RecordingWarning(
-                f"{path}: files {'start and ' if any('starts' in b for b in beyond) else ''}end "
-                f"at different times; read over the time stamps they share, {start:g}-{stop:g} s: "
+                f"{path}: files {_which_ends(beyond)} at different times; read over the time "
+                f"stamps they share, {start:g}-{stop:g} s: "
                 f"{', '.join(beyond)}",
                 problem="trimmed", signals=tuple(e.signal for e in entries),
             ),
@@ -323,6 +323,13 @@ def read_signal_files(
         )
     n_ticks = int(np.floor((stop - start) / period + GRID_TOLERANCE)) + 1
     return _joined(path, cmap, axis, by_file, tables, grids, start, period, n_ticks)
+
+
+def _which_ends(beyond: Sequence[str]) -> str:
+    """"start", "end" or "start and end": which ends of the files differ."""
+    starts = any("first at" in b for b in beyond)
+    ends = any("last at" in b for b in beyond)
+    return "start and end" if starts and ends else "start" if starts else "end"
 
 
 def _check_names(cmap: ChannelMap, path: Path) -> None:
