@@ -117,14 +117,39 @@ def align_on_setpoints(
         raise ParameterError("period, window, step and tolerance must be > 0")
     width = max(int(round(window / period)), 2)
     piece = max(int(round(step / period)), 1)
+    # A recording with gaps (NaN rows) is aligned segment by segment: no match spans a gap.
+    run_parts = _runs(np.isfinite(run).all(axis=1))
+    ref_parts = [(a, b) for a, b in _runs(np.isfinite(reference).all(axis=1)) if b - a >= width]
+    if not ref_parts:
+        raise ParameterError.of("reference", f"no stretch of {window:g} s without missing "
+                                "set-points to align on")
+    found: list[list[int]] = [[] for _ in range(len(run))]
+    best = np.full(len(run), np.nan)
+    for ra, rb in run_parts:
+        for fa, fb in ref_parts:
+            shifts, low = _align_part(run[ra:rb], reference[fa:fb], width, piece, tolerance)
+            for tick, (ticks, dist) in enumerate(zip(shifts, low, strict=True)):
+                found[ra + tick].extend(fa + t for t in ticks)
+                if not best[ra + tick] <= dist:
+                    best[ra + tick] = dist
+    k_max = max([len(f) for f in found] + [1])
+    matches = np.full((len(run), k_max), -1, dtype=np.int64)
+    for tick, ticks in enumerate(found):
+        matches[tick, :len(ticks)] = sorted(ticks)
+    return Alignment(matches=matches, distance=best, tolerance=tolerance)
+
+
+def _align_part(run: np.ndarray, reference: np.ndarray, width: int, piece: int,
+                tolerance: float) -> tuple[list[list[int]], np.ndarray]:
+    """Matches (reference ticks) and best RMS distance per tick of one stretch without gaps."""
     n, m = len(run), len(reference)
-    if m < width or n < 2:
-        raise ParameterError.of("reference", f"{m} ticks: shorter than the {window:g} s "
-                                "alignment window")
+    ticks: list[list[int]] = [[] for _ in range(n)]
+    low = np.full(n, np.inf)
     width = min(width, n)
+    if width < 2:
+        return ticks, low
     refs = sliding_window_view(reference, width, axis=0)  # (m - width + 1, axes, width)
     ref_sq = (refs ** 2).sum(axis=(1, 2))
-    best = np.full(n, np.nan)
     firsts = np.arange(0, n, piece)
     stops = np.minimum(firsts + piece, n)
     lows = np.clip((firsts + stops) // 2 - width // 2, 0, n - width)
@@ -138,21 +163,10 @@ def align_on_setpoints(
     seg_sq = (segments ** 2).sum(axis=(1, 2))
     rms = np.sqrt(np.maximum(seg_sq[:, None] + ref_sq[None, :] - 2 * cross, 0.0)
                   / (width * reference.shape[1]))
-    per_piece: list[tuple[int, int, list[int], float]] = []
     for p, (first, stop, a) in enumerate(zip(firsts, stops, lows, strict=True)):
-        found = [lo + int(np.argmin(rms[p, lo:hi])) for lo, hi in _runs(rms[p] <= tolerance)]
-        per_piece.append((int(first), int(stop), [k - int(a) for k in found],
-                          float(rms[p].min())))
-    k_max = max([len(f) for _, _, f, _ in per_piece] + [1])
-    matches = np.full((n, k_max), -1, dtype=np.int64)
-    for first, stop, shifts, low in per_piece:
-        best[first:stop] = low
-        ticks = np.arange(first, stop)
-        for j, shift in enumerate(sorted(shifts)):
-            where = ticks + shift
-            inside = (where >= 0) & (where < m)
-            matches[ticks[inside], j] = where[inside]
-    # keep matches left-aligned: a tick whose first match fell outside the reference
-    order = np.argsort(matches < 0, axis=1, kind="stable")
-    matches = np.take_along_axis(matches, order, axis=1)
-    return Alignment(matches=matches, distance=best, tolerance=tolerance)
+        offsets = [lo + int(np.argmin(rms[p, lo:hi])) - int(a)
+                   for lo, hi in _runs(rms[p] <= tolerance)]
+        low[first:stop] = rms[p].min()
+        for tick in range(first, stop):
+            ticks[tick] = [tick + k for k in offsets if 0 <= tick + k < m]
+    return ticks, low
