@@ -58,13 +58,16 @@ def backlash(
                 f"-o {output}: unknown format, use one of {', '.join(_BACKLASH_SUFFIXES)}"
             )
         from funcnet.diagnosis import diagnose_backlash, write_results
+        from funcnet.robot.channels import channel_map
 
         with progress_bar(quiet, "backlash"):
             results = diagnose_backlash(*traces, channels=channels, axis=axis)
         if output is not None:
             write_results(results, output)
+        cmap = channel_map(channels)
     for result in results:
-        where = result.path if result.axis is None else f"{result.path} axis {result.axis}"
+        where = (result.path if result.axis is None
+                 else f"{result.path} {cmap.axis_label(result.axis)}")
         typer.echo(f"{where}: {one_line(result.message)}")
         typer.echo(f"  {_backlash_numbers(result)}")
     if output is not None:
@@ -73,6 +76,8 @@ def backlash(
 
 def _backlash_numbers(result: Any) -> str:
     """Score and lost motion of one trace's diagnosis, on one line."""
+    if result.score_indicator == "none":  # one encoder: neither can be computed
+        return "backlash_score none; lost_motion none (one encoder per joint)"
     if result.backlash_score is None:
         score = f"backlash_score none ({result.score_indicator})"
     else:

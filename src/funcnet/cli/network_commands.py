@@ -186,7 +186,12 @@ def network(
             if list_phases:
                 print_phases(recording, trace)
                 return
-            chosen = chosen_windows(recording, trace, phase, whole, bounds)
+            from funcnet.embedding import MIN_STATES
+
+            chosen = chosen_windows(
+                recording, trace, phase, whole, bounds,
+                min_samples=(parameters.dim - 1) * parameters.delay + MIN_STATES,
+            )
             check_cost(recording, chosen, names, parameters, force)
             nets = window_networks(
                 recording, chosen, signals=names, parameters=parameters,

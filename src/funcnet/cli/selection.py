@@ -20,10 +20,13 @@ __all__ = ["COST_LIMIT_BYTES", "COST_LIMIT_SECONDS", "check_cost", "check_signal
 
 
 def chosen_windows(recording: Any, trace: Path, phase: str | None, whole: bool,
-                    bounds: tuple[float, float] | None) -> list[Any]:
+                    bounds: tuple[float, float] | None, *, min_samples: int = 0) -> list[Any]:
     """The windows asked for: ``--window all`` one window where every signal has a value,
     ``--phase``/``--window START:STOP`` that one, neither every phase of a move (for a
-    recording of several axes, whose phases are each axis's own, the whole recording)."""
+    recording of several axes, whose phases are each axis's own, the whole recording).
+
+    Of every phase, those shorter than ``min_samples`` (what the embedding needs) are left
+    out, said in one :class:`~funcnet.RecordingWarning` (``problem="short_phase"``)."""
     if recording.axes:
         if phase is not None:
             _one_axis_for_phases(recording, trace)
@@ -32,8 +35,33 @@ def chosen_windows(recording: Any, trace: Path, phase: str | None, whole: bool,
     if whole:
         return [_select_window(recording, None, None, trace)]
     if phase is None and bounds is None:
-        return _moving_phases(recording, trace)
+        return _long_enough(_moving_phases(recording, trace), recording, trace, min_samples)
     return [_select_window(recording, phase, bounds, trace)]
+
+
+def _long_enough(windows: list[Any], recording: Any, trace: Path, min_samples: int) -> list[Any]:
+    """The phase windows the embedding can use; the others named in one warning."""
+    import warnings
+
+    from funcnet.errors import RecordingWarning
+
+    dt = recording.sample_period
+    length = {w.label: int(round((w.stop - w.start) / dt)) for w in windows}
+    short = [w for w in windows if length[w.label] < min_samples]
+    if not short:
+        return windows
+    if len(short) == len(windows):
+        raise WindowError(
+            f"{trace}: every phase is shorter than the {min_samples} samples the embedding "
+            "needs ((dim - 1) * delay + 7); give --window START:STOP, or a smaller --dim or "
+            "--delay"
+        )
+    listed = ", ".join(f"{w.label!r} ({length[w.label]} samples)" for w in short)
+    warnings.warn(RecordingWarning(
+        f"{trace}: phases shorter than the {min_samples} samples the embedding needs "
+        f"((dim - 1) * delay + 7) left out: {listed}", problem="short_phase",
+    ), stacklevel=2)
+    return [w for w in windows if length[w.label] >= min_samples]
 
 
 def _select_window(

@@ -47,6 +47,7 @@ from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import encoder_step, velocity
 from funcnet.robot.recording import Recording, read_trace
+from funcnet.robot.units import Units, in_degrees, unit_of
 
 __all__ = [
     "SCORE",
@@ -175,6 +176,10 @@ class BacklashResult:
         has neither this nor ``left_out``).
     left_out : tuple of LeftOut
         The direction changes left out: a gap within what is read around them.
+    units : str or None
+        What was done to the units (positions converted from rad to deg, or of unknown unit
+        and computed as degrees); None when the trace's positions are in degrees. The JSON
+        then has the key ``units``.
     """
 
     path: str
@@ -193,6 +198,7 @@ class BacklashResult:
     axis: int | None = None
     segments: tuple[tuple[float, float], ...] = ()
     left_out: tuple[LeftOut, ...] = ()
+    units: str | None = None
 
     @property
     def score_unit(self) -> str:
@@ -217,6 +223,7 @@ class BacklashResult:
             "gear_parts": None if self.gear_parts is None else self.gear_parts.to_dict(),
             **({"segments": [list(s) for s in self.segments],
                 "left_out": [o.to_dict() for o in self.left_out]} if self.segments else {}),
+            **({"units": self.units} if self.units else {}),
             "message": self.message,
             "note": MODEL_NOTE,
         }
@@ -316,6 +323,11 @@ def diagnose_recording(
     """
     cal = load_calibration() if calibration is None else calibration
     where = path if path is not None else (recording.source or "<recording>")
+    # The calibration, the thresholds and arcmin are in degrees: angles stated in rad are
+    # converted (said); a unit that is no angle where a position belongs is an error.
+    recording, units = in_degrees(recording)
+    if "MP" not in recording.data.columns and "RP" in recording.data.columns:
+        return _one_encoder(recording, str(where), units, max_dwell)
     rec = motor_side_recording(recording)
     segmented = segment_changes(rec, max_dwell=max_dwell)
     changes = list(segmented.changes)
@@ -400,6 +412,7 @@ def diagnose_recording(
     lost_reason = (None if losses else "no AP" if not has_ap else "no direction change"
                    if not changes else "the arm does not restart")  # fmt: skip
     return BacklashResult(
+        units=units.note or None,
         path=str(where),
         score_indicator=indicator,
         backlash_score=score,
@@ -415,6 +428,74 @@ def diagnose_recording(
         gear_parts=gear_parts(rec) if gear is not None else None,
         segments=segmented.segments,
         left_out=segmented.left_out,
+    )
+
+
+#: Seconds either side of a direction change read for the one-encoder signatures.
+_AROUND_TURN = 0.1
+
+
+def _one_encoder(
+    recording: Recording, where: str, units: Units, max_dwell: float
+) -> BacklashResult:
+    """The diagnosis of an axis with one measured position (no motor encoder MP).
+
+    The motor-side score and the lost motion between two encoders cannot be computed; what
+    the data hold is given at every direction change of the set-point RP (a push on the arm
+    moves AP, never RP, so it is no direction change): the following error RP - AP at the
+    turn (deg; ``following_error_peak``) and the current's step across it (the mean of AC,
+    else RC, in the 0.1 s after the next move starts minus that in the 0.1 s before the move
+    before it ends; ``current_step``, in the current's unit).
+    """
+    rec = recording
+    segmented = segment_changes(rec, max_dwell=max_dwell)
+    changes = list(segmented.changes)
+    t = rec.data.index.to_numpy()
+    has_ap = "AP" in rec.data.columns
+    current = next((c for c in ("AC", "RC") if c in rec.data.columns), None)
+    fe = (rec.data["RP"] - rec.data["AP"]).to_numpy(dtype=np.float64) if has_ap else None
+    results = []
+    for change in changes:
+        values: dict[str, float | None] = {}
+        if fe is not None:
+            near = (t >= change.stop - _AROUND_TURN) & (t <= change.start + _AROUND_TURN)
+            values["following_error_peak"] = (_none(float(np.nanmax(np.abs(fe[near]))))
+                                              if near.any() else None)  # fmt: skip
+        if current is not None:
+            amps = rec.data[current].to_numpy(dtype=np.float64)
+            before = (t >= change.stop - _AROUND_TURN) & (t < change.stop)
+            after = (t >= change.start) & (t < change.start + _AROUND_TURN)
+            values["current_step"] = (
+                _none(float(np.nanmean(amps[after]) - np.nanmean(amps[before])))
+                if before.any() and after.any() else None
+            )
+        part = segment_part(rec, change)
+        # ``traversed`` reads the gear's torque from the motor's acceleration: not without MP
+        results.append(ReversalResult(change, _move_speed(part, change), None, None, values))
+    need = "the backlash score and the lost motion need a second encoder (MP, the motor's)"
+    found = f"{len(changes)} direction change(s) of the set-point"
+    if changes:
+        found += " at " + ", ".join(f"{r.change.stop:.2f}" for r in results) + " s"
+        peaks = [r.indicators.get("following_error_peak") for r in results]
+        peaks_ = [p for p in peaks if p is not None]
+        if peaks_:
+            label = "arcmin" if units.position == "deg" else "x 60, unit unknown"
+            found += (f"; following error |RP - AP| there {60 * min(peaks_):.3g}-"
+                      f"{60 * max(peaks_):.3g} {label}")
+        steps = [r.indicators.get("current_step") for r in results]
+        steps_ = [abs(v) for v in steps if v is not None]
+        if steps_ and current is not None:
+            unit = unit_of(rec.signals[current])
+            found += (f"; {current} steps by {min(steps_):.3g}-{max(steps_):.3g} {unit} "
+                      "across a turn")
+    message = "; ".join(m for m in (
+        f"one measured position per joint ({'AP' if has_ap else 'none'}): {need}", found,
+        segments_note(segmented)) if m)
+    return BacklashResult(
+        path=where, score_indicator="none", backlash_score=None, score_spread=None,
+        lost_motion=None, lost_motion_spread=None, reversals=tuple(results), reading=None,
+        message=message, reading_reason=need, lost_motion_reason="one encoder: " + need,
+        segments=segmented.segments, left_out=segmented.left_out, units=units.note or None,
     )
 
 

@@ -69,6 +69,7 @@ from funcnet.report.repetitions_page import write_repetitions
 from funcnet.robot import read_trace
 from funcnet.robot.axes import split_qualified
 from funcnet.robot.grid import format_spans
+from funcnet.robot.units import in_degrees
 
 __all__ = ["inspect_trace", "write_inspection", "write_robot_inspection", "READING_AN_ARROW"]
 
@@ -458,7 +459,8 @@ def inspect_trace(
     out = Path(out_dir)
 
     def inspected(path: Any, folder: Path) -> TraceInspection | RobotInspection:
-        recording = read_trace(path, channels=channels, axis=axis)
+        # Thresholds, arcmin and arcsec are in degrees: angles in rad converted (said).
+        recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis))
         found: TraceInspection | RobotInspection
         if recording.axes:
             found = inspect_robot(recording, signals=signals, parameters=p, evidence=evidence,

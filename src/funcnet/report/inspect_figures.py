@@ -34,6 +34,20 @@ _MAX_MOVE_COLUMNS = 6  # the motion figure zooms into at most this many moves
 
 
 
+
+def _shown_unit(signals: dict, column: str, default: str) -> str:
+    """A column's unit for an axis label: deg as °, any other stated unit as stated,
+    "unit unknown" where nothing states it; ``default`` for a column the recording lacks."""
+    from funcnet.robot.units import UNKNOWN, unit_of
+
+    info = signals.get(column)
+    if info is None:
+        return default
+    unit = unit_of(info)
+    if unit == UNKNOWN:
+        return "unit unknown"
+    return {"deg": "°"}.get(unit, unit)
+
 def _phase_legend(fig: Any, kinds: Sequence[str], gaps: bool = False) -> None:
     from matplotlib.patches import Patch
 
@@ -70,13 +84,15 @@ def figure_motion(inspection: TraceInspection) -> Any:
     data = inspection.recording.data
     phases = inspection.phases
     moves = inspection.moves.head(_MAX_MOVE_COLUMNS)
-    panels = [("position [°]", [c for c in ("RP", "AP", "MP") if c in data])]
+    signals = inspection.recording.signals
+    deg = _shown_unit(signals, "RP", "°")
+    panels = [(f"position [{deg}]", [c for c in ("RP", "AP", "MP") if c in data])]
     if "V" in data:
-        panels.append(("V [°/s]", ["V"]))
+        panels.append((f"V [{deg}/s]" if deg != "unit unknown" else "V [unit unknown]", ["V"]))
     if "AC" in data:
-        panels.append(("AC [A]", ["AC"]))
+        panels.append((f"AC [{_shown_unit(signals, 'AC', 'A')}]", ["AC"]))
     if "AP" in data:
-        panels.append(("RP − AP [°]", ["FE"]))
+        panels.append((f"RP − AP [{deg}]", ["FE"]))
     cols = max(len(moves), 1)
     fig = Figure(figsize=(11.0, 2.2 + 1.9 * len(panels)), layout="constrained")
     grid = fig.add_gridspec(1 + len(panels), cols, height_ratios=[1.0] + [1.0] * len(panels))
@@ -85,7 +101,7 @@ def figure_motion(inspection: TraceInspection) -> Any:
     plot.shade_spans(top, phases, alpha=0.8, within=(t[0], t[-1]))
     _shade_gaps(top, inspection, (t[0], t[-1]))
     top.plot(t, data["RP"].to_numpy(dtype=float), color=plot.signal_color("RP"), linewidth=1)
-    top.set_ylabel("RP [°]", fontsize=9)
+    top.set_ylabel(f"RP [{deg}]", fontsize=9)
     top.set_xlabel("time [s]", fontsize=9)
     top.set_title("(a) the whole trace: set-point RP", fontsize=10, loc="left", pad=16)
     for move in moves.itertuples():

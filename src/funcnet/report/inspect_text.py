@@ -85,6 +85,31 @@ def _turns_sentence(ins: TraceInspection) -> str:
             + ".")
 
 
+def _position_unit(ins: TraceInspection) -> str:
+    """``"deg"``, or ``"unknown"`` where no unit of the set-point is stated."""
+    from funcnet.robot.units import UNKNOWN, unit_of
+
+    info = ins.recording.signals.get("RP")
+    return "deg" if info is None or unit_of(info) != UNKNOWN else UNKNOWN
+
+
+def _units_facts(ins: TraceInspection) -> list[str]:
+    """One line for signals converted to degrees, one for positions of unknown unit."""
+    from funcnet.robot.units import UNKNOWN, unit_of
+
+    signals = ins.recording.signals
+    converted = [f"{c} ({i.converted_from})" for c, i in signals.items() if i.converted_from]
+    unknown = [c for c in ("RP", "AP", "MP") if c in signals and unit_of(signals[c]) == UNKNOWN]
+    facts = []
+    if converted:
+        facts.append("converted to degrees (deg/s) from the unit the file holds: "
+                     + ", ".join(converted))
+    if unknown:
+        facts.append(f"no unit stated for {', '.join(unknown)}: computed as if degrees "
+                     "(thresholds of 1 deg/s), shown without a unit")
+    return facts
+
+
 def summary_html(ins: TraceInspection) -> str:
     """The page's summary: the trace, its gaps, the moves and their peaks, the windows.
 
@@ -110,19 +135,28 @@ def summary_html(ins: TraceInspection) -> str:
              f"{escape(_turns_sentence(ins))}"
              + (f" {escape(_cut_moves_sentence(ins))}" if _cut_moves_sentence(ins) else "")
              + "</p>"]
+    position = _position_unit(ins)
     if len(moves):
         facts = []
-        facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} °/s "
-                     f"({moves['peak speed'].max() * 60:.4g} °/min)")
+        if position == "deg":
+            facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} °/s "
+                         f"({moves['peak speed'].max() * 60:.4g} °/min)")
+        else:
+            facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} per s "
+                         "(the position's unit is unknown)")
         if "peak |AC|" in moves:
             info = ins.recording.signals.get("AC")
             unit = info.unit if info is not None and info.unit else "A"
             what = "current" if unit.endswith("A") else "torque" if "N" in unit else "value"
             facts.append(f"peak {what} |AC| {moves['peak |AC|'].max():.3g} {unit}")
-        if "peak |FE|" in moves:
+        if "peak |FE|" in moves and position != "deg":
+            facts.append(f"peak following error |RP − AP| {moves['peak |FE|'].max():.3g} "
+                         "(the position's unit is unknown)")
+        elif "peak |FE|" in moves:
             facts.append(f"peak following error |RP − AP| {moves['peak |FE|'].max():.3g}° "
                          f"({moves['peak |FE|'].max() * 60:.3g} arcmin), "
                          f"{moves['final |FE|'].max() * 3600:.3g} arcsec at the end of a move")
+        facts += _units_facts(ins)
         lines.append("<ul>" + "".join(f"<li>{escape(f)}</li>" for f in facts)
                      + "<li>phases within the moves: "
                      + escape(", ".join(f"{k} ×{n}" for k, n in kinds.items())) + "</li>"

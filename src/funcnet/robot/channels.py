@@ -28,11 +28,12 @@ import os
 import re
 import tomllib
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from types import MappingProxyType
 
 from funcnet.errors import ChannelError, ParameterError
+from funcnet.robot.layout import SignalFile, signal_files
 
 __all__ = [
     "ROLES",
@@ -80,6 +81,9 @@ class SignalInfo:
     unit : str or None
         The physical unit (``"deg"``, ``"N m"``) where the file or the channel map states it;
         a torque standing in the role of the current AC shows its unit here.
+    converted_from : str or None
+        The unit the file holds, when the values were converted to ``unit``
+        (:func:`funcnet.robot.units.in_degrees`: rad to deg).
     """
 
     name: str
@@ -87,6 +91,7 @@ class SignalInfo:
     data_type: str | None
     interval: float
     unit: str | None = None
+    converted_from: str | None = None
 
 
 @dataclass(frozen=True)
@@ -151,6 +156,11 @@ class ChannelMap:
         The TOML file the map was read from, named in errors.
     units : Mapping[str, str], optional
         Signal name -> its unit, for files that do not state it.
+    files : Mapping[str, SignalFile], optional
+        Signal name -> the text file and columns it is read from (:mod:`funcnet.robot.layout`):
+        a recording made of files, one per signal.
+    axis_names : tuple of str, optional
+        The axes' names, axis 1 first (``("base", "shoulder", ...)``), for pages.
 
     Examples
     --------
@@ -166,6 +176,8 @@ class ChannelMap:
     roles: Mapping[str, str] = field(default_factory=dict)
     origin: str | None = None
     units: Mapping[str, str] = field(default_factory=dict)
+    files: Mapping[str, SignalFile] = field(default_factory=dict)
+    axis_names: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         clean: dict[str, str] = {}
@@ -188,6 +200,14 @@ class ChannelMap:
             units[parts.path + parts.base] = unit.strip()
         object.__setattr__(self, "roles", MappingProxyType(clean))
         object.__setattr__(self, "units", MappingProxyType(units))
+        object.__setattr__(self, "files", MappingProxyType(dict(self.files)))
+        object.__setattr__(self, "axis_names", tuple(self.axis_names))
+
+    def axis_label(self, axis: int) -> str:
+        """``"axis 2"``, or ``"axis 2 (shoulder)"`` when the map names the axes."""
+        if 1 <= axis <= len(self.axis_names):
+            return f"axis {axis} ({self.axis_names[axis - 1]})"
+        return f"axis {axis}"
 
     def role_of(self, name: str) -> str | None:
         """Return the role of the signal ``name`` (full controller name), or None."""
@@ -214,7 +234,8 @@ class ChannelMap:
         new_roles = set(new.roles.values())
         kept = {key: role for key, role in self.roles.items() if role not in new_roles}
         return ChannelMap(
-            {**kept, **new.roles}, origin=origin or self.origin, units={**self.units, **new.units}
+            {**kept, **new.roles}, origin=origin or self.origin, units={**self.units, **new.units},
+            files=self.files, axis_names=self.axis_names,
         )
 
 
@@ -299,26 +320,37 @@ def channel_map(
     table = document.get("channels", {})
     units = document.get("units", {})
     use_defaults = document.get("defaults", True)
-    unknown = set(document) - {"channels", "defaults", "units"}
+    files = document.get("signals", {})
+    layout = document.get("layout", {})
+    axis_names = document.get("axis_names", [])
+    unknown = set(document) - {"channels", "defaults", "units", "signals", "layout", "axis_names"}
     if (
         not isinstance(table, dict)
         or not isinstance(units, dict)
         or not isinstance(use_defaults, bool)
+        or not isinstance(files, dict)
+        or not isinstance(layout, dict)
+        or not isinstance(axis_names, list)
+        or not all(isinstance(name, str) for name in axis_names)
         or unknown
         or not all(isinstance(role, str) for role in table.values())
     ):
         raise ChannelError(
             path,
             "a channel map is a [channels] table of 'signal name = \"ROLE\"' pairs, an "
-            "optional [units] table of 'signal name = \"unit\"' pairs and an optional "
-            "top-level 'defaults = true|false'"
+            "optional [units] table of 'signal name = \"unit\"' pairs, optional [signals] and "
+            "[layout] tables naming a file per signal, an optional 'axis_names = [...]' and an "
+            "optional top-level 'defaults = true|false'"
             + (f"; unknown keys {sorted(unknown)}" if unknown else ""),
         )
     try:
         start = DEFAULT_CHANNEL_MAP if use_defaults else ChannelMap()
-        return start.updated(table, origin=str(path), units=units)
+        updated = start.updated(table, origin=str(path), units=units)
     except ParameterError as exc:
         raise ChannelError(path, str(exc)) from exc
+    if not files and not axis_names:
+        return updated
+    return replace(updated, files=signal_files(files, layout, path), axis_names=tuple(axis_names))
 
 
 def check_entries(cmap: ChannelMap, names: Iterable[str], path: object) -> None:

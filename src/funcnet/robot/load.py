@@ -20,6 +20,7 @@ from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import DERIVED_SIGNALS, add_derived_signals
 from funcnet.robot.preprocess import resample as resampled
 from funcnet.robot.recording import Recording, read_trace
+from funcnet.robot.units import in_degrees
 
 __all__ = ["read_recording", "prepare_recording", "derived_signals_needed", "RESAMPLE_METHODS"]
 
@@ -91,7 +92,9 @@ def read_recording(
     Returns
     -------
     Recording
-        With the derived signals as its last columns. In a recording of several axes (columns
+        Angles stated in rad converted to degrees (:func:`funcnet.robot.units.in_degrees`,
+        said in one warning). With the derived signals as its last columns. In a recording of
+        several axes (columns
         ``A1.RP``, ...) a derived signal is named with its axis (``A1.V``) and computed from
         that axis's inputs; none is derived unless named.
 
@@ -122,6 +125,8 @@ def read_recording(
     _check_resample(resample)
     off_grid = "interpolate" if resample == "interpolate" else "error"
     recording = read_trace(path, channels=channels, axis=axis, off_grid=off_grid)
+    # Phases and thresholds are in degrees: angles in rad converted, each said.
+    recording, _ = in_degrees(recording)
     return prepare_recording(recording, signals=signals, resample=resample)
 
 

@@ -303,7 +303,9 @@ def add_derived_signals(
             interval = max(recording.signals[column].interval for column in inputs)
             units = "posn"
         data[name] = values  # an existing column is replaced in place
-        infos[name] = SignalInfo(description, units, "double", interval)
+        given = recording.signals[inputs[0]].unit if inputs[0] in recording.signals else None
+        unit = None if given is None else f"{given}/s" if name in ("V", "VM") else given
+        infos[name] = SignalInfo(description, units, "double", interval, unit)
     data = data[list(infos)]
     return replace(recording, data=data, signals=infos)
 

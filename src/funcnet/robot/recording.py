@@ -41,6 +41,7 @@ from funcnet.robot.channels import (
     check_entries,
     parse_signal_name,
 )
+from funcnet.robot.files import read_signal_files
 from funcnet.robot.grid import (
     OFF_GRID,
     GridSignals,
@@ -512,8 +513,13 @@ def read_trace(
     if off_grid not in OFF_GRID:
         raise ParameterError.of("off_grid", f"must be one of {', '.join(OFF_GRID)}; "
                                 f"got {off_grid!r}")
+    if cmap.files and path.exists():
+        return _assemble(path, read_signal_files(path, cmap, axis, off_grid=off_grid), cmap)
     if path.is_dir():
-        raise TraceFormatError(path, "is a directory, not a trace file")
+        raise TraceFormatError(
+            path, "is a directory, not a trace file; a run's folder of one file per signal is "
+            "read through a channel map whose [signals] table names the files"
+        )
     if not path.exists():  # a FuncnetError naming the file, as every other unreadable trace
         raise TraceError(path, "no such file")
     suffix = path.suffix.lower()

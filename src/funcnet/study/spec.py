@@ -280,7 +280,7 @@ def load_study(path: str | os.PathLike[str]) -> Study:
         signals = ["RP", "AP", "MP", "V", "RC", "AC"]   # optional
         constant = "drop"            # optional: "error" (default) or "drop"
         [recordings]
-        paths = ["traces/*.xml"]     # files or glob patterns
+        paths = ["traces/*.xml"]     # files, run folders (read through channels) or globs
         simulated = "paper"          # optional: "paper" or a plan TOML file
         plan_dir = "plan"            # optional, default <out_dir>/plan
         seed = 0                     # optional, seed of the simulated plan
@@ -502,7 +502,8 @@ def _recording_files(patterns: Any, base: Path, fail: _Fail) -> list[Path]:
     files: list[Path] = []
     for pattern in patterns:
         matches = sorted(glob.glob(str(base / pattern), recursive=True))
-        matches = [m for m in matches if Path(m).is_file()]
+        # A folder is a run of one file per signal, read through the channel map's [signals].
+        matches = [m for m in matches if Path(m).is_file() or Path(m).is_dir()]
         if not matches:
             raise fail("recordings.paths", f"{pattern!r} matches no file")
         files.extend(Path(m).resolve() for m in matches)

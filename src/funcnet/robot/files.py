@@ -1,0 +1,352 @@
+"""A recording made of text files: one file per signal (a run's folder), or one log file.
+
+A channel map's ``[signals]`` table names each signal's file and columns
+(:mod:`funcnet.robot.layout`); :func:`read_signal_files` reads them and joins them on their time
+stamps. How:
+
+- Only the files the map names are read; any other file of the folder is ignored.
+- A file's **last line without a line end** was cut while it was written (a logger stopped in the
+  middle of a line: ``21.``): it is dropped. Every file with such a line is named in one
+  :class:`~funcnet.RecordingWarning` (``problem="cut_line"``).
+- Time (seconds) must increase on a uniform grid (:func:`funcnet.robot.grid.time_grid`), the
+  same period in every file. The signals are joined on their time stamps: where the files cover
+  different spans (each cut at its own end), the recording is their **common span**, and every
+  file that reached beyond it is named, with its own end, in one warning
+  (``problem="trimmed"``).
+- A row a file leaves out inside the span, or a cell without a number, is a gap (NaN; see
+  :mod:`funcnet.robot.grid`). Text where a number belongs is an error naming the file, the line
+  and the column.
+- **Axes**: an entry with one column per axis gives, with ``axis=n``, its column ``n`` (counted
+  from 1) named by its role (``RP``), else by its entry's name (``m_target``); without ``axis``
+  every axis, the columns qualified by it (``A1.RP``, ``A2.RP``, ...; :mod:`funcnet.robot.axes`).
+  An entry of one column is common to every axis and keeps its bare name.
+- **Units** are the map's ``[units]``; a text file states none.
+"""
+
+from __future__ import annotations
+
+import io
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from funcnet.errors import ChannelError, RecordingWarning, TraceError, TraceFormatError
+from funcnet.robot.axes import qualified, split_qualified
+from funcnet.robot.channels import DEFAULT_CHANNEL_MAP, ChannelMap, SignalInfo
+from funcnet.robot.grid import GRID_TOLERANCE, GridSignals, time_grid
+from funcnet.robot.layout import SignalFile
+
+__all__ = ["read_signal_files", "FileTable"]
+
+
+@dataclass(frozen=True)
+class FileTable:
+    """The columns one file gives, as read (before the files are joined).
+
+    Attributes
+    ----------
+    path : Path
+    time : ndarray, shape (N,)
+        Seconds, as written.
+    columns : dict
+        The column (position or header name) -> its values, float64 (NaN where a cell is empty).
+    cut_line : str or None
+        The last line, dropped because it has no line end; None when the file ends whole.
+    """
+
+    path: Path
+    time: np.ndarray
+    columns: dict[int | str, np.ndarray]
+    cut_line: str | None
+
+
+def _separator(layout: SignalFile) -> dict[str, object]:
+    if layout.separator == " ":
+        return {"sep": r"\s+"}
+    return {"sep": layout.separator, "skipinitialspace": True}
+
+
+def _read_table(path: Path, layouts: Sequence[SignalFile]) -> FileTable:
+    """One file's time and the columns ``layouts`` need."""
+    first = layouts[0]
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError as exc:
+        raise TraceError(path, f"no such file (the channel map names it for "
+                         f"{', '.join(layout.signal for layout in layouts)})") from exc
+    except OSError as exc:
+        raise TraceError(path, f"cannot be read: {exc}") from exc
+    cut_line = None
+    if raw and not raw.endswith(b"\n"):
+        end = raw.rfind(b"\n") + 1
+        cut_line = raw[end:].decode("utf-8", "replace")
+        raw = raw[:end]
+    wanted: list[int | str] = [first.time]
+    for layout in layouts:
+        if any(layout.header != first.header or layout.separator != first.separator
+               for layout in layouts):
+            raise ChannelError(
+                path, f"the channel map gives this file two layouts (header, separator) in "
+                f"{', '.join(layout.signal for layout in layouts)}"
+            )
+        wanted += [c for c in (layout.time, *layout.columns) if c not in wanted]
+    if not raw.strip():
+        raise TraceFormatError(path, "empty file: no line to read")
+    try:
+        table = pd.read_csv(
+            io.BytesIO(raw), header=0 if first.header else None, engine="c",
+            skip_blank_lines=True, **_separator(first),  # type: ignore[arg-type]
+        )
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
+        raise TraceFormatError(path, f"not a readable text table: {exc}") from exc
+    if first.header:
+        table.columns = [str(c).strip() for c in table.columns]
+    missing = [c for c in wanted if c not in table.columns]
+    if missing:
+        held = (f"its columns are {list(table.columns)}" if first.header
+                else f"it has {table.shape[1]} columns (0-{table.shape[1] - 1})")
+        raise ChannelError(
+            path, f"the channel map reads columns {missing}, which the file does not have; "
+            f"{held}"
+        )
+    line_offset = 2 if first.header else 1
+    values: dict[int | str, np.ndarray] = {}
+    for column in wanted:
+        cells = table[column]
+        if cells.dtype.kind in "fi":
+            values[column] = cells.to_numpy(dtype=np.float64)
+            continue
+        numbers = pd.to_numeric(cells, errors="coerce").to_numpy(dtype=np.float64)
+        text = cells.astype(str).str.strip()
+        bad = np.isnan(numbers) & cells.notna().to_numpy() & ~text.str.lower().isin(
+            ["", "nan", "na", "null"]).to_numpy()
+        if bad.any():
+            row = int(np.argmax(bad))
+            raise TraceFormatError(
+                path, f"line {row + line_offset}: column {column!r} holds {cells.iloc[row]!r}, "
+                "not a number"
+            )
+        values[column] = numbers
+    return FileTable(path, values.pop(first.time), values, cut_line)
+
+
+def _shown(text: str, limit: int = 24) -> str:
+    return repr(text if len(text) <= limit else text[:limit] + "...")
+
+
+def read_signal_files(
+    path: Path, cmap: ChannelMap, axis: int | None, *, off_grid: str = "error"
+) -> GridSignals:
+    """The signals a channel map names in text files, joined on their time stamps.
+
+    Parameters
+    ----------
+    path : Path
+        A run's folder (the entries' files are relative to it), or a log file (the entries
+        without ``file``).
+    cmap : ChannelMap
+        With its ``files`` (:attr:`ChannelMap.files`).
+    axis : int or None
+        The axis to read (from 1); None reads every axis.
+    off_grid : {"error", "interpolate"}
+        See :func:`funcnet.robot.grid.time_grid`.
+
+    Returns
+    -------
+    GridSignals
+        With its column names and roles; the common span of the files.
+
+    Raises
+    ------
+    TraceError
+        A file the map names is not there.
+    TraceFormatError
+        Not a readable table; text where a number belongs; time not increasing or off its
+        grid; files of different sample periods, or without a common span.
+    ChannelError
+        A column the map names is not in its file; ``axis`` not in the recording; a
+        ``[channels]`` or ``[units]`` entry that names no signal; two signals for one role; an
+        entry with a file given a log file, or one without a file given a folder.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, warnings
+    >>> from funcnet.robot.channels import ChannelMap
+    >>> from funcnet.robot.layout import signal_files
+    >>> run = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (run / "q.csv").write_text("0.000, 1.0, 2.0\\n0.008, 1.5, 2.5\\n0.016, 2.0, 3.0\\n")
+    >>> _ = (run / "i.csv").write_text("0.000, 0.1, 0.2\\n0.008, 0.3, 0.4\\n0.0")
+    >>> files = signal_files({"q": "q.csv", "i": "i.csv"}, {"columns": [1, 2]}, "m.toml")
+    >>> cmap = ChannelMap({"q": "RP"}, files=files)
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     grid = read_signal_files(run, cmap, axis=2)
+    >>> print("\\n".join(str(w.message).split(": ", 1)[1] for w in caught))
+    last line cut (no line end), dropped: i.csv ('0.0')
+    files end at different times; read over the time stamps they share, 0-0.008 s: q.csv (last at 0.016 s)
+    >>> grid.columns, grid.values.tolist()
+    (('RP', 'i'), [[2.0, 0.2], [2.5, 0.4]])
+    """  # noqa: E501
+    folder = path.is_dir()
+    entries = list(cmap.files.values())
+    misplaced = [e.signal for e in entries if (e.file is None) == folder]
+    if misplaced:
+        raise ChannelError(
+            path, f"the channel map {cmap.origin or ''} names "
+            + (f"no file for {misplaced}: give the log file, not a folder" if folder else
+               f"files for {misplaced} relative to a run's folder: give the folder, not a file")
+        )
+    by_file: dict[Path, list[SignalFile]] = {}
+    for entry in entries:
+        by_file.setdefault(path / entry.file if entry.file else path, []).append(entry)
+    _check_names(cmap, path)
+    tables = {file: _read_table(file, layouts) for file, layouts in by_file.items()}
+
+    def name(file: Path) -> str:
+        return file.name if folder else str(file)
+
+    cut = [f"{name(file)} ({_shown(t.cut_line)})" for file, t in tables.items()
+           if t.cut_line is not None]
+    if cut:
+        warnings.warn(
+            RecordingWarning(
+                f"{path}: last line cut (no line end), dropped: {', '.join(cut)}",
+                problem="cut_line", signals=tuple(e.signal for f, t in tables.items()
+                                                  if t.cut_line is not None for e in by_file[f]),
+            ),
+            stacklevel=4,
+        )
+    grids = {}
+    for file, table in tables.items():
+        def where(row: int, header: bool = by_file[file][0].header) -> str:
+            return f"line {row + (2 if header else 1)}"
+        grids[file] = time_grid(file, table.time, where, off_grid=off_grid)
+    periods = {file: period for file, (period, _) in grids.items()}
+    period = min(periods.values())
+    odd = [f"{name(f)} ({p:g} s)" for f, p in periods.items()
+           if abs(p - period) > GRID_TOLERANCE * period]
+    if odd:
+        finest = next(name(f) for f, p in periods.items() if p == period)
+        raise TraceFormatError(
+            path, f"the files are sampled at different periods: {finest} every {period:g} s, "
+            f"{', '.join(odd)}; resample them to one period first"
+        )
+    start = max(float(t.time[0]) for t in tables.values())
+    stop = min(float(t.time[-1]) for t in tables.values())
+    if stop <= start:
+        raise TraceFormatError(
+            path, "the files have no time span in common: "
+            + ", ".join(f"{name(f)} {t.time[0]:g}-{t.time[-1]:g} s" for f, t in tables.items())
+        )
+    tolerance = GRID_TOLERANCE * period
+    beyond = []
+    for f, t in tables.items():
+        ends = ([f"first at {t.time[0]:g} s"] if t.time[0] < start - tolerance else []) + (
+            [f"last at {t.time[-1]:g} s"] if t.time[-1] > stop + tolerance else [])
+        if ends:
+            beyond.append(f"{name(f)} ({', '.join(ends)})")
+    if beyond:
+        warnings.warn(
+            RecordingWarning(
+                f"{path}: files {'start and ' if any('starts' in b for b in beyond) else ''}end "
+                f"at different times; read over the time stamps they share, {start:g}-{stop:g} s: "
+                f"{', '.join(beyond)}",
+                problem="trimmed", signals=tuple(e.signal for e in entries),
+            ),
+            stacklevel=4,
+        )
+    n_ticks = int(np.floor((stop - start) / period + GRID_TOLERANCE)) + 1
+    return _joined(path, cmap, axis, by_file, tables, grids, start, period, n_ticks)
+
+
+def _check_names(cmap: ChannelMap, path: Path) -> None:
+    """Every ``[channels]`` and ``[units]`` entry names a signal of ``[signals]``."""
+    signals = sorted(cmap.files)
+    for key in cmap.units:
+        if key not in cmap.files:
+            raise ChannelError(
+                path, f"channel map {cmap.origin or ''}: unit of {key!r} given, but no signal "
+                f"is called so; its signals are {signals}"
+            )
+    for key, role in cmap.roles.items():
+        if key not in cmap.files and DEFAULT_CHANNEL_MAP.roles.get(key) != role:
+            raise ChannelError(
+                path, f"channel map {cmap.origin or ''}: entry {key!r} = {role!r} names no "
+                f"signal of [signals]; its signals are {signals}"
+            )
+
+
+def _joined(
+    path: Path,
+    cmap: ChannelMap,
+    axis: int | None,
+    by_file: dict[Path, list[SignalFile]],
+    tables: dict[Path, FileTable],
+    grids: dict[Path, tuple[float, np.ndarray | None]],
+    start: float,
+    period: float,
+    n_ticks: int,
+) -> GridSignals:
+    """The entries' columns on the common grid, named and ordered as the module says."""
+    n_axes = max(len(e.columns) for e in cmap.files.values())
+    if axis is not None and not (n_axes > 1 and 1 <= axis <= n_axes):
+        held = f"axes 1-{n_axes}" if n_axes > 1 else "one axis (its signals have one column each)"
+        raise ChannelError(path, f"axis {axis} is not in the recording; it holds {held}")
+    columns: list[str] = []
+    infos: list[SignalInfo] = []
+    roles: dict[str, str] = {}
+    values: list[np.ndarray] = []
+    origin: dict[str, str] = {}
+    for file, layouts in by_file.items():
+        table = tables[file]
+        _, ticks = grids[file]
+        # The file's samples on the common grid: tick 0 is `start`.
+        if ticks is not None:
+            offset = int(round((table.time[0] - start) / period))
+            ticks = ticks + offset
+            inside = (ticks >= 0) & (ticks < n_ticks)
+        for layout in layouts:
+            role = cmap.role_of(layout.signal)
+            base = role or layout.signal
+            picked: list[tuple[int | None, int | str]]
+            if len(layout.columns) == 1:
+                picked = [(None, layout.columns[0])]
+            elif axis is not None:
+                picked = [(axis, layout.columns[axis - 1])] if axis <= len(layout.columns) else []
+            else:
+                picked = list(enumerate(layout.columns, start=1))
+            for number, column in picked:
+                name = base if number is None or axis is not None else qualified(number, base)
+                source = f"{layout.signal}" if number is None else f"{layout.signal}(axis {number})"
+                if name in origin:
+                    raise ChannelError(
+                        path, f"{'role ' + name if role else repr(name)} is given by two "
+                        f"signals: {origin[name]!r} and {source!r}"
+                    )
+                origin[name] = source
+                raw = table.columns[column]
+                if ticks is None:  # off its grid, interpolated onto the common one
+                    grid_time = start + np.arange(n_ticks) * period
+                    on = np.interp(grid_time, table.time, raw, left=np.nan, right=np.nan)
+                else:
+                    on = np.full(n_ticks, np.nan)
+                    on[ticks[inside]] = raw[inside]
+                columns.append(name)
+                values.append(on)
+                infos.append(SignalInfo(source, None, None, period, cmap.units.get(layout.signal)))
+                if role:
+                    roles[name] = source
+    order = sorted(range(len(columns)), key=lambda j: split_qualified(columns[j])[0] or 0)
+    return GridSignals(
+        signals=tuple(infos[j] for j in order),
+        values=np.column_stack([values[j] for j in order]),
+        sample_period=period,
+        t0=float(np.round(start, 9)),
+        axis=axis,
+        columns=tuple(columns[j] for j in order),
+        roles=roles,
+    )
