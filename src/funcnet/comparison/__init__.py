@@ -15,6 +15,15 @@ from funcnet._lazy import attach
 _EXPORTS = {
     "Alignment": "funcnet.comparison.align",
     "align_on_setpoints": "funcnet.comparison.align",
+    "Band": "funcnet.comparison.band",
+    "reference_band": "funcnet.comparison.band",
+    "Interval": "funcnet.comparison.intervals",
+    "Difference": "funcnet.comparison.intervals",
+    "find_intervals": "funcnet.comparison.intervals",
+    "NetworkComparison": "funcnet.comparison.networks",
+    "compare_networks": "funcnet.comparison.networks",
+    "Comparison": "funcnet.comparison.compare",
+    "compare_runs": "funcnet.comparison.compare",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)
