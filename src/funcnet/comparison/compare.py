@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from funcnet.comparison.align import SETPOINT_TOLERANCE, Alignment, align_on_setpoints
+from funcnet.comparison.align import SETPOINT_TOLERANCE, Alignment, _runs, align_on_setpoints
 from funcnet.comparison.band import Band, reference_band
 from funcnet.comparison.intervals import Interval, find_intervals
 from funcnet.comparison.networks import NetworkComparison, compare_networks
@@ -33,7 +33,7 @@ from funcnet.parameters import NetworkParameters
 from funcnet.robot.axes import qualified
 from funcnet.robot.recording import Recording
 
-__all__ = ["Comparison", "compare_runs", "RESIDUALS", "READINGS", "MATCHED"]
+__all__ = ["Comparison", "compare_runs", "program_phases", "RESIDUALS", "READINGS", "MATCHED"]
 
 #: The residual signals: name -> (minuend, subtrahend roles, in order of preference).
 RESIDUALS = {"CR": (("AC",), ("RC",)), "FE": (("RP",), ("AP", "MP"))}
@@ -248,13 +248,15 @@ def compare_runs(
                                        tolerance=tolerance)
         share = float(alignment.covered.mean())
         if share < MATCHED:
-            closest = float(np.nanmedian(np.where(np.isfinite(alignment.distance),
-                                                  alignment.distance, np.nan)))
+            finite = alignment.distance[np.isfinite(alignment.distance)]
+            closest = float(np.median(finite)) if finite.size else float("nan")
+            rp = _column(run, axes[0], "RP")
+            unit = run.signals[rp].unit if rp is not None else None
             raise SignalError(
                 f"{ref.source}: its set-points do not match those of {run.source}: "
                 f"{share:.0%} of the run matched (at least {MATCHED:.0%} needed), typical "
-                f"set-point difference {closest:.3g} (tolerance {tolerance:g}): not a run of "
-                "the same program")
+                f"set-point difference {closest:.3g} {unit or '(unit unknown)'} (tolerance "
+                f"{tolerance:g}): not a run of the same program")
         alignments.append(alignment)
         coverage.append(share)
     covered = np.any([a.covered for a in alignments], axis=0)
@@ -326,3 +328,49 @@ def _union(intervals: Sequence[Interval], merge: float) -> tuple[Interval, ...]:
         else:
             out.append(item)
     return tuple(out)
+
+
+def program_phases(setpoints: np.ndarray, period: float, *, t0: float = 0.0,
+                   relative: float = 0.2, min_duration: float = 0.1
+                   ) -> list[tuple[str, float, float]]:
+    """The moves of a program: stretches where some axis' set-point moves fast.
+
+    A robot program often never stops all axes at once; its moves are told apart by the slow
+    stretches between them (every axis below ``relative`` of its peak speed).
+
+    Parameters
+    ----------
+    setpoints : ndarray, shape (n, axes)
+        Position set-points.
+    period : float
+        Sample period (s).
+    t0 : float
+        Seconds of the first tick.
+    relative : float
+        An axis moves fast when its set-point speed exceeds this fraction of its peak.
+    min_duration : float
+        Slow stretches shorter than this (s) are part of the move around them.
+
+    Returns
+    -------
+    list of (str, float, float)
+        ``("move k", start, stop)`` in seconds, in time order.
+
+    Examples
+    --------
+    >>> rp = np.r_[np.zeros(100), np.linspace(0, 1, 100), np.ones(100)][:, None]
+    >>> program_phases(rp, 0.01)
+    [('move 1', 1.0, 2.0)]
+    """
+    rp = np.asarray(setpoints, dtype=np.float64)
+    speed = np.abs(np.gradient(rp, axis=0)) / period if len(rp) > 1 else np.zeros_like(rp)
+    peak = np.nanmax(speed, axis=0, initial=0.0)
+    moving = (speed > relative * np.where(peak > 0, peak, np.inf)).any(axis=1)
+    spans: list[list[int]] = []
+    for a, b in _runs(moving):
+        if spans and (a - spans[-1][1]) * period < min_duration:
+            spans[-1][1] = b
+        else:
+            spans.append([a, b])
+    return [(f"move {k + 1}", round(t0 + a * period, 6), round(t0 + b * period, 6))
+            for k, (a, b) in enumerate(spans)]
