@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Annotated
 
@@ -61,8 +62,9 @@ def compare(
         from funcnet.robot.channels import channel_map
         from funcnet.robot.recording import read_trace
 
-        recording = read_trace(run, channels=channels, axis=axis)
-        references = [read_trace(path, channels=channels, axis=axis) for path in against]
+        # named by the paths given: a Parquet recording keeps the source it was written from
+        recording, *references = (replace(read_trace(path, channels=channels, axis=axis),
+                                          source=str(path)) for path in (run, *against))
         result = compare_runs(recording, references, threshold=threshold, networks=networks)
         cmap = channel_map(channels)
         axes = recording.axes or (recording.axis or 1,)

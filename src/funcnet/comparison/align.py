@@ -141,16 +141,37 @@ def align_on_setpoints(
 
 def _align_part(run: np.ndarray, reference: np.ndarray, width: int, piece: int,
                 tolerance: float) -> tuple[list[list[int]], np.ndarray]:
-    """Matches (reference ticks) and best RMS distance per tick of one stretch without gaps."""
-    n, m = len(run), len(reference)
+    """Matches (reference ticks) and best RMS distance per tick of one stretch without gaps.
+
+    A piece no offset matches with the full context is tried again with half of it, then a
+    quarter (down to the piece itself): where the run slows down within the context, one
+    offset cannot match all of it, but it matches a shorter stretch.
+    """
+    n = len(run)
     ticks: list[list[int]] = [[] for _ in range(n)]
     low = np.full(n, np.inf)
-    width = min(width, n)
-    if width < 2:
-        return ticks, low
+    firsts = np.arange(0, n, piece)
+    todo = np.ones(firsts.size, dtype=bool)
+    w = width
+    while todo.any():
+        _match_pieces(run, reference, min(w, n), piece, tolerance, firsts, todo, ticks, low)
+        if w <= piece or w <= 2:
+            break
+        w = max(w // 2, piece, 2)
+    return ticks, low
+
+
+def _match_pieces(run: np.ndarray, reference: np.ndarray, width: int, piece: int,
+                  tolerance: float, firsts: np.ndarray, todo: np.ndarray,
+                  ticks: list[list[int]], low: np.ndarray) -> None:
+    """Match the pieces still ``todo`` with a context of ``width`` ticks (in place)."""
+    n, m = len(run), len(reference)
+    if width < 2 or m < width:
+        return
+    chosen = np.flatnonzero(todo)
+    firsts = firsts[chosen]
     refs = sliding_window_view(reference, width, axis=0)  # (m - width + 1, axes, width)
     ref_sq = (refs ** 2).sum(axis=(1, 2))
-    firsts = np.arange(0, n, piece)
     stops = np.minimum(firsts + piece, n)
     lows = np.clip((firsts + stops) // 2 - width // 2, 0, n - width)
     segments = run[lows[:, None] + np.arange(width)]  # (pieces, width, axes)
@@ -166,7 +187,8 @@ def _align_part(run: np.ndarray, reference: np.ndarray, width: int, piece: int,
     for p, (first, stop, a) in enumerate(zip(firsts, stops, lows, strict=True)):
         offsets = [lo + int(np.argmin(rms[p, lo:hi])) - int(a)
                    for lo, hi in _runs(rms[p] <= tolerance)]
-        low[first:stop] = rms[p].min()
-        for tick in range(first, stop):
-            ticks[tick] = [tick + k for k in offsets if 0 <= tick + k < m]
-    return ticks, low
+        low[first:stop] = np.minimum(low[first:stop], rms[p].min())
+        if offsets:
+            todo[chosen[p]] = False
+            for tick in range(first, stop):
+                ticks[tick] = [tick + k for k in offsets if 0 <= tick + k < m]
