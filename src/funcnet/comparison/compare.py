@@ -367,7 +367,7 @@ def program_phases(setpoints: np.ndarray, period: float, *, t0: float = 0.0,
     peak = np.nanmax(speed, axis=0, initial=0.0)
     moving = (speed > relative * np.where(peak > 0, peak, np.inf)).any(axis=1)
     spans: list[list[int]] = []
-    for a, b in _runs(moving):
+    for a, b in _runs(np.asarray(moving)):
         if spans and (a - spans[-1][1]) * period < min_duration:
             spans[-1][1] = b
         else:

@@ -135,7 +135,7 @@ def find_intervals(
     stack = np.stack([np.nan_to_num(np.asarray(sizes[k]), nan=0.0) for k in keys])
     hot = (stack > threshold).any(axis=0)
     spans: list[list[int]] = []
-    for a, b in _runs(hot):
+    for a, b in _runs(np.asarray(hot)):
         if spans and (a - spans[-1][1]) * period < merge:
             spans[-1][1] = b
         else:
