@@ -15,9 +15,9 @@ import pandas as pd
 import pytest
 
 from funcnet.diagnosis import diagnose_backlash
-from funcnet.diagnosis.sweep import run_sweep
-from funcnet.robot.sim.axis import SimulatedTrial, simulate_trial
-from funcnet.robot.sim.plan import ARCMIN, backlash_sweep_plan
+from funcnet.sim.axis import SimulatedTrial, simulate_trial
+from funcnet.sim.plan import ARCMIN, backlash_sweep_plan
+from funcnet.validation.sweep import run_sweep
 
 STEP = 360 / 2**22  # the arm encoder's step with the real sensors, deg
 

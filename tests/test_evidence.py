@@ -1,6 +1,6 @@
 """funcnet.evidence: the dependence test, its surrogates, the intervals, and pinned error rates.
 
-The error-rate tests run a fixed seed set (seeds 0..n-1 of funcnet.systems) and allow for
+The error-rate tests run a fixed seed set (seeds 0..n-1 of funcnet.validation.systems) and allow for
 binomial noise: a false-positive count must stay within 0.05 + 3 standard errors of its pairs,
 power at least the bound given. They were set from the measured rates in docs/evidence.md
 (measured on seeds from 1000 on), not tuned on these seeds.
@@ -13,8 +13,9 @@ import math
 import numpy as np
 import pytest
 
-from funcnet import systems
-from funcnet.embedding import embed
+from funcnet.core.embedding import embed
+from funcnet.core.measures import cross_measures
+from funcnet.core.recurrence import auto_recurrence
 from funcnet.errors import ParameterError
 from funcnet.evidence import (
     asymmetry_interval,
@@ -31,8 +32,7 @@ from funcnet.evidence import (
 )
 from funcnet.evidence.dependence import surrogate_plan
 from funcnet.evidence.surrogates import twin_groups, twin_plan
-from funcnet.measures import cross_measures
-from funcnet.recurrence import auto_recurrence
+from funcnet.validation import systems
 
 
 def minmax(x):
@@ -178,7 +178,7 @@ def test_false_positive_rate_on_uncoupled_pairs(name, batch, delay):
 
 
 def test_power_on_coupled_henon_maps():
-    # Target of issue 10: power >= 0.9 at C = 0.4, N = 500; measured 1.00 on 200 pairs.
+    # Target: power >= 0.9 at C = 0.4, N = 500; measured 1.00 on 200 pairs.
     p = p_values(systems.henon_pair(500, 0.4, seed=list(range(20))))
     assert int((p <= 0.05).sum()) >= 17
 

@@ -17,9 +17,9 @@ from funcnet.cli import app
 from funcnet.diagnosis import diagnose_recording
 from funcnet.diagnosis.dead_zone import gear_parts
 from funcnet.diagnosis.reversals import motor_side_recording
-from funcnet.diagnosis.sweep import simulated_recording
 from funcnet.robot import Recording, SignalInfo, read_trace
-from funcnet.robot.sim import Trial, simulate_trial
+from funcnet.sim import Trial, simulate_trial
+from funcnet.validation.sweep import simulated_recording
 
 KUKA = SHARED / "data" / "kuka-kr300"
 KUKA_MAP = REPO / "examples" / "kuka-kr300-channels.toml"

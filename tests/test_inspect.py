@@ -1,4 +1,4 @@
-"""The engineer's report of a trace (issue 12): on the real SINUMERIK trace, once, end to end.
+"""The engineer's report of a trace: on the real SINUMERIK trace, once, end to end.
 
 The trace lives outside the repository (its source has no licence file): ``../shared/data/
 sinumerik/axis7-braking-trace.xml`` from the repository root. Without it the real-trace test is

@@ -16,7 +16,7 @@ from funcnet.diagnosis.reversal_error import fit_gear, reversal_error, torque_tr
 from funcnet.diagnosis.reversals import DirectionChange, motor_side_recording
 from funcnet.robot import Recording, SignalInfo, read_trace
 from funcnet.robot.preprocess import velocity
-from funcnet.robot.sim import Trial, simulate_trial, write_trace
+from funcnet.sim import Trial, simulate_trial, write_trace
 
 KUKA = SHARED / "data" / "kuka-kr300"
 RUNS = ("A", "B")

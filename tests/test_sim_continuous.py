@@ -9,10 +9,10 @@ import pytest
 
 from funcnet.diagnosis import find_direction_changes
 from funcnet.diagnosis.reversals import motor_side_recording
-from funcnet.diagnosis.sweep import simulated_recording, trial_indicators
 from funcnet.errors import ParameterError
-from funcnet.robot.sim import Trial, continuous_sweep_plan, simulate_trial
-from funcnet.robot.sim.axis import AxisParameters, setpoint_profile
+from funcnet.sim import Trial, continuous_sweep_plan, simulate_trial
+from funcnet.sim.axis import AxisParameters, setpoint_profile
+from funcnet.validation.sweep import simulated_recording, trial_indicators
 
 
 def _smooth(backlash_arcmin: float, load: float | None, speed: float = 175) -> Trial:

@@ -23,12 +23,13 @@ import warnings
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
 
-from funcnet import batch
+from funcnet.core import batch
+from funcnet.core.measures import CrossMeasures, threshold_warnings
 from funcnet.errors import (
     ChannelError,
     FuncnetError,
@@ -37,7 +38,6 @@ from funcnet.errors import (
     WindowError,
     caller_stacklevel,
 )
-from funcnet.measures import CrossMeasures, threshold_warnings
 from funcnet.network import (
     FunctionalNetwork,
     add_evidence,
@@ -47,7 +47,7 @@ from funcnet.network import (
 )
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.preprocess import staircase_warning
 from funcnet.robot.recording import Recording
 from funcnet.robot.windows import Window, paper_nodes, phase_windows
@@ -138,7 +138,7 @@ def _collects(errors: str) -> bool:
 def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwork],
                     windows: Sequence[Window], *, errors: str = "raise",
                     progress: Callable[[int, int, str], None] | None = None,
-                    **settings: Any) -> WindowNetworks:
+                    **settings: Unpack[EvidenceSettings]) -> WindowNetworks:
     """Each window's network with the evidence columns (:func:`funcnet.network.add_evidence`:
     the measures are not computed again).
 
@@ -228,7 +228,7 @@ def window_networks(
     constant: str = "error",
     errors: str = "raise",
     progress: Callable[[int, int, str], None] | None = None,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> WindowNetworks:
     """One functional network per window of a recording.
 
@@ -433,7 +433,7 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
 def _batched_networks(
     recording: Recording, windows: Sequence[Window], signals: Sequence[str], p: NetworkParameters
 ) -> tuple[list[FunctionalNetwork], list[FuncnetWarning]] | None:
-    """The windows' networks through the batched engine (:func:`funcnet.batch.batch_pairs`),
+    """The windows' networks through the batched engine (:func:`funcnet.core.batch.batch_pairs`),
     equal (``==``) to :func:`_window_network`'s, and their :func:`window_warnings`; None where
     it does not apply (no short window, explicit ``eps``, NaN or a constant signal in a window,
     any error): the per-window path then computes them, and raises its located errors."""
@@ -533,7 +533,7 @@ def window_warnings(networks: Mapping[str, FunctionalNetwork]) -> list[FuncnetWa
     Returns
     -------
     list of FuncnetWarning
-        In window order, then as :func:`funcnet.measures.threshold_warnings` orders them: a
+        In window order, then as :func:`funcnet.core.measures.threshold_warnings` orders them: a
         :class:`~funcnet.errors.ThresholdWarning` for pairs whose ``eps_ordered`` is False
         (``problem="eps_order"``) and for pairs whose ``rate_exceeded`` is True, degenerate
         pairs aside (``"rate_exceeded"``), a :class:`~funcnet.errors.DegenerateWarning` for the

@@ -4,7 +4,7 @@ simulated sweep that calibrates it scored against its truth.
 ``backlash-report`` reads a folder that ``funcnet simulate --plan backlash-sweep`` (or any
 reversal plan) wrote -- traces and ``manifest.csv`` with the truth -- or an indicator table
 (``.csv``) saved from a sweep, and writes
-:func:`funcnet.report.sweep_report.write_sweep_report`'s page.
+:func:`funcnet.validation.sweep_report.write_sweep_report`'s page.
 """
 
 from __future__ import annotations
@@ -62,7 +62,11 @@ def backlash(
 
         with progress_bar(quiet, "backlash"):
             results = diagnose_backlash(*traces, channels=channels, axis=axis)
-        if output is not None:
+        if output is not None and output.suffix.lower() == ".html":
+            from funcnet.report import write_backlash_page
+
+            write_backlash_page(results, output)
+        elif output is not None:
             write_results(results, output)
         cmap = channel_map(channels)
     for result in results:
@@ -146,8 +150,8 @@ def backlash_report(
     with reported_errors(summarized=True):
         import pandas as pd
 
-        from funcnet.diagnosis.sweep import folder_indicators
-        from funcnet.report.sweep_report import write_sweep_report
+        from funcnet.validation.sweep import folder_indicators
+        from funcnet.validation.sweep_report import write_sweep_report
 
         if output.suffix.lower() not in (".html", ".htm"):
             raise ParameterError(f"-o {output}: the report is an .html page")

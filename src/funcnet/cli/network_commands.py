@@ -272,9 +272,6 @@ def _write(frames: list[Any], results: list[Any], labels: list[str], output: Pat
             else:
                 table.to_parquet(tmp, index=False)
         return [output]
-    import matplotlib
-
-    matplotlib.use("Agg")
     from funcnet.plot import plot_stability
 
     written = network_files(output, labels)

@@ -19,7 +19,7 @@ from typing import Annotated, Any, TypeVar
 import typer
 
 from funcnet.errors import ParameterError
-from funcnet.parameters import NetworkParameters
+from funcnet.parameters import EvidenceSettings, NetworkParameters
 
 __all__ = [
     "FLAGS", "NO_OPTION", "NetworkOptions", "network_options", "spelled_as_options",
@@ -130,7 +130,7 @@ def network_options(command: Command) -> Command:
     names = [option.name for option in _NETWORK_OPTIONS]
 
     @functools.wraps(command)
-    def with_options(**given: Any) -> Any:
+    def with_options(**given: object) -> Any:
         values = {name: given.pop(name) for name in names}
         return command(**given, network=NetworkOptions(values))
 
@@ -279,7 +279,7 @@ def signal_list(text: str | None) -> list[str] | None:
 
 def evidence_settings(evidence: bool, surrogates: int | None, alpha: float, seed: int,
                       resamples: int, edge_rule: str,
-                      surrogate_method: str) -> dict[str, Any] | None:
+                      surrogate_method: str) -> EvidenceSettings | None:
     """The evidence keywords of :func:`funcnet.functional_network`, checked and spelled as the
     command's flags; ``None`` without ``--evidence``."""
     from funcnet.evidence import EDGE_RULES, check_evidence_arguments
@@ -296,5 +296,5 @@ def evidence_settings(evidence: bool, surrogates: int | None, alpha: float, seed
         raise ParameterError("--edge-rule interval needs intervals: --resamples must be >= 1")
     with spelled_as_options():
         check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
-    return {"surrogates": surrogates, "alpha": alpha, "seed": seed, "resamples": resamples,
-            "edge_rule": edge_rule, "surrogate_method": surrogate_method}
+    return EvidenceSettings(surrogates=surrogates, alpha=alpha, seed=seed, resamples=resamples,
+                            edge_rule=edge_rule, surrogate_method=surrogate_method)

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from funcnet.batch import batch_pairs
+from funcnet.core.batch import batch_pairs
 from funcnet.comparison.align import Alignment
 from funcnet.comparison.band import SPREAD_FLOOR, _rolling_mean
 from funcnet.comparison.intervals import Interval, find_intervals

@@ -25,7 +25,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet.diagnosis.dead_zone import GearParts, gear_parts
-from funcnet.diagnosis.indicators import reversal_indicators
+from funcnet.diagnosis.indicators import reversal_indicators, with_contact_score
 from funcnet.diagnosis.reversal_error import (
     GearFit,
     fit_gear,
@@ -41,7 +41,6 @@ from funcnet.diagnosis.segments import (
     segment_part,
     segments_note,
 )
-from funcnet.diagnosis.sweep import with_contact_score
 from funcnet.diagnosis.two_encoder import lost_motion
 from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
@@ -66,13 +65,13 @@ __all__ = [
 SCORE = "motor_hysteresis"
 #: ``backlash_score`` of a trace without AP: its position loop must read the motor encoder,
 #: where ``motor_hysteresis`` sees nothing; the best motor-side indicator of that sweep
-#: (:func:`funcnet.diagnosis.sweep.with_contact_score`: motor travel to the gear's contact and
+#: (:func:`funcnet.diagnosis.indicators.with_contact_score`: motor travel to the gear's contact and
 #: the current's step there, each against the sweep's no-backlash trials).
 MOTOR_LOOP_SCORE = "motor_contact"
 
 #: What every reading says about itself.
 MODEL_NOTE = (
-    "model-based: read on the simulated sweep (funcnet.robot.sim), not on this machine; a "
+    "model-based: read on the simulated sweep (funcnet.sim), not on this machine; a "
     "real axis differs in its mechanics, tuning and noise"
 )
 
@@ -558,7 +557,7 @@ def diagnose_backlash(
     Examples
     --------
     >>> import pathlib, tempfile
-    >>> from funcnet.robot.sim import Trial, simulate_trial, write_trace
+    >>> from funcnet.sim import Trial, simulate_trial, write_trace
     >>> sim = simulate_trial(Trial("rev", "s", speed=175, tcp=1.6, step=1, reverse=True,
     ...                            backlash=2 / 60, sensors="real", seed=1))
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "rev.xml"

@@ -52,7 +52,8 @@ __all__ = [
     "WINDOW",
 ]
 
-#: deg/s the motor must exceed for a sample to enter the gear's fit (the plain fit of the issue).
+#: deg/s the motor must exceed for a sample to enter the gear's fit (as in the plain least-squares
+#: fit).
 FIT_SPEED = 1.0
 #: s of each stretch beside the turn over which the step is measured.
 WINDOW = 0.25

@@ -1,9 +1,9 @@
-"""The two-encoder lost motion at a direction change (issue 11; needs AP and MP).
+"""The two-encoder lost motion at a direction change (needs AP and MP).
 
 ``MP - AP`` changes across a reversal by the motor's travel while the arm rests -- the gear's
 dead zone plus its wind-up on both flanks -- plus what the arm still coasts forward after the
 motor has turned: :func:`lost_motion` measures that change from the motor's turning point to
-the arm's restart, the simulator's truth (:class:`funcnet.robot.sim.axis.SimulatedTrial`). The
+the arm's restart, the simulator's truth (:class:`funcnet.sim.axis.SimulatedTrial`). The
 restart is the first after the set-point's turn with which the arm moves the new way from a
 rest (a reading it reached moving the old way, or two equal readings: a loop hunting across the
 dead zone stops the arm in it); the turn is the motor's last move the old way before it
@@ -267,7 +267,7 @@ def _fit_restart(
     alone over those up to ``_START_SPAN`` steps (where the model with the fitted parameters
     is closest; the larger span carries the parameters). Assumed, not fitted: the gear's
     damping ratio ``_ZETA`` and the Stribeck velocity ``v_s`` -- the simulator's values
-    (:class:`funcnet.robot.sim.axis.AxisParameters`: ``gear_damping`` gives about 10 %,
+    (:class:`funcnet.sim.axis.AxisParameters`: ``gear_damping`` gives about 10 %,
     ``arm_stribeck_velocity`` 0.002 rad/s); a real axis's are unknown (docs/backlash.md section
     3.1 gives the estimate's sensitivity to them).
 

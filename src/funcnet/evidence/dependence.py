@@ -9,7 +9,7 @@ Statistic
     (``|i - j| > theiler``), of the recurrence indicators ``A_X[i, j]`` and ``A_Y[i, j]`` --
     the excess of joint recurrences (Romano et al. 2004) over what the two recurrence rates
     of the window give by chance, scaled to [-1, 1]. ``A_X`` and ``A_Y`` are each signal's
-    recurrence matrix over the whole window (thresholds by rate, :mod:`funcnet.recurrence`),
+    recurrence matrix over the whole window (thresholds by rate, :mod:`funcnet.core.recurrence`),
     computed once.
 
 Surrogates: a lattice of non-circular time shifts on equal-length windows
@@ -19,7 +19,7 @@ Surrogates: a lattice of non-circular time shifts on equal-length windows
     around: a circular shift joins the end of Y to its start, so the pairs of times that
     straddle the wrap get a different lag in Y than in X; two independent copies of the same
     oscillator recur at the same lags, the wrap destroys exactly that, and the circular test
-    rejected independence in about 20 % of such pairs (issue 10). With equal-length windows and
+    rejected independence in about 20 % of such pairs. With equal-length windows and
     no wrap, every surrogate is, when X and Y are independent and each is stationary, a draw
     of the same law as the observed window, whatever the signals' periods.
 
@@ -363,9 +363,9 @@ def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan | TwinPlan
 
     Examples
     --------
-    >>> from funcnet.embedding import embed
-    >>> from funcnet.recurrence import auto_recurrence
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.core.embedding import embed
+    >>> from funcnet.core.recurrence import auto_recurrence
+    >>> from funcnet.validation.systems import henon_pair
     >>> data = henon_pair(300, 0.6, seed=0)
     >>> a_x, a_y = (auto_recurrence(embed(data[:, k], 2, 1), rr=0.05).to_dense().astype(np.uint8)
     ...             for k in (0, 1))

@@ -1,7 +1,8 @@
 """Evidence for every pair of a set of signals: coupling test, intervals, direction, reading.
 
 :func:`pairwise_evidence` embeds each signal and computes its recurrence matrix once (the
-thresholds of :func:`funcnet.measures.pairwise_cross_measures`, so ``c_diff``/``t_diff`` are the
+thresholds of :func:`funcnet.core.measures.pairwise_cross_measures`, so ``c_diff``/``t_diff`` are
+the
 network's own numbers), then per pair runs the dependence test
 (:mod:`funcnet.evidence.dependence`) and the half-sampling intervals
 (:mod:`funcnet.evidence.interval`), and adjusts the coupling and direction p-values across the
@@ -29,11 +30,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 
-from funcnet.embedding import signal_states
+from funcnet.core.embedding import signal_states
+from funcnet.core.measures import isrn_measures
+from funcnet.core.recurrence import auto_recurrence, cross_recurrence
+from funcnet.core.thresholds import signal_thresholds
 from funcnet.errors import ParameterError, SignalError
 from funcnet.evidence.dependence import (
     benjamini_hochberg,
@@ -45,13 +49,7 @@ from funcnet.evidence.dependence import (
     surrogate_plan,
 )
 from funcnet.evidence.interval import AsymmetryInterval, asymmetry_intervals
-from funcnet.measures import isrn_measures
-from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
-from funcnet.recurrence import (
-    _signal_thresholds,
-    auto_recurrence,
-    cross_recurrence,
-)
+from funcnet.parameters import PAIR_FIELDS, NetworkParameters, ParameterOverrides, resolve
 
 __all__ = ["EVIDENCE_LABELS", "PairEvidence", "pairwise_evidence", "evidence_label",
            "check_evidence_arguments"]
@@ -192,7 +190,7 @@ def pairwise_evidence(
     resamples: int = 200,
     level: float = 0.95,
     surrogate_method: str = "shift",
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> dict[tuple[Any, Any], PairEvidence]:
     """Coupling test, intervals and direction of every pair ``i < j`` of equally long signals.
 
@@ -205,7 +203,7 @@ def pairwise_evidence(
         Keys of the result (default positions).
     parameters : NetworkParameters, optional
         Embedding and thresholds (``dim``, ``delay``, ``rr``, ``cr``, ``eps``, ``metric``,
-        ``rule``, ``theiler``), as :func:`funcnet.measures.pairwise_cross_measures`.
+        ``rule``, ``theiler``), as :func:`funcnet.core.measures.pairwise_cross_measures`.
     surrogates : int, optional
         ``K`` asked per pair; default :func:`default_surrogates` of the number of pairs.
     alpha : float
@@ -230,7 +228,7 @@ def pairwise_evidence(
     -------
     dict
         ``{(name_i, name_j): PairEvidence}``, the keys of
-        :func:`funcnet.measures.pairwise_cross_measures`.
+        :func:`funcnet.core.measures.pairwise_cross_measures`.
 
     Raises
     ------
@@ -246,7 +244,7 @@ def pairwise_evidence(
 
     Examples
     --------
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.validation.systems import henon_pair
     >>> data = henon_pair(400, 0.6, seed=0)
     >>> result = pairwise_evidence([data[:, 0], data[:, 1]], names=["x", "y"], delay=1,
     ...                            resamples=50)
@@ -274,7 +272,7 @@ def pairwise_evidence(
     n_pairs = n * (n - 1) // 2
     k = default_surrogates(n_pairs, alpha) if surrogates is None else surrogates
     called = [f"signals[{i}]" if names is None else repr(str(keys[i])) for i in range(n)]
-    thresholds, (cr, cross_eps) = _signal_thresholds(p, n)
+    thresholds, (cr, cross_eps) = signal_thresholds(p, n)
     states = [signal_states(s, parameters=p, name=c) for s, c in zip(signals, called, strict=True)]
     autos = [
         auto_recurrence(s, rr=rate, eps=eps, parameters=p, name=c)

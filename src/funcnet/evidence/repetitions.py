@@ -46,7 +46,7 @@ Direction
 
 Asymmetry
     ``C_diff`` and ``T_diff`` of each repetition's own network (the raw signals, the network's
-    numbers, :func:`funcnet.batch.batch_pairs`), their mean and a Student-t interval of the
+    numbers, :func:`funcnet.core.batch.batch_pairs`), their mean and a Student-t interval of the
     mean from their spread across the repetitions; ``kind_share`` is the share of repetitions
     whose network gives the pair its most common kind (``kind``).
 
@@ -72,23 +72,24 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
 from scipy.stats import t as student_t
 
-from funcnet.batch import batch_pairs
-from funcnet.embedding import signal_states
+from funcnet.core.batch import batch_pairs
+from funcnet.core.embedding import signal_states
+from funcnet.core.kinds import measure_kinds
+from funcnet.core.normalization import normalize
+from funcnet.core.recurrence import auto_recurrence
+from funcnet.core.thresholds import signal_thresholds
 from funcnet.errors import ParameterError, SignalError
 from funcnet.evidence._kernels import _repetition_counts
 from funcnet.evidence.dependence import benjamini_hochberg, default_surrogates
 from funcnet.evidence.pairs import _check_alpha, _check_surrogates
 from funcnet.evidence.reading import evidence_readings
-from funcnet.kinds import measure_kinds
-from funcnet.normalization import normalize
-from funcnet.parameters import NetworkParameters, resolve
-from funcnet.recurrence import _signal_thresholds, auto_recurrence
+from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
 
 __all__ = ["REPETITION_COLUMNS", "repetition_evidence", "repetition_tests", "repetitions_needed",
            "smallest_p_value", "EXHAUSTIVE_MAX"]
@@ -219,7 +220,7 @@ def _recurrences(stack: np.ndarray, p: NetworkParameters, residuals: bool, names
     the states' number; the nodes constant in every repetition."""
     values = stack - stack.mean(axis=0) if residuals else stack
     r, _, n = values.shape
-    thresholds, _ = _signal_thresholds(p, n)
+    thresholds, _ = signal_thresholds(p, n)
     dense, pairs, offsets = [], [], []
     constants: set[int] = set()
     length = 0
@@ -298,7 +299,7 @@ def repetition_tests(
     seed: int = 0,
     surrogates: int | None = None,
     residuals: bool = True,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> pd.DataFrame:
     """The repetition coupling test of every pair alone, unadjusted (module notes).
 
@@ -328,7 +329,7 @@ def repetition_tests(
 
     Examples
     --------
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.validation.systems import henon_pair
     >>> runs = [henon_pair(200, 0.6, seed=s) for s in range(5)]
     >>> tests = repetition_tests(runs, signals=["x", "y"], delay=1)
     >>> int(tests.surrogates.item()), round(float(tests.p_value.item()), 4)
@@ -378,7 +379,7 @@ def repetition_evidence(
     surrogates: int | None = None,
     residuals: bool = True,
     level: float = 0.95,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> pd.DataFrame:
     """Evidence for every pair from ``R`` aligned repetitions of one motion (module notes).
 
@@ -439,7 +440,7 @@ def repetition_evidence(
 
     Examples
     --------
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.validation.systems import henon_pair
     >>> runs = [henon_pair(300, 0.6, seed=s) for s in range(6)]
     >>> table = repetition_evidence(runs, signals=["x", "y"], delay=1)
     >>> row = table.iloc[0]

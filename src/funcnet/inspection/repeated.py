@@ -11,15 +11,19 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import pandas as pd
 
 from funcnet.errors import FuncnetError
 from funcnet.evidence.repetitions import repetition_evidence, repetitions_needed
-from funcnet.parameters import NetworkParameters
+from funcnet.parameters import EvidenceSettings, NetworkParameters
 from funcnet.robot import Recording, find_repetitions
 
-__all__ = ["RepeatedInspection", "inspect_repetitions"]
+if TYPE_CHECKING:
+    from funcnet.inspection.trace import TraceInspection
+
+__all__ = ["RepeatedInspection", "inspect_repetitions", "repetitions_of"]
 
 
 @dataclass(frozen=True)
@@ -102,3 +106,30 @@ def inspect_repetitions(recordings: Sequence[Recording], signals: Sequence[str],
     r = len(found)
     message = f"{r} repetitions of the motion ({found.others} other move(s) left out); {needed}"
     return RepeatedInspection(found.moves, tables, failures, message)
+
+
+def repetitions_of(inspections: Sequence[TraceInspection],
+                   evidence_options: EvidenceSettings | None = None) -> RepeatedInspection | None:
+    """:func:`inspect_repetitions` of inspected traces, with their nodes and parameters.
+
+    Parameters
+    ----------
+    inspections : sequence of TraceInspection
+        The single-axis inspections to read together; the first one's nodes and parameters
+        are used.
+    evidence_options : EvidenceSettings, optional
+        ``alpha`` and ``seed`` are used (default 0.05 and 0).
+
+    Returns
+    -------
+    RepeatedInspection or None
+        None when there is no inspection to read.
+    """
+    if not inspections:
+        return None
+    options = evidence_options or EvidenceSettings()
+    first = inspections[0]
+    return inspect_repetitions([ins.recording for ins in inspections], first.signals,
+                               parameters=first.parameters,
+                               alpha=float(options.get("alpha", 0.05)),
+                               seed=int(options.get("seed", 0)))

@@ -11,7 +11,7 @@ from __future__ import annotations
 import dataclasses
 import inspect
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Unpack
 
 import pandas as pd
 
@@ -27,7 +27,7 @@ from funcnet.evidence.pairs import PairEvidence
 from funcnet.network._inputs import PreparedSignals, prepared_signals
 from funcnet.network.rule import edges_from_pairs, kinds_for
 from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS, pairs_frame
-from funcnet.parameters import NetworkParameters
+from funcnet.parameters import EvidenceSettings, NetworkParameters
 
 if TYPE_CHECKING:
     from funcnet.network.functional import FunctionalNetwork
@@ -55,7 +55,7 @@ def check_edge_rule(edge_rule: Any, evidence: bool) -> None:
         raise ParameterError.of("edge_rule", "'interval' needs evidence=True")
 
 
-def check_evidence_settings(**settings: Any) -> None:
+def check_evidence_settings(**settings: Unpack[EvidenceSettings]) -> None:
     """Check the evidence keywords of :func:`add_evidence` before any data is read.
 
     Parameters
@@ -230,7 +230,7 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     --------
     >>> import numpy as np
     >>> from funcnet.network import functional_network
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.validation.systems import henon_pair
     >>> data = henon_pair(300, 0.6, seed=0)
     >>> plain = functional_network(data, names=["x", "y"], delay=1, warn=False)
     >>> full = add_evidence(plain, data, surrogates=19, resamples=0)

@@ -22,8 +22,15 @@ from funcnet._io import write_text_atomic
 from funcnet.comparison.compare import RESIDUAL_NAMES, Comparison, program_phases
 from funcnet.comparison.intervals import Interval
 from funcnet.comparison.networks import MEASURES
-from funcnet.report.html import contents, escape, figure_html, mapping_table, page, provenance
-from funcnet.report.html import table as html_table
+from funcnet.report.html import (
+    contents,
+    escape,
+    figure_html,
+    mapping_table,
+    page,
+    provenance,
+    table as html_table,
+)
 
 __all__ = ["write_comparison", "changes", "CARRIED_BY"]
 

@@ -1,11 +1,13 @@
 """The engineer's report of a controller trace: "here is a trace of my axis: what is it doing?".
 
-:func:`inspect_trace` reads one or several traces and writes, for each, one HTML page that reads
-from the top: a plain summary of the motion (moves, phases with their times, speeds, peak
+:func:`inspect_trace` has one or several traces read and inspected
+(:func:`funcnet.inspection.inspect_file`) and writes, for each, one HTML page that reads from the
+top: a plain summary of the motion (moves, phases with their times, speeds, peak
 currents, following error, lost motion at the direction changes where both encoders exist),
 then the functional network of every phase of every move with its evidence, the edge timeline,
 the backlash diagnosis, and what an arrow does and does not say. Several traces get an index
-page. The computation is :func:`funcnet.inspection.inspect_recording` (a
+page. This module only draws: the computation is
+:func:`funcnet.inspection.inspect_recording` (a
 :class:`~funcnet.inspection.TraceInspection`); :func:`write_inspection` renders it. A file of
 several axes read without ``axis`` is :func:`funcnet.inspection.inspect_robot`'s, rendered by
 :func:`write_robot_inspection`: the robot's page (a summary per axis, the robot network with
@@ -25,9 +27,9 @@ References
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
@@ -35,9 +37,11 @@ from matplotlib.figure import Figure
 
 from funcnet._io import write_text_atomic
 from funcnet.errors import ParameterError
-from funcnet.inspection import TraceInspection, inspect_recording
-from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection, inspect_robot
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.inspection import TraceInspection
+from funcnet.inspection.files import inspect_file
+from funcnet.inspection.repeated import repetitions_of
+from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.plot import plot_network
 from funcnet.report.html import (
     Progress,
@@ -66,10 +70,8 @@ from funcnet.report.inspect_text import (
     summary_html,
 )
 from funcnet.report.repetitions_page import write_repetitions
-from funcnet.robot import read_trace
 from funcnet.robot.axes import split_qualified
 from funcnet.robot.grid import format_spans
-from funcnet.robot.units import in_degrees
 
 __all__ = ["inspect_trace", "write_inspection", "write_robot_inspection", "READING_AN_ARROW"]
 
@@ -273,7 +275,7 @@ def write_inspection(
 
 
 def _axis_rows(ins: RobotInspection) -> pd.DataFrame:
-    rows = []
+    rows: list[dict[str, object]] = []
     for axis in ins.recording.axes:
         one = ins.axes.get(axis)
         if one is None:
@@ -405,16 +407,18 @@ def inspect_trace(
     channels: Any = None,
     axis: int | None = None,
     progress: Progress = None,
-    evidence_options: Mapping[str, Any] | None = None,
+    evidence_options: EvidenceSettings | None = None,
     repeated: bool = False,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> Path:
     """Read traces and write the engineer's report of each (and an index for several).
 
     Parameters
     ----------
     *paths : path-like
-        Trace files (SINUMERIK XML, CSV, Parquet: :func:`funcnet.robot.read_trace`).
+        Trace files (SINUMERIK XML, CSV, Parquet, MATLAB, HDF5:
+        :func:`funcnet.robot.read_trace`), each read and inspected by
+        :func:`funcnet.inspection.inspect_file`.
     out_dir : path-like
         The report folder. One trace: ``out_dir/index.html``; several: one folder per trace
         (named after the file) and ``out_dir/index.html`` linking them.
@@ -459,25 +463,20 @@ def inspect_trace(
     out = Path(out_dir)
 
     def inspected(path: Any, folder: Path) -> TraceInspection | RobotInspection:
-        # Thresholds, arcmin and arcsec are in degrees: angles in rad converted (said).
-        recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis))
-        found: TraceInspection | RobotInspection
-        if recording.axes:
-            found = inspect_robot(recording, signals=signals, parameters=p, evidence=evidence,
-                                  progress=progress, evidence_options=evidence_options)
+        found = inspect_file(path, channels=channels, axis=axis, signals=signals, parameters=p,
+                             evidence=evidence, progress=progress,
+                             evidence_options=evidence_options)
+        if isinstance(found, RobotInspection):
             write_robot_inspection(found, folder, progress=progress)
         else:
-            found = inspect_recording(recording, signals=signals, parameters=p,
-                                      evidence=evidence, progress=progress,
-                                      evidence_options=evidence_options)
             write_inspection(found, folder, progress=progress)
         return found
 
     if len(paths) == 1:
         single = inspected(paths[0], out)
         if repeated:
-            write_repetitions([single] if isinstance(single, TraceInspection) else [], out,
-                              evidence_options)
+            write_repetitions(repetitions_of([single] if isinstance(single, TraceInspection)
+                                             else [], evidence_options), out)
         return out / "index.html"
     taken: set[str] = set()
     rows = []
@@ -502,6 +501,6 @@ def inspect_trace(
              "<th>duration [s]</th><th>moves</th><th>networks</th><th>backlash</th></tr>"
              f"</thead><tbody>{''.join(rows)}</tbody></table>")
     if repeated:
-        write_repetitions(inspections, out, evidence_options)
+        write_repetitions(repetitions_of(inspections, evidence_options), out)
         index += "<p><a href=\"repeated.html\">The repetitions of the traces together</a></p>"
     return write_text_atomic(out / "index.html", page("funcnet inspect", [index]))

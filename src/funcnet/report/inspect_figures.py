@@ -305,8 +305,8 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
 
     After a rest, MP − AP itself; at a direction change in continuous motion, the part of it the
     gear's wind-up and the encoders' skew do not explain
-    (:func:`funcnet.diagnosis.reversal_error.unexplained`), with the two stretches whose means
-    differ by the reversal error.
+    (:attr:`~funcnet.inspection.TraceInspection.reversal_residual`), with the two stretches whose
+    means differ by the reversal error.
 
     Parameters
     ----------
@@ -320,15 +320,14 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
     from matplotlib.figure import Figure
 
     from funcnet import plot
-    from funcnet.diagnosis.reversal_error import WINDOW, unexplained
+    from funcnet.diagnosis.reversal_error import WINDOW
 
     data = inspection.recording.data
     result = inspection.backlash
     if result is None or not result.reversals or not {"AP", "MP"} <= set(data.columns):
         return None
     changes = result.reversals[:_MAX_MOVE_COLUMNS]
-    rest = (unexplained(inspection.recording, result.gear) if result.gear is not None
-            else None)  # fmt: skip
+    rest = inspection.reversal_residual
     fig = Figure(figsize=(max(6.0, 3.6 * len(changes)), 3.6), layout="constrained")
     t_all = data.index.to_numpy(dtype=float)
     for k, reversal in enumerate(changes):

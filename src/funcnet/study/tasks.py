@@ -92,7 +92,7 @@ class Outcome:
     warnings: tuple[tuple[str, int, str], ...] = ()
 
 
-def content_key(**content: Any) -> str:
+def content_key(**content: object) -> str:
     """The SHA-256 of ``content`` as canonical JSON: a task's key.
 
     Parameters

@@ -3,7 +3,7 @@
 Distances are compared through a monotone *key*: the sum of squares for "euclidean" (no square
 root in the hot loops), the distance itself otherwise. A threshold eps becomes the largest key
 whose distance is <= eps (or < eps), computed exactly with the same correctly rounded square
-root (:func:`funcnet._order_statistic._key_bound`), so every comparison equals the one on
+root (:func:`funcnet.core.thresholds._key_bound`), so every comparison equals the one on
 distances. Keys are accumulated coordinate by coordinate in the order pyunicorn's kernels use,
 so both give the same bits. One row of keys at a time is held, never the distance matrix.
 
@@ -377,7 +377,7 @@ def _pack_rows(
 ) -> tuple[Array, int]:
     """Bit-packed rows of key <= bound, and the number of bits set.
 
-    For an auto-recurrence only the triangle j > i + theiler is filled (see _threshold_rows).
+    For an auto-recurrence only the triangle j > i + theiler is filled (see threshold_rows).
     """
     n_rows = a.shape[0]
     packed = np.zeros((n_rows, (bt.shape[1] + 63) // 64), dtype=np.uint64)

@@ -1,6 +1,10 @@
-"""Exact order statistics of pairwise distances without the distance matrix (private).
+"""The recurrence thresholds: a block's threshold from its rate, and each signal's of a network.
 
-The threshold rule of :mod:`funcnet.recurrence`: the ``rank``-th smallest candidate distance,
+Every threshold search of the core lives here. :func:`signal_thresholds` gives each signal's
+(rate, explicit eps) and the cross block's from the parameters; :func:`block_threshold` one
+block's; :func:`threshold_rows` finds the threshold of a rate and packs the block's rows with it.
+The threshold of a rate is an exact order statistic of pairwise distances without the distance
+matrix: the ``rank``-th smallest candidate distance,
 with the rank computed exactly from the rate as written in decimal
 (:func:`_rank_from_rate`), or pyunicorn 1.0.0's float index (:func:`_pyunicorn_rank`).
 
@@ -20,19 +24,23 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
-from typing import TypeVar
+from typing import Any, TypeVar
 
 import numpy as np
 
-from funcnet._isrn_kernels import (
+from funcnet.core._isrn_kernels import (
     _add_band_bits,
     _collect_band,
     _compact_band,
     _count_keys,
+    _merge_into,
     _pack_rows,
     _sample_keys,
     _scan_rows,
+    _transpose_packed,
 )
+from funcnet.errors import ParameterError
+from funcnet.parameters import NetworkParameters, check_eps_value, check_rate
 
 Array = np.ndarray
 _Rank = TypeVar("_Rank", int, np.ndarray)
@@ -341,3 +349,76 @@ def _cross_rank(rate: float, n_candidates: int, pyunicorn: bool) -> int:
     if pyunicorn:
         return _pyunicorn_rank(rate, None, n_candidates)
     return _rank_from_rate(rate, n_candidates)
+
+
+# --------------------------------------------------------------------------------------------
+# the thresholds of a recurrence block and of a network's signals
+
+
+def _single(value: Any, name: str, what: str) -> Any:
+    """A parameter that must be one value for one block (not one per signal)."""
+    if isinstance(value, tuple):
+        raise ParameterError.of(
+            name, f"must be one {what} for one recurrence block, got {value!r}; pass it explicitly"
+        )
+    return value
+
+
+def block_threshold(
+    p: NetworkParameters, rate: float | None, eps: float | None, *, auto: bool
+) -> tuple[float | None, float | None]:
+    """``(target rate, explicit eps)`` of one block: explicit arguments, else the parameters."""
+    if eps is not None:
+        return None, check_eps_value(eps, "eps")
+    if rate is not None:
+        return check_rate(rate, "rr" if auto else "cr"), None
+    auto_eps, cross_eps = p.eps if p.eps is not None else (None, None)
+    given = _single(auto_eps, "eps", "threshold") if auto else cross_eps
+    if given is not None:
+        return None, float(given)
+    return (float(_single(p.rr, "rr", "rate")) if auto else p.cr), None
+
+
+def threshold_rows(
+    a: np.ndarray, b: np.ndarray, *, auto: bool, theiler: int, metric: int, rank: int | None,
+    n_pairs: int, eps: float, strict: bool,
+) -> tuple[float, np.ndarray, int]:
+    """``(eps, packed rows, number of recurrent ordered pairs)`` of one recurrence block.
+
+    With ``rank`` the threshold is the rank-th smallest candidate distance, else ``eps``.
+    """
+    bt = np.ascontiguousarray(b.T)
+    if rank is None:
+        rows, n_recurrent = _pack_rows(
+            a, bt, auto, theiler, metric, _key_bound(eps, strict, metric)
+        )
+    else:
+        eps, rows, n_recurrent = _rate_rows(a, bt, auto, theiler, metric, rank, n_pairs, strict)
+    if auto:
+        # Only j > i was filled: A = U | U^T.
+        _merge_into(rows, _transpose_packed(rows, a.shape[0]))
+        n_recurrent *= 2
+    return float(eps), rows, int(n_recurrent)
+
+
+def _per_signal(value: Any, n_signals: int, name: str, what: str) -> list[Any]:
+    """One entry per signal from one value or a tuple of one per signal."""
+    if isinstance(value, tuple):
+        if len(value) != n_signals:
+            raise ParameterError.of(
+                name,
+                f"must be one {what} or one per signal ({n_signals}), got {len(value)}: "
+                f"{value!r}",
+            )
+        return list(value)
+    return [value] * n_signals
+
+
+def signal_thresholds(
+    p: NetworkParameters, n_signals: int
+) -> tuple[list[tuple[float, float | None]], tuple[float, float | None]]:
+    """``([(rr_i, eps_i) per signal], (cr, eps_cross))``; an eps of None keeps the rate."""
+    auto_eps, cross_eps = p.eps if p.eps is not None else (None, None)
+    rates = _per_signal(p.rr, n_signals, "rr", "rate")
+    thresholds = _per_signal(auto_eps, n_signals, "eps", "auto threshold")
+    return list(zip(rates, thresholds, strict=True)), (p.cr, cross_eps)

@@ -1,7 +1,7 @@
-"""The compiled kernel of the simulated axis (:mod:`funcnet.robot.sim.axis`).
+"""The compiled kernel of the simulated axis (:mod:`funcnet.sim.axis`).
 
 One Numba-compiled loop integrates the drivetrain and the control cascade at the current loop's
-rate; the model, its units and its assumptions are described in :mod:`funcnet.robot.sim.axis`.
+rate; the model, its units and its assumptions are described in :mod:`funcnet.sim.axis`.
 """
 
 from __future__ import annotations

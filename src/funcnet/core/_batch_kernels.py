@@ -1,4 +1,4 @@
-"""Compiled kernels of the batched engine (:mod:`funcnet.batch`).
+"""Compiled kernels of the batched engine (:mod:`funcnet.core.batch`).
 
 Many short windows, each with a few signals: per window every signal is normalized and its
 recurrence adjacency ``A`` built once; then every pair gets its cross-recurrence ``CR`` (both
@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 from numba import njit, prange
 
-from funcnet._isrn_kernels import (
+from funcnet.core._isrn_kernels import (
     Int,
     _lowest_bit,
     _popcount,
@@ -56,7 +56,7 @@ NORMALIZE_CODE = {None: 0, "minmax": 1, "zscore": 2}
 # direct selection, never a wrong value).
 DIRECT_PAIRS = 6144
 #: Largest number of embedded states M for which a window, or one pair of
-#: :func:`funcnet.measures.cross_measures`, is computed by these kernels (thresholds selected
+#: :func:`funcnet.core.measures.cross_measures`, is computed by these kernels (thresholds selected
 #: among candidate distances that fit in cache); larger ones go through the per-window path,
 #: whose kernels for the whole matrix are faster there. Chosen by measurement
 #: (benchmarks/RESULTS.md, "Many short windows").
@@ -198,7 +198,7 @@ def _within(key: float, eps: float, strict: bool) -> bool:
 def _key_bound(eps: float, strict: bool, metric: int) -> float:
     """The largest key whose distance is <= eps (< eps if strict); -inf when there is none.
 
-    The compiled twin of :func:`funcnet.recurrence._key_bound`.
+    The compiled twin of :func:`funcnet.core.recurrence._key_bound`.
     """
     if metric != 0:
         if math.isinf(eps):

@@ -2,8 +2,8 @@
 
 (Over 600 lines: two plan builders, the TOML reader with its error messages, and the writer.)
 
-A :class:`~funcnet.robot.sim.trial.Trial` is one motion of the simulated axis
-(:mod:`funcnet.robot.sim.axis`): speed, TCP distance, step, forward or forward-then-reverse, and
+A :class:`~funcnet.sim.trial.Trial` is one motion of the simulated axis
+(:mod:`funcnet.sim.axis`): speed, TCP distance, step, forward or forward-then-reverse, and
 optional fault knobs. :func:`paper_plan` gives the 36 trials of the paper's Table 1,
 :func:`read_plan` reads a plan from a TOML file and :func:`write_plan` simulates a plan into a
 directory of SINUMERIK traces with a manifest.
@@ -71,14 +71,14 @@ from typing import Any
 
 from funcnet._io import file_sha256, write_text_atomic
 from funcnet.errors import ParameterError, StudyError
-from funcnet.robot.sim.axis import (
+from funcnet.sim.axis import (
     AxisParameters,
     effective_parameters,
     simulate_trial,
     trial_duration,
 )
-from funcnet.robot.sim.trial import FAULT_KNOBS, NAME_PATTERN, OPTIONS, Trial
-from funcnet.robot.sim.writer import write_trace
+from funcnet.sim.trial import FAULT_KNOBS, NAME_PATTERN, OPTIONS, Trial
+from funcnet.sim.writer import write_trace
 
 __all__ = [
     "Trial",
@@ -138,7 +138,7 @@ OPTIONAL_MANIFEST_COLUMNS = ("arm_load", "profile")
 #: 1 arcmin in degrees: plans and manifests give ``backlash`` in degrees (full dead-zone width).
 ARCMIN = 1.0 / 60.0
 
-#: The backlash sweep's grid (issue 11): backlash in arcmin, speeds in deg/min, TCP in m,
+#: The backlash sweep's grid: backlash in arcmin, speeds in deg/min, TCP in m,
 #: friction and stiffness scales, noise seeds and noise scales (1: the real trace's level).
 SWEEP_GRID: dict[str, tuple[float, ...]] = {
     "backlash_arcmin": (0.0, 0.25, 0.5, 1.0, 2.0, 4.0),
@@ -225,7 +225,7 @@ def backlash_sweep_plan(
     noise_scales, seeds, backlash_arcmin, speeds, tcps, friction_scales, stiffness_scales
         The grid (backlash in arcmin here; trials and manifests hold it in degrees).
     sensors, arm_model, position_feedback : str
-        Trial options (:data:`~funcnet.robot.sim.trial.OPTIONS`), the same for every trial.
+        Trial options (:data:`~funcnet.sim.trial.OPTIONS`), the same for every trial.
     group : str
         The trials' group and the start of their names.
 
@@ -270,7 +270,7 @@ def continuous_sweep_plan(
     friction torques at these speeds, so the gear torque keeps its sign through every turn, as
     on a robot's axes 2 and 3) x speed x TCP x friction, the real trace's sensors, stiffness and
     noise at their nominal values: 216 trials by default. The truth is the reversal error at
-    each turn (:func:`funcnet.robot.sim.axis.reversal_error_truth`), its mean the manifest's
+    each turn (:func:`funcnet.sim.axis.reversal_error_truth`), its mean the manifest's
     ``lost_motion``.
 
     Examples
@@ -372,7 +372,7 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
         the key.
     ParameterError
         A trial's value is out of range (from :class:`Trial`), or a trial would span more than
-        :data:`~funcnet.robot.sim.axis.MAX_TRIAL_DURATION` with the default axis parameters.
+        :data:`~funcnet.sim.axis.MAX_TRIAL_DURATION` with the default axis parameters.
         The message names the file, the group and the trial.
 
     Examples
@@ -565,7 +565,7 @@ def write_plan(
     out_dir : path-like
         Created if missing; may already hold an earlier run.
     seed : int
-        Noise seed (see :func:`~funcnet.robot.sim.axis.simulate_trial`).
+        Noise seed (see :func:`~funcnet.sim.axis.simulate_trial`).
     params : AxisParameters, optional
         The axis; the defaults when omitted.
     progress : callable, optional
@@ -587,7 +587,7 @@ def write_plan(
     ------
     ParameterError
         Two trials share a name, ``workers`` < 1, or a trial would span more than
-        :data:`~funcnet.robot.sim.axis.MAX_TRIAL_DURATION` (checked for every trial before
+        :data:`~funcnet.sim.axis.MAX_TRIAL_DURATION` (checked for every trial before
         anything is simulated or written).
 
     Notes

@@ -6,7 +6,7 @@ The paper's recordings (first axis of a large milling robot, SINUMERIK 840D sl, 
 downloaded here, and nobody can check a diagnosis without ground truth. This module stands in for
 the machine: it produces the five signals the paper records -- reference position RP, arm-side
 (direct encoder) position AP, motor-encoder position MP, reference current RC and actual current
-AC -- every 2 ms, for any trial of the design of experiments (:mod:`funcnet.robot.sim.plan`),
+AC -- every 2 ms, for any trial of the design of experiments (:mod:`funcnet.sim.plan`),
 together with the quantities a real trace never shows (gear torque, true lost motion, breakaway
 time).
 
@@ -37,7 +37,7 @@ Control, as the cascade of a CNC axis:
   on a DC-equivalent q-axis winding ``L di/dt = u - R i - k_t w_m``.
 
 Everything is integrated at the current loop's rate (16 kHz by default) by one Numba-compiled
-kernel in :mod:`funcnet.robot.sim._kernel` (semi-implicit Euler for the mechanics, the exact
+kernel in :mod:`funcnet.sim._kernel` (semi-implicit Euler for the mechanics, the exact
 exponential step for the winding).
 
 Assumptions the docs must state
@@ -89,8 +89,8 @@ from scipy.signal import lfilter
 
 from funcnet.errors import ParameterError
 from funcnet.robot.phases import move_threshold
-from funcnet.robot.sim._kernel import axis_kernel
-from funcnet.robot.sim.trial import FAULT_KNOBS, Trial
+from funcnet.sim._kernel import axis_kernel
+from funcnet.sim.trial import FAULT_KNOBS, Trial
 
 __all__ = [
     "AxisParameters",
@@ -118,7 +118,7 @@ class AxisParameters:
 
     Angles and speeds without a suffix are on the joint (arm) side; ``motor_*`` friction acts on
     the motor shaft. The three fault knobs -- ``backlash``, ``friction_scale``,
-    ``stiffness_scale`` -- are what a :class:`~funcnet.robot.sim.trial.Trial` may override.
+    ``stiffness_scale`` -- are what a :class:`~funcnet.sim.trial.Trial` may override.
 
     Parameters
     ----------
@@ -385,12 +385,13 @@ class AxisParameters:
         """Arm inertia about the axis in kg m^2 at TCP distance ``tcp`` (m)."""
         return self.arm_inertia_base + self.arm_tcp_mass * tcp**2
 
-    def replace(self, **changes: Any) -> AxisParameters:
+    def replace(self, **changes: float | str) -> AxisParameters:
         """A copy with ``changes`` applied (validated like the constructor)."""
         unknown = set(changes) - {f.name for f in dataclasses.fields(self)}
         if unknown:
             raise ParameterError(f"AxisParameters has no field(s) {sorted(unknown)}")
-        return dataclasses.replace(self, **changes)
+        fields: dict[str, Any] = dict(changes)  # each checked by __post_init__
+        return dataclasses.replace(self, **fields)
 
 
 #: Fields of :class:`AxisParameters` that take a word, and the words.
@@ -407,7 +408,7 @@ REAL_SENSOR_FIELDS = ("position_log_period", "arm_encoder_counts", "motor_encode
                       "cogging_torque")  # fmt: skip
 
 
-def real_axis_parameters(**changes: Any) -> AxisParameters:
+def real_axis_parameters(**changes: float | str) -> AxisParameters:
     """The axis with its sensors and logging set from the real 840D sl trace.
 
     The mechanics stay those of :class:`AxisParameters`; what a controller trace shows is set
@@ -675,7 +676,7 @@ def trial_duration(trial: Trial, params: AxisParameters | None = None) -> float:
 
     Examples
     --------
-    >>> from funcnet.robot.sim.trial import Trial
+    >>> from funcnet.sim.trial import Trial
     >>> round(trial_duration(Trial("base", "main", speed=35, tcp=1.6, step=3)), 4)
     7.5929
     >>> trial_duration(Trial("slow", "main", speed=0.001, tcp=1.6, step=1))  # doctest: +ELLIPSIS
@@ -733,7 +734,7 @@ def reversal_error_truth(
 
     Examples
     --------
-    >>> from funcnet.robot.sim.trial import Trial
+    >>> from funcnet.sim.trial import Trial
     >>> sim = simulate_trial(Trial("s", "s", speed=175, tcp=1.6, step=1, profile="smooth",
     ...                            backlash=2 / 60), seed=1)
     >>> abs(sim.truth["lost_motion"] * 60 - 2) < 0.1  # arcmin: the dead zone, at each turn
@@ -795,7 +796,7 @@ def simulate_trial(
 
     Examples
     --------
-    >>> from funcnet.robot.sim.trial import Trial
+    >>> from funcnet.sim.trial import Trial
     >>> sim = simulate_trial(Trial("demo", "main", speed=350, tcp=1.2, step=1.0), seed=1)
     >>> list(sim.data.columns)
     ['RP', 'AP', 'MP', 'RC', 'AC']

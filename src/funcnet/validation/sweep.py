@@ -1,6 +1,6 @@
 """The backlash sweep: simulate, compute every indicator per trial, score them against the truth.
 
-:func:`run_sweep` simulates a plan (:func:`funcnet.robot.sim.plan.backlash_sweep_plan`) in
+:func:`run_sweep` simulates a plan (:func:`funcnet.sim.plan.backlash_sweep_plan`) in
 memory -- each trial's signals exactly as its trace file would hold them (six decimals, AP and
 MP on their own logging grid) -- and computes the indicators of
 :mod:`funcnet.diagnosis.indicators` at its reversal, next to the trial's ground truth;
@@ -31,25 +31,28 @@ import numpy as np
 import pandas as pd
 from scipy.stats import rankdata
 
-from funcnet.diagnosis.indicators import INDICATORS, reversal_indicators
+from funcnet.diagnosis.indicators import (
+    CONTACT_FEATURES,
+    INDICATORS,
+    reversal_indicators,
+    with_contact_score,
+)
 from funcnet.diagnosis.reversal_error import fit_gear, reversal_error
 from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
 from funcnet.errors import ParameterError, TraceError
 from funcnet.robot.channels import SignalInfo
 from funcnet.robot.recording import Recording, read_trace
-from funcnet.robot.sim.axis import (
+from funcnet.sim.axis import (
     AxisParameters,
     SimulatedTrial,
     real_axis_parameters,
     simulate_trial,
 )
-from funcnet.robot.sim.plan import ARCMIN
-from funcnet.robot.sim.trial import Trial
+from funcnet.sim.plan import ARCMIN
+from funcnet.sim.trial import Trial
 
 __all__ = [
-    "CONTACT_FEATURES",
     "contact_reference",
-    "with_contact_score",
     "simulated_recording",
     "trial_indicators",
     "trace_indicators",
@@ -57,6 +60,7 @@ __all__ = [
     "run_sweep",
     "score_indicators",
     "calibration",
+    "derive_calibration",
     "lost_motion_accuracy",
     "CONTRASTS",
 ]
@@ -69,9 +73,6 @@ CONTRASTS = {
     "auc_2_vs_0.5": (lambda b: b >= 2 - 1e-9, lambda b: b <= 0.5 + 1e-9),
 }
 
-#: The motor-side features ``motor_contact`` adds up (:func:`with_contact_score`): where the gear
-#: closes and how much load the motor takes up there.
-CONTACT_FEATURES = ("motor_travel", "current_step")
 
 _UNITS = {"RP": "posn", "AP": "posn", "MP": "posn", "RC": "current", "AC": "current"}
 
@@ -81,7 +82,7 @@ def simulated_recording(sim: SimulatedTrial) -> Recording:
 
     Examples
     --------
-    >>> from funcnet.robot.sim import Trial, simulate_trial
+    >>> from funcnet.sim import Trial, simulate_trial
     >>> sim = simulate_trial(Trial("q", "s", speed=350, tcp=1.2, step=1, sensors="real"))
     >>> rec = simulated_recording(sim)
     >>> rec.signals["MP"].interval, rec.signals["RC"].interval
@@ -185,7 +186,7 @@ def trace_indicators(
     path : path-like
         The trace (as ``funcnet simulate`` writes it).
     truth : mapping
-        Its ``manifest.csv`` row (:data:`~funcnet.robot.sim.plan.MANIFEST_COLUMNS`).
+        Its ``manifest.csv`` row (:data:`~funcnet.sim.plan.MANIFEST_COLUMNS`).
     networks, evidence : bool
         As :func:`trial_indicators`.
 
@@ -346,7 +347,7 @@ def run_sweep(
 
     Examples
     --------
-    >>> from funcnet.robot.sim.plan import backlash_sweep_plan
+    >>> from funcnet.sim.plan import backlash_sweep_plan
     >>> plan = backlash_sweep_plan(backlash_arcmin=(0, 2), speeds=(175,), tcps=(1.6,),
     ...                            friction_scales=(1,), stiffness_scales=(1,), seeds=(1,),
     ...                            noise_scales=(1,))
@@ -509,6 +510,39 @@ def calibration(
     return {"indicator": indicator, "quantiles": list(quantiles), "by": by, "levels": levels}
 
 
+def derive_calibration(sweep: pd.DataFrame, motor: pd.DataFrame, *, source: str = "",
+                       motor_source: str = "") -> dict[str, Any]:
+    """The calibration the diagnosis ships (``diagnosis/calibration.json``), from two sweeps.
+
+    Parameters
+    ----------
+    sweep : DataFrame
+        The main sweep (:func:`run_sweep` of :func:`funcnet.sim.backlash_sweep_plan`): the
+        arm-side score's levels.
+    motor : DataFrame
+        The sweep of an axis whose position loop reads the motor encoder: the motor-side
+        score's levels and its no-backlash reference.
+    source, motor_source : str
+        How each sweep was made (kept in the file).
+
+    Returns
+    -------
+    dict
+        :func:`calibration` of :data:`~funcnet.diagnosis.diagnose.SCORE` with ``source``, and
+        under ``motor_loop`` that of :data:`~funcnet.diagnosis.diagnose.MOTOR_LOOP_SCORE` with
+        its ``reference`` (:func:`contact_reference`) and ``source``: JSON-ready.
+    """
+    from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE, SCORE
+
+    cal = calibration(sweep, SCORE)
+    cal["source"] = source
+    reference = contact_reference(motor)
+    cal["motor_loop"] = calibration(with_contact_score(motor, reference), MOTOR_LOOP_SCORE)
+    cal["motor_loop"]["reference"] = reference
+    cal["motor_loop"]["source"] = motor_source
+    return cal
+
+
 def contact_reference(table: pd.DataFrame, *, by: str = "peak_speed") -> dict[str, Any]:
     """Median and interquartile range of :data:`CONTACT_FEATURES` without backlash, per speed.
 
@@ -544,32 +578,6 @@ def contact_reference(table: pd.DataFrame, *, by: str = "peak_speed") -> dict[st
     return reference
 
 
-def with_contact_score(
-    table: pd.DataFrame, reference: dict[str, Any], *, by: str = "peak_speed"
-) -> pd.DataFrame:
-    """``table`` with ``motor_contact``: the features' robust z-scores against no backlash, summed.
-
-    Each of :data:`CONTACT_FEATURES` is centred on its median without backlash at the nearest
-    reference speed and divided by its interquartile range there; the two are added (higher =
-    more backlash). It is the motor-side score of an axis whose position loop reads the motor
-    encoder (``docs/backlash.md``).
-
-    Examples
-    --------
-    >>> ref = {"35": {"motor_travel": [2.0, 1.0], "current_step": [0.5, 0.25]}}
-    >>> t = pd.DataFrame({"peak_speed": [35.0], "motor_travel": [4.0], "current_step": [1.0]})
-    >>> float(with_contact_score(t, ref)["motor_contact"].iloc[0])
-    4.0
-    """
-    speeds = sorted(float(s) for s in reference)
-    score = np.zeros(len(table))
-    for i, speed in enumerate(table[by].to_numpy(dtype=float)):
-        key = f"{min(speeds, key=lambda s: abs(math.log(s / speed))):g}"
-        score[i] = sum(
-            (float(table[name].iloc[i]) - reference[key][name][0]) / reference[key][name][1]
-            for name in CONTACT_FEATURES
-        )
-    return table.assign(motor_contact=score)
 
 
 def lost_motion_accuracy(table: pd.DataFrame) -> pd.DataFrame:

@@ -16,12 +16,18 @@ from __future__ import annotations
 
 import math
 import numbers
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 
 from funcnet.errors import ParameterError, SignalError
-from funcnet.parameters import NetworkParameters, check_eps_value, check_int, resolve
+from funcnet.parameters import (
+    NetworkParameters,
+    ParameterOverrides,
+    check_eps_value,
+    check_int,
+    resolve,
+)
 
 __all__ = [
     "MIN_STATES",
@@ -146,7 +152,11 @@ def embed(x: Any, dim: int, delay: int) -> np.ndarray:
 
 
 def signal_states(
-    x: Any, *, parameters: NetworkParameters | None = None, name: str = "x", **overrides: Any
+    x: Any,
+    *,
+    parameters: NetworkParameters | None = None,
+    name: str = "x",
+    **overrides: Unpack[ParameterOverrides],
 ) -> np.ndarray:
     """Validated embedded states of one node, as the measures use them.
 

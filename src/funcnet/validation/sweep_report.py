@@ -1,12 +1,12 @@
 """The backlash sweep's report: scores with intervals, ROC and scatter figures, the signature.
 
 From a sweep's indicator table -- one row per trial with its truth, from
-:func:`funcnet.diagnosis.sweep.run_sweep` or from the traces and ``manifest.csv`` that
+:func:`funcnet.validation.sweep.run_sweep` or from the traces and ``manifest.csv`` that
 ``funcnet simulate --plan backlash-sweep`` writes
-(:func:`~funcnet.diagnosis.sweep.folder_indicators`) -- :func:`write_sweep_report` writes one
+(:func:`~funcnet.validation.sweep.folder_indicators`) -- :func:`write_sweep_report` writes one
 HTML page: the honest reading first (which indicator the sweep supports, the
 functional-network features' place), then the score table (detection AUCs and Spearman's rho
-with bootstrap intervals, :func:`~funcnet.diagnosis.sweep.score_indicators`, per speed and
+with bootstrap intervals, :func:`~funcnet.validation.sweep.score_indicators`, per speed and
 noise level) for the ``backlash_score`` indicator, the baselines and the best
 functional-network feature, ROC curves, score-vs-true-backlash scatters, and how often the
 paper's signature appears at each backlash width. Figures go to ``figures/`` beside the page,
@@ -26,11 +26,10 @@ import pandas as pd
 
 from funcnet._io import write_text_atomic
 from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE, SCORE, load_calibration
-from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL
-from funcnet.diagnosis.sweep import lost_motion_accuracy, score_indicators, with_contact_score
+from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL, with_contact_score
 from funcnet.errors import ParameterError
-from funcnet.report.html import contents, escape, figure_html, page
-from funcnet.report.html import table as html_table
+from funcnet.report.html import contents, escape, figure_html, page, table as html_table
+from funcnet.validation.sweep import lost_motion_accuracy, score_indicators
 
 __all__ = ["SweepReport", "sweep_scores", "write_sweep_report", "roc_curve"]
 
@@ -57,7 +56,7 @@ class SweepReport:
         The functional-network feature with the highest mean ``auc_0.5_vs_0`` (None: not
         computed).
     scores : DataFrame
-        :func:`~funcnet.diagnosis.sweep.score_indicators` of the reported indicators.
+        :func:`~funcnet.validation.sweep.score_indicators` of the reported indicators.
     signature : DataFrame
         Per speed and backlash width: ``trials`` with a signature value and ``signature`` (how
         many show the paper's signature).
@@ -138,7 +137,7 @@ def sweep_scores(
     Returns
     -------
     (scores, score, best_fn)
-        ``scores`` as :func:`~funcnet.diagnosis.sweep.score_indicators` (by speed and noise
+        ``scores`` as :func:`~funcnet.validation.sweep.score_indicators` (by speed and noise
         level) for the score, the physical baselines, ``motor_contact`` and every computed FN
         feature and ``signature``; ``score`` the ``backlash_score`` indicator; ``best_fn``
         the FN feature with the highest mean ``auc_0.5_vs_0`` over the groups (None when no
@@ -282,9 +281,6 @@ def _signature_rates(table: pd.DataFrame) -> pd.DataFrame:
 def _figures(table: pd.DataFrame, scores: pd.DataFrame, score: str, best_fn: str | None,
              out_dir: Path, stem: str) -> list[tuple[str, Path]]:  # fmt: skip
     """ROC grid (noise level x speed) and scatter grid (indicator x speed); their elements."""
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     speeds = sorted(table["speed"].unique())
@@ -356,8 +352,8 @@ def write_sweep_report(
     Parameters
     ----------
     table : DataFrame
-        The sweep's indicator table (:func:`funcnet.diagnosis.sweep.run_sweep`,
-        :func:`~funcnet.diagnosis.sweep.folder_indicators`).
+        The sweep's indicator table (:func:`funcnet.validation.sweep.run_sweep`,
+        :func:`~funcnet.validation.sweep.folder_indicators`).
     path : path-like
         The page (``.html``). Beside it: ``figures/STEM-roc.png``, ``figures/STEM-scatter.png``,
         ``STEM-indicators.csv`` (the table) and ``STEM-scores.csv`` (the scores, full

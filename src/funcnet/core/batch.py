@@ -1,11 +1,12 @@
 """Many windows at once: the pairs numbers of a stack of analysis windows in one compiled pass.
 
 A sliding timeline, a grid of windows or a set of resampled windows asks for thousands of small
-functional networks. The per-window path (:func:`funcnet.measures.pairwise_cross_measures` on
+functional networks. The per-window path (:func:`funcnet.core.measures.pairwise_cross_measures` on
 each normalized window) pays Python, validation and result objects per pair per window;
 :func:`batch_pairs` validates once, then computes every window's normalization, every signal's
 recurrence adjacency (once per window) and every pair's cross-recurrence and cross measures in
-compiled loops spread over the cores (:mod:`funcnet._batch_kernels`), and returns the numbers as
+compiled loops spread over the cores (:mod:`funcnet.core._batch_kernels`), and returns the numbers
+as
 arrays.
 
 The numbers are those of the per-window path, bit for bit: window ``w`` of
@@ -13,7 +14,7 @@ The numbers are those of the per-window path, bit for bit: window ``w`` of
 ``degenerate_reason`` of ``functional_network(stack[w], names=..., parameters=p).pairs`` (the
 same exact order statistics, key bounds, integer counts, NumPy's summation order, flags and
 reasons). Windows with more than :data:`DIRECT_MAX_STATES` states, fewer than
-:data:`~funcnet.embedding.MIN_STATES`, explicit thresholds (``eps``) or amplitudes near the
+:data:`~funcnet.core.embedding.MIN_STATES`, explicit thresholds (``eps``) or amplitudes near the
 float64 limit go through the per-window path inside :func:`batch_pairs` (whose errors they then
 raise, prefixed with the window's position).
 
@@ -21,7 +22,7 @@ This module returns numbers only (layer L3c: it knows nothing of networks); the 
 (:func:`funcnet.pipeline.window_networks`) builds pairs tables and networks from them with the
 schema and the edge rule of :mod:`funcnet.network`. Nothing here warns: the flags
 ``eps_ordered``, ``rate_exceeded`` and ``degenerate`` are in the arrays
-(:func:`funcnet.measures.threshold_warnings` of :meth:`BatchPairs.measures` builds the
+(:func:`funcnet.core.measures.threshold_warnings` of :meth:`BatchPairs.measures` builds the
 warnings).
 """
 
@@ -29,33 +30,35 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 
-from funcnet import _batch_kernels
-from funcnet._isrn_kernels import _METRIC_CODE
-from funcnet._order_statistic import (
-    _auto_candidates,
-    _auto_rank,
-    _cross_rank,
-    _unordered_rank,
-)
-from funcnet.embedding import MIN_STATES
-from funcnet.errors import FuncnetError, ParameterError, SignalError
-from funcnet.measures import (
+from funcnet.core import _batch_kernels
+from funcnet.core._isrn_kernels import _METRIC_CODE
+from funcnet.core.embedding import MIN_STATES
+from funcnet.core.measures import (
     CrossMeasures,
     _block_labels,
     _degenerate_reason,
     pairwise_cross_measures,
 )
-from funcnet.normalization import normalize as normalize_signals
-from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
+from funcnet.core.normalization import normalize as normalize_signals
+from funcnet.core.thresholds import (
+    _auto_candidates,
+    _auto_rank,
+    _cross_rank,
+    _unordered_rank,
+)
+from funcnet.errors import FuncnetError, ParameterError, SignalError
+from funcnet.parameters import PAIR_FIELDS, NetworkParameters, ParameterOverrides, resolve
 
-__all__ = ["DIRECT_MAX_STATES", "RESULT_FIELDS", "BatchPairs", "applies", "batch_pairs"]
+__all__ = ["DIRECT_MAX_STATES", "RESULT_FIELDS", "BatchPairs", "applies", "batch_pairs",
+           "stacked_measures", "window_ranks", "windows_per_block", "batch_kernel_for"]
 
 #: Largest number of embedded states M for which a window is computed by the batched kernels;
-#: larger windows go through the per-window path (:data:`funcnet._batch_kernels.DIRECT_MAX_STATES`).
+#: larger windows go through the per-window path
+#: (:data:`funcnet.core._batch_kernels.DIRECT_MAX_STATES`).
 DIRECT_MAX_STATES = _batch_kernels.DIRECT_MAX_STATES
 
 #: The per-pair numbers of a window, in the order of a pairs table
@@ -108,7 +111,7 @@ class BatchPairs:
         return self.values[name]
 
     def measures(self, window: int) -> dict[tuple[str, str], CrossMeasures]:
-        """Window ``window``'s results as :func:`~funcnet.measures.pairwise_cross_measures`
+        """Window ``window``'s results as :func:`~funcnet.core.measures.pairwise_cross_measures`
         returns them with ``names``: ``{(x, y): CrossMeasures}``, equal field by field.
 
         Parameters
@@ -220,12 +223,12 @@ def _plain_windows(table: np.ndarray, starts: np.ndarray, p: NetworkParameters) 
     return ok
 
 
-def _ranks(p: NetworkParameters, n_states: np.ndarray,
+def window_ranks(p: NetworkParameters, n_states: np.ndarray,
            n_signals: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Per window and signal the rank of A among its unordered candidates
-    (:func:`~funcnet._order_statistic._unordered_rank`) and the number of ordered ones; per
-    window those of CR (as :func:`funcnet.recurrence.auto_recurrence` and
-    :func:`~funcnet.recurrence.cross_recurrence` set them)."""
+    (:func:`~funcnet.core.thresholds._unordered_rank`) and the number of ordered ones; per
+    window those of CR (as :func:`funcnet.core.recurrence.auto_recurrence` and
+    :func:`~funcnet.core.recurrence.cross_recurrence` set them)."""
     rates = list(p.rr) if isinstance(p.rr, tuple) else [p.rr] * n_signals
     if len(rates) != n_signals:
         raise ParameterError.of(
@@ -249,18 +252,63 @@ def _ranks(p: NetworkParameters, n_states: np.ndarray,
 # the engine
 
 
-def _block_size(n_signals: int, n_states: int) -> int:
+def windows_per_block(n_signals: int, n_states: int) -> int:
     """Windows per call of the kernel: their packed adjacencies (windows x signals x M x M / 64
     words) stay within _BLOCK_BYTES (e.g. 80 windows of 5 signals at M = 800)."""
     per_window = n_signals * n_states * ((n_states + 63) // 64) * 8
     return max(1, min(_BLOCK, _BLOCK_BYTES // per_window))
 
 
-def _kernel(n_windows: int, n_pairs: int, n_signals: int) -> Callable[..., tuple[Any, ...]]:
+def batch_kernel_for(
+    n_windows: int, n_pairs: int, n_signals: int
+) -> Callable[..., tuple[Any, ...]]:
     """The batched kernel for a call on ``n_windows``: in the calling thread when it has fewer
     than _PARALLEL_TASKS tasks of (window, signal) or (window, pair)."""
     serial = n_windows * max(n_pairs, n_signals) < _PARALLEL_TASKS
     return _batch_kernels.batch_kernel_serial if serial else _batch_kernels.batch_kernel
+
+
+def stacked_measures(table: np.ndarray, n_windows: int, width: int, n_states: int,
+                     parameters: NetworkParameters, pair_x: np.ndarray,
+                     pair_y: np.ndarray) -> np.ndarray:
+    """The cross measures of windows already normalized, laid out as embedded states.
+
+    The evidence's resamples (:mod:`funcnet.evidence.interval`) draw states, renormalize them
+    and hand the stack here: one compiled pass gives what :func:`batch_pairs` gives for plain
+    windows, bit for bit.
+
+    Parameters
+    ----------
+    table : ndarray, shape (n_windows * n_states * width, n_signals)
+        Window ``w``'s states are rows ``w * n_states * width`` on, each state's ``width``
+        coordinates one after the other.
+    n_windows, width, n_states : int
+        Windows in the stack, coordinates per state (``dim`` times the channels), states per
+        window (at most :data:`DIRECT_MAX_STATES`).
+    parameters : NetworkParameters
+        Thresholds by rate (``eps`` None), metric, Theiler window and rule.
+    pair_x, pair_y : ndarray of int64
+        The pairs, as column indices of ``table``.
+
+    Returns
+    -------
+    ndarray, shape (n_windows, n_pairs, 4)
+        ``C_xy, C_yx, T_xy, T_yx`` of every window and pair (Eq. 6-9).
+    """
+    p = parameters
+    n_signals = table.shape[1]
+    auto_rank, _, cross_rank, _ = window_ranks(p, np.full(1, n_states, dtype=np.int64),
+                                               n_signals)
+    rows = n_states * width
+    bounds = np.arange(n_windows + 1, dtype=np.int64) * rows
+    pyunicorn = p.rule == "pyunicorn"
+    measures: np.ndarray = batch_kernel_for(n_windows, pair_x.size, n_signals)(
+        table, bounds[:-1], bounds[1:], bounds, 0, False, width, n_states,
+        _METRIC_CODE[p.metric], p.theiler, pyunicorn,
+        np.ascontiguousarray(np.repeat(auto_rank, n_windows, axis=0)),
+        np.repeat(cross_rank, n_windows), pair_x, pair_y, n_states, _batch_kernels.DIRECT_PAIRS,
+    )[4]
+    return measures
 
 
 def batch_pairs(
@@ -269,7 +317,7 @@ def batch_pairs(
     *,
     names: Sequence[str] | None = None,
     parameters: NetworkParameters | None = None,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> BatchPairs:
     """Pairs numbers of many windows in one compiled pass, as the per-window path gives them.
 
@@ -310,8 +358,8 @@ def batch_pairs(
     Examples
     --------
     >>> import numpy as np
-    >>> from funcnet.measures import pairwise_cross_measures
-    >>> from funcnet.normalization import normalize
+    >>> from funcnet.core.measures import pairwise_cross_measures
+    >>> from funcnet.core.normalization import normalize
     >>> stack = np.random.default_rng(0).random((4, 150, 3))
     >>> result = batch_pairs(stack, names=["a", "b", "c"])
     >>> result["c_diff"].shape
@@ -332,7 +380,7 @@ def batch_pairs(
         raise SignalError(f"a functional network needs at least two signals, got {n_signals}")
     lengths = (stops - starts).astype(np.int64)
     n_states = lengths - (p.dim - 1) * p.delay
-    auto_rank, auto_candidates, cross_rank, cross_candidates = _ranks(p, n_states, n_signals)
+    auto_rank, auto_candidates, cross_rank, cross_candidates = window_ranks(p, n_states, n_signals)
     pair_x, pair_y = (index.astype(np.int64) for index in np.triu_indices(n_signals, k=1))
     n_windows, n_pairs = starts.size, pair_x.size
 
@@ -345,13 +393,13 @@ def batch_pairs(
 
     direct_ok = np.array([applies(int(n), p) for n in lengths]) & _plain_windows(table, starts, p)
     direct = np.flatnonzero(direct_ok)
-    block_size = _block_size(n_signals, int(n_states[direct].max()) if direct.size else 1)
+    block_size = windows_per_block(n_signals, int(n_states[direct].max()) if direct.size else 1)
     pyunicorn = p.rule == "pyunicorn"
     for first in range(0, direct.size, block_size):
         block = direct[first : first + block_size]
         norm_offsets = np.zeros(block.size + 1, dtype=np.int64)
         np.cumsum(lengths[block], out=norm_offsets[1:])
-        out = _kernel(block.size, n_pairs, n_signals)(
+        out = batch_kernel_for(block.size, n_pairs, n_signals)(
             table, starts[block], stops[block], norm_offsets,
             _batch_kernels.NORMALIZE_CODE[p.normalize],
             pyunicorn, p.dim, p.delay, _METRIC_CODE[p.metric], p.theiler, pyunicorn,
@@ -380,7 +428,7 @@ def _columns(p: NetworkParameters, names: list[str], pairs: tuple[np.ndarray, np
              auto_rank: np.ndarray, auto_candidates: np.ndarray, cross_rank: np.ndarray,
              cross_candidates: np.ndarray) -> dict[str, np.ndarray]:
     """The result arrays from the kernel's counts, with the flags and reasons of
-    :func:`funcnet.measures.isrn_measures`."""
+    :func:`funcnet.core.measures.isrn_measures`."""
     pair_x, pair_y = pairs
     rates = np.array(p.rr if isinstance(p.rr, tuple) else [p.rr] * len(names))
     with np.errstate(invalid="ignore", divide="ignore"):  # too short: per-window path below

@@ -1,7 +1,7 @@
 """Thresholds and (cross-)recurrence structures of embedded states (paper section 2.1-2.2).
 
 A signal of ``N`` samples becomes ``M = N - (dim - 1) * delay`` states (Eq. 1,
-:mod:`funcnet.embedding`). Two states are recurrent when their distance is within a threshold
+:mod:`funcnet.core.embedding`). Two states are recurrent when their distance is within a threshold
 ``eps`` (Eq. 2, 3, 5). The thresholds are usually fixed by a *rate*: the fraction of candidate
 pairs that must be recurrent.
 
@@ -52,8 +52,9 @@ Parameters
 
 Memory and speed: the ``M x M`` distance matrix is never stored, in any precision. Recurrence
 structures are bit-packed rows (:class:`PackedRecurrence`, ``M^2 / 8`` bytes) built by compiled,
-parallel kernels (:mod:`funcnet._isrn_kernels`) that compute one row of distances at a time; the
-exact order statistic (:mod:`funcnet._order_statistic`) costs one pass over the pairs. At
+parallel kernels (:mod:`funcnet.core._isrn_kernels`) that compute one row of distances at a time;
+the
+exact order statistic (:mod:`funcnet.core.thresholds`) costs one pass over the pairs. At
 M = 20000 one pair of signals needs about 0.4 GB. The kernels run many short parallel loops;
 on a machine busy with other work, OpenMP's default of idle threads spinning between them can
 make them several times slower (5 signals of 3000 samples on 2 shared cores: 1.8 s, against
@@ -71,37 +72,36 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, Unpack
 
 import numba
 import numpy as np
 
-from funcnet._isrn_kernels import (
+from funcnet.core._isrn_kernels import (
     _METRIC_CODE,
-    _merge_into,
-    _pack_rows,
     _row_popcounts,
     _transpose_packed,
     _unpack,
 )
-from funcnet._order_statistic import (
+from funcnet.core.embedding import MIN_STATES, signal_states
+from funcnet.core.thresholds import (
     _auto_candidates,
     _auto_rank,
     _cross_rank,
-    _key_bound,
-    _rate_rows,
     _unordered_rank,
+    block_threshold,
+    signal_thresholds,
+    threshold_rows,
 )
-from funcnet.embedding import MIN_STATES, signal_states
 from funcnet.errors import ParameterError, SignalError
 from funcnet.parameters import (
     METRICS,
     PAIR_FIELDS,
     RULES,
+    BlockOverrides,
     NetworkParameters,
-    check_eps_value,
+    ParameterOverrides,
     check_int,
-    check_rate,
     resolve,
 )
 
@@ -252,54 +252,11 @@ def _check_key_range(blocks: tuple[np.ndarray, ...], metric: str, label: str) ->
         )
 
 
-def _single(value: Any, name: str, what: str) -> Any:
-    """A parameter that must be one value for one block (not one per signal)."""
-    if isinstance(value, tuple):
-        raise ParameterError.of(
-            name, f"must be one {what} for one recurrence block, got {value!r}; pass it explicitly"
-        )
-    return value
-
-
-def _block_threshold(
-    p: NetworkParameters, rate: float | None, eps: float | None, *, auto: bool
-) -> tuple[float | None, float | None]:
-    """``(target rate, explicit eps)`` of one block: explicit arguments, else the parameters."""
-    if eps is not None:
-        return None, check_eps_value(eps, "eps")
-    if rate is not None:
-        return check_rate(rate, "rr" if auto else "cr"), None
-    auto_eps, cross_eps = p.eps if p.eps is not None else (None, None)
-    given = _single(auto_eps, "eps", "threshold") if auto else cross_eps
-    if given is not None:
-        return None, float(given)
-    return (float(_single(p.rr, "rr", "rate")) if auto else p.cr), None
 
 
 # --------------------------------------------------------------------------------------------
 # one block
 
-
-def _threshold_rows(
-    a: np.ndarray, b: np.ndarray, *, auto: bool, theiler: int, metric: int, rank: int | None,
-    n_pairs: int, eps: float, strict: bool,
-) -> tuple[float, np.ndarray, int]:
-    """``(eps, packed rows, number of recurrent ordered pairs)`` of one recurrence block.
-
-    With ``rank`` the threshold is the rank-th smallest candidate distance, else ``eps``.
-    """
-    bt = np.ascontiguousarray(b.T)
-    if rank is None:
-        rows, n_recurrent = _pack_rows(
-            a, bt, auto, theiler, metric, _key_bound(eps, strict, metric)
-        )
-    else:
-        eps, rows, n_recurrent = _rate_rows(a, bt, auto, theiler, metric, rank, n_pairs, strict)
-    if auto:
-        # Only j > i was filled: A = U | U^T.
-        _merge_into(rows, _transpose_packed(rows, a.shape[0]))
-        n_recurrent *= 2
-    return float(eps), rows, int(n_recurrent)
 
 
 def auto_recurrence(
@@ -309,16 +266,16 @@ def auto_recurrence(
     eps: float | None = None,
     parameters: NetworkParameters | None = None,
     name: str = "x",
-    **overrides: Any,
+    **overrides: Unpack[BlockOverrides],
 ) -> PackedRecurrence:
     """Bit-packed recurrence adjacency ``A_X`` of embedded states (Eq. 2, 5).
 
     Parameters
     ----------
     states : array_like, shape (M, dim)
-        Embedded states (:func:`funcnet.embedding.embed`, or
-        :func:`funcnet.embedding.signal_states` for the rule's input cast), ``M >= 7``
-        (:data:`funcnet.embedding.MIN_STATES`).
+        Embedded states (:func:`funcnet.core.embedding.embed`, or
+        :func:`funcnet.core.embedding.signal_states` for the rule's input cast), ``M >= 7``
+        (:data:`funcnet.core.embedding.MIN_STATES`).
     rr : float in (0, 1), optional
         Target recurrence rate of this block.
     eps : float, optional
@@ -354,7 +311,7 @@ def auto_recurrence(
     Examples
     --------
     >>> import numpy as np
-    >>> from funcnet.embedding import embed
+    >>> from funcnet.core.embedding import embed
     >>> states = embed(np.sin(np.linspace(0, 8 * np.pi, 251)), dim=3, delay=10)
     >>> a_x = auto_recurrence(states, rr=0.05)
     >>> a_x.rank, a_x.n_recurrent, a_x.n_candidates
@@ -363,7 +320,7 @@ def auto_recurrence(
     0.188357
     """
     p = resolve(parameters, overrides, allowed=("metric", "theiler", "rule"))
-    target, eps = _block_threshold(p, rr, eps, auto=True)
+    target, eps = block_threshold(p, rr, eps, auto=True)
     states = _check_states(states, name)
     _check_key_range((states,), p.metric, f"signal {name}")
     n_states = states.shape[0]
@@ -376,7 +333,7 @@ def auto_recurrence(
     n_candidates = _auto_candidates(n_states, theiler)
     # pyunicorn's rank 0 (an index among the diagonal's zeros): eps = 0, nothing recurrent.
     rank = None if target is None else _auto_rank(target, n_states, theiler, pyunicorn)
-    threshold, rows, n_recurrent = _threshold_rows(
+    threshold, rows, n_recurrent = threshold_rows(
         states,
         states,
         auto=True,
@@ -409,7 +366,7 @@ def cross_recurrence(
     eps: float | None = None,
     parameters: NetworkParameters | None = None,
     names: tuple[str, str] = ("x", "y"),
-    **overrides: Any,
+    **overrides: Unpack[BlockOverrides],
 ) -> PackedRecurrence:
     """Bit-packed cross-recurrence matrix ``CR_XY`` of two sets of embedded states (Eq. 3).
 
@@ -450,14 +407,14 @@ def cross_recurrence(
     Examples
     --------
     >>> import numpy as np
-    >>> from funcnet.embedding import embed
+    >>> from funcnet.core.embedding import embed
     >>> t = np.linspace(0, 8 * np.pi, 251)
     >>> cr_xy = cross_recurrence(embed(np.sin(t), 3, 10), embed(np.cos(t), 3, 10), cr=0.05)
     >>> cr_xy.shape, cr_xy.n_recurrent, cr_xy.rank
     ((231, 231), 2669, 2669)
     """
     p = resolve(parameters, overrides, allowed=("metric", "rule"))
-    target, eps = _block_threshold(p, cr, eps, auto=False)
+    target, eps = block_threshold(p, cr, eps, auto=False)
     x_name, y_name = names
     x_states = _check_states(x_states, x_name)
     y_states = _check_states(y_states, y_name)
@@ -470,7 +427,7 @@ def cross_recurrence(
     n_candidates = x_states.shape[0] * y_states.shape[0]
     pyunicorn = p.rule == "pyunicorn"
     rank = None if target is None else _cross_rank(target, n_candidates, pyunicorn)
-    threshold, rows, n_recurrent = _threshold_rows(
+    threshold, rows, n_recurrent = threshold_rows(
         x_states,
         y_states,
         auto=False,
@@ -498,27 +455,6 @@ def cross_recurrence(
 # signals -> ISRN blocks, and dense matrices for small N and figures
 
 
-def _per_signal(value: Any, n_signals: int, name: str, what: str) -> list[Any]:
-    """One entry per signal from one value or a tuple of one per signal."""
-    if isinstance(value, tuple):
-        if len(value) != n_signals:
-            raise ParameterError.of(
-                name,
-                f"must be one {what} or one per signal ({n_signals}), got {len(value)}: "
-                f"{value!r}",
-            )
-        return list(value)
-    return [value] * n_signals
-
-
-def _signal_thresholds(
-    p: NetworkParameters, n_signals: int
-) -> tuple[list[tuple[float, float | None]], tuple[float, float | None]]:
-    """``([(rr_i, eps_i) per signal], (cr, eps_cross))``; an eps of None keeps the rate."""
-    auto_eps, cross_eps = p.eps if p.eps is not None else (None, None)
-    rates = _per_signal(p.rr, n_signals, "rr", "rate")
-    thresholds = _per_signal(auto_eps, n_signals, "eps", "auto threshold")
-    return list(zip(rates, thresholds, strict=True)), (p.cr, cross_eps)
 
 
 def _check_channels(states: list[np.ndarray], names: list[str], dim: int) -> None:
@@ -537,7 +473,7 @@ def _isrn_blocks(
     x: Any, y: Any, p: NetworkParameters
 ) -> tuple[PackedRecurrence, PackedRecurrence, PackedRecurrence]:
     """Validated ``(A_X, A_Y, CR_XY)`` of two signals (Eq. 4 blocks, packed)."""
-    (block_x, block_y), (cr, eps_xy) = _signal_thresholds(p, 2)
+    (block_x, block_y), (cr, eps_xy) = signal_thresholds(p, 2)
     x_states = signal_states(x, parameters=p, name="x")
     y_states = signal_states(y, parameters=p, name="y")
     _check_channels([x_states, y_states], ["x", "y"], p.dim)
@@ -553,7 +489,7 @@ def recurrence_matrix(
     rr: float | None = None,
     eps: float | None = None,
     parameters: NetworkParameters | None = None,
-    **overrides: Any,
+    **overrides: Unpack[BlockOverrides],
 ) -> np.ndarray:
     """Dense recurrence adjacency ``A_X`` of a signal (Eq. 2, 5), for small N and figures.
 
@@ -581,7 +517,7 @@ def recurrence_matrix(
     Raises
     ------
     ParameterError, SignalError
-        See :func:`auto_recurrence` and :func:`funcnet.embedding.signal_states`.
+        See :func:`auto_recurrence` and :func:`funcnet.core.embedding.signal_states`.
 
     References
     ----------
@@ -607,7 +543,7 @@ def cross_recurrence_matrix(
     cr: float | None = None,
     eps: float | None = None,
     parameters: NetworkParameters | None = None,
-    **overrides: Any,
+    **overrides: Unpack[BlockOverrides],
 ) -> np.ndarray:
     """Dense cross-recurrence matrix ``CR_XY`` of two signals (Eq. 3).
 
@@ -633,7 +569,7 @@ def cross_recurrence_matrix(
     Raises
     ------
     ParameterError, SignalError
-        See :func:`cross_recurrence` and :func:`funcnet.embedding.signal_states`.
+        See :func:`cross_recurrence` and :func:`funcnet.core.embedding.signal_states`.
 
     References
     ----------
@@ -656,7 +592,11 @@ def cross_recurrence_matrix(
 
 
 def isrn_adjacency(
-    x: Any, y: Any, *, parameters: NetworkParameters | None = None, **overrides: Any
+    x: Any,
+    y: Any,
+    *,
+    parameters: NetworkParameters | None = None,
+    **overrides: Unpack[ParameterOverrides],
 ) -> np.ndarray:
     """Dense adjacency matrix of the inter-system recurrence network (Eq. 4).
 
@@ -777,7 +717,7 @@ def estimate_cost(
     parameters: NetworkParameters | None = None,
     *,
     threads: int | None = None,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> CostEstimate:
     """Forecast time and memory of one functional network of ``n_signals`` signals.
 

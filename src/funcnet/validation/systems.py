@@ -1,4 +1,4 @@
-"""Seeded generators of coupled test systems whose coupling is known (issue 10's benchmark).
+"""Seeded generators of coupled test systems whose coupling is known.
 
 Each generator returns the observed signals of one pair, time on axis 0: shape ``(n, 2)`` for
 one integer ``seed`` (column 0 is X, column 1 is Y), or ``(n, len(seed), 2)`` for a sequence of
@@ -232,7 +232,7 @@ def lorenz_pair(n: int, *, seed: Seed = 0, step: float = 0.01, every: int = 5,
     """x-components of two uncoupled Lorenz systems (sigma 10, rho 28, beta 8/3): no coupling.
 
     Two independent copies of the same oscillator: both recur at the same lags, which makes
-    circularly shifted surrogates invalid (issue 10).
+    circularly shifted surrogates invalid.
 
     Parameters
     ----------
@@ -284,7 +284,7 @@ def logistic_pair(n: int, r_x: float = 3.7, r_y: float = 4.0, coupling: float = 
     """Logistic maps ``f_r(u) = r u (1 - u)``; X drives Y with strength ``coupling``.
 
     ``x' = f_{r_x}(x)``, ``y' = f_{r_y}((1 - c) y + c x)``; ``c = 0`` gives two uncoupled maps
-    (with ``r_x != r_y`` the paper's asymmetry shows a "direction" there, issue 10).
+    (with ``r_x != r_y`` the paper's asymmetry shows a "direction" there).
 
     Parameters
     ----------

@@ -17,12 +17,13 @@ import datetime as _dt
 import os
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, Unpack
 
 import pandas as pd
 
 from funcnet._io import write_text_atomic
 from funcnet.paper import Finding, PaperAnalyses, TrialAnalysis, run_paper_analyses
+from funcnet.paper.analyses import AnalysisOptions
 from funcnet.paper.coupling import CouplingEvidence, claims_coupling
 from funcnet.report.html import (
     Progress,
@@ -261,19 +262,19 @@ def build_demo_report(
     out_dir: str | os.PathLike[str],
     *,
     progress: Progress = None,
-    **parameters: Any,
+    **options: Unpack[AnalysisOptions],
 ) -> Path:
     """Run the paper's analyses on a plan of simulated trials and write the HTML report.
 
     Parameters
     ----------
     plan_dir : path-like
-        A folder written by :func:`funcnet.robot.write_plan` (traces and ``manifest.csv``).
+        A folder written by :func:`funcnet.sim.write_plan` (traces and ``manifest.csv``).
     out_dir : path-like
         Report folder: ``index.html`` and ``figures/*.png`` are written there.
     progress : callable, optional
         ``progress(done, total, description)``, called as the work advances.
-    **parameters
+    **options
         Passed to :func:`funcnet.paper.run_paper_analyses`: ``parameters=`` (a
         :class:`~funcnet.parameters.NetworkParameters`), network parameters by name, window
         lengths.
@@ -289,7 +290,7 @@ def build_demo_report(
     """
     out = Path(out_dir)
     started = _dt.datetime.now(_dt.UTC)
-    analyses = run_paper_analyses(plan_dir, progress=progress, **parameters)
+    analyses = run_paper_analyses(plan_dir, progress=progress, **options)
     # The coupling test on the windows the claims are evaluated on (the test only: ~5 s).
     coupling = claims_coupling(
         analyses, progress=lambda k, n: step(progress, k, n, "coupling evidence"))

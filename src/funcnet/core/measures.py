@@ -23,7 +23,7 @@ compiled parallel kernel (about ``M_X * k * M_Y / 128`` word operations for mean
 ``k``). For long windows (auto matrices beyond 32 MiB, M > ~16,400) a blocked kernel counts
 both directions in one pass, reading each auto row once per block of 256 cross rows; the
 integer counts, and so every value, are the same. Thresholds follow the rule of
-:mod:`funcnet.recurrence` (exact k-th order statistic of the candidate distances,
+:mod:`funcnet.core.recurrence` (exact k-th order statistic of the candidate distances,
 ``k = max(1, ceil(rate * P))`` for the rate as written in decimal, ``d <= eps``; or
 ``rule="pyunicorn"``). Parameters come as a :class:`funcnet.parameters.NetworkParameters`
 (``parameters=``) and keyword overrides; the
@@ -46,25 +46,33 @@ from __future__ import annotations
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import numba
 import numpy as np
 
-from funcnet import _batch_kernels
-from funcnet._isrn_kernels import (
+from funcnet.core import _batch_kernels
+from funcnet.core._isrn_kernels import (
     _METRIC_CODE,
     _cross_triangles,
     _cross_triangles_both,
     _transpose_packed,
 )
-from funcnet._order_statistic import (
+from funcnet.core.embedding import MIN_STATES, signal_states
+from funcnet.core.recurrence import (
+    PackedRecurrence,
+    _check_channels,
+    _isrn_blocks,
+    auto_recurrence,
+    cross_recurrence,
+)
+from funcnet.core.thresholds import (
     _auto_candidates,
     _auto_rank,
     _cross_rank,
     _unordered_rank,
+    signal_thresholds,
 )
-from funcnet.embedding import MIN_STATES, signal_states
 from funcnet.errors import (
     DegenerateWarning,
     FuncnetWarning,
@@ -73,15 +81,7 @@ from funcnet.errors import (
     ThresholdWarning,
     caller_stacklevel,
 )
-from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
-from funcnet.recurrence import (
-    PackedRecurrence,
-    _check_channels,
-    _isrn_blocks,
-    _signal_thresholds,
-    auto_recurrence,
-    cross_recurrence,
-)
+from funcnet.parameters import PAIR_FIELDS, NetworkParameters, ParameterOverrides, resolve
 
 __all__ = [
     "CrossMeasures",
@@ -280,10 +280,10 @@ def isrn_measures(
     ----------
     a_x, a_y : PackedRecurrence
         Recurrence adjacencies of X and Y (no self-loops), from
-        :func:`funcnet.recurrence.auto_recurrence`.
+        :func:`funcnet.core.recurrence.auto_recurrence`.
     cr_xy : PackedRecurrence
         Cross-recurrence of X (rows) and Y (columns), from
-        :func:`funcnet.recurrence.cross_recurrence`.
+        :func:`funcnet.core.recurrence.cross_recurrence`.
     parameters : NetworkParameters, optional
         Stored in the result's ``parameters``.
     names : (str, str)
@@ -305,8 +305,8 @@ def isrn_measures(
     Examples
     --------
     >>> import numpy as np
-    >>> from funcnet.embedding import embed
-    >>> from funcnet.recurrence import auto_recurrence, cross_recurrence
+    >>> from funcnet.core.embedding import embed
+    >>> from funcnet.core.recurrence import auto_recurrence, cross_recurrence
     >>> t = np.linspace(0, 8 * np.pi, 251)
     >>> xs, ys = embed(np.sin(t), 3, 10), embed(np.sin(1.5 * t) + 0.3 * np.sin(t), 3, 10)
     >>> a_x, a_y = auto_recurrence(xs, rr=0.05), auto_recurrence(ys, rr=0.05)
@@ -483,7 +483,7 @@ def cross_measures(
     *,
     parameters: NetworkParameters | None = None,
     warn: bool = True,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> CrossMeasures:
     """Global cross-clustering and cross-transitivity of two signals, both directions.
 
@@ -577,9 +577,9 @@ def _short_pair(x: Any, y: Any, p: NetworkParameters) -> CrossMeasures | None:
     """The measures of a short pair through the batched engine's kernel, or None.
 
     Applies to equally long 1-D real signals of at most
-    :data:`funcnet._batch_kernels.DIRECT_MAX_STATES` states, thresholds by rate, values finite
+    :data:`funcnet.core._batch_kernels.DIRECT_MAX_STATES` states, thresholds by rate, values finite
     and below 1e38 in magnitude; the kernel gives the general path's numbers bit for bit
-    (:mod:`funcnet._batch_kernels`) without its validation and packed blocks, which cost most
+    (:mod:`funcnet.core._batch_kernels`) without its validation and packed blocks, which cost most
     of a short pair's time. Everything else (including every input the
     general path rejects) returns None and takes the general path.
     """
@@ -625,7 +625,7 @@ def pairwise_cross_measures(
     names: Sequence[str] | None = None,
     parameters: NetworkParameters | None = None,
     warn: bool = True,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> dict[tuple[Any, Any], CrossMeasures]:
     """Cross measures of every pair ``i < j`` of equally long signals (a functional network).
 
@@ -633,7 +633,7 @@ def pairwise_cross_measures(
     pairs; only ``CR`` is computed per pair, reduced to counts and freed before the next, so
     memory is ``n_signals + 2`` packed ``M x M`` bit matrices (about 64 MB each at
     M = 22,700) plus one threshold's candidate band. Thresholds follow the same rule as
-    :func:`cross_measures`. :func:`funcnet.recurrence.estimate_cost` forecasts time and
+    :func:`cross_measures`. :func:`funcnet.core.recurrence.estimate_cost` forecasts time and
     memory from the length.
 
     Parameters
@@ -707,7 +707,7 @@ def pairwise_cross_measures(
         called = [repr(name) for name in labels]
         keys = labels
     p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
-    thresholds, (cr, cross_eps) = _signal_thresholds(p, n)
+    thresholds, (cr, cross_eps) = signal_thresholds(p, n)
     states = [
         signal_states(s, parameters=p, name=name) for s, name in zip(signals, called, strict=True)
     ]
@@ -744,7 +744,11 @@ def pairwise_cross_measures(
 
 
 def local_cross_clustering(
-    x: Any, y: Any, *, parameters: NetworkParameters | None = None, **overrides: Any
+    x: Any,
+    y: Any,
+    *,
+    parameters: NetworkParameters | None = None,
+    **overrides: Unpack[ParameterOverrides],
 ) -> tuple[np.ndarray, np.ndarray]:
     """Local cross-clustering of every node, both directions (Eq. 6).
 
@@ -785,7 +789,11 @@ def local_cross_clustering(
 
 
 def cross_degree(
-    x: Any, y: Any, *, parameters: NetworkParameters | None = None, **overrides: Any
+    x: Any,
+    y: Any,
+    *,
+    parameters: NetworkParameters | None = None,
+    **overrides: Unpack[ParameterOverrides],
 ) -> tuple[np.ndarray, np.ndarray]:
     """Cross-degree of every node, both directions (Eq. 7).
 

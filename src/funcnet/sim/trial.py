@@ -1,7 +1,7 @@
 """One trial of the simulated axis: its motion and optional fault knobs.
 
-:class:`Trial` is what the axis model (:mod:`funcnet.robot.sim.axis`) simulates and what a plan
-(:mod:`funcnet.robot.sim.plan`) lists; it lives apart from both so that neither imports the
+:class:`Trial` is what the axis model (:mod:`funcnet.sim.axis`) simulates and what a plan
+(:mod:`funcnet.sim.plan`) lists; it lives apart from both so that neither imports the
 other's module for it.
 """
 
@@ -15,12 +15,12 @@ from funcnet.errors import ParameterError
 
 __all__ = ["Trial", "FAULT_KNOBS", "NAME_PATTERN", "OPTIONS"]
 
-#: Fields of :class:`~funcnet.robot.sim.axis.AxisParameters` a :class:`Trial` may override.
+#: Fields of :class:`~funcnet.sim.axis.AxisParameters` a :class:`Trial` may override.
 FAULT_KNOBS = ("backlash", "friction_scale", "stiffness_scale", "noise_scale", "arm_load")
 
 #: Worded options of a :class:`Trial` and their words (the first is what None means): the
-#: sensors and logging (``"paper"``: the default :class:`~funcnet.robot.sim.axis.AxisParameters`;
-#: ``"real"``: :func:`~funcnet.robot.sim.axis.real_axis_parameters`), the arm model and the
+#: sensors and logging (``"paper"``: the default :class:`~funcnet.sim.axis.AxisParameters`;
+#: ``"real"``: :func:`~funcnet.sim.axis.real_axis_parameters`), the arm model and the
 #: encoder the position loop reads, and the set-point's profile (``"step"``: a jerk-limited step
 #: and back if ``reverse``; ``"smooth"``: out and back twice along ``(1 - cos) / 2`` curves, three
 #: direction changes without a rest, as a robot's smooth trajectories).
@@ -55,7 +55,7 @@ class Trial:
     reverse : bool
         Whether the axis returns to its start right after the forward move (same trace).
     backlash, friction_scale, stiffness_scale, noise_scale, arm_load : float or None
-        Fault knobs overriding :class:`~funcnet.robot.sim.axis.AxisParameters` (None keeps
+        Fault knobs overriding :class:`~funcnet.sim.axis.AxisParameters` (None keeps
         the axis's value; ``arm_load`` is a gravity load on the arm, N m).
     sensors, arm_model, position_feedback, profile : str or None
         Options (:data:`OPTIONS`); None keeps the axis's own.
