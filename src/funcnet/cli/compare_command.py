@@ -58,7 +58,6 @@ def compare(
             raise ParameterError("--threshold must be > 0")
         from funcnet.comparison import compare_runs
         from funcnet.report.compare_page import write_comparison
-        from funcnet.robot.axes import qualified
         from funcnet.robot.channels import channel_map
         from funcnet.robot.recording import read_trace
 
@@ -66,11 +65,7 @@ def compare(
         recording, *references = (replace(read_trace(path, channels=channels, axis=axis),
                                           source=str(path)) for path in (run, *against))
         result = compare_runs(recording, references, threshold=threshold, networks=networks)
-        cmap = channel_map(channels)
-        axes = recording.axes or (recording.axis or 1,)
-        columns = [qualified(a, "RP") if recording.axes else "RP" for a in axes]
-        page = write_comparison(result, out, axis_label=cmap.axis_label,
-                                setpoints=recording.data[columns].to_numpy())
+        page = write_comparison(result, out, axis_label=channel_map(channels).axis_label)
     typer.echo(f"report: {page}")
     typer.echo(f"changes: {out / 'changes.json'} ({len(result.intervals)} interval(s), "
                f"{result.compared:.0%} of RUN compared)")

@@ -186,7 +186,7 @@ def network(
             if list_phases:
                 print_phases(recording, trace)
                 return
-            from funcnet.embedding import MIN_STATES
+            from funcnet.core.embedding import MIN_STATES
 
             chosen = chosen_windows(
                 recording, trace, phase, whole, bounds,

@@ -77,6 +77,8 @@ class Comparison:
         Departure, in spreads, beyond which RUN counts as changed.
     within_run : bool
         One reference: the spread is that of its cycles, within one run.
+    phases : tuple of (str, float, float)
+        The moves of RUN's program (:func:`program_phases`), RUN's seconds.
     notes : tuple of str
         What was assumed or left out, one sentence each.
     """
@@ -95,6 +97,7 @@ class Comparison:
     readings: tuple[str, ...]
     threshold: float
     within_run: bool
+    phases: tuple[tuple[str, float, float], ...]
     notes: tuple[str, ...]
 
     @property
@@ -311,7 +314,9 @@ def compare_runs(
         covered=covered, coverage=tuple(coverage), bands=bands, units=units,
         intervals=intervals, residual_intervals=residual_intervals,
         network_intervals=network_intervals, networks=net, readings=tuple(readings),
-        threshold=threshold, within_run=within, notes=tuple(notes))
+        threshold=threshold, within_run=within,
+        phases=tuple(program_phases(run_rp, period, t0=float(times[0]) if times.size else 0.0)),
+        notes=tuple(notes))
 
 
 def _union(intervals: Sequence[Interval], merge: float) -> tuple[Interval, ...]:

@@ -23,16 +23,17 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+import pandas as pd
 
-from funcnet.core.batch import batch_pairs
 from funcnet.comparison.align import Alignment
 from funcnet.comparison.band import SPREAD_FLOOR, _rolling_mean
 from funcnet.comparison.intervals import Interval, find_intervals
+from funcnet.core.batch import batch_pairs
 from funcnet.parameters import NetworkParameters
 from funcnet.robot.axes import qualified
 from funcnet.robot.recording import Recording
 
-__all__ = ["NetworkComparison", "compare_networks", "NODES", "MEASURES"]
+__all__ = ["NetworkComparison", "compare_networks", "phase_summary", "NODES", "MEASURES"]
 
 #: The nodes of each axis' network.
 NODES = ("RC", "AC", "FE")
@@ -212,8 +213,71 @@ def compare_networks(
                 key = (axis, label, measure)
                 out["run"][key], out["centre"][key] = mine, centre
                 out["spread"][key], out["size"][key] = spread, np.where(spread > 0, size, np.nan)
-        missing += int(sum(1 for w in range(firsts.size) if (w, True) not in set(owner)))
+        own_windows = {w for w, is_run in owner if is_run}
+        missing += firsts.size - len(own_windows)
     return NetworkComparison(
         starts=times[firsts] if firsts.size else np.array([]), window=window, step=step,
         times=times, run=out["run"], centre=out["centre"], spread=out["spread"],
         size=out["size"], windows=int(firsts.size), missing=missing)
+
+
+def _mean(values: np.ndarray) -> float:
+    finite = values[np.isfinite(values)]
+    return float(finite.mean()) if finite.size else float("nan")
+
+
+def phase_summary(networks: NetworkComparison, phases: Sequence[tuple[str, float, float]],
+                  *, threshold: float) -> pd.DataFrame:
+    """Per phase, axis and pair: the references' and RUN's mean measures side by side.
+
+    Parameters
+    ----------
+    networks : NetworkComparison
+    phases : sequence of (str, float, float)
+        ``(label, start, stop)`` in RUN's seconds; a window belongs to the phase its centre
+        lies in.
+    threshold : float
+        Departure (spreads) beyond which a measure of a pair has moved.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``phase``, ``start``, ``stop``, ``axis``, ``pair``, ``<measure> refs`` and
+        ``<measure> RUN`` per measure, and ``beyond`` (the measures that moved beyond the
+        references' spread in some window of the phase, with the largest departure; "" when
+        none).
+
+    Examples
+    --------
+    >>> net = NetworkComparison(np.array([0.0, 0.5]), 1.0, 0.5, np.arange(200) * 0.01,
+    ...     {(1, "RC-AC", "c_diff"): np.array([0.1, 0.5])},
+    ...     {(1, "RC-AC", "c_diff"): np.array([0.1, 0.1])},
+    ...     {(1, "RC-AC", "c_diff"): np.array([0.02, 0.02])},
+    ...     {(1, "RC-AC", "c_diff"): np.array([0.0, 14.1])}, 2, 0)
+    >>> phase_summary(net, [("move 1", 0.0, 2.0)], threshold=6.0).iloc[0]["beyond"]
+    'c_diff (14.1)'
+    """
+    centres = networks.starts + networks.window / 2
+    rows = []
+    keys = sorted(networks.run)
+    for label, start, stop in phases:
+        inside = (centres >= start) & (centres < stop)
+        if not inside.any():
+            continue
+        for axis, pair in dict.fromkeys((a, p) for a, p, _ in keys):
+            row: dict[str, object] = {"phase": label, "start": start, "stop": stop,
+                                      "axis": axis, "pair": pair}
+            beyond = []
+            for m in MEASURES:
+                key = (axis, pair, m)
+                if key not in networks.run:
+                    continue
+                row[f"{m} refs"] = round(_mean(networks.centre[key][inside]), 3)
+                row[f"{m} RUN"] = round(_mean(networks.run[key][inside]), 3)
+                sizes = networks.size[key][inside]
+                sizes = sizes[np.isfinite(sizes)]
+                if sizes.size and sizes.max() > threshold:
+                    beyond.append(f"{m} ({sizes.max():.1f})")
+            row["beyond"] = ", ".join(beyond)
+            rows.append(row)
+    return pd.DataFrame(rows)

@@ -15,13 +15,12 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 import pandas as pd
 
 from funcnet._io import write_text_atomic
-from funcnet.comparison.compare import RESIDUAL_NAMES, Comparison, program_phases
+from funcnet.comparison.compare import RESIDUAL_NAMES, Comparison
 from funcnet.comparison.intervals import Interval
-from funcnet.comparison.networks import MEASURES
+from funcnet.comparison.networks import phase_summary
 from funcnet.report.html import (
     contents,
     escape,
@@ -115,39 +114,15 @@ def _axis_figure(c: Comparison, axis: int, label: str) -> Any:
     return fig
 
 
-def _phase_table(c: Comparison, axis: int, phases: list[tuple[str, float, float]]) -> str:
-    net = c.networks
-    if net is None or net.starts.size == 0:
+def _phase_table(c: Comparison, axis: int) -> str:
+    if c.networks is None or c.networks.starts.size == 0:
         return "<p>No network windows.</p>"
-    centres = net.starts + net.window / 2
-    rows = []
-    pairs = sorted({p for a, p, _ in net.run if a == axis})
-    for label, start, stop in phases:
-        inside = (centres >= start) & (centres < stop)
-        if not inside.any():
-            continue
-        for pair in pairs:
-            row: dict[str, Any] = {"phase": label, "start [s]": round(start, 3),
-                                   "stop [s]": round(stop, 3), "pair": pair}
-            beyond = []
-            for m in MEASURES:
-                key = (axis, pair, m)
-                with np.errstate(all="ignore"):
-                    ref = np.nanmean(net.centre[key][inside]) if np.isfinite(
-                        net.centre[key][inside]).any() else np.nan
-                    own = np.nanmean(net.run[key][inside]) if np.isfinite(
-                        net.run[key][inside]).any() else np.nan
-                    size = np.nanmax(net.size[key][inside]) if np.isfinite(
-                        net.size[key][inside]).any() else np.nan
-                row[f"{m} refs"] = round(float(ref), 3)
-                row[f"{m} RUN"] = round(float(own), 3)
-                if size > c.threshold:
-                    beyond.append(f"{m} ({size:.1f})")
-            row["beyond the spread"] = ", ".join(beyond) or "-"
-            rows.append(row)
-    if not rows:
+    frame = phase_summary(c.networks, c.phases, threshold=c.threshold)
+    if frame.empty or not (frame["axis"] == axis).any():
         return "<p>No network window lies in a move.</p>"
-    frame = pd.DataFrame(rows)
+    frame = frame[frame["axis"] == axis].drop(columns="axis").rename(
+        columns={"start": "start [s]", "stop": "stop [s]", "beyond": "beyond the spread"})
+    frame["beyond the spread"] = frame["beyond the spread"].replace("", "-")
     return html_table(frame, classes={"beyond the spread": lambda v: "no" if v != "-" else ""})
 
 
@@ -156,7 +131,6 @@ def write_comparison(
     out_dir: str | os.PathLike[str],
     *,
     axis_label: Callable[[int], str] | None = None,
-    setpoints: np.ndarray | None = None,
 ) -> Path:
     """Write ``index.html`` (with ``figures/``) and ``changes.json`` of a comparison.
 
@@ -166,9 +140,6 @@ def write_comparison(
     out_dir : path-like
     axis_label : callable, optional
         ``axis -> "axis 2 (shoulder)"``; default ``"axis N"``.
-    setpoints : ndarray, optional
-        RUN's position set-points, one column per axis: the program's phases of the
-        networks' tables (:func:`funcnet.comparison.compare.program_phases`).
 
     Returns
     -------
@@ -181,10 +152,6 @@ def write_comparison(
     document = changes(c)
     write_text_atomic(out / "changes.json", json.dumps(document, indent=2) + "\n")
     axes = sorted({a for _, a in c.bands})
-    period = float(c.times[1] - c.times[0]) if c.times.size > 1 else 1.0
-    phases = (program_phases(setpoints, period, t0=float(c.times[0]))
-              if setpoints is not None else [("whole run", float(c.times[0]),
-                                             float(c.times[-1]) + period)])
     n_refs = len(c.references)
     spread = ("<p class=\"note\"><b>The band is estimated with one reference</b>: its spread is "
               "that of the reference's cycles, within one run. What differs between runs "
@@ -224,7 +191,7 @@ def write_comparison(
             + (f"<h3>The networks' own intervals ({len(c.network_intervals)})</h3>"
                + (html_table(_interval_rows(c.network_intervals)) if c.network_intervals
                   else "<p>None.</p>") if other else "")
-            + "".join(f"<h3>{escape(label(a))}</h3>{_phase_table(c, a, phases)}"
+            + "".join(f"<h3>{escape(label(a))}</h3>{_phase_table(c, a)}"
                       for a in axes))
     sections = [("summary", "Summary"), ("intervals", "Intervals"), ("axes", "Per axis"),
                 ("networks", "Networks per phase"), ("provenance", "Provenance")]
