@@ -240,3 +240,13 @@ def test_cli_refuses_another_program_in_one_line(tmp_path) -> None:
     assert len(lines) == 1 and lines[0].startswith("funcnet: error: ")
     assert "set-points do not match" in lines[0] and "other.parquet" in lines[0]
     assert not (tmp_path / "o" / "index.html").exists()
+
+
+def test_reference_with_a_gap_and_another_length_still_finds_the_push() -> None:
+    gapped = _run(1, cycles=3.0)
+    gapped.data.iloc[250:300] = np.nan  # values missing: a gap, as a reader leaves it
+    refs = [gapped, _run(2, start=0.8, cycles=4.5)]
+    c = compare_runs(_run(3, start=1.3, cycles=5.0, push=(5.0, 5.6, 1, 1.5)), refs,
+                     networks=False)
+    assert c.compared > 0.95
+    assert [(i.start < 5.6 and i.stop > 5.0) for i in c.intervals] == [True]
