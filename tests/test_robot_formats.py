@@ -354,8 +354,9 @@ def test_csv_constant_channel_and_off_grid_time(tmp_path):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         rec = read_recording(path, resample="interpolate")
+    # the constant MP left out, and the positions of no stated unit (computed as degrees)
     assert [w.message.problem for w in caught if isinstance(w.message, RecordingWarning)] == [
-        "constant"]
+        "constant", "unit"]
     assert list(rec.data.columns) == ["RP"] == [*rec.signals]
     np.testing.assert_allclose(rec.data["RP"], np.interp([0, 0.004, 0.008, 0.012],
                                                          [0, 0.004, 0.0081, 0.012], [0, 1, 2, 3]))

@@ -74,7 +74,14 @@ def write_text_atomic(path: str | os.PathLike[str], text: str) -> Path:
 
 
 def file_sha256(path: str | os.PathLike[str]) -> str:
-    """SHA-256 of a file's content, as hex, read in blocks of 1 MiB."""
+    """SHA-256 of a file's content, as hex, read in blocks of 1 MiB; of a folder (a run of one
+    file per signal), the SHA-256 of its files' names and hashes, in name order."""
+    if os.path.isdir(path):
+        folder = hashlib.sha256()
+        for entry in sorted(os.scandir(path), key=lambda e: e.name):
+            if entry.is_file():
+                folder.update(f"{entry.name}\0{file_sha256(entry.path)}\n".encode())
+        return folder.hexdigest()
     digest = hashlib.sha256()
     with open(path, "rb") as fh:
         for block in iter(lambda: fh.read(1 << 20), b""):

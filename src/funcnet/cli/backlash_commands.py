@@ -70,8 +70,10 @@ def backlash(
             write_results(results, output)
         cmap = channel_map(channels)
     for result in results:
-        where = (result.path if result.axis is None
-                 else f"{result.path} {cmap.axis_label(result.axis)}")
+        number = result.axis if result.axis is not None else axis
+        # a map that names the axes names them here; else the line reads as it always did
+        where = (result.path if number is None or (result.axis is None and not cmap.axis_names)
+                 else f"{result.path} {cmap.axis_label(number)}")
         typer.echo(f"{where}: {one_line(result.message)}")
         typer.echo(f"  {_backlash_numbers(result)}")
     if output is not None:

@@ -47,7 +47,8 @@ def study(
     Each (recording, window, parameter set) is an independent task; its rows (one per pair of
     signals) are written to OUT/rows/<key>.parquet, keyed by content, so a re-run computes only
     what is new and a killed run resumes where it stopped. OUT/study.json keeps the study and its
-    provenance. Exit status 1 when some windows could not be analysed (see study.json).
+    provenance. Exit status 1 when some windows could not be analysed (see study.json);
+    windows where the axis stands still are skipped and listed, not failed.
     """
     # Warnings are counted per problem over the tasks (printed below), wherever they ran.
     with reported_errors(summarized=True):
@@ -61,8 +62,16 @@ def study(
             )
     typer.echo(
         f"{result.tasks} tasks: {result.computed} computed, {result.cached} already done, "
-        f"{len(result.failures)} failed; rows in {result.out_dir / 'rows'}"
+        f"{len(result.failures)} failed"
+        + (f", {len(result.skipped)} skipped" if result.skipped else "")
+        + f"; rows in {result.out_dir / 'rows'}"
     )
+    if result.skipped:
+        listed = [f"{s.recording} [{s.window}]" for s in result.skipped]
+        shown = ", ".join(listed[:6]) + (f" and {len(listed) - 6} more" if len(listed) > 6
+                                         else "")
+        sys.stderr.write(f"funcnet: skipped: {len(listed)} window(s) where the axis stands "
+                         f"still, nothing to analyse: {shown} (listed in study.json)\n")
     for category, (count, example) in result.warnings.items():
         sys.stderr.write(
             f"funcnet: warning: {category} in {count} of {result.computed} networks computed, "

@@ -202,6 +202,8 @@ class BacklashResult:
     @property
     def score_unit(self) -> str:
         """``"deg"`` for ``motor_hysteresis``; ``"1"`` (a sum of robust z-scores) otherwise."""
+        if self.score_indicator == "none":  # one encoder: no score
+            return "none"
         return "deg" if self.score_indicator == SCORE else "1"
 
     def to_dict(self) -> dict[str, Any]:
@@ -493,7 +495,7 @@ def _one_encoder(
     return BacklashResult(
         path=where, score_indicator="none", backlash_score=None, score_spread=None,
         lost_motion=None, lost_motion_spread=None, reversals=tuple(results), reading=None,
-        message=message, reading_reason=need, lost_motion_reason="one encoder: " + need,
+        message=message, reading_reason=need, lost_motion_reason="one encoder per joint, no MP",
         segments=segmented.segments, left_out=segmented.left_out, units=units.note or None,
     )
 
@@ -571,7 +573,9 @@ def diagnose_backlash(
     if not paths:
         raise ParameterError.of("paths", "give at least one trace")
     cal = load_calibration() if calibration is None else calibration
-    recordings = [(path, read_trace(path, channels=channels, axis=axis)) for path in paths]
+    # a set-point that never moves is kept: an axis at rest is a result, not a missing RP
+    recordings = [(path, read_trace(path, channels=channels, axis=axis, keep_setpoint=True))
+                  for path in paths]
     return [
         replace(diagnose_recording(rec if n is None else rec.for_axis(n), str(path),
                                    calibration=cal, max_dwell=max_dwell), axis=n)

@@ -65,7 +65,8 @@ def inspect_file(
     funcnet.errors.TraceError: missing.xml: no such file
     """
     # Thresholds, arcmin and arcsec are in degrees: angles in rad converted (said).
-    recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis))
+    recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis,
+                                         keep_setpoint=True))
     if recording.axes:
         return inspect_robot(recording, signals=signals, parameters=parameters,
                              evidence=evidence, progress=progress,

@@ -93,9 +93,10 @@ def inspect_repetitions(recordings: Sequence[Recording], signals: Sequence[str],
         found = find_repetitions(items, signals=nodes, mirror=mirror)
     except FuncnetError as error:
         return RepeatedInspection(pd.DataFrame(), {}, {}, f"no repetitions: {error}")
+    why = _left_out_sentence(found.left_out)
     if len(found) < 2:
         return RepeatedInspection(found.moves, {}, {},
-                                  f"one repetition of the motion: {needed}")
+                                  f"one repetition of the motion: {needed}{why}")
     tables, failures = {}, {}
     for label, windows in found.windows.items():
         try:
@@ -104,7 +105,8 @@ def inspect_repetitions(recordings: Sequence[Recording], signals: Sequence[str],
         except FuncnetError as error:
             failures[label] = str(error)
     r = len(found)
-    message = f"{r} repetitions of the motion ({found.others} other move(s) left out); {needed}"
+    message = (f"{r} repetitions of the motion ({found.others} other move(s) left out); "
+               f"{needed}{why}")
     return RepeatedInspection(found.moves, tables, failures, message)
 
 
@@ -133,3 +135,12 @@ def repetitions_of(inspections: Sequence[TraceInspection],
                                parameters=first.parameters,
                                alpha=float(options.get("alpha", 0.05)),
                                seed=int(options.get("seed", 0)))
+
+
+def _left_out_sentence(left_out: Sequence[str], limit: int = 6) -> str:
+    """"; not taken: recording 2 move 1: ..." for the moves that are no repetition."""
+    if not left_out:
+        return ""
+    shown = "; ".join(left_out[:limit])
+    more = f"; and {len(left_out) - limit} more" if len(left_out) > limit else ""
+    return f"; not taken: {shown}{more}"

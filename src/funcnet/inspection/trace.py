@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Unpack
@@ -32,7 +33,7 @@ from typing import TYPE_CHECKING, Any, Unpack
 import numpy as np
 import pandas as pd
 
-from funcnet.errors import FuncnetError
+from funcnet.errors import ChannelError, FuncnetError, RecordingWarning
 from funcnet.inspection.motion import motion_summary, segment_phases, turns_across_gaps
 from funcnet.network import FunctionalNetwork
 from funcnet.network.edge_evidence import check_evidence_settings
@@ -175,6 +176,37 @@ def _derivable(recording: Recording, signals: Sequence[str] | None) -> list[str]
             if name not in DERIVED_SIGNALS or set(DERIVED_SIGNALS[name][0]) <= columns]
 
 
+def _available_nodes(recording: Recording, signals: Sequence[str]) -> list[str]:
+    """The nodes asked for, checked before anything is computed: of the detrended nodes
+    (:data:`DETRENDED_NODES`) those the recording cannot give are left out, said in one line
+    (TORSION needs the motor encoder MP); other nodes are left to the networks to name."""
+    columns = set(recording.data.columns)
+
+    def needs(name: str) -> list[str]:
+        if name in columns:
+            return []
+        if name in DERIVED_SIGNALS:
+            return [c for c in DERIVED_SIGNALS[name][0] if c not in columns]
+        return [name]
+
+    missing = {name: needs(name) for name in signals if needs(name)}
+    if not missing or tuple(signals) != DETRENDED_NODES:
+        return list(signals)
+    said = "; ".join(
+        f"{name} ({DERIVED_SIGNALS[name][1]}) needs {', '.join(inputs)}"
+        if name in DERIVED_SIGNALS else f"{name} is not a column"
+        for name, inputs in missing.items()
+    )
+    where = recording.source or "<recording>"
+    kept = [name for name in signals if name not in missing]
+    if len(kept) < 2:
+        raise ChannelError(where, f"--detrended: {said}; fewer than two nodes are left")
+    warnings.warn(RecordingWarning(
+        f"{where}: detrended nodes left out, the recording lacks their inputs: {said}",
+        problem="missing_signal", signals=tuple(missing)), stacklevel=3)
+    return kept
+
+
 def inspect_recording(
     recording: Recording,
     *,
@@ -251,6 +283,8 @@ def inspect_recording(
         check_evidence_settings(**(evidence_options or EvidenceSettings()))
     where = recording.source or "<recording>"
     raw = recording
+    if signals is not None:
+        signals = _available_nodes(raw, signals)
     _step(progress, 0, 4, "phases")
     phases, turns = segment_phases(raw)  # a recording with gaps: segment by segment
     coarse = tuple(staircase_signals(raw)) if interpolate else ()

@@ -71,6 +71,7 @@ from funcnet.report.inspect_text import (
 )
 from funcnet.report.repetitions_page import write_repetitions
 from funcnet.robot.axes import split_qualified
+from funcnet.robot.channels import channel_map
 from funcnet.robot.grid import format_spans
 
 __all__ = ["inspect_trace", "write_inspection", "write_robot_inspection", "READING_AN_ARROW"]
@@ -148,6 +149,24 @@ def _network_tables(ins: TraceInspection) -> str:
     return "".join(parts)
 
 
+def _move_units(ins: TraceInspection) -> dict[str, str]:
+    """The moves table's columns with the unit each holds (positions in degrees, or of
+    unknown unit; the current's as the recording states it)."""
+    from funcnet.robot.units import UNKNOWN, unit_of
+
+    signals = ins.recording.signals
+    rp = signals.get("RP")
+    deg = rp is None or unit_of(rp) != UNKNOWN
+    position, speed = ("°", "°/s") if deg else ("unit unknown", "unit unknown per s")
+    ac = signals.get("AC")
+    current = unit_of(ac) if ac is not None else UNKNOWN
+    units = {"start": "s", "stop": "s", "duration": "s", "distance": position,
+             "peak speed": speed, "peak V": speed, "peak |FE|": position,
+             "final |FE|": position,
+             "peak |AC|": "unit unknown" if current == UNKNOWN else current}
+    return {column: f"{column} [{unit}]" for column, unit in units.items()}
+
+
 def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list[str]:
     """The body of one trace's page (figures written to ``out/figures``)."""
     steps = 6
@@ -155,13 +174,17 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
 
     def add(k: int, name: str, make: Any, caption: str) -> None:
         step(progress, k, steps, f"figure: {name}")
+        if not ins.networks and name in ("networks", "timeline", "evidence"):
+            return  # no network (an axis at rest): the summary says why
         fig = make(ins)
         if fig is not None:
             figures.append((name, caption, figure_html(out, name, fig, caption)))
 
     add(0, "motion", figure_motion,
         "Figure 1 — the motion. Top: the set-point RP over the whole trace, the moves named. "
-        "Below, each move zoomed: positions, arm-side speed V (Eq. 11–12 on AP), current AC "
+        "Below, each move zoomed: positions, "
+        + ("measured speed V" if "V" in ins.recording.roles
+           else "arm-side speed V (Eq. 11–12 on AP)") + ", current AC "
         "and following error RP − AP. Shading: the detected phase (same colour for the same "
         "kind of phase in every figure)" + ("; dark grey: a gap, where values are missing."
                                             if ins.gaps else "."))
@@ -207,6 +230,7 @@ def write_inspection(
     out_dir: str | os.PathLike[str],
     *,
     progress: Progress = None,
+    axis_label: str | None = None,
 ) -> Path:
     """Write the HTML page of one inspected trace (``index.html``, ``figures/*.png``).
 
@@ -217,6 +241,8 @@ def write_inspection(
         The page's folder.
     progress : callable, optional
         ``progress(done, total, description)``.
+    axis_label : str, optional
+        The axis as the channel map names it (``"axis 2 (shoulder)"``), in the title.
 
     Returns
     -------
@@ -249,7 +275,7 @@ def write_inspection(
                          "intervals, whose subsamples are shorter than the window; "
                          "<code>evidence</code>: all of it).</p>" + table(partial))
     body = [
-        f"<h1>What the axis does — {escape(name)}</h1>",
+        f"<h1>What {escape(axis_label or 'the axis')} does — {escape(name)}</h1>",
         f"<section id=\"summary\"><h2>Summary</h2>{summary_html(ins)}</section>",
         contents(sections),
         "<h2 id=\"figures\">Figures</h2>", *figures,
@@ -258,9 +284,11 @@ def write_inspection(
         f"<section id=\"backlash\"><h2>Backlash and lost motion</h2>{_backlash_html(ins)}"
         "</section>",
         "<section id=\"phases\"><h2>Moves and phases</h2>",
-        table(ins.moves.round(4)) if len(ins.moves) else "<p>No move.</p>",
+        table(ins.moves.round(4).rename(columns=_move_units(ins))) if len(ins.moves)
+        else "<p>No move.</p>",
         "<details><summary>every phase</summary>",
-        table(ins.phases[["phase", "move", "start", "stop", "duration"]]),
+        table(ins.phases[["phase", "move", "start", "stop", "duration"]].rename(
+            columns={c: f"{c} [s]" for c in ("start", "stop", "duration")})),
         "</details></section>",
         f"<section id=\"problems\"><h2>Problems flagged</h2>{problem_html}</section>",
         f"<section id=\"networks\"><h2>Pairs tables</h2>{_network_tables(ins)}</section>",
@@ -323,6 +351,7 @@ def write_robot_inspection(
     out_dir: str | os.PathLike[str],
     *,
     progress: Progress = None,
+    axis_names: tuple[str, ...] = (),
 ) -> Path:
     """Write the robot's page (``index.html``) and each axis's page (``axis-N/index.html``).
 
@@ -332,6 +361,8 @@ def write_robot_inspection(
     out_dir : path-like
     progress : callable, optional
         ``progress(done, total, description)``.
+    axis_names : tuple of str, optional
+        The axes' names, axis 1 first (the channel map's ``axis_names``), on the pages.
 
     Returns
     -------
@@ -340,13 +371,21 @@ def write_robot_inspection(
     """
     ins = inspection
     out = Path(out_dir)
+
+    def axis_label(axis: int) -> str:
+        return f"axis {axis}" + (f" ({axis_names[axis - 1]})" if axis <= len(axis_names) else "")
+
     for axis, one in ins.axes.items():
-        write_inspection(one, out / f"axis-{axis}", progress=progress)
+        write_inspection(one, out / f"axis-{axis}", progress=progress,
+                         axis_label=axis_label(axis) if axis_names else None)
     rows = _axis_rows(ins)
+    if axis_names:
+        rows.insert(1, "name", [axis_names[a - 1] if a <= len(axis_names) else ""
+                                for a in rows["axis"]])
     gaps = gaps_sentence(ins.recording.gaps, ins.recording.segments)
     gaps += " The robot network is one per segment." if gaps else ""
     links = "".join(
-        f'<li><a href="axis-{a}/index.html">axis {a}</a></li>' for a in ins.axes)
+        f'<li><a href="axis-{a}/index.html">{escape(axis_label(a))}</a></li>' for a in ins.axes)
     name = Path(ins.source).name
     network_parts = []
     for k, window in enumerate(ins.windows):
@@ -461,15 +500,19 @@ def inspect_trace(
         raise ParameterError.of("paths", "must name at least one trace file")
     p = resolve(parameters, overrides)
     out = Path(out_dir)
+    cmap = channel_map(channels)
 
     def inspected(path: Any, folder: Path) -> TraceInspection | RobotInspection:
         found = inspect_file(path, channels=channels, axis=axis, signals=signals, parameters=p,
                              evidence=evidence, progress=progress,
                              evidence_options=evidence_options)
         if isinstance(found, RobotInspection):
-            write_robot_inspection(found, folder, progress=progress)
+            write_robot_inspection(found, folder, progress=progress,
+                                   axis_names=cmap.axis_names)
         else:
-            write_inspection(found, folder, progress=progress)
+            write_inspection(found, folder, progress=progress,
+                             axis_label=cmap.axis_label(axis)
+                             if axis is not None and cmap.axis_names else None)
         return found
 
     if len(paths) == 1:

@@ -110,6 +110,31 @@ def _units_facts(ins: TraceInspection) -> list[str]:
     return facts
 
 
+def _rest_facts(ins: TraceInspection) -> list[str]:
+    """What a recording whose set-point never moves measured at rest."""
+    from funcnet.robot.units import UNKNOWN, unit_of
+
+    data, signals = ins.recording.data, ins.recording.signals
+    deg = _position_unit(ins) == "deg"
+    facts = ["the set-point never moves: the axis rests over the whole recording, so it has no "
+             "phase, network or direction change to read; what it measured at rest:"]
+    if "AP" in data and "RP" in data:
+        error = (data["RP"] - data["AP"]).abs()
+        spread = float(data["AP"].max() - data["AP"].min())
+        facts.append(
+            f"|RP − AP| {error.mean() * 3600:.3g} arcsec on average, at most "
+            f"{error.max() * 3600:.3g} arcsec; AP spans {spread * 3600:.3g} arcsec" if deg
+            else f"|RP − AP| {error.mean():.3g} on average, at most {error.max():.3g}; AP "
+            f"spans {spread:.3g} (the position's unit is unknown)")
+    for column in ("RC", "AC"):
+        if column in data:
+            unit = unit_of(signals[column])
+            unit = "" if unit == UNKNOWN else f" {unit}"
+            facts.append(f"{column} {data[column].mean():.3g}{unit} on average, standard "
+                         f"deviation {data[column].std():.3g}{unit}")
+    return facts
+
+
 def summary_html(ins: TraceInspection) -> str:
     """The page's summary: the trace, its gaps, the moves and their peaks, the windows.
 
@@ -145,10 +170,16 @@ def summary_html(ins: TraceInspection) -> str:
             facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} per s "
                          "(the position's unit is unknown)")
         if "peak |AC|" in moves:
+            from funcnet.robot.units import UNKNOWN, unit_of
+
             info = ins.recording.signals.get("AC")
-            unit = info.unit if info is not None and info.unit else "A"
-            what = "current" if unit.endswith("A") else "torque" if "N" in unit else "value"
-            facts.append(f"peak {what} |AC| {moves['peak |AC|'].max():.3g} {unit}")
+            unit = unit_of(info) if info is not None else UNKNOWN
+            if unit == UNKNOWN:
+                facts.append(f"peak |AC| {moves['peak |AC|'].max():.3g} (no unit stated)")
+            else:
+                what = ("current" if unit.endswith("A") else "torque" if "N" in unit
+                        else "value")
+                facts.append(f"peak {what} |AC| {moves['peak |AC|'].max():.3g} {unit}")
         if "peak |FE|" in moves and position != "deg":
             facts.append(f"peak following error |RP − AP| {moves['peak |FE|'].max():.3g} "
                          "(the position's unit is unknown)")
@@ -161,6 +192,9 @@ def summary_html(ins: TraceInspection) -> str:
                      + "<li>phases within the moves: "
                      + escape(", ".join(f"{k} ×{n}" for k, n in kinds.items())) + "</li>"
                      + _lost_motion_item(ins) + "</ul>")
+    if not len(moves):
+        lines.append("<ul>" + "".join(f"<li>{escape(f)}</li>"
+                                      for f in _rest_facts(ins) + _units_facts(ins)) + "</ul>")
     n_net = len(ins.networks)
     errors, partial = failed_windows(ins, "network"), partial_evidence(ins)
     lines.append(f"<p>{n_net} of {len(ins.windows)} phase windows have a network"

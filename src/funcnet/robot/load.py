@@ -123,7 +123,9 @@ def read_recording(
     """
     _check_resample(resample)
     off_grid = "interpolate" if resample == "interpolate" else "error"
-    recording = read_trace(path, channels=channels, axis=axis, off_grid=off_grid)
+    # A set-point that never moves is kept: where the axis rests is said, not a missing RP.
+    recording = read_trace(path, channels=channels, axis=axis, off_grid=off_grid,
+                           keep_setpoint=True)
     # Phases and thresholds are in degrees: angles in rad converted, each said.
     recording, _ = in_degrees(recording)
     return prepare_recording(recording, signals=signals, resample=resample)

@@ -364,7 +364,9 @@ def _listed(names: Sequence[str], limit: int = 8) -> str:
     return shown + (f" and {len(names) - limit} more" if len(names) > limit else "")
 
 
-def _assemble(path: Path, grid: GridSignals, cmap: ChannelMap) -> Recording:
+def _assemble(
+    path: Path, grid: GridSignals, cmap: ChannelMap, keep_setpoint: bool = False
+) -> Recording:
     """A reader's signals -> a Recording: constant channels left out, gaps found; both said."""
     columns, roles = _named_columns(path, grid, cmap)
     values = grid.values
@@ -373,6 +375,8 @@ def _assemble(path: Path, grid: GridSignals, cmap: ChannelMap) -> Recording:
     low, high = np.fmin.reduce(values, axis=0), np.fmax.reduce(values, axis=0)
     # One tick says nothing about constancy.
     constant = ~(high > low) if len(values) > 1 else np.zeros(len(columns), dtype=bool)
+    if keep_setpoint:  # a set-point that never moves says the axis rests: a page reports it
+        constant &= np.array([split_qualified(c)[1] != "RP" for c in columns], dtype=bool)
     if constant.all():
         raise TraceFormatError(
             path, f"every signal is constant over the whole recording ({_listed(columns)})"
@@ -437,6 +441,7 @@ def read_trace(
     channels: ChannelMap | Mapping[str, str] | str | os.PathLike[str] | None = None,
     axis: int | None = None,
     off_grid: str = "error",
+    keep_setpoint: bool = False,
 ) -> Recording:
     """Read a controller trace into a :class:`Recording`.
 
@@ -460,6 +465,9 @@ def read_trace(
         Time stamps of a table or array file off the grid of their smallest step: an error
         (which offers this), or every signal interpolated linearly onto a grid of the median
         step (:func:`funcnet.robot.grid.time_grid`).
+    keep_setpoint : bool
+        Keep a set-point RP (``A<n>.RP``) that is constant over the whole recording, as the
+        page of an axis at rest needs it; by default it is left out as any constant channel.
 
     Returns
     -------
@@ -514,7 +522,8 @@ def read_trace(
         raise ParameterError.of("off_grid", f"must be one of {', '.join(OFF_GRID)}; "
                                 f"got {off_grid!r}")
     if cmap.files and path.exists():
-        return _assemble(path, read_signal_files(path, cmap, axis, off_grid=off_grid), cmap)
+        grid = read_signal_files(path, cmap, axis, off_grid=off_grid)
+        return _assemble(path, grid, cmap, keep_setpoint)
     if path.is_dir():
         raise TraceFormatError(
             path, "is a directory, not a trace file; a run's folder of one file per signal is "
@@ -553,4 +562,4 @@ def read_trace(
             path, f"unknown trace format {suffix!r}; use .xml, .csv, .parquet, "
             f"{', '.join(ARRAY_SUFFIXES)}"
         )
-    return _assemble(path, grid, cmap)
+    return _assemble(path, grid, cmap, keep_setpoint)

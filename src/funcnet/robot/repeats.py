@@ -73,12 +73,16 @@ class Repetitions:
     others : int
         Moves left out: of another profile (another group), too short, or mirrored without
         ``mirror=True``.
+    left_out : tuple of str
+        Per move left out, why it does not repeat the first repetition: ``"recording 1 move
+        2: 1964 samples against 2707 (more than 2 % apart)"``, ... (in the order found).
     """
 
     moves: pd.DataFrame
     phases: pd.DataFrame
     windows: dict[str, list[pd.DataFrame]] = field(repr=False)
     others: int
+    left_out: tuple[str, ...] = ()
 
     def __len__(self) -> int:
         return len(self.moves)
@@ -223,13 +227,15 @@ def find_repetitions(
 
     setpoints = [item.data[reference].to_numpy(dtype=np.float64) for item in items]
 
-    def matches(a: _Move, b: _Move) -> tuple[bool, bool, int]:
-        """(same profile, mirrored, lag of ``b`` behind ``a`` in samples)."""
+    def matches(a: _Move, b: _Move) -> tuple[bool, bool, int, str]:
+        """(same profile, mirrored, lag of ``b`` behind ``a`` in samples, why not)."""
         n_a, n_b = a.displacement.size, b.displacement.size
         mirrored = a.direction != b.direction
-        if abs(n_a - n_b) > tolerance * max(n_a, n_b) + 2 * lag_samples or (
-                mirrored and not mirror):
-            return False, False, 0
+        if mirrored and not mirror:
+            return False, False, 0, "it moves the other way (mirrored moves are not counted)"
+        if abs(n_a - n_b) > tolerance * max(n_a, n_b) + 2 * lag_samples:
+            return False, False, 0, (f"{n_b} samples long against {n_a} (more than "
+                                     f"{tolerance:.0%} and {2 * lag_samples} samples apart)")
         sign = -1.0 if mirrored else 1.0
         lag = _lag(velocity(a.displacement, period),
                    velocity(sign * b.displacement, period), lag_samples)
@@ -237,16 +243,19 @@ def find_repetitions(
         start = b.first + lag
         n = min(n_a, rp.size - start) if start >= 0 else 0
         if n < 2:
-            return False, False, 0
+            return False, False, 0, "aligned, it leaves its recording"
         other = sign * (rp[start:start + n] - rp[start])
         travel = max(np.abs(a.displacement).max(), 1e-300)
-        same = np.abs(a.displacement[:n] - other).max() <= tolerance * travel
-        return bool(same), mirrored, lag
+        apart = float(np.abs(a.displacement[:n] - other).max())
+        same = apart <= tolerance * travel
+        why = "" if same else (f"its set-point departs from the first's by {apart / travel:.1%} "
+                               f"of the travel once aligned (more than {tolerance:.0%})")
+        return bool(same), mirrored, lag, why
 
     groups: list[list[tuple[_Move, bool, int]]] = []
     for move in moves:
         for group in groups:
-            same, mirrored, lag = matches(group[0][0], move)
+            same, mirrored, lag, _ = matches(group[0][0], move)
             if same:
                 group.append((move, mirrored, lag))
                 break
@@ -254,6 +263,11 @@ def find_repetitions(
             groups.append([(move, False, 0)])
     group = max(groups, key=len)  # max keeps the first of equal length
     first = group[0][0]
+    taken = {id(move) for move, _, _ in group}
+    left_out = tuple(
+        f"recording {move.recording + 1} move {move.number}: {matches(first, move)[3]}"
+        for move in moves if id(move) not in taken
+    )
     length = min(min(move.stop, setpoints[move.recording].size) - (move.first + lag)
                  for move, _, lag in group)
     rows, starts = [], []
@@ -292,4 +306,4 @@ def find_repetitions(
                                     name="time")
             windows[label].append(window)
     return Repetitions(moves=pd.DataFrame(rows), phases=relative, windows=windows,
-                       others=len(moves) - len(group))
+                       others=len(moves) - len(group), left_out=left_out)

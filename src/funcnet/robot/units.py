@@ -101,7 +101,7 @@ def in_degrees(recording: Recording, *, warn: bool = True) -> tuple[Recording, U
     recording : Recording
     warn : bool
         Say a conversion or an unknown unit in one :class:`~funcnet.RecordingWarning`
-        (``problem="unit"``).
+        (``problem="unit"``); a recording converted before is not said again.
 
     Returns
     -------
@@ -169,7 +169,7 @@ def in_degrees(recording: Recording, *, warn: bool = True) -> tuple[Recording, U
         parts.append(f"no unit stated for {', '.join(unknown)}: computed as degrees (deg/s), "
                      "labelled unknown; a [units] table in the channel map states it")
     note = "; ".join(parts)
-    if note and warn:
+    if (scaled or unknown) and warn:  # a conversion made before was said then
         warnings.warn(
             RecordingWarning(f"{recording.source or '<recording>'}: {note}", problem="unit",
                              signals=tuple(c.split(" ")[0] for c in converted) + tuple(unknown)),

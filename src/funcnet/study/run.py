@@ -83,13 +83,16 @@ class TaskFailure:
     parameters : dict
         The complete parameter set (empty when the windows could not be built).
     message : str
-        The error message.
+        The error message (for a window skipped: why it has nothing to analyse).
+    skipped : bool
+        The window was skipped (the axis stands still in it), not failed.
     """
 
     recording: str
     window: str
     parameters: dict[str, Any]
     message: str
+    skipped: bool = False
 
 
 @dataclass(frozen=True)
@@ -108,6 +111,8 @@ class StudyResult:
         Network tasks found done (or failed) by an earlier run.
     failures : tuple of TaskFailure
         Tasks (and window expansions) whose data could not be analysed.
+    skipped : tuple of TaskFailure
+        Windows with nothing to analyse (the axis stands still in them): listed, not failed.
     warnings : dict
         Kind of problem (``"degenerate"``, ``"eps_order"``, ``"rate_exceeded"``, the
         ``problem`` keys of :class:`funcnet.errors.ThresholdWarning`) -> (number of tasks
@@ -120,6 +125,7 @@ class StudyResult:
     cached: int
     failures: tuple[TaskFailure, ...]
     warnings: dict[str, tuple[int, str]]
+    skipped: tuple[TaskFailure, ...] = ()
 
 
 def run_study(
@@ -288,8 +294,10 @@ def _run_locked(
         for problem, n, message in record.get("warnings", []):
             counts[problem] = counts.get(problem, 0) + int(n) * len(grid)
             examples.setdefault(problem, message)
-    failures.extend(_failures(dirs, tasks))
+    ended = _failures(dirs, tasks)
+    failures.extend(f for f in ended if not f.skipped)
     result = StudyResult(
+        skipped=tuple(f for f in ended if f.skipped),
         out_dir=out,
         tasks=len(tasks),
         computed=len(todo),
@@ -393,12 +401,14 @@ def _check_fatal(outcome: Outcome, study: Study) -> None:
 
 
 def _store(dirs: Mapping[str, Path], task: NetworkTask, outcome: Outcome) -> None:
-    if outcome.error is not None:
+    if outcome.error is not None or outcome.skipped is not None:
         record = {
             "recording": task.source.name,
             "window": task.window["label"],
             "parameters": parameters_record(task.parameters),
-            "message": outcome.error,
+            "message": outcome.error if outcome.error is not None else outcome.skipped,
+            # kept with the failures (done, not retried), told apart by this flag
+            **({"skipped": True} if outcome.error is None else {}),
         }
         store.write_failure(dirs, task.key, record)
     else:
@@ -411,9 +421,17 @@ def _failures(dirs: Mapping[str, Path], tasks: Sequence[NetworkTask]) -> list[Ta
         record = store.read_failure(dirs, task.key)
         if record is not None:
             failures.append(TaskFailure(
-                record["recording"], record["window"], record["parameters"], record["message"]
+                record["recording"], record["window"], record["parameters"], record["message"],
+                bool(record.get("skipped", False)),
             ))
     return failures
+
+
+def _failure_record(failure: TaskFailure) -> dict[str, Any]:
+    """A failure as study.json lists it (the ``skipped`` flag only where it is set)."""
+    record = dataclasses.asdict(failure)
+    del record["skipped"]  # the list it is in says it
+    return record
 
 
 def _write_study_json(
@@ -434,7 +452,9 @@ def _write_study_json(
             "tasks": result.tasks,
             "computed": result.computed,
             "cached": result.cached,
-            "failures": [dataclasses.asdict(f) for f in result.failures],
+            "failures": [_failure_record(f) for f in result.failures],
+            **({"skipped": [_failure_record(f) for f in result.skipped]}
+               if result.skipped else {}),
             "warnings": {
                 problem: {"tasks": n, "example": message}
                 for problem, (n, message) in result.warnings.items()

@@ -30,7 +30,7 @@ __all__ = [
     "Outcome",
     "content_key",
     "expand_windows",
-    "network_rows",
+    "network_rows", "standstill",
     "task_warnings",
 ]
 
@@ -81,8 +81,9 @@ class Outcome:
     """What a worker returns: a value, or the message of an error.
 
     ``error`` is a task's own failure (recorded, the run goes on); ``fatal`` an error that
-    would fail every task (the run stops). ``warnings`` holds, per kind of problem, the number
-    of pairs (or signals) that have it and one message.
+    would fail every task (the run stops); ``skipped`` why a window has nothing to analyse
+    (the axis stands still in it: recorded and listed, not a failure). ``warnings`` holds, per
+    kind of problem, the number of pairs (or signals) that have it and one message.
     """
 
     key: str
@@ -90,6 +91,7 @@ class Outcome:
     error: str | None = None
     fatal: str | None = None
     warnings: tuple[tuple[str, int, str], ...] = ()
+    skipped: str | None = None
 
 
 def content_key(**content: object) -> str:
@@ -252,6 +254,37 @@ def overrunning_windows(windows: Sequence[Any], phases: Any) -> list[tuple[str, 
     return flagged
 
 
+def standstill(recording: Any, window: Any) -> str | None:
+    """Why ``window`` has no motion to analyse -- every set-point (RP, or ``A<n>.RP`` of each
+    axis) holds one value in it -- or None when something moves (or there is no set-point).
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd
+    >>> from funcnet.robot import Recording, SignalInfo, span_window
+    >>> t = np.arange(10) * 0.1
+    >>> rec = Recording(pd.DataFrame({"RP": np.r_[np.zeros(5), np.arange(5.0)]},
+    ...                              index=pd.Index(t, name="time")), {},
+    ...                 {"RP": SignalInfo("RP", None, None, 0.1)}, sample_period=0.1)
+    >>> standstill(rec, span_window(0.0, 0.5))
+    'the set-point RP holds 0 over 0-0.5 s: the axis stands still'
+    >>> standstill(rec, span_window(0.3, 0.8)) is None
+    True
+    """
+    from funcnet.robot.axes import split_qualified
+
+    columns = [c for c in recording.data.columns if split_qualified(c)[1] == "RP"]
+    if not columns:
+        return None
+    part = recording.window(window.start, window.stop).data[columns]
+    low, high = part.min(), part.max()
+    if bool((high > low).any()) or part.isna().all().any():
+        return None
+    held = ", ".join(f"{c} holds {low[c]:g}" for c in columns)
+    who = "the axis stands" if len(columns) == 1 else "every axis stands"
+    return (f"the set-point {held} over {window.start:g}-{window.stop:g} s: {who} still")
+
+
 def network_rows(task: NetworkTask) -> Outcome:
     """Worker side: compute one network and return its rows as an Arrow table.
 
@@ -272,6 +305,9 @@ def network_rows(task: NetworkTask) -> Outcome:
         recording = _cached_recording(task)
         signals = _nodes(task.signals, recording.data.columns, robot.PAPER_NODES)
         window = robot.Window(**task.window)
+        resting = standstill(recording, window)
+        if resting is not None:
+            return Outcome(task.key, skipped=resting)
         with _one_thread_per_task():
             networks = window_networks(
                 recording, [window], signals=signals, parameters=task.parameters,
