@@ -250,3 +250,13 @@ def test_reference_with_a_gap_and_another_length_still_finds_the_push() -> None:
                      networks=False)
     assert c.compared > 0.95
     assert [(i.start < 5.6 and i.stop > 5.0) for i in c.intervals] == [True]
+
+
+def test_gaps_in_run_are_not_compared_and_said() -> None:
+    run = _run(3, start=1.3, cycles=3.0)
+    run.data.iloc[100:150] = np.nan
+    c = compare_runs(run, [_run(1, cycles=3.0), _run(2, start=0.5, cycles=3.0)],
+                     networks=False)
+    assert not c.covered[100:150].any() and c.covered[:100].all()
+    assert any("0.5 s of RUN have no set-point (gaps)" in note for note in c.notes)
+    assert all(i.stop <= 1.0 or i.start >= 1.5 for i in c.intervals)

@@ -305,7 +305,11 @@ def compare_runs(
     chosen = [*(residual_intervals if "residuals" in readings else ()),
               *(network_intervals if "networks" in readings else ())]
     intervals = _union(chosen, merge) if len(readings) > 1 else tuple(chosen)
-    uncovered = int((~covered).sum())
+    missing = ~np.isfinite(run_rp).all(axis=1)
+    if missing.any():
+        notes.append(f"{missing.sum() * period:.3g} s of RUN have no set-point (gaps): not "
+                     "compared, no interval there")
+    uncovered = int((~covered & ~missing).sum())
     if uncovered:
         notes.append(f"{uncovered * period:.3g} s of RUN matched no reference's set-points: "
                      "not compared, no interval there")
