@@ -1,4 +1,4 @@
-"""The backlash sweep and its indicator table (docs/backlash.md).
+"""The backlash sweep and its indicator table (docs/validation/backlash.md).
 
     .venv/bin/python benchmarks/bench_backlash.py            # full sweep, table, timings
     .venv/bin/python benchmarks/bench_backlash.py --calibrate  # also rewrite calibration.json
@@ -445,7 +445,7 @@ def main() -> None:
         "--figure",
         type=Path,
         default=None,
-        help="draw docs/backlash.png (scatter and ROC) "
+        help="draw docs/validation/backlash.png (scatter and ROC) "
         "from a sweep table saved with --save (sweep.csv)",
     )
     parser.add_argument(
@@ -493,7 +493,7 @@ def main() -> None:
         print(compare_real())
         return
     if args.figure:
-        figure(pd.read_csv(args.figure), ROOT / "docs" / "backlash.png")
+        figure(pd.read_csv(args.figure), ROOT / "docs" / "validation" / "backlash.png")
         return
     if args.motor_contact:
         motor_contact_tables(args.motor_contact, args.resamples, _Printer())

@@ -1,6 +1,6 @@
 """Why the reversal error at a continuous turn misses the simulator's truth: a decomposition.
 
-Prints the table of docs/backlash.md, section 5.1: on the continuous sweep
+Prints the table of docs/validation/backlash.md, section 5.1: on the continuous sweep
 (:func:`funcnet.sim.plan.continuous_sweep_plan`, 216 trials) the share of trials whose
 mean reversal error lies within 5 % of the truth (the dead zone crossed) or within two
 arm-encoder steps of it (no backlash; a load keeping the gear on one flank; a turn whose gear

@@ -1,7 +1,7 @@
 """Validation of the repetition coupling test on simulated repetitions with known truth.
 
-Prints the table of docs/evidence.md, section "Repetitions": per simulated system (speed x
-phase) and number of repetitions R, the false-positive rate at alpha = 0.05 on pairs that share
+Prints the table of docs/validation/evidence.md, section "Repetitions": per simulated system (speed
+x phase) and number of repetitions R, the false-positive rate at alpha = 0.05 on pairs that share
 the command and nothing else, and the power on the links the physics couples.
 
 Runs: the simulated axis (:func:`funcnet.sim.simulate_trial`) with the real trace's

@@ -86,7 +86,7 @@ def test_two_encoder_lost_motion_follows_the_truth(small_sweep):
     some = small_sweep[small_sweep["backlash_arcmin"] > 0]
     error = some["lost_motion"] / some["true_lost_motion"] - 1
     # measured max 3.1 % (the restart fitted from the reading's own difference, MP - AP from the
-    # motor's turn); docs/backlash.md gives the sweep's figures
+    # motor's turn); docs/validation/backlash.md gives the sweep's figures
     assert error.abs().max() < 0.05
 
 

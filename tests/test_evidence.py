@@ -2,7 +2,7 @@
 
 The error-rate tests run a fixed seed set (seeds 0..n-1 of funcnet.validation.systems) and allow for
 binomial noise: a false-positive count must stay within 0.05 + 3 standard errors of its pairs,
-power at least the bound given. They were set from the measured rates in docs/evidence.md
+power at least the bound given. They were set from the measured rates in docs/validation/evidence.md
 (measured on seeds from 1000 on), not tuned on these seeds.
 """
 
@@ -194,8 +194,8 @@ def test_interval_covers_zero_for_independent_realizations_of_one_process():
                                 t_diff=m.t_diff, resamples=60, seed=k, parameters=m.parameters)
         covered += iv.c_diff_low <= 0 <= iv.c_diff_high
     # Nominal 0.95, but for white noise under min-max the interval is too narrow: measured
-    # 0.875 on 40 other pairs (docs/evidence.md, seeds 1000-1039). The bound is that rate minus
-    # 3 binomial SE over 30 pairs: it pins today's behaviour, it does not claim validity.
+    # 0.875 on 40 other pairs (docs/validation/evidence.md, seeds 1000-1039). The bound is that rate
+    # minus 3 binomial SE over 30 pairs: it pins today's behaviour, it does not claim validity.
     assert covered >= 20
 
 
@@ -253,8 +253,9 @@ def test_twin_test_statistic_matches_the_definition_and_detects_coupling():
 
 
 def test_twin_false_positives_on_uncoupled_maps():
-    # Measured 0.000-0.100 on 40 pairs per length (seeds 1000-1039, docs/evidence.md); these
-    # are other seeds. Twins are not valid for equal-period oscillators (docs): not tested here.
+    # Measured 0.000-0.100 on 40 pairs per length (seeds 1000-1039, docs/validation/evidence.md);
+    # these are other seeds. Twins are not valid for equal-period oscillators (docs): not tested
+    # here.
     pairs = 40
     batch = systems.henon_pair(300, 0.0, seed=list(range(pairs)))
     rejected = 0

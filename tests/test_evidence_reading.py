@@ -165,7 +165,7 @@ def test_the_vocabulary_has_untestable():
 def test_real_trace_inspect_says_untestable_and_never_not_coupled_for_it(real_trace):
     """On the SINUMERIK trace the phase windows leave 2-28 surrogates: no pair can be rejected
     at 0.05, and inspect says so instead of 'not-coupled' or 'asymmetry-only'."""
-    from funcnet.report.inspect import inspect_recording
+    from funcnet.inspection import inspect_recording
     from funcnet.robot import read_trace
 
     ins = inspect_recording(read_trace(real_trace), backlash=False)

@@ -212,8 +212,8 @@ def test_exported_at_the_top_level() -> None:
 
 
 def test_false_positives_and_power_on_simulated_repetitions() -> None:
-    # docs/evidence.md, "Repetitions", on a fixed small seed set: 40 runs of one move (175
-    # deg/min, the real trace's sensors), a 300-sample cruise window logged every 4 ms; 8 draws
+    # docs/validation/evidence.md, "Repetitions", on a fixed small seed set: 40 runs of one move
+    # (175 deg/min, the real trace's sensors), a 300-sample cruise window logged every 4 ms; 8 draws
     # of R = 10 runs for set A and 10 others for set B. Null: X from A_i, Y from B_i (16 pairs
     # a draw); coupled: RC-AC, AC-MP, MP-AP within A and within B. The validation's cells
     # (1280 tests each) spread 0.03-0.07 around 0.05; tests of one draw share their runs, so

@@ -68,7 +68,7 @@ def test_a_load_on_one_flank_is_said():
 def test_the_simulators_dead_zone_is_followed_where_the_torque_changes_sign():
     """Unloaded smooth trials at 175 deg/min and 2 m: the dead-zone term follows the backlash
     (the motor's own friction in the current reads it up to 0.25 arcmin high; 4 arcmin about 12 %
-    low): docs/backlash.md, section 5.1."""
+    low): docs/validation/backlash.md, section 5.1."""
     found = {}
     for arcmin in (0.0, 1.0, 4.0):
         trial = Trial("s", "s", speed=175, tcp=2.0, step=1, profile="smooth",

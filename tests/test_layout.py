@@ -562,7 +562,7 @@ _FROM = re.compile(r"from (funcnet(?:\.\w+)*) import (\([^)]*\)|\w+(?:, \w+)*)")
 def _documented_names() -> list[tuple[str, str]]:
     """``(file, dotted name)`` of every funcnet name the README and the docs use."""
     found = []
-    for path in [SRC.parent / "README.md", *sorted((SRC.parent / "docs").glob("*.md"))]:
+    for path in [SRC.parent / "README.md", *sorted((SRC.parent / "docs").rglob("*.md"))]:
         text = path.read_text(encoding="utf-8")
         found += [(path.name, match.group(0)) for match in _DOTTED.finditer(text)]
         for match in _FROM.finditer(text):

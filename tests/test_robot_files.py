@@ -289,7 +289,7 @@ def test_a_study_skips_and_lists_windows_where_the_arm_stands_still(tmp_path):
     rest, _ = _resting(tmp_path)
     study = tmp_path / "study.toml"
     study.write_text(
-        'signals = ["RP", "AP", "AC"]\nconstant = "drop"\n[recordings]\n'
+        'signals = ["RP", "AP", "AC"]\n[recordings]\n'
         f'paths = ["{run.name}", "{rest.name}"]\n'
         f'channels = "{UR5_MAP}"\naxis = 1\n'
         '[[windows]]\nkind = "range"\nstart = 0.0\nstop = 0.79\n'

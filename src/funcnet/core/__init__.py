@@ -12,7 +12,7 @@ module              what it holds
                     statistic of its distances, no distance matrix), each signal's of a network
 ``recurrence``      bit-packed auto- and cross-recurrence structures (Eq. 2-5)
 ``measures``        cross-clustering and cross-transitivity of one pair or many (Eq. 6-10)
-``kinds``           the kind of a pair from its asymmetries under mu (section 2.4)
+``kinds``           the kind of a pair from its asymmetries under mu (section 2.4 [1]_)
 ``batch``           many windows at once: their pairs' numbers in one compiled pass
 ``_isrn_kernels``   compiled kernels of the recurrences and the cross measures
 ``_batch_kernels``  compiled kernels of the batched engine (and of one short pair)

@@ -2,7 +2,7 @@
 
 :func:`diagnose_backlash` reads traces (SINUMERIK XML, CSV, Parquet), finds the direction
 changes of the set-point, computes at each reversal the motor-side indicator the simulated
-sweep supports best (:data:`SCORE`, see ``docs/backlash.md``) and, when the trace has the
+sweep supports best (:data:`SCORE`, see ``docs/validation/backlash.md``) and, when the trace has the
 arm-side encoder AP, the two-encoder lost motion; and reads the score on the sweep's
 calibration, which ships with the package (``calibration.json``, written by
 ``benchmarks/bench_backlash.py --calibrate``). The reading is **model-based**: it says which
@@ -61,7 +61,7 @@ __all__ = [
 
 #: The indicator reported as ``backlash_score`` when the trace has the arm encoder AP (so the
 #: position loop can read it, as on the paper's robot): the motor-side indicator with the best
-#: detection on the simulated sweep (``docs/backlash.md``).
+#: detection on the simulated sweep (``docs/validation/backlash.md``).
 SCORE = "motor_hysteresis"
 #: ``backlash_score`` of a trace without AP: its position loop must read the motor encoder,
 #: where ``motor_hysteresis`` sees nothing; the best motor-side indicator of that sweep
@@ -99,7 +99,7 @@ class ReversalResult:
     lost_motion_low, lost_motion_high : float or None
         deg, the lost motion's interval: at a continuous change the bootstrap's 95 %; where the
         arm rests, the simulated sweep's validated accuracy (5 % or two arm-encoder steps,
-        whichever is more; docs/backlash.md section 3.1).
+        whichever is more; docs/validation/backlash.md section 3.1).
     """
 
     change: DirectionChange

@@ -372,7 +372,7 @@ def with_contact_score(
     Each of :data:`CONTACT_FEATURES` is centred on its median without backlash at the nearest
     reference speed and divided by its interquartile range there; the two are added (higher =
     more backlash). It is the motor-side score of an axis whose position loop reads the motor
-    encoder (``docs/backlash.md``).
+    encoder (``docs/validation/backlash.md``).
 
     Examples
     --------

@@ -6,7 +6,8 @@ the turn, elastically. ``MP - AP`` there is the gear's wind-up under its torque,
 motion -- the reversal error of ISO 230-2: the arm lags the motor by more in one direction than
 in the other (backlash crossed where the gear torque changes sign; friction in the gear) -- plus
 what the two encoders' timing adds: an encoder read a little earlier than the other reads
-``speed x skew`` apart (on the KUKA KR 300 runs 2.8-3.1 ms on every axis, docs/backlash.md).
+``speed x skew`` apart (on the KUKA KR 300 runs 2.8-3.1 ms on every axis,
+docs/validation/backlash.md).
 
 :func:`fit_gear` fits, over the recording's samples where the motor moves faster than 1 deg/s,
 
@@ -227,8 +228,8 @@ def gear_torque(rec: Recording, *, motor_inertia: float = 0.0) -> tuple[np.ndarr
     ms (the torque ripples at 10-25 Hz on a real robot); its noise is the standard deviation of
     the torque about that mean, divided by the root of the samples averaged. The motor's own
     friction, which flips with the motor's direction, is left in: it cannot be told apart from
-    the arm's in the motor torque (docs/backlash.md). In a recording with gaps both are taken
-    within each segment (NaN in a gap).
+    the arm's in the motor torque (docs/validation/backlash.md). In a recording with gaps both are
+    taken within each segment (NaN in a gap).
 
     Parameters
     ----------

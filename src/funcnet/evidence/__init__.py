@@ -19,7 +19,7 @@ module             what it holds
 
 This package sits above the measures and below the network (it never imports
 :mod:`funcnet.network`); :func:`funcnet.network.functional_network` calls it with
-``evidence=True``. Its calibration and error rates are in ``docs/evidence.md``.
+``evidence=True``. Its calibration and error rates are in ``docs/validation/evidence.md``.
 
 Examples
 --------

@@ -38,7 +38,7 @@ p-value
     Benjamini-Hochberg at level ``alpha`` needs ``K >= m / alpha - 1``
     (:func:`default_surrogates`).
 
-Direction (tested, kept as a secondary reading; see docs/evidence.md for its error rates)
+Direction (tested, kept as a secondary reading; see docs/validation/evidence.md for its error rates)
     The mean conditional probabilities of recurrence ``MCR(X|Y) = <sum_j JR_ij / sum_j
     A_Y[i, j]>_i`` and ``MCR(Y|X)`` (Romano et al. 2007): if X drives Y, Y's recurrences imply
     X's more than the reverse, ``MCR(X|Y) > MCR(Y|X)``. Two signals of different character
@@ -50,10 +50,10 @@ Twin surrogates (``method="twin"``, :mod:`funcnet.evidence.surrogates`)
     An option: Y is replaced by twin surrogates (Thiel et al. 2006), index sequences that jump
     between states with identical neighbourhoods; the observed window and every surrogate hold
     all ``M`` states, so ``K`` is never limited by the window. Where they are valid and where
-    not is measured in docs/evidence.md.
+    not is measured in docs/validation/evidence.md.
 
 Validity needs stationarity inside the window: a ramp or a spin-up makes every time offset a
-different part of the trend (docs/evidence.md, "Robot windows").
+different part of the trend (docs/validation/evidence.md, "Robot windows").
 
 References
 ----------

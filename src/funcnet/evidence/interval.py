@@ -13,7 +13,7 @@ Politis and Romano 1999). Why this design:
   recurrent with its copy and cross-recurrent with the same states, which inflates the
   clustering of exactly the repeated nodes; subsampling without replacement has no copies (a
   full-size block bootstrap that never links copies was measured too: it was too narrow for
-  white noise and Lorenz copies, docs/evidence.md section 2);
+  white noise and Lorenz copies, docs/validation/evidence.md section 2);
 * **blocks** keep the serial dependence inside each block (block length ``ceil(sqrt(M))`` by
   default);
 * **an estimated rate**: the spread of ``C_diff`` over independent realizations does not
@@ -29,8 +29,8 @@ Politis and Romano 1999). Why this design:
   deviations that scale the interval (Bertail, Politis and Romano estimate the rate from
   quantile ranges too). The fractions 0.4 / 0.75 (the first version: 0.5 / 0.75 and the central
   68 % range for ``beta``) were chosen on seeds 5000-5199 and validated on seeds 2000-2199
-  (docs/evidence.md sections 2, 3): between 0.5 and 0.75 the model's spread ratio only moves
-  from 1.58 (``beta = 0.1``) to 1.96 (``beta = 1``), within the noise of two spreads of 100
+  (docs/validation/evidence.md sections 2, 3): between 0.5 and 0.75 the model's spread ratio only
+  moves from 1.58 (``beta = 0.1``) to 1.96 (``beta = 1``), within the noise of two spreads of 100
   resamples; going further down than 0.4 fails at 140 samples (11 blocks of 12 states), where a
   subsample of three blocks (0.3: 36 states) no longer shrinks the spread of ``C_diff``;
 * **normalization and thresholds again**: under min-max most of the scatter of ``C_diff`` for
@@ -48,7 +48,7 @@ the previous version covered 0 in 85 % of 100 noise pairs (seeds 5000-5099, N = 
 where the symmetric one covered 90-93 %: under min-max half of a noise window's resamples lose
 an extreme sample and fall back towards 0, and the reflection turns that tail away from 0. The
 fraction of the smaller resamples with the sign of ``d`` is a stability figure, not a
-probability. Calibration: docs/evidence.md, section 3 (``benchmarks/bench_interval.py``).
+probability. Calibration: docs/validation/evidence.md, section 3 (``benchmarks/bench_interval.py``).
 
 Length: over 600 lines because the module notes carry the method's calibration history.
 
@@ -101,7 +101,7 @@ BETA_MIN = 0.1
 #: seeds 5000-5099 (100 pairs per process at 140 and 300 samples) over 0.65, 0.75, 0.85, 1:
 #: with 1 noise covered 0.89-0.93 and Lorenz 0.80-0.94, with 0.75 0.91-0.95 and 0.83-0.94;
 #: validated on seeds 1000-1199; kept for the fractions (0.4, 0.75) after comparing 0.65-0.85
-#: on seeds 5000-5199 (benchmarks/bench_interval.py, docs/evidence.md section 3).
+#: on seeds 5000-5199 (benchmarks/bench_interval.py, docs/validation/evidence.md section 3).
 BETA_MAX = 0.75
 
 

@@ -23,7 +23,7 @@ The reading of a pair (:func:`evidence_label`):
 =====================  ===================================================================
 
 "not-coupled" means the test found nothing, not that the signals are independent: smooth
-(long-memory) signals leave the test few surrogates and little power (docs/evidence.md).
+(long-memory) signals leave the test few surrogates and little power (docs/validation/evidence.md).
 """
 
 from __future__ import annotations
@@ -135,7 +135,7 @@ def evidence_label(coupled: bool, direction: str, kind: str, *,
     """
     if coupled:
         # Two independent readings must agree: the conditional-recurrence direction alone named
-        # a direction for 55 % of common-driver pairs (docs/evidence.md).
+        # a direction for 55 % of common-driver pairs (docs/validation/evidence.md).
         return "coupled-directed" if direction and direction == kind else "coupled"
     if untestable:
         return "untestable"
@@ -220,7 +220,7 @@ def pairwise_evidence(
     surrogate_method : {"shift", "twin"}
         Surrogates of the dependence test: the non-circular time-shift lattice (default) or
         twin surrogates of the second signal of each pair (Thiel et al. 2006;
-        :mod:`funcnet.evidence.surrogates`; where each is valid: docs/evidence.md).
+        :mod:`funcnet.evidence.surrogates`; where each is valid: docs/validation/evidence.md).
     **overrides
         Fields of ``parameters`` (pair fields only).
 

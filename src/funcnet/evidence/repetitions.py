@@ -1,8 +1,8 @@
 """Coupling tested across repetitions of one motion: does Y follow X beyond the command?
 
 In a closed loop every signal follows the set-point, and a smooth robot window holds too few
-time-shift surrogates to decide anything (docs/evidence.md, "Robot windows"). Repetitions of the
-same motion, aligned on the set-point, give what one window cannot: an independent sample per
+time-shift surrogates to decide anything (docs/validation/evidence.md, "Robot windows"). Repetitions
+of the same motion, aligned on the set-point, give what one window cannot: an independent sample per
 repetition. :func:`repetition_evidence` asks, for every pair, whether X and Y share more than
 the command.
 
@@ -22,7 +22,8 @@ Signals: residuals about the mean over the repetitions (the default, ``residuals
     embedded as the network's signals are. On raw signals the recurrences are those of the
     command's shape, the same in every repetition, and the fluctuations beyond it barely move
     ``phi``; the residuals keep only the fluctuations. Chosen by the validation
-    (docs/evidence.md, "Repetitions": power on the physical links, residuals against raw).
+    (docs/validation/evidence.md, "Repetitions": power on the physical links, residuals against
+    raw).
 
 Surrogates: repetition shuffles
     A surrogate pairs X of repetition ``i`` with Y of repetition ``pi(i)`` for a permutation

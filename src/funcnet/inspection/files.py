@@ -64,7 +64,8 @@ def inspect_file(
         ...
     funcnet.errors.TraceError: missing.xml: no such file
     """
-    # Thresholds, arcmin and arcsec are in degrees: angles in rad converted (said).
+    # Thresholds, arcmin and arcsec are in degrees: angles in rad converted (said); a
+    # set-point that never moves is kept, for the page of an axis at rest.
     recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis,
                                          keep_setpoint=True))
     if recording.axes:

@@ -3,8 +3,8 @@
 :func:`inspect_repetitions` finds the repetitions of the most repeated motion in the inspected
 recordings (:func:`funcnet.robot.find_repetitions`) and reads every pair per phase with the
 repetition test (:func:`funcnet.repetition_evidence`): coupling beyond the command, which one
-short window cannot test (docs/evidence.md, sections 5 and 7). With too few repetitions it says
-how many a decision needs.
+short window cannot test (docs/validation/evidence.md, sections 5 and 7). With too few repetitions
+it says how many a decision needs.
 """
 
 from __future__ import annotations
@@ -110,6 +110,15 @@ def inspect_repetitions(recordings: Sequence[Recording], signals: Sequence[str],
     return RepeatedInspection(found.moves, tables, failures, message)
 
 
+def _left_out_sentence(left_out: Sequence[str], limit: int = 6) -> str:
+    """"; not taken: recording 2 move 1: ..." for the moves that are no repetition."""
+    if not left_out:
+        return ""
+    shown = "; ".join(left_out[:limit])
+    more = f"; and {len(left_out) - limit} more" if len(left_out) > limit else ""
+    return f"; not taken: {shown}{more}"
+
+
 def repetitions_of(inspections: Sequence[TraceInspection],
                    evidence_options: EvidenceSettings | None = None) -> RepeatedInspection | None:
     """:func:`inspect_repetitions` of inspected traces, with their nodes and parameters.
@@ -135,12 +144,3 @@ def repetitions_of(inspections: Sequence[TraceInspection],
                                parameters=first.parameters,
                                alpha=float(options.get("alpha", 0.05)),
                                seed=int(options.get("seed", 0)))
-
-
-def _left_out_sentence(left_out: Sequence[str], limit: int = 6) -> str:
-    """"; not taken: recording 2 move 1: ..." for the moves that are no repetition."""
-    if not left_out:
-        return ""
-    shown = "; ".join(left_out[:limit])
-    more = f"; and {len(left_out) - limit} more" if len(left_out) > limit else ""
-    return f"; not taken: {shown}{more}"

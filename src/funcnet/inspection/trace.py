@@ -52,7 +52,7 @@ __all__ = ["TraceInspection", "inspect_recording", "DETRENDED_NODES"]
 #: Detrended nodes (``funcnet inspect --detrended``): the positions' ramps replaced by the
 #: following error FE = RP - AP and the torsion TORSION = MP - AP, with V and the currents.
 #: In cruise the positions are ramps, which time-shift surrogates cannot treat as stationary
-#: (docs/evidence.md).
+#: (docs/validation/evidence.md).
 DETRENDED_NODES = ("FE", "TORSION", "V", "RC", "AC")
 
 # Phases summarized, not networked: the set-point is constant there.

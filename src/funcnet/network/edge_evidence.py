@@ -224,7 +224,7 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
 
     References
     ----------
-    docs/evidence.md (the dependence test, the intervals, the readings).
+    docs/validation/evidence.md (the dependence test, the intervals, the readings).
 
     Examples
     --------

@@ -449,7 +449,8 @@ def functional_network(
         intervals, their columns NaN).
     surrogate_method : {"shift", "twin"}
         Surrogates of the dependence test: the non-circular time-shift lattice (default) or
-        twin surrogates (:mod:`funcnet.evidence.surrogates`; validity in docs/evidence.md).
+        twin surrogates (:mod:`funcnet.evidence.surrogates`; validity in
+        docs/validation/evidence.md).
     edge_rule : {"paper", "interval"}
         ``"paper"`` (default): ``|diff| >= mu`` (section 2.4). ``"interval"`` (needs
         ``evidence=True``): a measure is directed only when its interval excludes 0 and

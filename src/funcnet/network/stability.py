@@ -477,7 +477,7 @@ def edge_stability(
         and the field); a product of more than 10,000 settings.
     SignalError
         As :func:`functional_network` at the base; at another setting (e.g. a window too short
-        for a larger embedding) the message starts with ``setting delay=20: ``.
+        for a larger embedding) the message starts with ``setting delay=20:``.
 
     Notes
     -----

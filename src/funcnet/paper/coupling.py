@@ -9,8 +9,8 @@ intervals) and counts, per finding, the claimed relations whose pair the test sh
 
 Untestable is not uncoupled. The test's surrogates are time shifts of at least the
 decorrelation time; a short window holds few of them (4-12 on the paper's 140- and 300-sample
-robot windows, docs/evidence.md), and with ``K`` surrogates no p-value is below ``1/(K+1)``.
-A pair that could not have been shown coupled whatever the data (that bound, after the
+robot windows, docs/validation/evidence.md), and with ``K`` surrogates no p-value is below
+``1/(K+1)``. A pair that could not have been shown coupled whatever the data (that bound, after the
 Benjamini-Hochberg adjustment over the window's pairs, above ``alpha``, or no surrogate at all:
 :func:`funcnet.evidence.untestable`) is counted as *untestable*, never as *not coupled*.
 

@@ -323,7 +323,7 @@ def build_demo_report(
         "is not <i>uncoupled</i>: a shift must exceed the signals' decorrelation time, so the "
         "paper's short robot windows (140–300 samples, 100 around a reversal) hold only a few "
         "surrogates, and with K surrogates no p-value is below 1/(K+1) — above α, the test "
-        "cannot reject whatever the data (docs/evidence.md).</p>")
+        "cannot reject whatever the data (docs/guide/evidence.md).</p>")
     toc = [("findings", "Findings: summary and rule"), ("figures", "Figures"),
            ("findings-table", "Findings, one by one"), ("problems", "Problems flagged"),
            ("parameters", "Parameters"), ("trials", "Trials"),

@@ -5,20 +5,20 @@ loaded from elsewhere (no CDN, no script, no web font), so the folder can be arc
 opened offline; every file is written atomically. Each page opens with its summary and a table
 of contents, then its figures; the tables come last.
 
-===================  ===========================================================================
-module               what it holds
-===================  ===========================================================================
-``html``             page building: escaping, tables (pairs columns from
-                     :mod:`funcnet.network.schema`), figures, contents, :func:`save_figure`
-``study``            :func:`write_report`: a study's results folder
-``inspect``          :func:`inspect_trace`: the engineer's report of one or several traces
-``inspect_figures``  its figures
-``inspect_text``     its words: the summary of a trace (its gaps, moves, turns, windows)
-``backlash_page``    :func:`write_backlash_page`: the backlash diagnoses of several traces
-``repetitions_page`` the repetitions' page (``inspect --repeated``)
-===================  ===========================================================================
+====================  ==========================================================================
+module                what it holds
+====================  ==========================================================================
+``html``              page building: escaping, tables (pairs columns from
+                      :mod:`funcnet.network.schema`), figures, contents, :func:`save_figure`
+``study``             :func:`write_report`: a study's results folder
+``inspect``           :func:`inspect_trace`: the engineer's report of one or several traces
+``inspect_figures``   its figures
+``inspect_text``      its words: the summary of a trace (its gaps, moves, turns, windows)
+``backlash_page``     :func:`write_backlash_page`: the backlash diagnoses of several traces
+``repetitions_page``  the repetitions' page (``inspect --repeated``)
+====================  ==========================================================================
 
-The paper's demo report is :func:`funcnet.paper.demo.build_demo_report` (the bench).
+The paper's demo report [1]_ is :func:`funcnet.paper.demo.build_demo_report` (the bench).
 
 References
 ----------

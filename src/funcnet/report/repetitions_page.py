@@ -2,8 +2,8 @@
 
 :func:`write_repetitions` renders :func:`funcnet.inspection.repeated.repetitions_of` the
 inspected traces as ``repeated.html`` (``funcnet inspect ... --repeated``): the repetitions
-found, per phase the repetition evidence (docs/evidence.md, section 7), or how many repetitions
-a decision needs.
+found, per phase the repetition evidence (docs/validation/evidence.md, section 7), or how many
+repetitions a decision needs.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from funcnet.report.html import escape, page, table
 
 __all__ = ["REPETITIONS_NOTE", "write_repetitions"]
 
-#: What the repetitions page says about its test (docs/evidence.md, section 7).
+#: What the repetitions page says about its test (docs/validation/evidence.md, section 7).
 REPETITIONS_NOTE = (
     "Moves of the same set-point profile, aligned on the set-point, are repetitions of one "
     "motion. Per phase, each pair is tested for coupling beyond the command: X of one "

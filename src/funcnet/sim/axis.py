@@ -245,7 +245,7 @@ class AxisParameters:
         ``"elastic"`` adds a third mass: the arm's TCP share ``arm_tcp_mass * r**2`` becomes a
         tip coupled to the hub (``arm_inertia_base``, which carries the bearing friction and
         the arm encoder) through ``link_stiffness`` and ``link_damping``: the standard
-        flexible-joint / flexible-link chain [4]_. ``"rigid"`` (default) is the two-mass model.
+        flexible-joint / flexible-link chain. ``"rigid"`` (default) is the two-mass model.
     link_stiffness : float
         N m/rad of the elastic link, 1.6e6: a first link mode near 10 Hz at 1.6 m, where large
         serial robots have their first structural modes (assumption).
@@ -412,7 +412,8 @@ def real_axis_parameters(**changes: float | str) -> AxisParameters:
     """The axis with its sensors and logging set from the real 840D sl trace.
 
     The mechanics stay those of :class:`AxisParameters`; what a controller trace shows is set
-    from ``axis7-braking-trace.xml`` (see ``docs/backlash.md`` for the side-by-side table):
+    from ``axis7-braking-trace.xml`` (see ``docs/validation/backlash.md`` for the side-by-side
+    table):
 
     - ``position_log_period = 0.004``: ``measPos1/2`` are IPO signals (4 ms);
     - ``arm_encoder_counts = 2**22``: ``measPos2`` steps by 8-9e-5 deg (360 / 2**22 =

@@ -265,7 +265,7 @@ def _lost_motion_html(table: pd.DataFrame) -> str:
             "two arm-encoder steps. A trial without an estimate counts as a miss. At a "
             "continuous turn (<code>smooth</code>) the truth is the step of the gear's torsion "
             "that the gear torque does not explain, which the motor current only approximates "
-            "(docs/backlash.md, section 5.1).</p>"
+            "(docs/validation/backlash.md, section 5.1).</p>"
             + html_table(shown))
 
 
