@@ -60,6 +60,7 @@ LAYERS: dict[str, tuple[str, float]] = {
     "funcnet.diagnosis": ("diagnosis", 7),
     "funcnet.study": ("study", 7),
     "funcnet.inspection": ("inspection", 7.5),
+    "funcnet.comparison": ("comparison", 7.5),
     "funcnet.report": ("report", 8),
     "funcnet.cli": ("cli", 9),
     "funcnet.__main__": ("cli", 9),

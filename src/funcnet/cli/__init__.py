@@ -2,7 +2,8 @@
 
 Commands: ``demo`` (simulate the paper's plan, analyse it, write the report), ``simulate``,
 ``network`` (the functional networks of one trace: one per phase, or of one window),
-``inspect`` (the engineer's HTML report of traces), ``backlash`` (diagnose backlash in traces),
+``inspect`` (the engineer's HTML report of traces), ``compare`` (a run against earlier
+runs of its program), ``backlash`` (diagnose backlash in traces),
 ``study`` (a batch from a TOML file) and ``report`` (HTML report of a study's results).
 ``funcnet COMMAND --help`` is each command's reference.
 
@@ -39,6 +40,7 @@ from typer.core import TyperCommand, TyperGroup
 
 from funcnet import __version__
 from funcnet.cli.backlash_commands import backlash, backlash_report
+from funcnet.cli.compare_command import compare
 from funcnet.cli.inspect_command import inspect
 from funcnet.cli.messages import one_line
 from funcnet.cli.network_commands import network, stability
@@ -137,7 +139,8 @@ def _main_options(
 #: Every command, in the order ``funcnet --help`` lists them (its name: the function's, with
 #: dashes).
 COMMANDS: tuple[Callable[..., None], ...] = (
-    demo, simulate, network, backlash, inspect, study, report, stability, backlash_report,
+    demo, simulate, network, backlash, inspect, compare, study, report, stability,
+    backlash_report,
 )
 for _command in COMMANDS:
     app.command(cls=_PlainUsageCommand)(_command)

@@ -482,6 +482,12 @@ def diagnose_recording(
 _AROUND_TURN = 0.1
 
 
+def _span(low: float, high: float) -> str:
+    """``"1.2-3.4"``, or one number where both ends print alike."""
+    a, b = f"{low:.3g}", f"{high:.3g}"
+    return a if a == b else f"{a}-{b}"
+
+
 def _one_encoder(
     recording: Recording, where: str, units: Units, max_dwell: float
 ) -> BacklashResult:
@@ -527,13 +533,13 @@ def _one_encoder(
         peaks_ = [p for p in peaks if p is not None]
         if peaks_:
             label = "arcmin" if units.position == "deg" else "x 60, unit unknown"
-            found += (f"; following error |RP - AP| there {60 * min(peaks_):.3g}-"
-                      f"{60 * max(peaks_):.3g} {label}")
+            found += (f"; following error |RP - AP| there "
+                      f"{_span(60 * min(peaks_), 60 * max(peaks_))} {label}")
         steps = [r.indicators.get("current_step") for r in results]
         steps_ = [abs(v) for v in steps if v is not None]
         if steps_ and current is not None:
             unit = unit_of(rec.signals[current])
-            found += (f"; {current} steps by {min(steps_):.3g}-{max(steps_):.3g} {unit} "
+            found += (f"; {current} steps by {_span(min(steps_), max(steps_))} {unit} "
                       "across a turn")
     message = "; ".join(m for m in (
         f"one measured position per joint ({'AP' if has_ap else 'none'}): {need}", found,
