@@ -6,7 +6,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 OUT    ?= out
 
-.PHONY: demo test lint bench clean chromium
+.PHONY: demo test lint docs bench clean chromium
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -25,11 +25,15 @@ $(VENV)/.installed: pyproject.toml $(CONSTRAINTS) | $(BIN)/python
 	touch $@
 
 $(VENV)/.installed-test: pyproject.toml $(CONSTRAINTS) $(VENV)/.installed
-	$(PIP) -e ".[test,dask]"
+	$(PIP) -e ".[test,dask,docs]"
 	touch $@
 
 demo: $(VENV)/.installed
 	$(BIN)/funcnet demo --out $(OUT)
+
+# The user guide and the API reference from the docstrings; a warning fails the build.
+docs: $(VENV)/.installed-test
+	$(BIN)/sphinx-build -W --keep-going -q -b html docs docs/_build/html
 
 # The report test drives Debian's Chromium; install it when it is absent (CI runs as root).
 chromium:
@@ -40,6 +44,7 @@ chromium:
 test: $(VENV)/.installed-test chromium
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/mypy
+	$(MAKE) docs
 	$(BIN)/python -m pytest -n 2 -q
 
 lint: $(VENV)/.installed-test
@@ -52,4 +57,4 @@ bench: $(VENV)/.installed-test
 	$(BIN)/python -m benchmarks.bench_simulate
 
 clean:
-	rm -rf $(VENV) out .pytest_cache
+	rm -rf $(VENV) out .pytest_cache docs/_build

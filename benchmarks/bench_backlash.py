@@ -1,4 +1,4 @@
-"""The backlash sweep and its indicator table (issue 11; docs/backlash.md).
+"""The backlash sweep and its indicator table (docs/validation/backlash.md).
 
     .venv/bin/python benchmarks/bench_backlash.py            # full sweep, table, timings
     .venv/bin/python benchmarks/bench_backlash.py --calibrate  # also rewrite calibration.json
@@ -9,7 +9,7 @@
     .venv/bin/python benchmarks/bench_backlash.py --with-fn --trials 500 --report /tmp/s.html
     .venv/bin/python benchmarks/bench_backlash.py --kuka         # the KUKA KR 300 runs' table
 
-Simulates :func:`funcnet.robot.sim.plan.backlash_sweep_plan` (1944 reversal trials: backlash x
+Simulates :func:`funcnet.sim.plan.backlash_sweep_plan` (1944 reversal trials: backlash x
 speed x TCP x friction x stiffness x 3 seeds x noise 1 and 2, sensors and logging of the real
 trace) and computes every physical indicator per trial; the functional-network features on a
 subset (``--with-fn``: on the whole sweep, with the coupling test, about two minutes on two
@@ -32,19 +32,18 @@ import pandas as pd
 from scipy.signal import welch
 
 from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE, SCORE
-from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL
-from funcnet.diagnosis.sweep import (
-    calibration,
+from funcnet.diagnosis.indicators import FN_FEATURES, PHYSICAL, with_contact_score
+from funcnet.robot import detect_phases, read_trace
+from funcnet.sim.axis import simulate_trial
+from funcnet.sim.plan import backlash_sweep_plan
+from funcnet.sim.trial import Trial
+from funcnet.validation.sweep import (
     contact_reference,
+    derive_calibration,
     run_sweep,
     score_indicators,
     simulated_recording,
-    with_contact_score,
 )
-from funcnet.robot import detect_phases, read_trace
-from funcnet.robot.sim.axis import simulate_trial
-from funcnet.robot.sim.plan import backlash_sweep_plan
-from funcnet.robot.sim.trial import Trial
 
 ROOT = Path(__file__).resolve().parents[1]
 CALIBRATION = ROOT / "src" / "funcnet" / "diagnosis" / "calibration.json"
@@ -186,16 +185,12 @@ def _write_calibration(sweep: pd.DataFrame, motor: pd.DataFrame, source: str) ->
         if "peak_speed" not in table_:  # tables saved before the column existed: a 1 deg step
             table_ = table_.assign(peak_speed=np.minimum(table_["speed"], round(60 / 0.85, 1)))
         tables.append(table_)
-    cal = calibration(tables[0], SCORE)
-    cal["source"] = (
-        f"benchmarks/bench_backlash.py --calibrate: {source}, {len(sweep)} trials, noise 1 and "
-        "2 pooled, quantiles over TCP, friction, stiffness and seeds"
-    )
-    reference = contact_reference(tables[1])
-    cal["motor_loop"] = calibration(with_contact_score(tables[1], reference), MOTOR_LOOP_SCORE)
-    cal["motor_loop"]["reference"] = reference
-    cal["motor_loop"]["source"] = (
-        f"backlash_sweep_plan(position_feedback='motor', seeds=(1,)), {len(motor)} trials"
+    cal = derive_calibration(
+        tables[0], tables[1],
+        source=(f"benchmarks/bench_backlash.py --calibrate: {source}, {len(sweep)} trials, "
+                "noise 1 and 2 pooled, quantiles over TCP, friction, stiffness and seeds"),
+        motor_source=(f"backlash_sweep_plan(position_feedback='motor', seeds=(1,)), "
+                      f"{len(motor)} trials"),
     )
     CALIBRATION.write_text(json.dumps(cal, indent=1) + "\n", encoding="utf-8")
     print(f"wrote {CALIBRATION}")
@@ -269,7 +264,7 @@ def with_fn(args: argparse.Namespace, out: list[str]) -> pd.DataFrame:
         args.save.mkdir(parents=True, exist_ok=True)
         sweep.to_csv(args.save / "sweep_with_fn.csv", index=False)
     if args.report:
-        from funcnet.report.sweep_report import write_sweep_report
+        from funcnet.validation.sweep_report import write_sweep_report
 
         report = write_sweep_report(sweep, args.report, resamples=args.resamples,
                                     source=f"backlash_sweep_plan(), {len(plan)} trials")
@@ -278,7 +273,7 @@ def with_fn(args: argparse.Namespace, out: list[str]) -> pd.DataFrame:
 
 
 def lost_motion_summary(sweep: pd.DataFrame) -> str:
-    """The two-encoder lost motion against the manifest's truth: the issue's target, per width.
+    """The two-encoder lost motion against the manifest's truth: the 5 % target, per width.
 
     Parameters
     ----------
@@ -450,7 +445,7 @@ def main() -> None:
         "--figure",
         type=Path,
         default=None,
-        help="draw docs/backlash.png (scatter and ROC) "
+        help="draw docs/validation/backlash.png (scatter and ROC) "
         "from a sweep table saved with --save (sweep.csv)",
     )
     parser.add_argument(
@@ -498,7 +493,7 @@ def main() -> None:
         print(compare_real())
         return
     if args.figure:
-        figure(pd.read_csv(args.figure), ROOT / "docs" / "backlash.png")
+        figure(pd.read_csv(args.figure), ROOT / "docs" / "validation" / "backlash.png")
         return
     if args.motor_contact:
         motor_contact_tables(args.motor_contact, args.resamples, _Printer())

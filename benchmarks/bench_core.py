@@ -82,7 +82,7 @@ def timed(function, repeats: int) -> tuple[float, float, float, object]:
 def pyunicorn_pair(x: np.ndarray, y: np.ndarray) -> tuple[float, tuple[float, ...]]:
     from pyunicorn.timeseries import InterSystemRecurrenceNetwork
 
-    from funcnet.embedding import embed
+    from funcnet.core.embedding import embed
 
     start = time.perf_counter()
     network = InterSystemRecurrenceNetwork(
@@ -125,7 +125,7 @@ def peak_rss_of_this_process_mib() -> float:
 def child(n_states: int) -> None:
     import resource
 
-    from funcnet.measures import cross_measures
+    from funcnet.core.measures import cross_measures
 
     warnings.simplefilter("ignore")
     # Load the compiled kernels; 900 states take the sampled-bracket path as large M do.
@@ -200,7 +200,7 @@ def main(argv: list[str] | None = None) -> None:
     # from its parent's size at fork.
     sweep = [one_pair_in_child(n_states) for n_states in args.sizes]
 
-    from funcnet.measures import cross_measures, pairwise_cross_measures
+    from funcnet.core.measures import cross_measures, pairwise_cross_measures
 
     warnings.simplefilter("ignore")
     x, y = coupled_pair(2000)

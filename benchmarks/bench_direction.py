@@ -97,8 +97,8 @@ def windows_of(recording: Any) -> list[Any]:
 
 def networks_and_cost(recording: Any) -> tuple[list[Any], float, float]:
     """The default networks of a recording, their time (s) and the direction reading's."""
+    from funcnet.core.normalization import normalize
     from funcnet.network.direction import direction_columns
-    from funcnet.normalization import normalize
     from funcnet.pipeline import window_networks
 
     windows = windows_of(recording)
@@ -211,7 +211,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--candidates", action="store_true",
                         help="also the candidate methods over the set-point pairs")
     args = parser.parse_args(argv)
-    from funcnet.robot import paper_plan, write_plan
+    from funcnet.sim import paper_plan, write_plan
 
     run = Run()
     run.header("Direction against the set-point: rule vs direction, per recording")

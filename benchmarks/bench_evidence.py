@@ -1,4 +1,4 @@
-"""Benchmark of the edge evidence on systems with known coupling (issue 10): prints the tables.
+"""Benchmark of the edge evidence on systems with known coupling: prints the tables.
 
 Usage::
 
@@ -49,13 +49,13 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from funcnet import systems
-from funcnet.embedding import embed
+from funcnet.core.embedding import embed
+from funcnet.core.recurrence import auto_recurrence
 from funcnet.evidence import decorrelation_time, dependence_test, interval_kind, shift_plan
 from funcnet.evidence.surrogates import twin_groups
 from funcnet.network import functional_network
 from funcnet.network.rule import combine_kinds
-from funcnet.recurrence import auto_recurrence
+from funcnet.validation import systems
 
 try:  # optional peers (the `test` extra)
     import pyEDM
@@ -521,10 +521,10 @@ def table_robot(speeds: tuple[float, ...] = (35.0, 175.0, 350.0),
     """The dependence test on the simulated axis (closed loop: every pair is coupled), with
     the library's delay 10 and with delay 1 (a shorter embedding span lets the shift lattice
     hold more offsets)."""
-    from funcnet.diagnosis.sweep import simulated_recording
     from funcnet.robot import detect_phases
     from funcnet.robot.preprocess import add_derived_signals
-    from funcnet.robot.sim import Trial, simulate_trial
+    from funcnet.sim import Trial, simulate_trial
+    from funcnet.validation.sweep import simulated_recording
 
     node_sets = {"raw RP AP MP RC AC": ["RP", "AP", "MP", "RC", "AC"],
                  "detrended FE TORSION RC AC": ["FE", "TORSION", "RC", "AC"],

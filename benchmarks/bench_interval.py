@@ -1,4 +1,4 @@
-"""Calibration of the asymmetry interval (issue 10, item 1): prints the coverage table.
+"""Calibration of the asymmetry interval: prints the coverage table.
 
 Usage::
 
@@ -38,18 +38,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from funcnet import systems
-from funcnet.embedding import signal_states
+from funcnet.core.embedding import signal_states
+from funcnet.core.measures import isrn_measures
+from funcnet.core.normalization import normalize
+from funcnet.core.recurrence import auto_recurrence, cross_recurrence
 from funcnet.evidence.interval import (
     FRACTIONS,
     interval_from,
     resampled_differences,
     subsamples,
 )
-from funcnet.measures import isrn_measures
-from funcnet.normalization import normalize
 from funcnet.parameters import NetworkParameters
-from funcnet.recurrence import auto_recurrence, cross_recurrence
+from funcnet.validation import systems
 
 TRUTH_SEED0 = 100_000
 

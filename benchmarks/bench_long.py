@@ -9,7 +9,7 @@ Run from the repository root::
    (``../shared/data/sinumerik/axis7-braking-trace.xml``: RP, AP, MP, V, AC, 22,706 complete
    rows, defaults) in a fresh interpreter: wall and CPU seconds of the call, peak resident
    memory of the process (``VmHWM`` and ``ru_maxrss``), next to
-   :func:`funcnet.recurrence.estimate_cost`'s forecast. Targets: <= 30 s and <= 1 GiB.
+   :func:`funcnet.core.recurrence.estimate_cost`'s forecast. Targets: <= 30 s and <= 1 GiB.
 2. The triangle counts of Eq. 6-7 for both directions of a pair, on prefixes of the same
    trace (M states): the row-wise kernel (one cross row at a time, ``_cross_triangles`` twice)
    against the blocked kernel (``_cross_triangles_both``: blocks of 64 * b cross rows, each auto
@@ -75,7 +75,7 @@ def peak_rss_mib() -> tuple[float, float]:
 def whole_child() -> None:
     """``--child-whole``: one network over the whole trace, in this fresh interpreter."""
     import funcnet
-    from funcnet.recurrence import estimate_cost
+    from funcnet.core.recurrence import estimate_cost
 
     warnings.simplefilter("ignore")
     frame = trace_frame()
@@ -112,7 +112,11 @@ def triangles(cross: Any, auto_x: Any, auto_y: Any, threads: int,
               block_words: int | None = None) -> tuple[Any, ...]:
     """``(k_xy, tri_xy, k_yx, tri_yx)``: row-wise kernel twice, or the blocked one; both
     transpose ``CR_XY`` first."""
-    from funcnet._isrn_kernels import _cross_triangles, _cross_triangles_both, _transpose_packed
+    from funcnet.core._isrn_kernels import (
+        _cross_triangles,
+        _cross_triangles_both,
+        _transpose_packed,
+    )
 
     transposed = _transpose_packed(cross, auto_y.shape[0])
     if block_words is None:
@@ -124,9 +128,9 @@ def kernel_table(sizes: tuple[int, ...], repeats: int) -> list[dict[str, Any]]:
     import numba
     import numpy as np
 
-    from funcnet.embedding import embed
-    from funcnet.normalization import normalize
-    from funcnet.recurrence import auto_recurrence, cross_recurrence
+    from funcnet.core.embedding import embed
+    from funcnet.core.normalization import normalize
+    from funcnet.core.recurrence import auto_recurrence, cross_recurrence
 
     frame = trace_frame()
     values = normalize(frame.to_numpy(), "minmax", names=SIGNALS)

@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 import funcnet
-from funcnet.robot.sim import Trial, simulate_trial
+from funcnet.sim import Trial, simulate_trial
 
 SIGNALS = ["RP", "AP", "MP", "RC", "AC"]
 R = 20

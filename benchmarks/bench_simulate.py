@@ -23,7 +23,7 @@ from pathlib import Path
 _CHILD = """
 import json, sys, time
 start = time.perf_counter()
-from funcnet.robot import paper_plan, write_plan
+from funcnet.sim import paper_plan, write_plan
 write_plan(paper_plan(), sys.argv[1])
 print(json.dumps({"seconds": time.perf_counter() - start}))
 """
@@ -37,7 +37,7 @@ def _timed(function, *args, **kwargs) -> float:
 
 def main() -> dict[str, float]:
     """Run the benchmark, print and return its timings (s) and the output size (MB)."""
-    from funcnet.robot import paper_plan, simulate_trial, write_plan
+    from funcnet.sim import paper_plan, simulate_trial, write_plan
 
     plan = paper_plan()
     results: dict[str, float] = {}

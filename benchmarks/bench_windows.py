@@ -6,7 +6,7 @@ Run from the repository root::
 
 1. One pair at 150, 300, 600, 1000, 2000 samples (m = 3, tau = 10, rates 0.05, supremum,
    ``rule="pyunicorn"``): ``funcnet.cross_measures`` (median of single calls), the batched
-   engine on the same pair (:func:`funcnet.batch.batch_pairs`, one window of two signals,
+   engine on the same pair (:func:`funcnet.core.batch.batch_pairs`, one window of two signals,
    ``normalize=None``) and pyunicorn 1.0.0's ``InterSystemRecurrenceNetwork`` plus its four
    measures on the same embedded input; the values must agree (max difference printed).
 2. A 6-signal network at 150 and 300 samples: ``functional_network`` (single call), the
@@ -64,7 +64,7 @@ def pyunicorn_measures(x: np.ndarray, y: np.ndarray,
     """Seconds and (C_xy, C_yx, T_xy, T_yx) of pyunicorn's ISRN on the embedded signals."""
     from pyunicorn.timeseries import InterSystemRecurrenceNetwork
 
-    from funcnet.embedding import embed
+    from funcnet.core.embedding import embed
 
     start = time.perf_counter()
     network = InterSystemRecurrenceNetwork(
@@ -90,8 +90,8 @@ def signal_pair(n_samples: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
 
 
 def one_pair(skip_pyunicorn: bool, sizes: tuple[int, ...]) -> None:
-    from funcnet.batch import batch_pairs
-    from funcnet.measures import cross_measures
+    from funcnet.core.batch import batch_pairs
+    from funcnet.core.measures import cross_measures
 
     options: dict[str, Any] = {"dim": DIM, "delay": DELAY, "metric": "supremum",
                                "rule": "pyunicorn"}
@@ -124,7 +124,7 @@ def one_pair(skip_pyunicorn: bool, sizes: tuple[int, ...]) -> None:
 
 
 def six_signal_network(skip_pyunicorn: bool, batch_size: int) -> None:
-    from funcnet.batch import batch_pairs
+    from funcnet.core.batch import batch_pairs
     from funcnet.network import functional_network
 
     print("\n### A 6-signal network (15 pairs; defaults: rule=funcnet, Euclidean, min-max)\n")
@@ -248,8 +248,8 @@ def main(argv: list[str] | None = None) -> None:
     warnings.simplefilter("ignore")
     run = Run()
 
-    from funcnet.batch import batch_pairs
-    from funcnet.measures import cross_measures
+    from funcnet.core.batch import batch_pairs
+    from funcnet.core.measures import cross_measures
 
     x, y = signal_pair(300)
     cross_measures(x, y, rule="pyunicorn", metric="supremum", warn=False)  # load the kernels

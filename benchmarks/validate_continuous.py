@@ -1,7 +1,7 @@
 """Why the reversal error at a continuous turn misses the simulator's truth: a decomposition.
 
-Prints the table of docs/backlash.md, section 5.1: on the continuous sweep
-(:func:`funcnet.robot.sim.plan.continuous_sweep_plan`, 216 trials) the share of trials whose
+Prints the table of docs/validation/backlash.md, section 5.1: on the continuous sweep
+(:func:`funcnet.sim.plan.continuous_sweep_plan`, 216 trials) the share of trials whose
 mean reversal error lies within 5 % of the truth (the dead zone crossed) or within two
 arm-encoder steps of it (no backlash; a load keeping the gear on one flank; a turn whose gear
 torque keeps its sign), for the library's estimate and for the same step measured with what a
@@ -48,11 +48,11 @@ import pandas as pd
 from funcnet.diagnosis.dead_zone import gear_parts
 from funcnet.diagnosis.reversal_error import fit_gear, reversal_error
 from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
-from funcnet.diagnosis.sweep import simulated_recording
 from funcnet.robot.phases import move_threshold
 from funcnet.robot.preprocess import velocity
-from funcnet.robot.sim import Trial, simulate_trial
-from funcnet.robot.sim.plan import continuous_sweep_plan
+from funcnet.sim import Trial, simulate_trial
+from funcnet.sim.plan import continuous_sweep_plan
+from funcnet.validation.sweep import simulated_recording
 
 WINDOW = 0.25  # s, the stretches beside the turn (the estimator's and the truth's)
 FLANK = 20.0  # N m: a sample on a flank of the dead zone

@@ -1,10 +1,10 @@
 """Validation of the repetition coupling test on simulated repetitions with known truth.
 
-Prints the table of docs/evidence.md, section "Repetitions": per simulated system (speed x
-phase) and number of repetitions R, the false-positive rate at alpha = 0.05 on pairs that share
+Prints the table of docs/validation/evidence.md, section "Repetitions": per simulated system (speed
+x phase) and number of repetitions R, the false-positive rate at alpha = 0.05 on pairs that share
 the command and nothing else, and the power on the links the physics couples.
 
-Runs: the simulated axis (:func:`funcnet.robot.sim.simulate_trial`) with the real trace's
+Runs: the simulated axis (:func:`funcnet.sim.simulate_trial`) with the real trace's
 sensors, a forward-then-back move (``reverse=True``: spin-up, cruise, braking, the reversal),
 logged every 4 ms (AP and MP are 4 ms signals: every other 2 ms tick is kept). A pool of runs
 per speed, one seed each; a draw takes 2R distinct runs, sets A and B.
@@ -33,7 +33,7 @@ import pandas as pd
 from funcnet.evidence.repetitions import repetition_tests
 from funcnet.robot import Recording, detect_phases
 from funcnet.robot.channels import SignalInfo
-from funcnet.robot.sim import Trial, simulate_trial
+from funcnet.sim import Trial, simulate_trial
 
 SIGNALS = ("RP", "AP", "MP", "RC", "AC")
 TESTED = ("AP", "MP", "RC", "AC")

@@ -1,4 +1,4 @@
-"""The axis's gear-arm parameters from the arm's first start from rest (issue 11).
+"""The axis's gear-arm parameters from the arm's first start from rest.
 
 :func:`funcnet.diagnosis.two_encoder.first_start` fits the resonance and the friction's Stribeck
 drop where the arm starts from a long rest; the two-encoder lost motion at a reversal then fits
@@ -15,12 +15,12 @@ import pandas as pd
 import pytest
 
 from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
-from funcnet.diagnosis.sweep import simulated_recording
 from funcnet.diagnosis.two_encoder import ArmStart, first_start, lost_motion
 from funcnet.robot import Recording, SignalInfo, read_trace
-from funcnet.robot.sim.axis import AxisParameters, SimulatedTrial, simulate_trial
-from funcnet.robot.sim.plan import backlash_sweep_plan
-from funcnet.robot.sim.trial import Trial
+from funcnet.sim.axis import AxisParameters, SimulatedTrial, simulate_trial
+from funcnet.sim.plan import backlash_sweep_plan
+from funcnet.sim.trial import Trial
+from funcnet.validation.sweep import simulated_recording
 
 STEP = 360 / 2**22  # the arm encoder's step with the real sensors, deg
 

@@ -1,4 +1,4 @@
-"""`funcnet backlash` (the SHELL owner's command) on the real trace: a result, exit 0 (issue 11)."""
+"""`funcnet backlash` on the real trace: a result, exit 0."""
 
 from __future__ import annotations
 
@@ -38,7 +38,7 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, args):
 @pytest.fixture(scope="module")
 def sweep_report(tmp_path_factory):
     """A fixed small sweep (12 trials) written, then reported through the command line."""
-    from funcnet.robot.sim.plan import backlash_sweep_plan, write_plan
+    from funcnet.sim.plan import backlash_sweep_plan, write_plan
 
     root = tmp_path_factory.mktemp("sweep")
     plan = backlash_sweep_plan(backlash_arcmin=(0, 0.5, 2), speeds=(35, 175), tcps=(1.6,),
@@ -122,7 +122,7 @@ def test_a_continuous_sweep_is_reported_with_its_lost_motion_against_the_truth(t
     those counted here from the indicator table."""
     import pandas as pd
 
-    from funcnet.robot.sim.plan import continuous_sweep_plan, write_plan
+    from funcnet.sim.plan import continuous_sweep_plan, write_plan
 
     plan = continuous_sweep_plan(backlash_arcmin=(0, 2), arm_loads=(0.0, 1000.0), speeds=(175,),
                                  tcps=(1.6,), friction_scales=(1.0,))  # fmt: skip
@@ -153,8 +153,8 @@ def test_a_continuous_sweep_is_reported_with_its_lost_motion_against_the_truth(t
 def test_an_existing_plan_keeps_its_manifest_columns(tmp_path):
     import pandas as pd
 
-    from funcnet.robot.sim import MANIFEST_COLUMNS, OPTIONAL_MANIFEST_COLUMNS, Trial
-    from funcnet.robot.sim.plan import write_plan
+    from funcnet.sim import MANIFEST_COLUMNS, OPTIONAL_MANIFEST_COLUMNS, Trial
+    from funcnet.sim.plan import write_plan
 
     manifest = write_plan([Trial("q", "g", speed=350, tcp=1.2, step=1)], tmp_path)
     assert list(pd.read_csv(manifest).columns) == list(MANIFEST_COLUMNS)

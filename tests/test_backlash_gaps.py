@@ -1,5 +1,5 @@
 """The backlash diagnosis of a recording with gaps: read segment by segment, nothing across a gap,
-a direction change with a gap within what is read around it left out and said (issue 21, item 1).
+a direction change with a gap within what is read around it left out and said.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from funcnet.cli import app
 from funcnet.diagnosis import diagnose_backlash, diagnose_recording, write_results
 from funcnet.diagnosis.reversal_error import _blocks, fit_gear
 from funcnet.robot import Recording, SignalInfo, read_trace
-from funcnet.robot.sim import Trial, simulate_trial
+from funcnet.sim import Trial, simulate_trial
 
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 

@@ -3,7 +3,8 @@
 The truth (``SimulatedTrial.truth["lost_motion"]``) is the change of the torsion
 ``theta_m / N - theta_a`` (MP - AP) from the motor's turning point to the arm's restart; these
 tests check it against the simulator's own hidden states, then pin the estimate of
-:func:`funcnet.diagnosis.two_encoder.lost_motion` against it (figures measured, docs/backlash.md).
+:func:`funcnet.diagnosis.two_encoder.lost_motion` against it (figures measured,
+docs/validation/backlash.md).
 """
 
 from __future__ import annotations
@@ -15,9 +16,9 @@ import pandas as pd
 import pytest
 
 from funcnet.diagnosis import diagnose_backlash
-from funcnet.diagnosis.sweep import run_sweep
-from funcnet.robot.sim.axis import SimulatedTrial, simulate_trial
-from funcnet.robot.sim.plan import ARCMIN, backlash_sweep_plan
+from funcnet.sim.axis import SimulatedTrial, simulate_trial
+from funcnet.sim.plan import ARCMIN, backlash_sweep_plan
+from funcnet.validation.sweep import run_sweep
 
 STEP = 360 / 2**22  # the arm encoder's step with the real sensors, deg
 
@@ -192,7 +193,7 @@ def test_the_physical_start_fit_recovers_a_simulated_breakaway() -> None:
     # spring and damper, behind a motor at constant speed, friction falling from static to
     # sliding), read every 4 ms by an encoder of 2**22 counts with the rest off the grid. It
     # uses the fit's own assumed damping ratio and Stribeck velocity: this checks the fit under
-    # a matched model (the sensitivity to a mismatch is in docs/backlash.md section 3.1)
+    # a matched model (the sensitivity to a mismatch is in docs/validation/backlash.md section 3.1)
     from scipy.integrate import solve_ivp
 
     from funcnet.diagnosis.two_encoder import _STRIBECK_VELOCITY, _ZETA, _fit_restart

@@ -1,4 +1,4 @@
-"""Physics of the simulator's new parts, each against its own parameters (issue 11)."""
+"""Physics of the simulator's new parts, each against its own parameters."""
 
 from __future__ import annotations
 
@@ -9,15 +9,15 @@ import pytest
 
 from funcnet.errors import ParameterError
 from funcnet.robot import read_trace
-from funcnet.robot.sim.axis import (
+from funcnet.sim.axis import (
     AxisParameters,
     _drift,
     effective_parameters,
     real_axis_parameters,
     simulate_trial,
 )
-from funcnet.robot.sim.trial import Trial
-from funcnet.robot.sim.writer import write_trace
+from funcnet.sim.trial import Trial
+from funcnet.sim.writer import write_trace
 
 
 def _trial(**kw: object) -> Trial:

@@ -8,10 +8,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from funcnet.diagnosis.sweep import run_sweep, score_indicators
 from funcnet.errors import ParameterError, StudyError
 from funcnet.robot import read_trace
-from funcnet.robot.sim.plan import (
+from funcnet.sim.plan import (
     ARCMIN,
     MANIFEST_COLUMNS,
     backlash_sweep_plan,
@@ -19,6 +18,7 @@ from funcnet.robot.sim.plan import (
     read_plan,
     write_plan,
 )
+from funcnet.validation.sweep import run_sweep, score_indicators
 
 
 def test_the_sweep_has_the_issue_grid():
@@ -86,7 +86,7 @@ def test_two_encoder_lost_motion_follows_the_truth(small_sweep):
     some = small_sweep[small_sweep["backlash_arcmin"] > 0]
     error = some["lost_motion"] / some["true_lost_motion"] - 1
     # measured max 3.1 % (the restart fitted from the reading's own difference, MP - AP from the
-    # motor's turn); docs/backlash.md gives the sweep's figures
+    # motor's turn); docs/validation/backlash.md gives the sweep's figures
     assert error.abs().max() < 0.05
 
 
@@ -116,9 +116,9 @@ def test_fn_features_equal_the_per_window_networks_with_evidence():
     evidence gave (the features' definition, module notes of funcnet.diagnosis.indicators)."""
     from funcnet.diagnosis.indicators import reversal_indicators
     from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
-    from funcnet.diagnosis.sweep import simulated_recording
     from funcnet.network import functional_network
-    from funcnet.robot.sim.axis import simulate_trial
+    from funcnet.sim.axis import simulate_trial
+    from funcnet.validation.sweep import simulated_recording
 
     trial = backlash_sweep_plan(backlash_arcmin=(2,), speeds=(35,), tcps=(1.6,),
                                 friction_scales=(1.0,), stiffness_scales=(1.0,), seeds=(2,),
@@ -164,7 +164,7 @@ def written_sweep(tmp_path_factory):
 
 
 def test_folder_indicators_read_the_traces_and_the_manifest_truth(written_sweep):
-    from funcnet.diagnosis.sweep import folder_indicators
+    from funcnet.validation.sweep import folder_indicators
 
     folder, plan = written_sweep
     table = folder_indicators(folder)
@@ -183,8 +183,8 @@ def test_folder_indicators_read_the_traces_and_the_manifest_truth(written_sweep)
 
 
 def test_folder_indicators_without_a_manifest_name_the_file(tmp_path):
-    from funcnet.diagnosis.sweep import folder_indicators
     from funcnet.errors import TraceError
+    from funcnet.validation.sweep import folder_indicators
 
     with pytest.raises(TraceError, match="manifest.csv"):
         folder_indicators(tmp_path)

@@ -10,10 +10,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-import funcnet.batch
+import funcnet.core.batch
 import funcnet.pipeline
-from funcnet import _batch_kernels
-from funcnet.batch import DIRECT_MAX_STATES, RESULT_FIELDS, BatchPairs, applies, batch_pairs
+from funcnet.core import _batch_kernels
+from funcnet.core.batch import DIRECT_MAX_STATES, RESULT_FIELDS, BatchPairs, applies, batch_pairs
 from funcnet.errors import FuncnetWarning, ParameterError, SignalError
 from funcnet.network import functional_network
 from funcnet.network.schema import RESULT_COLUMNS
@@ -108,8 +108,8 @@ def test_sampled_bracket_and_direct_selection(
 
 
 def test_per_signal_rates_and_measures_of_a_window() -> None:
-    from funcnet.measures import pairwise_cross_measures
-    from funcnet.normalization import normalize
+    from funcnet.core.measures import pairwise_cross_measures
+    from funcnet.core.normalization import normalize
 
     p = NetworkParameters(rr=(0.05, 0.2, 0.01), cr=0.1)
     rng = np.random.default_rng(4)
@@ -142,7 +142,7 @@ def test_degenerate_blocks_constant_signals_and_reasons() -> None:
 def test_long_windows_and_explicit_thresholds_take_the_per_window_path(
     monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setattr(funcnet.batch, "DIRECT_MAX_STATES", 100)
+    monkeypatch.setattr(funcnet.core.batch, "DIRECT_MAX_STATES", 100)
     rng = np.random.default_rng(11)
     windows = [_random_window(rng, n, 3) for n in (90, 150, 260)]
     for p in (NetworkParameters(rule="pyunicorn"), NetworkParameters(eps=(0.2, None))):
@@ -226,10 +226,10 @@ def _networks(batched: bool, monkeypatch: pytest.MonkeyPatch, *args: Any,
               **kwargs: Any) -> tuple[dict[str, Any], list[FuncnetWarning]]:
     with monkeypatch.context() as patch:
         if not batched:
-            patch.setattr(funcnet.pipeline, "_batched_networks", lambda *a, **k: None)
+            patch.setattr(funcnet.pipeline, "_batched_networks", lambda *a, **k: ({}, []))
         calls: list[int] = []
-        original = funcnet.batch.batch_pairs
-        patch.setattr(funcnet.batch, "batch_pairs",
+        original = funcnet.core.batch.batch_pairs
+        patch.setattr(funcnet.core.batch, "batch_pairs",
                       lambda *a, **k: calls.append(1) or original(*a, **k))
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -269,14 +269,18 @@ def test_window_networks_falls_back_where_the_batch_does_not_apply(
     data.loc[data.index < 0.5, "V"] = 1.0  # constant in the first window
     still = Recording(data, {}, rec.signals, source="trace.csv", sample_period=0.002)
     windows = [Window("still", 0.1, 0.4), Window("moving", 1.0, 1.3)]
+    # a window with a constant signal goes the per-window way; the others stay in the batch
+    single, single_warnings = _networks(False, monkeypatch, still, windows, constant="drop")
+    mixed, mixed_warnings = _networks(True, monkeypatch, still, windows, constant="drop")
+    assert mixed == single and mixed["still"].window["dropped"] == ("V",)
+    _same_warnings(mixed_warnings, single_warnings)
     for args, kwargs in (
-        ((still, windows), {"constant": "drop"}),
         ((rec, [Window("long", 0.1, 2.0)]), {}),
         ((rec, windows), {"eps": (0.2, 0.1)}),
     ):
         single, single_warnings = _networks(False, monkeypatch, *args, **kwargs)
         with monkeypatch.context() as patch:
-            patch.setattr(funcnet.batch, "batch_pairs", None)  # must not be reached
+            patch.setattr(funcnet.core.batch, "batch_pairs", None)  # must not be reached
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
                 again = window_networks(*args, **kwargs)

@@ -16,8 +16,7 @@ import pytest
 from typer.testing import CliRunner
 
 from funcnet import cli
-from funcnet.cli import app, messages, network_output, selection
-from funcnet.cli import options as cli_options
+from funcnet.cli import app, messages, network_output, options as cli_options, selection
 
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 
@@ -27,7 +26,7 @@ runner = CliRunner()
 @pytest.fixture(scope="module")
 def trial(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A short simulated trial (about 3 s at 500 Hz) written as a SINUMERIK trace."""
-    from funcnet.robot import Trial, write_plan
+    from funcnet.sim import Trial, write_plan
 
     folder = tmp_path_factory.mktemp("cli") / "plan"
     write_plan([Trial("quick", "main", speed=350, tcp=1.6, step=1)], folder, workers=1)
@@ -551,7 +550,7 @@ def test_simulate_a_plan_file(tmp_path: Path) -> None:
 
 
 def test_simulate_knows_the_named_plans() -> None:
-    from funcnet.robot.sim import NAMED_PLANS
+    from funcnet.sim import NAMED_PLANS
 
     result = runner.invoke(app, ["simulate", "--help"], env={"COLUMNS": "200"})
     # the help is wrapped to the terminal, possibly after a hyphen
@@ -625,14 +624,14 @@ def test_study_on_a_local_cluster_and_bad_schedulers(trial: Path, tmp_path: Path
 @pytest.fixture
 def tiny_demo(monkeypatch) -> list:
     """The demo on a one-trial plan and a stand-in report builder; its calls are returned."""
-    import funcnet.report
-    import funcnet.robot
+    import funcnet.paper.demo
+    import funcnet.sim
     from funcnet._io import write_text_atomic
-    from funcnet.robot import Trial
+    from funcnet.sim import Trial
 
     # The whole paper plan takes minutes: the demo's wiring is tested on a one-trial plan.
     monkeypatch.setattr(
-        funcnet.robot, "paper_plan", lambda: [Trial("tiny", "main", speed=350, tcp=1.2, step=1)]
+        funcnet.sim, "paper_plan", lambda: [Trial("tiny", "main", speed=350, tcp=1.2, step=1)]
     )
     calls = []
 
@@ -644,7 +643,7 @@ def tiny_demo(monkeypatch) -> list:
         warnings.warn(ThresholdWarning("eps_xy is not below", problem="eps_order"), stacklevel=1)
         return write_text_atomic(Path(out_dir) / "index.html", "<html></html>")
 
-    monkeypatch.setattr(funcnet.report, "build_demo_report", build_demo_report)
+    monkeypatch.setattr(funcnet.paper.demo, "build_demo_report", build_demo_report)
     return calls
 
 
@@ -692,7 +691,7 @@ def test_whole_recording_starts_where_every_signal_has_a_value(real_trace, tmp_p
 
 
 # --------------------------------------------------------------------------------------------
-# issue 12: a quiet, consistent command line
+# a quiet, consistent command line
 
 
 def test_warnings_are_one_counted_line_and_verbose_lists_them(real_trace) -> None:
@@ -782,7 +781,7 @@ def test_network_refuses_a_forecast_over_the_limit_unless_forced(trial: Path, tm
 @pytest.fixture(scope="module")
 def henon_trace(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A CSV trace of two coupled Hénon maps (C = 0.6) and independent noise."""
-    from funcnet.systems import henon_pair
+    from funcnet.validation.systems import henon_pair
 
     x = henon_pair(800, 0.6, seed=1)
     trace = tmp_path_factory.mktemp("henon") / "henon.csv"

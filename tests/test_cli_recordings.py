@@ -101,7 +101,8 @@ def test_backlash_of_every_axis_is_each_axis_on_its_own(tmp_path):
         (alone,) = diagnose_backlash(RUN, channels=KUKA_MAP, axis=result.axis)
         assert alone.axis is None
         assert {**result.to_dict(), "axis": None} == alone.to_dict()
-    assert [r.lost_motion is None for r in every] == [False] * 3 + [True] * 3  # AP on 1-3 only
+    # AP on 1-3 only: a lost motion or its bound there, none without AP
+    assert [r.lost_motion_high is None for r in every] == [False] * 3 + [True] * 3
     out = tmp_path / "b.json"
     result = runner.invoke(app, ["backlash", str(RUN), "--channels", str(KUKA_MAP), "-o", str(out)])
     assert result.exit_code == 0, result.output

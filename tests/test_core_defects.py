@@ -1,4 +1,4 @@
-"""Defects of the numerical core named by issue 8, each pinned by a test that failed before.
+"""Defects of the numerical core found in review, each pinned by a test that failed before.
 
 Also the contracts the reshape added to the core: one parameter bundle, metric aliases,
 multichannel nodes (against a brute-force reference), typed and pure threshold warnings.
@@ -16,31 +16,31 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
-import funcnet._order_statistic as order_statistic
-from funcnet.embedding import MIN_STATES, embed, signal_states
-from funcnet.errors import DegenerateWarning, ParameterError, SignalError, ThresholdWarning
-from funcnet.measures import (
+import funcnet.core.thresholds as order_statistic
+from funcnet.core.embedding import MIN_STATES, embed, signal_states
+from funcnet.core.measures import (
     cross_measures,
     isrn_measures,
     pairwise_cross_measures,
     threshold_warnings,
 )
-from funcnet.parameters import NetworkParameters
-from funcnet.recurrence import (
+from funcnet.core.recurrence import (
     PackedRecurrence,
     auto_recurrence,
     cross_recurrence,
     cross_recurrence_matrix,
     recurrence_matrix,
 )
+from funcnet.errors import DegenerateWarning, ParameterError, SignalError, ThresholdWarning
+from funcnet.parameters import NetworkParameters
 from test_measures import reference_direction
 from test_recurrence import make_signal, reference_auto, reference_cross, reference_embed
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "funcnet"
-CORE = ("embedding.py", "_isrn_kernels.py", "_order_statistic.py", "recurrence.py", "measures.py")
+CORE = ("core/embedding.py", "core/_isrn_kernels.py", "core/thresholds.py", "core/recurrence.py",
+        "core/measures.py")
 
 
 def sine_pair(n=251):
@@ -75,9 +75,9 @@ def test_importing_and_running_the_core_leaves_the_environment_alone():
     code = (
         "import os, numpy as np\n"
         "before = dict(os.environ)\n"
-        "import funcnet.measures, funcnet.recurrence\n"
+        "import funcnet.core.measures, funcnet.core.recurrence\n"
         "t = np.linspace(0, 8 * np.pi, 120)\n"
-        "funcnet.measures.cross_measures(np.sin(t), np.cos(t), delay=4, warn=False)\n"
+        "funcnet.core.measures.cross_measures(np.sin(t), np.cos(t), delay=4, warn=False)\n"
         "changed = sorted(set(os.environ.items()) ^ set(before.items()))\n"
         "print(changed)\n"
     )

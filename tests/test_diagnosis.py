@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import REAL_TRACE as REAL
@@ -20,8 +21,9 @@ from funcnet.diagnosis import (
     write_results,
 )
 from funcnet.errors import ParameterError
+from funcnet.report import write_backlash_page
 from funcnet.robot import read_trace
-from funcnet.robot.sim import Trial, simulate_trial, write_trace
+from funcnet.sim import Trial, simulate_trial, write_trace
 
 
 def _reversal_trace(tmp_path: Path, backlash_arcmin: float, name: str) -> tuple[Path, dict]:
@@ -87,7 +89,7 @@ def test_several_traces_give_a_trend(tmp_path):
     assert table["path"].tolist() == [str(p) for p in (*paths, REAL)]
     scores = table["backlash_score"].tolist()
     assert scores[0] < scores[1] < scores[2] and np.isnan(scores[3])
-    page = write_results(results, tmp_path / "trend.html").read_text()
+    page = write_backlash_page(results, tmp_path / "trend.html").read_text()
     assert "<svg" in page and "t2.xml" in page
 
 
@@ -96,11 +98,15 @@ def test_no_path_and_a_wrong_suffix_are_parameter_errors(tmp_path):
         diagnose_backlash()
     with pytest.raises(ParameterError, match="json"):
         write_results([], tmp_path / "r.txt")
+    with pytest.raises(ParameterError, match="write_backlash_page"):
+        write_results([], tmp_path / "r.html")
+    with pytest.raises(ParameterError, match="html"):
+        write_backlash_page([], tmp_path / "r.json")
 
 
 def test_the_html_page_holds_the_trend(tmp_path):
     result = diagnose_recording(read_trace(REAL).window(0.0, 20.0), "first-move")
-    page = write_results([result], tmp_path / "r.html").read_text()
+    page = write_backlash_page([result], tmp_path / "r.html").read_text()
     assert "first-move" in page and "no direction change" in page and "model-based" in page
 
 
@@ -112,3 +118,44 @@ def test_direction_changes_of_the_real_trace():
 def test_the_calibration_ships_with_the_package():
     cal = load_calibration()
     assert cal["indicator"] == SCORE and set(cal["levels"]) == {"35", "70.6"}
+
+
+def _shape(value):
+    """The nesting of a JSON value: dict keys' shapes, list lengths, leaf types."""
+    if isinstance(value, dict):
+        return {key: _shape(item) for key, item in value.items()}
+    if isinstance(value, list):
+        return [len(value), sorted({type(v).__name__ for v in value})]
+    return type(value).__name__
+
+
+def test_the_shipped_calibration_is_what_derive_calibration_makes():
+    # A small fixture sweep in the shipped calibration's grid (speeds, widths): the derivation
+    # gives a file of the shipped file's shape, with levels equal to plain quantiles.
+    from funcnet.diagnosis.diagnose import MOTOR_LOOP_SCORE
+    from funcnet.validation.sweep import derive_calibration
+
+    shipped = load_calibration()
+    rng = np.random.default_rng(0)
+    speeds = [float(s) for s in shipped["levels"]]
+    widths = [float(b) for b in shipped["levels"]["35"]]
+    rows = [{"peak_speed": s, "backlash_arcmin": b, SCORE: b / 60 + rng.normal(0, 0.002),
+             "motor_travel": 1 + b + rng.normal(0, 0.1), "current_step": rng.normal(0.5, 0.1)}
+            for s in speeds for b in widths for _ in range(7)]
+    sweep = pd.DataFrame(rows)
+    cal = derive_calibration(sweep, sweep, source="fixture", motor_source="fixture")
+    shipped_shape, derived_shape = _shape(shipped), _shape(cal)
+    for part in (shipped_shape, derived_shape):
+        part.pop("source"), part["motor_loop"].pop("source")
+    assert derived_shape == shipped_shape
+    for s in speeds:
+        for b in widths:
+            values = sweep[(sweep.peak_speed == s) & (sweep.backlash_arcmin == b)][SCORE]
+            expected = np.quantile(values.to_numpy(), cal["quantiles"])
+            assert cal["levels"][f"{s:g}"][f"{b:g}"] == pytest.approx(expected)
+    healthy = sweep[(sweep.backlash_arcmin == 0) & (sweep.peak_speed == speeds[0])]
+    median, iqr = cal["motor_loop"]["reference"][f"{speeds[0]:g}"]["motor_travel"]
+    assert median == pytest.approx(healthy.motor_travel.median())
+    assert iqr == pytest.approx(healthy.motor_travel.quantile(0.75)
+                                - healthy.motor_travel.quantile(0.25))
+    assert cal["motor_loop"]["indicator"] == MOTOR_LOOP_SCORE

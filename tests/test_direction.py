@@ -10,7 +10,8 @@ were not tuned to pass.
 
 Delays: tau = 1 for maps (one iterate); for the Rossler oscillators (sampled every 0.2 time
 units, mean period about 6.3) tau = 8 samples, the first zero of the autocorrelation of x and the
-first minimum of its auto mutual information (:func:`funcnet.recurrence.estimate_delay` gives 7-8).
+first minimum of its auto mutual information (:func:`funcnet.core.recurrence.estimate_delay` gives
+7-8).
 """
 
 from __future__ import annotations

@@ -94,7 +94,7 @@ def test_window_networks(trace: Path, name: str, value: Any, _text: str) -> None
 @pytest.mark.parametrize(("name", "value", "_text"), BAD_VALUES, ids=IDS)
 def test_pair_measures(signals: pd.DataFrame, name: str, value: Any, _text: str) -> None:
     from funcnet import cross_measures
-    from funcnet.measures import pairwise_cross_measures
+    from funcnet.core.measures import pairwise_cross_measures
 
     x, y = signals["RP"].to_numpy(), signals["AC"].to_numpy()
     with pytest.raises(ParameterError) as pair:

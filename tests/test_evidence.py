@@ -1,8 +1,8 @@
 """funcnet.evidence: the dependence test, its surrogates, the intervals, and pinned error rates.
 
-The error-rate tests run a fixed seed set (seeds 0..n-1 of funcnet.systems) and allow for
+The error-rate tests run a fixed seed set (seeds 0..n-1 of funcnet.validation.systems) and allow for
 binomial noise: a false-positive count must stay within 0.05 + 3 standard errors of its pairs,
-power at least the bound given. They were set from the measured rates in docs/evidence.md
+power at least the bound given. They were set from the measured rates in docs/validation/evidence.md
 (measured on seeds from 1000 on), not tuned on these seeds.
 """
 
@@ -13,8 +13,9 @@ import math
 import numpy as np
 import pytest
 
-from funcnet import systems
-from funcnet.embedding import embed
+from funcnet.core.embedding import embed
+from funcnet.core.measures import cross_measures
+from funcnet.core.recurrence import auto_recurrence
 from funcnet.errors import ParameterError
 from funcnet.evidence import (
     asymmetry_interval,
@@ -31,8 +32,7 @@ from funcnet.evidence import (
 )
 from funcnet.evidence.dependence import surrogate_plan
 from funcnet.evidence.surrogates import twin_groups, twin_plan
-from funcnet.measures import cross_measures
-from funcnet.recurrence import auto_recurrence
+from funcnet.validation import systems
 
 
 def minmax(x):
@@ -178,7 +178,7 @@ def test_false_positive_rate_on_uncoupled_pairs(name, batch, delay):
 
 
 def test_power_on_coupled_henon_maps():
-    # Target of issue 10: power >= 0.9 at C = 0.4, N = 500; measured 1.00 on 200 pairs.
+    # Target: power >= 0.9 at C = 0.4, N = 500; measured 1.00 on 200 pairs.
     p = p_values(systems.henon_pair(500, 0.4, seed=list(range(20))))
     assert int((p <= 0.05).sum()) >= 17
 
@@ -194,8 +194,8 @@ def test_interval_covers_zero_for_independent_realizations_of_one_process():
                                 t_diff=m.t_diff, resamples=60, seed=k, parameters=m.parameters)
         covered += iv.c_diff_low <= 0 <= iv.c_diff_high
     # Nominal 0.95, but for white noise under min-max the interval is too narrow: measured
-    # 0.875 on 40 other pairs (docs/evidence.md, seeds 1000-1039). The bound is that rate minus
-    # 3 binomial SE over 30 pairs: it pins today's behaviour, it does not claim validity.
+    # 0.875 on 40 other pairs (docs/validation/evidence.md, seeds 1000-1039). The bound is that rate
+    # minus 3 binomial SE over 30 pairs: it pins today's behaviour, it does not claim validity.
     assert covered >= 20
 
 
@@ -253,8 +253,9 @@ def test_twin_test_statistic_matches_the_definition_and_detects_coupling():
 
 
 def test_twin_false_positives_on_uncoupled_maps():
-    # Measured 0.000-0.100 on 40 pairs per length (seeds 1000-1039, docs/evidence.md); these
-    # are other seeds. Twins are not valid for equal-period oscillators (docs): not tested here.
+    # Measured 0.000-0.100 on 40 pairs per length (seeds 1000-1039, docs/validation/evidence.md);
+    # these are other seeds. Twins are not valid for equal-period oscillators (docs): not tested
+    # here.
     pairs = 40
     batch = systems.henon_pair(300, 0.0, seed=list(range(pairs)))
     rejected = 0

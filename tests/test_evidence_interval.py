@@ -1,4 +1,4 @@
-"""The asymmetry interval (issue 10, item 1): rate model, properties, calibration on fixed seeds.
+"""The asymmetry interval: rate model, properties, calibration on fixed seeds.
 
 The calibration bounds are for a handful of pairs (seeds 0-29, below the benchmark's validation
 seeds 2000-2199 and the 5000-5199 the fractions were chosen on); the full table is
@@ -13,8 +13,10 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
-from funcnet import systems
-from funcnet.embedding import signal_states
+from funcnet.core.embedding import signal_states
+from funcnet.core.measures import isrn_measures
+from funcnet.core.normalization import normalize
+from funcnet.core.recurrence import auto_recurrence, cross_recurrence
 from funcnet.errors import ParameterError
 from funcnet.evidence.interval import (
     BETA_MAX,
@@ -28,10 +30,8 @@ from funcnet.evidence.interval import (
     resampled_differences,
     subsamples,
 )
-from funcnet.measures import isrn_measures
-from funcnet.normalization import normalize
 from funcnet.parameters import NetworkParameters
-from funcnet.recurrence import auto_recurrence, cross_recurrence
+from funcnet.validation import systems
 
 
 def _pair(data: np.ndarray, delay: int = 1) -> tuple[list[np.ndarray], tuple[float, float],

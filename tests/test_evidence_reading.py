@@ -1,4 +1,4 @@
-"""Honest labels: a pair whose coupling test could not have rejected is ``untestable`` (issue 22).
+"""Honest labels: a pair whose coupling test could not have rejected is ``untestable``.
 
 The references are independent of :mod:`funcnet.evidence.reading`: the smallest adjusted p-value
 by enumerating every p-value the tests could give, and whether a pair can be rejected at all by
@@ -15,13 +15,12 @@ import networkx as nx
 import numpy as np
 import pandas as pd
 import pytest
-from hypothesis import given
-from hypothesis import strategies as st
+from hypothesis import given, strategies as st
 
 from funcnet import functional_network
 from funcnet.evidence import EVIDENCE_LABELS, smallest_p_values, untestable
 from funcnet.network import FunctionalNetwork
-from funcnet.systems import henon_pair
+from funcnet.validation.systems import henon_pair
 
 
 def _bh_brute(p: list[float]) -> list[float]:
@@ -166,7 +165,7 @@ def test_the_vocabulary_has_untestable():
 def test_real_trace_inspect_says_untestable_and_never_not_coupled_for_it(real_trace):
     """On the SINUMERIK trace the phase windows leave 2-28 surrogates: no pair can be rejected
     at 0.05, and inspect says so instead of 'not-coupled' or 'asymmetry-only'."""
-    from funcnet.report.inspect import inspect_recording
+    from funcnet.inspection import inspect_recording
     from funcnet.robot import read_trace
 
     ins = inspect_recording(read_trace(real_trace), backlash=False)

@@ -12,7 +12,9 @@ import pytest
 from scipy.stats import t as student_t
 
 import funcnet
-from funcnet.embedding import embed
+from funcnet.core.embedding import embed
+from funcnet.core.normalization import normalize
+from funcnet.core.recurrence import auto_recurrence
 from funcnet.errors import ParameterError, SignalError
 from funcnet.evidence.repetitions import (
     REPETITION_COLUMNS,
@@ -22,8 +24,6 @@ from funcnet.evidence.repetitions import (
     smallest_p_value,
 )
 from funcnet.network import functional_network
-from funcnet.normalization import normalize
-from funcnet.recurrence import auto_recurrence
 
 
 def _ar(rng: np.random.Generator, n: int, a: float = 0.9) -> np.ndarray:
@@ -212,13 +212,13 @@ def test_exported_at_the_top_level() -> None:
 
 
 def test_false_positives_and_power_on_simulated_repetitions() -> None:
-    # docs/evidence.md, "Repetitions", on a fixed small seed set: 40 runs of one move (175
-    # deg/min, the real trace's sensors), a 300-sample cruise window logged every 4 ms; 8 draws
+    # docs/validation/evidence.md, "Repetitions", on a fixed small seed set: 40 runs of one move
+    # (175 deg/min, the real trace's sensors), a 300-sample cruise window logged every 4 ms; 8 draws
     # of R = 10 runs for set A and 10 others for set B. Null: X from A_i, Y from B_i (16 pairs
     # a draw); coupled: RC-AC, AC-MP, MP-AP within A and within B. The validation's cells
     # (1280 tests each) spread 0.03-0.07 around 0.05; tests of one draw share their runs, so
     # the bound allows three standard errors of 8 draws (0.04): at most 21 of 128.
-    from funcnet.robot.sim import Trial, simulate_trial
+    from funcnet.sim import Trial, simulate_trial
 
     trial = Trial("validate", "repetitions", speed=175, tcp=1.6, step=10.0, sensors="real")
     columns = ["AP", "MP", "RC", "AC"]

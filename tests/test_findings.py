@@ -505,14 +505,14 @@ def test_degenerate_pairs_do_not_count_in_the_mean_edge_weight():
 
 
 # --------------------------------------------------------------------------------------------
-# coupling evidence of the claimed relations (issue 10)
+# coupling evidence of the claimed relations
 
 
 def test_pair_reading_tells_coupled_from_untestable_on_real_networks():
     from funcnet import functional_network
     from funcnet.evidence import untestable
     from funcnet.paper.coupling import pair_reading
-    from funcnet.systems import henon_pair
+    from funcnet.validation.systems import henon_pair
 
     x = henon_pair(800, 0.6, seed=1)
     data = pd.DataFrame({"X": x[:, 0], "Y": x[:, 1]})

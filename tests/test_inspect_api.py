@@ -1,4 +1,4 @@
-"""The API rough edges a new user hits on the way to inspecting a trace (issue 12, item 5)."""
+"""The API rough edges a new user hits on the way to inspecting a trace."""
 
 from __future__ import annotations
 

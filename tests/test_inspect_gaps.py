@@ -1,5 +1,5 @@
 """A recording with missing values: the gap splits it into segments, no phase, move or window
-spans it, and the reports say where (issue 21, item 1)."""
+spans it, and the reports say where."""
 
 from __future__ import annotations
 

@@ -108,8 +108,8 @@ def _map_file(folder: Path) -> str:
 
 def test_robot_table_says_why_an_axis_has_no_lost_motion(tmp_path):
     # Axis 2 has no arm-side encoder (it reads all zeros, as on axes 4-6 of the KUKA runs): the
-    # robot page's lost motion says "none (no AP)" there, not a number or "nan".
-    from funcnet.report.inspect import _axis_rows
+    # robot page's lost motion is a dash there with a note that says why, not a number or "nan".
+    from funcnet.report.robot_summary import axis_findings
 
     t = np.arange(0, 4, 0.004)
     rng = np.random.default_rng(5)
@@ -121,6 +121,70 @@ def test_robot_table_says_why_an_axis_has_no_lost_motion(tmp_path):
     path = tmp_path / "no-ap.mat"
     scipy.io.savemat(path, {"rec": {"t": t, "rp": rp, "ap": ap, "mp": mp, "tau": tau}})
     found = inspect_robot(read_trace(path, channels=MAP), evidence=False, delay=5)
-    rows = _axis_rows(found).set_index("axis")["lost motion [arcmin]"]
-    assert rows[2] == "none (no AP)"
-    assert isinstance(rows[1], float)
+    findings = axis_findings(found.axes, found.axis_errors, tuple(found.recording.axes),
+                             found.source)
+    rows = findings.table.set_index("axis")
+    assert rows.loc["2", "lost motion [arcmin]"] == "—"
+    notes = dict(findings.notes)
+    assert notes["no lost motion: no AP"] == (2,)
+    cited = [int(k) for k in rows.loc["2", "notes"].split(", ")]
+    assert list(notes).index("no lost motion: no AP") + 1 in cited
+    lost = rows.loc["1", "lost motion [arcmin]"]
+    assert lost.startswith("≤ ") or float(lost) > 0
+    # no cell says None or names the file
+    for cell in findings.table.to_numpy().ravel():
+        assert "None" not in cell and "nan" not in cell and str(path) not in cell
+
+
+def _three_axes(folder: Path) -> Path:
+    """Three axes moving alike (the same finding on each), each turning twice."""
+    t = np.arange(0, 4, 0.004)
+    rng = np.random.default_rng(7)
+    rp = np.vstack([(8 + k) * np.sin(2 * np.pi * t / 3 + k) for k in range(3)])
+    mp = rp + 0.001 * rng.standard_normal(rp.shape)
+    ap = mp - 0.01 * np.gradient(rp, t, axis=1) + 0.0005 * rng.standard_normal(rp.shape)
+    tau = np.gradient(np.gradient(rp, t, axis=1), t, axis=1) + 0.05 * rng.standard_normal(
+        rp.shape)
+    path = folder / "three-axes.mat"
+    scipy.io.savemat(path, {"rec": {"t": t, "rp": rp, "ap": ap, "mp": mp, "tau": tau}})
+    return path
+
+
+def test_no_long_text_is_said_more_than_twice_on_a_robot_page(tmp_path):
+    from html.parser import HTMLParser
+
+    out = tmp_path / "report"
+    result = CliRunner().invoke(app, ["inspect", str(_three_axes(tmp_path)), "--channels",
+                                      _map_file(tmp_path), "-o", str(out), "--quiet",
+                                      "--surrogates", "19", "--resamples", "20"])
+    assert result.exit_code == 0, result.output
+
+    class Blocks(HTMLParser):  # a plain reference: the text of every cell, paragraph, item
+        def __init__(self):
+            super().__init__()
+            self.open, self.texts = [], []
+
+        def handle_starttag(self, tag, attrs):
+            if tag in ("td", "th", "p", "li"):
+                self.open.append("")
+
+        def handle_endtag(self, tag):
+            if tag in ("td", "th", "p", "li") and self.open:
+                self.texts.append(" ".join(self.open.pop().split()))
+
+        def handle_data(self, data):
+            if self.open:
+                self.open[-1] += data
+
+    import re
+    from collections import Counter
+
+    for page in [out / "index.html", *sorted(out.glob("axis-*/index.html"))]:
+        blocks = Blocks()
+        blocks.feed(page.read_text())
+        long = Counter(re.sub(r"[0-9.]+", "#", t) for t in blocks.texts if len(t) > 60)
+        assert not [t for t, n in long.items() if n > 2], (page, long.most_common(3))
+    robot = (out / "index.html").read_text()
+    # the three axes share their findings: said once, naming the axes
+    assert "(axes 1, 2, 3)" in robot
+    assert ">None<" not in robot and str(tmp_path) not in robot

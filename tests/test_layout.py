@@ -8,7 +8,10 @@ names for ``name``, so that a module cannot reach the core out of sight through 
 The lazy ``__init__`` tables themselves are exempt from the layers (they load on demand), but
 every module they name must exist and every name must resolve.
 
-The layers are those of PLAN.md (issues 8, 10, 11): imports only go down the list.
+Imports only go down the list of layers. The test bench (the simulator ``funcnet.sim``, the
+paper's analyses ``funcnet.paper``, ``funcnet.validation``) sits beside the library: no library
+module imports it at its top, and only a study (when it simulates) and the command line reach it
+from inside a function. At most eight modules stand directly in ``src/funcnet``.
 """
 
 from __future__ import annotations
@@ -39,40 +42,50 @@ LAYERS: dict[str, tuple[str, float]] = {
     "funcnet._io": ("base", 0),
     "funcnet.parameters": ("base", 0),
     "funcnet._lazy": ("base", 0),
-    "funcnet.normalization": ("core1", 1),
-    "funcnet.embedding": ("core1", 1),
-    "funcnet._isrn_kernels": ("core1", 1),
-    "funcnet._order_statistic": ("core1", 1),
-    "funcnet._batch_kernels": ("core1", 1),  # compiled kernels: below the measures, which use them
-    "funcnet.systems": ("systems", 1),
+    # the numerical core, funcnet/core: kernels and thresholds below the recurrences
+    "funcnet.core.normalization": ("core1", 1),
+    "funcnet.core.embedding": ("core1", 1),
+    "funcnet.core._isrn_kernels": ("core1", 1),
+    "funcnet.core.thresholds": ("core1", 1),
+    "funcnet.core._batch_kernels": ("core1", 1),  # below the measures, which use them
+    "funcnet.core.recurrence": ("recurrence", 2),
+    "funcnet.core.measures": ("measures", 3),
+    "funcnet.core.kinds": ("measures", 3),
+    "funcnet.core.batch": ("batch", 3.25),
     "funcnet.robot": ("robot", 1),
-    "funcnet.robot.sim": ("robot.sim", 1.5),
-    "funcnet.recurrence": ("recurrence", 2),
-    "funcnet.measures": ("measures", 3),
-    "funcnet.kinds": ("measures", 3),
-    "funcnet.batch": ("batch", 3.25),
     "funcnet.evidence": ("evidence", 3.5),
     "funcnet.network": ("network", 4),
     "funcnet.pipeline": ("pipeline", 5),
     "funcnet.plot": ("plot", 6),
     "funcnet.diagnosis": ("diagnosis", 7),
     "funcnet.study": ("study", 7),
-    "funcnet.paper": ("paper", 7),
     "funcnet.inspection": ("inspection", 7.5),
+    "funcnet.comparison": ("comparison", 7.5),
     "funcnet.report": ("report", 8),
     "funcnet.cli": ("cli", 9),
     "funcnet.__main__": ("cli", 9),
+    # the test bench
+    "funcnet.validation.systems": ("systems", 1),
+    "funcnet.sim": ("sim", 1.5),
+    "funcnet.paper": ("paper", 8.5),
+    "funcnet.validation": ("validation", 8.5),
 }
-# Beyond the ranks: the L1 groups import only the base (robot.sim also robot), not each other.
+BENCH = ("funcnet.sim", "funcnet.paper", "funcnet.validation")
+# Library modules that may reach the bench from inside a function: a study that simulates its
+# plan, and the command line's simulate, demo and backlash-report commands.
+LAZY_BENCH_USERS = ("funcnet.study", "funcnet.cli")
+# Beyond the ranks: the L1 groups import only the base (sim also robot), not each other.
 FORBIDDEN: dict[str, tuple[str, ...]] = {
-    "robot": ("core1", "systems"),
-    "robot.sim": ("core1", "systems"),
-    "core1": ("robot", "robot.sim", "systems"),
-    "systems": ("core1", "robot", "robot.sim"),
+    "robot": ("core1", "systems", "sim"),
+    "sim": ("core1", "systems"),
+    "core1": ("robot", "sim", "systems"),
+    "systems": ("core1", "robot", "sim"),
 }
-ROBOT_MAY_NOT_IMPORT = ("funcnet.recurrence", "funcnet.measures", "funcnet.network",
+CORE = "funcnet.core"
+ROBOT_MAY_NOT_IMPORT = ("funcnet.core.recurrence", "funcnet.core.measures", "funcnet.network",
                         "funcnet.pipeline")
-PLOT_MAY_NOT_IMPORT = ("funcnet.recurrence", "funcnet.measures", "funcnet.pipeline")
+TOP_LEVEL_MODULES = 8
+PLOT_MAY_NOT_IMPORT = ("funcnet.core.recurrence", "funcnet.core.measures", "funcnet.pipeline")
 MAX_LINES, REASON_LINES = 900, 600
 # A module over 600 lines says why in its docstring, on a line such as
 # "Length: the TOML schema and its checks belong together." or "... over 600 lines because ...".
@@ -274,7 +287,7 @@ def _all_imports() -> list[Import]:
 
 def test_every_module_has_a_place_in_the_flow() -> None:
     unplaced = [name for name in modules() if not _exempt(name) and _layer(name) is None]
-    assert not unplaced, f"modules with no layer (add them to LAYERS, per PLAN.md): {unplaced}"
+    assert not unplaced, f"modules with no layer (add them to LAYERS): {unplaced}"
 
 
 def test_every_imported_funcnet_module_exists() -> None:
@@ -296,6 +309,63 @@ def test_no_import_against_the_flow() -> None:
         if other_rank >= rank or other in FORBIDDEN.get(group, ()):
             wrong.append(f"{edge} (layer {group} {rank} -> {other} {other_rank})")
     assert not wrong, "imports against the flow:\n" + "\n".join(wrong)
+
+
+def _top_level_imports(name: str) -> set[str]:
+    """The funcnet modules ``name`` imports outside any function (what loading it loads)."""
+    tree = _tree(name)
+    body: list[ast.AST] = []
+    for node in tree.body:
+        if isinstance(node, ast.If) and _is_type_checking(node.test):
+            body += node.orelse
+        elif not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            body.append(node)
+    module = ast.Module(body=body, type_ignores=[])  # type: ignore[arg-type]
+    return {edge.imported for edge in _imports_of(module, name)}
+
+
+def test_the_library_does_not_import_its_bench() -> None:
+    wrong = []
+    for name in modules():
+        if _under(name, BENCH) or _exempt(name):
+            continue
+        every = {e.imported for e in imports(name)}
+        top = _top_level_imports(name)
+        for target in sorted(every):
+            if not _under(target, BENCH):
+                continue
+            if target in top or not _under(name, LAZY_BENCH_USERS):
+                wrong.append(f"{name} imports {target}")
+    assert not wrong, "the library reaches its test bench:\n" + "\n".join(wrong)
+
+
+def test_the_core_has_its_own_room() -> None:
+    top = [path.name for path in PACKAGE.glob("*.py")]
+    assert len(top) <= TOP_LEVEL_MODULES, f"{len(top)} modules in src/funcnet: {sorted(top)}"
+    # Outside the core, its private names (a leading underscore) are never imported.
+    private = []
+    for name in modules():
+        if _under(name, (CORE,)):
+            continue
+        for node in _walk(_tree(name)):
+            if isinstance(node, ast.ImportFrom) and node.module and _under(node.module, (CORE,)):
+                private += [f"{name} line {node.lineno}: {node.module}.{alias.name}"
+                            for alias in node.names if alias.name.startswith("_")]
+    assert not private, "the core's private names used outside it:\n" + "\n".join(private)
+
+
+def test_reading_and_diagnosing_load_no_bench() -> None:
+    code = (
+        "import sys, funcnet\n"
+        "from funcnet.inspection import inspect_recording\n"
+        "from funcnet.diagnosis import diagnose_recording\n"
+        "for name in funcnet.__all__: getattr(funcnet, name)\n"
+        f"print(sorted(m for m in sys.modules if m.startswith({BENCH!r})))\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True
+    )
+    assert result.stdout.strip() == "[]", result.stdout
 
 
 def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
@@ -343,9 +413,7 @@ def test_no_import_cycle() -> None:
 
 
 def _robot_module(name: str) -> bool:
-    return (name == "funcnet.robot" or name.startswith("funcnet.robot.")) and not (
-        name == "funcnet.robot.sim" or name.startswith("funcnet.robot.sim.")
-    )
+    return name == "funcnet.robot" or name.startswith("funcnet.robot.")
 
 
 def _under(name: str, roots: tuple[str, ...]) -> bool:
@@ -459,10 +527,10 @@ KEPT_NAMES = {
         "FunctionalNetwork FuncnetError FuncnetWarning ThresholdWarning DegenerateWarning "
         "StaircaseWarning __version__"
     ).split(),
-    "funcnet.recurrence": ["estimate_cost"],
+    "funcnet.core.recurrence": ["estimate_cost"],
     "funcnet.robot": ("read_trace read_recording add_derived_signals detect_phases "
                       "phase_windows sliding_windows").split(),
-    "funcnet.embedding": [], "funcnet.measures": [], "funcnet.network": [],
+    "funcnet.core.embedding": [], "funcnet.core.measures": [], "funcnet.network": [],
     "funcnet.pipeline": [], "funcnet.evidence": [], "funcnet.plot": [],
 }
 
@@ -494,7 +562,7 @@ _FROM = re.compile(r"from (funcnet(?:\.\w+)*) import (\([^)]*\)|\w+(?:, \w+)*)")
 def _documented_names() -> list[tuple[str, str]]:
     """``(file, dotted name)`` of every funcnet name the README and the docs use."""
     found = []
-    for path in [SRC.parent / "README.md", *sorted((SRC.parent / "docs").glob("*.md"))]:
+    for path in [SRC.parent / "README.md", *sorted((SRC.parent / "docs").rglob("*.md"))]:
         text = path.read_text(encoding="utf-8")
         found += [(path.name, match.group(0)) for match in _DOTTED.finditer(text)]
         for match in _FROM.finditer(text):
@@ -535,20 +603,20 @@ def test_the_checks_themselves() -> None:
         "from __future__ import annotations\n"
         "from typing import TYPE_CHECKING\n"
         "if TYPE_CHECKING:\n"
-        "    from funcnet.measures import CrossMeasures\n"
+        "    from funcnet.core.measures import CrossMeasures\n"
         "def f():\n"
         "    import funcnet\n"
         "    return funcnet.functional_network\n"
         "def g():\n"
         "    from importlib import import_module\n"
-        "    return import_module('funcnet.recurrence')\n"
+        "    return import_module('funcnet.core.recurrence')\n"
         "from . import _io\n"
         "from .errors import ParameterError\n"
     )
     found = {e.imported for e in _imports_of(ast.parse(source), "funcnet.pipeline")}
     network = lazy_table("funcnet")["functional_network"]  # type: ignore[index]
-    assert {network, "funcnet.recurrence", "funcnet._io", "funcnet.errors"} <= found
-    assert "funcnet.measures" not in found
+    assert {network, "funcnet.core.recurrence", "funcnet._io", "funcnet.errors"} <= found
+    assert "funcnet.core.measures" not in found
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
     assert _cycles({"a": {"b"}, "b": set()}) == []
 
@@ -671,3 +739,63 @@ def test_data_files_ship_with_the_package() -> None:
     unshipped = [str(p.relative_to(PACKAGE)) for p in data
                  if not any(p.match(pattern) for pattern in patterns)]
     assert not unshipped, f"data files no package-data pattern of pyproject.toml ships: {unshipped}"
+
+
+# --------------------------------------------------------------------------------------------
+# what an editor and a type checker see
+
+
+def test_no_catch_all_keywords() -> None:
+    # `**overrides: Any` hides the keywords a user may pass: spell them out, or type them against
+    # one contract (``Unpack[ParameterOverrides]``, PEP 692).
+    hidden = []
+    for name in modules():
+        for node in ast.walk(_tree(name)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and node.args.kwarg:
+                annotation = node.args.kwarg.annotation
+                if annotation is None or ast.unparse(annotation) == "Any":
+                    hidden.append(f"{name}.{node.name}(**{node.args.kwarg.arg})")
+    assert not hidden, hidden
+
+
+def test_the_keyword_contracts_match_the_parameters() -> None:
+    import typing
+
+    from funcnet.parameters import BlockOverrides, NetworkParameters, ParameterOverrides
+
+    fields = typing.get_type_hints(NetworkParameters)
+    keywords = typing.get_type_hints(ParameterOverrides)
+    assert keywords == {name: fields[name] for name in NetworkParameters.names()}
+    assert set(typing.get_type_hints(BlockOverrides)) == set(keywords) - {"rr", "cr", "eps"}
+
+
+def test_the_package_ships_its_types() -> None:
+    assert (PACKAGE / "py.typed").is_file()
+    config = tomllib.loads((SRC.parent / "pyproject.toml").read_text())["tool"]["setuptools"]
+    assert {"py.typed", "*.pyi"} <= set(config["package-data"]["*"])
+    # every lazy export is visible to a type checker: a stub beside each lazy __init__
+    for package in modules():
+        table = lazy_table(package)
+        if not table:
+            continue
+        stub = modules()[package].with_suffix(".pyi")
+        assert stub.is_file(), f"{package} has a lazy table and no {stub.name}"
+        seen: dict[str, str] = {}
+        for node in ast.parse(stub.read_text(encoding="utf-8")).body:
+            if isinstance(node, ast.ImportFrom) and node.module:
+                seen.update({a.asname or a.name: node.module for a in node.names})
+        assert seen == table, f"{package}: {stub.name} differs from _EXPORTS"
+
+
+def test_no_private_module_of_a_third_party_package() -> None:
+    private = []
+    for name in modules():
+        for node in ast.walk(_tree(name)):
+            targets = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                       [node.module] if isinstance(node, ast.ImportFrom) and node.module
+                       and node.level == 0 else [])
+            for target in targets:
+                parts = target.split(".")
+                if parts[0] != "funcnet" and any(p.startswith("_") for p in parts[1:]):
+                    private.append(f"{name}: {target}")
+    assert not private, private

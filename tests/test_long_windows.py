@@ -1,9 +1,9 @@
-"""Long windows (issue 9 item 4): the blocked triangle kernel, heavy ties, the cost forecast.
+"""Long windows: the blocked triangle kernel, heavy ties, the cost forecast.
 
 The blocked kernel must count exactly what the row-wise kernel counts (integers, any order);
 a signal that rests for a third of the window (tens of millions of pairs at distance 0 in a
 real trace) must get its exact threshold without collecting the tied band; the forecast of
-:func:`funcnet.recurrence.estimate_cost` is checked for its closed form, its monotonicity and,
+:func:`funcnet.core.recurrence.estimate_cost` is checked for its closed form, its monotonicity and,
 in a fresh interpreter, against the memory one network really takes. No timing here: speed
 belongs in ``benchmarks/bench_long.py``.
 """
@@ -20,27 +20,26 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
-import funcnet._order_statistic as order_statistic
-import funcnet.measures as measures
-from funcnet._isrn_kernels import (
+import funcnet.core.measures as measures
+import funcnet.core.thresholds as order_statistic
+from funcnet.core._isrn_kernels import (
     _cross_triangles,
     _cross_triangles_both,
     _pack_rows,
     _transpose_packed,
 )
-from funcnet.errors import ParameterError
-from funcnet.measures import cross_measures, isrn_measures
-from funcnet.parameters import NetworkParameters
-from funcnet.recurrence import (
+from funcnet.core.measures import cross_measures, isrn_measures
+from funcnet.core.recurrence import (
     CostEstimate,
     PackedRecurrence,
     auto_recurrence,
     cross_recurrence,
     estimate_cost,
 )
+from funcnet.errors import ParameterError
+from funcnet.parameters import NetworkParameters
 from test_recurrence import make_signal, reference_auto, reference_cross, reference_embed
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -286,8 +285,8 @@ CHILD = textwrap.dedent(
     """
     import json, warnings
     import numpy as np
-    from funcnet.measures import pairwise_cross_measures
-    from funcnet.recurrence import estimate_cost
+    from funcnet.core.measures import pairwise_cross_measures
+    from funcnet.core.recurrence import estimate_cost
 
     def status(key):
         with open("/proc/self/status") as f:

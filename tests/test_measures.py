@@ -11,12 +11,10 @@ import warnings
 import numpy as np
 import pandas as pd
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
-from funcnet.embedding import signal_states
-from funcnet.errors import DegenerateWarning, ParameterError, SignalError, ThresholdWarning
-from funcnet.measures import (
+from funcnet.core.embedding import signal_states
+from funcnet.core.measures import (
     CrossMeasures,
     cross_degree,
     cross_measures,
@@ -24,7 +22,8 @@ from funcnet.measures import (
     local_cross_clustering,
     pairwise_cross_measures,
 )
-from funcnet.recurrence import auto_recurrence, cross_recurrence
+from funcnet.core.recurrence import auto_recurrence, cross_recurrence
+from funcnet.errors import DegenerateWarning, ParameterError, SignalError, ThresholdWarning
 from test_recurrence import (
     KINDS,
     METRICS,
@@ -175,7 +174,7 @@ def test_hand_built_network():
     # v0 links to p, q, r -> 2 of its 3 neighbour pairs closed: C(v0) = 4 / 6;
     # v1 links to p only -> C(v1) = 0 (k < 2). T = 4 / 6 as v1 has no triple.
     # Y w.r.t. X: A_X is empty, so C^YX = T^YX = 0.
-    from funcnet.recurrence import PackedRecurrence
+    from funcnet.core.recurrence import PackedRecurrence
 
     def packed(dense):
         dense = np.asarray(dense, dtype=bool)

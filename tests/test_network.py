@@ -13,15 +13,15 @@ import pandas as pd
 import pytest
 
 import funcnet.network.functional as network_module
+from funcnet.core.measures import CrossMeasures, cross_measures
+from funcnet.core.normalization import normalize
 from funcnet.errors import ParameterError, SignalError, ThresholdWarning
-from funcnet.measures import CrossMeasures, cross_measures
 from funcnet.network import (
     FunctionalNetwork,
     combine_kinds,
     edge_kind,
     functional_network,
 )
-from funcnet.normalization import normalize
 from funcnet.parameters import NetworkParameters
 
 MEASURE_COLUMNS = [

@@ -9,10 +9,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from funcnet import systems
 from funcnet.errors import ParameterError
 from funcnet.network import FunctionalNetwork, add_evidence, functional_network
 from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS, check_pairs
+from funcnet.validation import systems
 
 
 @pytest.fixture(scope="module")

@@ -11,10 +11,10 @@ import pandas as pd
 import pytest
 
 import funcnet.network.functional as functional
+from funcnet.core.measures import cross_measures
+from funcnet.core.normalization import normalize
 from funcnet.errors import ParameterError, SignalError, ThresholdWarning
-from funcnet.measures import cross_measures
 from funcnet.network import functional_network
-from funcnet.normalization import normalize
 from funcnet.parameters import NetworkParameters
 
 

@@ -1,16 +1,15 @@
-"""Tests of funcnet.normalization.normalize (section 3.3 min-max, z-score, validation)."""
+"""Tests of funcnet.core.normalization.normalize (section 3.3 min-max, z-score, validation)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pandas as pd
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 from hypothesis.extra.numpy import arrays
 
+from funcnet.core.normalization import normalize
 from funcnet.errors import ParameterError, SignalError
-from funcnet.normalization import normalize
 
 
 def test_minmax_per_column_against_closed_form():

@@ -224,7 +224,8 @@ def test_collect_leaves_out_a_window_without_network_and_says_why(synthetic):
 def test_collect_leaves_out_the_intervals_of_a_window_too_short_for_them(synthetic):
     windows = [MOVING[0], SHORT]
     plain = window_networks(synthetic, windows, dim=3, delay=1)
-    settings = {"surrogates": 19, "resamples": 20, "seed": 3}
+    # every pair's intervals (an untestable pair's are drawn only when asked for)
+    settings = {"surrogates": 19, "resamples": 20, "seed": 3, "intervals": "all"}
     # the network works, its evidence does not: the intervals' subsamples are too short
     with pytest.raises(SignalError, match=r"M >= 7 states.*got shape \(5, 3\)"):
         window_evidence(synthetic, plain, windows, **settings)
@@ -513,3 +514,13 @@ def test_per_signal_rates_follow_the_signals_a_window_keeps(synthetic):
     assert [(type(w), w.problem, w.pairs, w.signals) for w in mine] == [
         (type(w), w.problem, w.pairs, w.signals) for w in theirs
     ]
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_a_window_with_a_constant_signal_leaves_the_others_in_the_batch(synthetic):
+    windows = [STILL, *MOVING]  # AC constant in STILL: dropped there, per window
+    found = window_networks(synthetic, windows, constant="drop", dim=3, delay=1)
+    assert found["still"].window["dropped"] == ("AC",)
+    for window in windows:  # each as computed alone (the moving ones through the batch)
+        alone = window_networks(synthetic, [window], constant="drop", dim=3, delay=1)
+        assert found[window.label] == alone[window.label]

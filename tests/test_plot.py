@@ -15,10 +15,10 @@ from matplotlib.text import Text
 
 import funcnet
 from funcnet import plot
+from funcnet.core.recurrence import isrn_adjacency, recurrence_matrix
 from funcnet.network import FunctionalNetwork
 from funcnet.network.schema import PAIR_KINDS
 from funcnet.paper import figures
-from funcnet.recurrence import isrn_adjacency, recurrence_matrix
 
 NODES = ("RP", "AP", "MP", "V", "RC", "AC")
 
@@ -437,7 +437,7 @@ def test_edge_timeline_marks_degenerate_pairs():
 
 
 def test_recurrence_plots_figure_computes_as_the_network_does():
-    from funcnet.normalization import normalize
+    from funcnet.core.normalization import normalize
     from funcnet.parameters import NetworkParameters
 
     data = trial_frame(300)
@@ -515,7 +515,7 @@ def test_without_evidence_columns_the_drawing_is_unchanged():
 
 
 def test_a_network_with_evidence_draws_its_readings():
-    from funcnet.systems import henon_pair
+    from funcnet.validation.systems import henon_pair
 
     x = henon_pair(600, 0.6, seed=1)
     noise = np.random.default_rng(3).normal(size=len(x))

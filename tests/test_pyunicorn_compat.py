@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 from pyunicorn import timeseries as pyunicorn_timeseries  # a test dependency: never skipped
 
-from funcnet.embedding import embed
+from funcnet.core.embedding import embed
+from funcnet.core.measures import cross_degree, cross_measures, local_cross_clustering
 from funcnet.errors import ThresholdWarning
-from funcnet.measures import cross_degree, cross_measures, local_cross_clustering
 
 
 def fig2_pair():

@@ -1,4 +1,4 @@
-"""Every block of the README fenced exactly ```python runs as written, on its own (issue 12).
+"""Every block of the README fenced exactly ```python runs as written, on its own.
 
 Each block runs in a fresh interpreter with the repository root as working directory: no
 variables from an earlier block, no output of ``make demo``. The shell blocks are checked for

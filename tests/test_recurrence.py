@@ -14,19 +14,18 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
-import funcnet._order_statistic as order_statistic
-from funcnet.embedding import embed, estimate_delay, estimate_dimension, signal_states
-from funcnet.errors import ParameterError, SignalError
-from funcnet.recurrence import (
+import funcnet.core.thresholds as order_statistic
+from funcnet.core.embedding import embed, estimate_delay, estimate_dimension, signal_states
+from funcnet.core.recurrence import (
     auto_recurrence,
     cross_recurrence,
     cross_recurrence_matrix,
     isrn_adjacency,
     recurrence_matrix,
 )
+from funcnet.errors import ParameterError, SignalError
 
 METRICS = ("euclidean", "supremum", "manhattan")
 

@@ -1,4 +1,4 @@
-"""funcnet.robot.complete_span: the span where every signal has a recorded value (issue 12)."""
+"""funcnet.robot.complete_span: the span where every signal has a recorded value."""
 
 from __future__ import annotations
 

@@ -289,7 +289,7 @@ def test_a_study_skips_and_lists_windows_where_the_arm_stands_still(tmp_path):
     rest, _ = _resting(tmp_path)
     study = tmp_path / "study.toml"
     study.write_text(
-        'signals = ["RP", "AP", "AC"]\nconstant = "drop"\n[recordings]\n'
+        'signals = ["RP", "AP", "AC"]\n[recordings]\n'
         f'paths = ["{run.name}", "{rest.name}"]\n'
         f'channels = "{UR5_MAP}"\naxis = 1\n'
         '[[windows]]\nkind = "range"\nstart = 0.0\nstop = 0.79\n'
@@ -302,3 +302,47 @@ def test_a_study_skips_and_lists_windows_where_the_arm_stands_still(tmp_path):
     skipped, = run_record["skipped"]
     assert skipped["recording"].startswith("rest") and "stands still" in skipped["message"]
     assert "skipped: 1 window(s) where the axis stands still" in result.stderr
+
+
+def test_repetitions_say_why_a_move_was_not_taken():
+    import pandas as pd
+
+    from funcnet.robot import Recording, SignalInfo, find_repetitions
+
+    t = np.arange(0, 12, 0.01)
+
+    def ramp(t0, length):  # a move up of ``length`` seconds at constant speed, then a rest
+        return np.clip(t - t0, 0, length)
+
+    rp = ramp(0.5, 1.5) + ramp(3.0, 1.5) + ramp(6.0, 3.0)  # two alike, one twice as long
+    data = pd.DataFrame({"RP": rp, "AC": np.gradient(rp)}, index=pd.Index(t.round(9), name="time"))
+    rec = Recording(data, {}, {c: SignalInfo(c, None, None, 0.01) for c in data},
+                    sample_period=0.01)
+    found = find_repetitions(rec)
+    assert len(found) == 2 and found.others == 1
+    why, = found.left_out
+    import re
+
+    assert why.startswith("recording 1 move 3: ") and "more than 2%" in why
+    theirs, first = map(int, re.findall(r"(\d+) samples long against (\d+)", why)[0])
+    # the moves as written, 3.0 s and 1.5 s at 10 ms, give or take their edge samples
+    assert abs(theirs - 300) <= 4 and abs(first - 150) <= 4
+
+
+def test_files_that_start_late_are_read_from_the_first_stamp_all_share(tmp_path):
+    from funcnet.robot.channels import ChannelMap
+    from funcnet.robot.files import read_signal_files
+    from funcnet.robot.layout import signal_files
+
+    (tmp_path / "q.csv").write_text("".join(f"{k * 0.008:.3f}, {k}\n" for k in range(6)))
+    (tmp_path / "i.csv").write_text("".join(f"{k * 0.008:.3f}, {10 * k}\n" for k in range(2, 8)))
+    files = signal_files({"q": "q.csv", "i": "i.csv"}, {"columns": [1]}, "m.toml")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        grid = read_signal_files(tmp_path, ChannelMap({"q": "RP"}, files=files), None)
+    said, = [str(w.message) for w in caught]
+    assert "files start and end at different times" in said
+    assert "q.csv (first at 0 s)" in said and "i.csv (last at 0.056 s)" in said
+    # ticks 2-5 are the ones both files hold: a plain loop over them
+    assert grid.t0 == pytest.approx(0.016)
+    assert grid.values.tolist() == [[float(k), 10.0 * k] for k in range(2, 6)]

@@ -1,4 +1,4 @@
-"""The robot package sits below the numerical core; robot/sim has no import cycle.
+"""The robot package sits below the numerical core; it and the simulator have no import cycle.
 
 The import graph of the whole package is tested in test_layout.py; this pins the robot part.
 """
@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 
 ROBOT = Path(__file__).resolve().parents[1] / "src" / "funcnet" / "robot"
-SIM = ROBOT / "sim"
-# What robot (robot/sim aside) may import from funcnet: the bottom layer and itself.
+SIM = ROBOT.parent / "sim"
+# What robot may import from funcnet: the bottom layer and itself.
 BOTTOM = ("funcnet.errors", "funcnet._io", "funcnet.parameters", "funcnet._lazy")
 
 
@@ -35,7 +35,7 @@ def _imports(path: Path) -> set[str]:
                 parent = package.rsplit(".", node.level - 1)[0] if node.level > 1 else package
                 base = f"{parent}.{base}" if base else parent
             found.add(base)
-            # ``from funcnet.robot.sim import axis`` imports the module funcnet.robot.sim.axis
+            # ``from funcnet.sim import axis`` imports the module funcnet.sim.axis
             found |= {f"{base}.{alias.name}" for alias in node.names}
     return {name for name in found if name == "funcnet" or name.startswith("funcnet.")}
 
@@ -65,7 +65,7 @@ def test_robot_imports_nothing_numerical(path):
     allowed |= {
         name
         for name in imported
-        if name.startswith("funcnet.robot.") and not name.startswith("funcnet.robot.sim")
+        if name.startswith("funcnet.robot.")
     }
     assert imported <= allowed, f"{path.name} imports {sorted(imported - allowed)}"
 
@@ -84,7 +84,8 @@ def test_sim_imports_only_robot_and_the_bottom_layer(path):
     bad = {
         name
         for name in imported
-        if name not in BOTTOM and name != "funcnet" and not name.startswith("funcnet.robot")
+        if name not in BOTTOM and name != "funcnet"
+        and not name.startswith(("funcnet.robot", "funcnet.sim"))
     }
     assert not bad, f"sim/{path.name} imports {sorted(bad)}"
 
@@ -95,7 +96,7 @@ def test_no_import_cycle_in_robot():
         _module(path): {
             name
             for name in _real_modules(_imports(path))
-            if name.startswith("funcnet.robot") and name != _module(path)
+            if name.startswith(("funcnet.robot", "funcnet.sim")) and name != _module(path)
         }
         for path in files
         if path.name != "__init__.py"  # lazy tables: strings, not imports
@@ -113,8 +114,8 @@ def test_no_import_cycle_in_robot():
 
     for module in sorted(graph):
         visit(module, [])
-    assert "funcnet.robot.sim.trial" in graph["funcnet.robot.sim.axis"]
-    assert "funcnet.robot.sim.axis" not in graph["funcnet.robot.sim.trial"]
+    assert "funcnet.sim.trial" in graph["funcnet.sim.axis"]
+    assert "funcnet.sim.axis" not in graph["funcnet.sim.trial"]
 
 
 @pytest.mark.parametrize("path", _robot_files() + _sim_files(), ids=lambda p: p.name)
@@ -126,8 +127,8 @@ def test_module_length(path):
         assert "600 lines" in docstring, f"{path.name}: {lines} lines without a reason"
 
 
-def test_the_simulator_is_exported_as_itself():
+def test_the_robot_package_exports_no_simulator():
     import funcnet.robot
 
-    assert funcnet.robot.Trial is importlib.import_module("funcnet.robot.sim").Trial
+    assert not hasattr(funcnet.robot, "Trial") and "simulate_trial" not in funcnet.robot.__all__
     assert funcnet.robot.read_recording.__module__ == "funcnet.robot.load"

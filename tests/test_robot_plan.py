@@ -10,13 +10,13 @@ import pandas as pd
 import pytest
 from lxml import etree
 
-import funcnet.robot.sim.plan as plan_module
+import funcnet.sim.plan as plan_module
 from funcnet.errors import ParameterError, SignalError, StudyError
 from funcnet.robot.recording import read_trace
-from funcnet.robot.sim.axis import AxisParameters, simulate_trial
-from funcnet.robot.sim.plan import MANIFEST_COLUMNS, paper_plan, read_plan, write_plan
-from funcnet.robot.sim.trial import Trial
-from funcnet.robot.sim.writer import role_names, write_trace
+from funcnet.sim.axis import AxisParameters, simulate_trial
+from funcnet.sim.plan import MANIFEST_COLUMNS, paper_plan, read_plan, write_plan
+from funcnet.sim.trial import Trial
+from funcnet.sim.writer import role_names, write_trace
 
 
 def documented_plan() -> str:

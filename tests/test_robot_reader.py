@@ -12,8 +12,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
 from funcnet.errors import ChannelError, ParameterError, RecordingWarning, TraceFormatError
 from funcnet.robot.channels import (
@@ -433,7 +432,7 @@ def test_reading_compiles_nothing(real_trace):
     code = (
         "import sys; from funcnet.robot import read_trace; "
         f"read_trace({str(real_trace)!r}); "
-        "print(sorted(m for m in ('numba', 'funcnet.recurrence') if m in sys.modules))"
+        "print(sorted(m for m in ('numba', 'funcnet.core.recurrence') if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"

@@ -13,7 +13,7 @@ from funcnet import repetition_evidence
 from funcnet.errors import ParameterError, SignalError
 from funcnet.robot import find_repetitions, read_recording
 from funcnet.robot.recording import Recording, SignalInfo
-from funcnet.robot.sim import Trial, simulate_trial
+from funcnet.sim import Trial, simulate_trial
 
 TRACE = Path(__file__).resolve().parents[1] / ".." / "shared" / "data" / "sinumerik" / \
     "axis7-braking-trace.xml"

@@ -8,16 +8,16 @@ import numpy as np
 import pytest
 
 from funcnet.errors import ParameterError
-from funcnet.robot.sim.axis import (
+from funcnet.sim.axis import (
     MAX_TRIAL_DURATION,
     AxisParameters,
     setpoint_profile,
     simulate_trial,
     trial_duration,
 )
-from funcnet.robot.sim.plan import paper_plan
-from funcnet.robot.sim.trial import Trial
-from funcnet.robot.sim.writer import write_trace
+from funcnet.sim.plan import paper_plan
+from funcnet.sim.trial import Trial
+from funcnet.sim.writer import write_trace
 
 P = AxisParameters()
 RAD = math.pi / 180.0

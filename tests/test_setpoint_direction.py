@@ -19,7 +19,8 @@ from funcnet.network.setpoint import node_role, setpoint_check
 def simulated_networks(tmp_path_factory: pytest.TempPathFactory) -> list[FunctionalNetwork]:
     """Every moving phase of two simulated trials of the paper's plan (fixed seeds)."""
     from funcnet.pipeline import window_networks
-    from funcnet.robot import Trial, detect_phases, phase_windows, read_recording, write_plan
+    from funcnet.robot import detect_phases, phase_windows, read_recording
+    from funcnet.sim import Trial, write_plan
 
     folder = tmp_path_factory.mktemp("setpoint")
     trials = [Trial("a", "main", speed=175, tcp=1.6, step=3),

@@ -11,15 +11,15 @@ import numpy as np
 import pytest
 from pyunicorn import timeseries as pyunicorn_timeseries  # a test dependency: never skipped
 
-import funcnet._batch_kernels
-from funcnet.embedding import MIN_STATES, embed
+import funcnet.core._batch_kernels
+from funcnet.core.embedding import MIN_STATES, embed
+from funcnet.core.measures import cross_measures, pairwise_cross_measures
 from funcnet.errors import DegenerateWarning, ParameterError, SignalError, ThresholdWarning
-from funcnet.measures import cross_measures, pairwise_cross_measures
 from funcnet.parameters import NetworkParameters
 
 DIM, DELAY = 3, 10
 SPAN = (DIM - 1) * DELAY
-LIMIT = funcnet._batch_kernels.DIRECT_MAX_STATES
+LIMIT = funcnet.core._batch_kernels.DIRECT_MAX_STATES
 # Samples on both sides of each switch: the fewest states, the kernel's direct selection of the
 # cross threshold (m * m < DIRECT_PAIRS) and of the auto thresholds (m (m - 1) / 2 <
 # DIRECT_PAIRS), and the largest pair the kernel takes.
@@ -39,7 +39,7 @@ def _pair(n: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
 def kernel_calls(monkeypatch: pytest.MonkeyPatch) -> list[int]:
     """Counts the pairs that took the kernel (so that a test knows which path it compared)."""
     calls: list[int] = []
-    original = funcnet._batch_kernels.pair_kernel
+    original = funcnet.core._batch_kernels.pair_kernel
 
     def counted(x: np.ndarray, *args: Any) -> Any:
         result = original(x, *args)
@@ -47,7 +47,7 @@ def kernel_calls(monkeypatch: pytest.MonkeyPatch) -> list[int]:
             calls.append(x.size)
         return result
 
-    monkeypatch.setattr(funcnet._batch_kernels, "pair_kernel", counted)
+    monkeypatch.setattr(funcnet.core._batch_kernels, "pair_kernel", counted)
     return calls
 
 

@@ -9,10 +9,10 @@ import pytest
 
 from funcnet.diagnosis import find_direction_changes
 from funcnet.diagnosis.reversals import motor_side_recording
-from funcnet.diagnosis.sweep import simulated_recording, trial_indicators
 from funcnet.errors import ParameterError
-from funcnet.robot.sim import Trial, continuous_sweep_plan, simulate_trial
-from funcnet.robot.sim.axis import AxisParameters, setpoint_profile
+from funcnet.sim import Trial, continuous_sweep_plan, simulate_trial
+from funcnet.sim.axis import AxisParameters, setpoint_profile
+from funcnet.validation.sweep import simulated_recording, trial_indicators
 
 
 def _smooth(backlash_arcmin: float, load: float | None, speed: float = 175) -> Trial:
@@ -80,9 +80,9 @@ def test_the_continuous_sweep_plan_and_its_rows():
 def test_the_truth_is_what_the_encoders_show_with_the_gear_torque_known_and_not_with_the_current(
     backlash_arcmin, load
 ):
-    # docs/backlash.md 5.1: the step of logged MP - AP less the true gear torque's wind-up, at
-    # the diagnosis's own turns and windows, is the truth to two arm-encoder steps; the motor
-    # current in the gear torque's place (the simulator's exact constants) misses it by the
+    # docs/validation/backlash.md 5.1: the step of logged MP - AP less the true gear torque's
+    # wind-up, at the diagnosis's own turns and windows, is the truth to two arm-encoder steps; the
+    # motor current in the gear torque's place (the simulator's exact constants) misses it by the
     # motor's own inertia and friction, which flip with the turn too
     sim = simulate_trial(_smooth(backlash_arcmin, load))
     p = sim.params

@@ -1,4 +1,4 @@
-"""Stability of an edge over a grid of settings (issue 10 item 6): API, figure, command line."""
+"""Stability of an edge over a grid of settings: API, figure, command line."""
 
 from __future__ import annotations
 

@@ -52,7 +52,7 @@ delay = [5, 10]
 
 @pytest.fixture(scope="module")
 def plan_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    from funcnet.robot import Trial, write_plan
+    from funcnet.sim import Trial, write_plan
 
     folder = tmp_path_factory.mktemp("study") / "plan"
     trials = [Trial(name, "main", speed=350, tcp=tcp, step=1) for name, tcp in TRIALS]
@@ -676,7 +676,7 @@ def test_row_columns_are_identity_parameters_then_the_pairs_schema(baseline) -> 
 
 
 # --------------------------------------------------------------------------------------------
-# issue 12: studies checked before they start; one reversal width
+# studies checked before they start; one reversal width
 
 
 def test_a_signal_the_simulated_plan_cannot_have_stops_the_study_before_simulating(
@@ -726,7 +726,7 @@ def test_fixed_windows_mostly_outside_their_phase_are_flagged(plan_dir: Path,
 
 
 # --------------------------------------------------------------------------------------------
-# evidence and stability in a study (issue 10)
+# evidence and stability in a study
 
 EVIDENCE_STUDY = """
 [recordings]

@@ -1,11 +1,12 @@
-"""The generators of funcnet.systems: shapes, determinism per seed, zero coupling, known values."""
+"""The generators of funcnet.validation.systems: shapes, determinism per seed, zero coupling, known
+values."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from funcnet import systems
+from funcnet.validation import systems
 
 GENERATORS = [
     lambda n, s: systems.henon_pair(n, 0.4, seed=s),

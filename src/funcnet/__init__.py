@@ -12,17 +12,17 @@ __version__ = "0.1.0"
 
 # Public names, resolved lazily so that `import funcnet` stays cheap (no Numba compilation, no
 # matplotlib) for the trace reader and the command line. What the README and the docs teach;
-# everything else is imported from its module (funcnet.recurrence.isrn_adjacency, ...).
+# everything else is imported from its module (funcnet.core.recurrence.isrn_adjacency, ...).
 _EXPORTS = {
     "NetworkParameters": "funcnet.parameters",
-    "normalize": "funcnet.normalization",
-    "embed": "funcnet.embedding",
-    "estimate_delay": "funcnet.embedding",
-    "estimate_dimension": "funcnet.embedding",
-    "auto_recurrence": "funcnet.recurrence",
-    "cross_recurrence": "funcnet.recurrence",
-    "isrn_measures": "funcnet.measures",
-    "cross_measures": "funcnet.measures",
+    "normalize": "funcnet.core.normalization",
+    "embed": "funcnet.core.embedding",
+    "estimate_delay": "funcnet.core.embedding",
+    "estimate_dimension": "funcnet.core.embedding",
+    "auto_recurrence": "funcnet.core.recurrence",
+    "cross_recurrence": "funcnet.core.recurrence",
+    "isrn_measures": "funcnet.core.measures",
+    "cross_measures": "funcnet.core.measures",
     "FunctionalNetwork": "funcnet.network.functional",
     "functional_network": "funcnet.network.functional",
     "add_evidence": "funcnet.network.edge_evidence",

@@ -19,12 +19,15 @@ import math
 import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypedDict, Unpack
 
 from funcnet.errors import ParameterError
 
 __all__ = [
     "NetworkParameters",
+    "ParameterOverrides",
+    "BlockOverrides",
+    "EvidenceSettings",
     "METRICS",
     "METRIC_ALIASES",
     "RULES",
@@ -309,7 +312,7 @@ class NetworkParameters:
         """
         return dict(_DESCRIPTIONS)
 
-    def replace(self, **changes: Any) -> NetworkParameters:
+    def replace(self, **changes: Unpack[ParameterOverrides]) -> NetworkParameters:
         """A copy with ``changes`` (validated); unknown names raise :class:`ParameterError`."""
         _check_names(changes)
         return dataclasses.replace(self, **changes)
@@ -395,6 +398,60 @@ def _check_names(mapping: Mapping[str, Any]) -> None:
             )
 
 
+class BlockOverrides(TypedDict, total=False):
+    """The :class:`NetworkParameters` keywords of one recurrence block: every field but the
+    block's rates and thresholds (``rr``, ``cr``, ``eps``), which such a function names itself."""
+
+    dim: int
+    delay: int
+    metric: str
+    rule: str
+    theiler: int
+    mu: float
+    mu_c: float | None
+    mu_t: float | None
+    normalize: str | None
+    measure: str
+    degenerate: str
+
+
+class ParameterOverrides(BlockOverrides, total=False):
+    """The keywords that override a :class:`NetworkParameters` field: one per field, by name.
+
+    Functions that take network parameters as keywords (``functional_network(df, rr=0.1)``)
+    type them with ``**overrides: Unpack[ParameterOverrides]`` (PEP 692), so that an editor and
+    mypy see every keyword; each is checked when :class:`NetworkParameters` is made.
+
+    Examples
+    --------
+    >>> sorted(ParameterOverrides.__annotations__) == sorted(NetworkParameters.names())
+    True
+    """
+
+    rr: float | tuple[float, ...]
+    cr: float
+    eps: tuple[Any, Any] | None
+
+
+class EvidenceSettings(TypedDict, total=False):
+    """The evidence keywords of :func:`funcnet.network.add_evidence`, for functions that pass
+    them on (``**settings: Unpack[EvidenceSettings]``); those not given take its defaults.
+
+    Examples
+    --------
+    >>> sorted(EvidenceSettings.__annotations__)
+    ['alpha', 'edge_rule', 'intervals', 'resamples', 'seed', 'surrogate_method', 'surrogates']
+    """
+
+    surrogates: int | None
+    alpha: float
+    seed: int
+    resamples: int
+    surrogate_method: str
+    edge_rule: str
+    intervals: str
+
+
 def resolve(parameters: NetworkParameters | None, overrides: Mapping[str, Any], *,
             allowed: tuple[str, ...] | None = None) -> NetworkParameters:
     """``parameters`` (default: the defaults) with keyword ``overrides`` applied and validated.
@@ -447,7 +504,7 @@ def _resolved(parameters: NetworkParameters | None,
     base = parameters if parameters is not None else NetworkParameters()
     if not spelled:
         return base
-    return base.replace(
-        **{name: float.fromhex(value) if kind is float else value
-           for name, kind, value in spelled}
-    )
+    changes: dict[str, Any] = {name: float.fromhex(value) if kind is float else value
+                               for name, kind, value in spelled}
+    _check_names(changes)
+    return dataclasses.replace(base, **changes)

@@ -23,12 +23,14 @@ import warnings
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
 
-from funcnet import batch
+from funcnet.core import batch
+from funcnet.core.measures import CrossMeasures, threshold_warnings
+from funcnet.core.normalization import normalize as normalize_signals
 from funcnet.errors import (
     ChannelError,
     FuncnetError,
@@ -37,7 +39,6 @@ from funcnet.errors import (
     WindowError,
     caller_stacklevel,
 )
-from funcnet.measures import CrossMeasures, threshold_warnings
 from funcnet.network import (
     FunctionalNetwork,
     add_evidence,
@@ -48,8 +49,7 @@ from funcnet.network import (
 from funcnet.network.direction import direction_columns
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.schema import DIRECTION_COLUMNS, RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
-from funcnet.normalization import normalize as normalize_signals
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.preprocess import staircase_warning
 from funcnet.robot.recording import Recording
 from funcnet.robot.windows import Window, paper_nodes, phase_windows
@@ -140,7 +140,7 @@ def _collects(errors: str) -> bool:
 def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwork],
                     windows: Sequence[Window], *, errors: str = "raise",
                     progress: Callable[[int, int, str], None] | None = None,
-                    **settings: Any) -> WindowNetworks:
+                    **settings: Unpack[EvidenceSettings]) -> WindowNetworks:
     """Each window's network with the evidence columns (:func:`funcnet.network.add_evidence`:
     the measures are not computed again).
 
@@ -230,7 +230,7 @@ def window_networks(
     constant: str = "error",
     errors: str = "raise",
     progress: Callable[[int, int, str], None] | None = None,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> WindowNetworks:
     """One functional network per window of a recording.
 
@@ -369,10 +369,10 @@ def window_networks(
     drop = constant == "drop" and p.normalize is not None
     networks = WindowNetworks()
     failures = []
-    batched = _batched_networks(recording, windows, signals, p)
+    batched, found = _batched_networks(recording, windows, signals, p)
     for done, window in enumerate(windows, start=1):
-        if batched is not None:
-            networks[window.label] = batched[0][done - 1]
+        if window.label in batched:
+            networks[window.label] = batched[window.label]
         else:
             try:
                 networks[window.label] = _window_network(recording, window, signals, p, drop,
@@ -383,7 +383,11 @@ def window_networks(
                 failures.append(WindowFailure(window.label, "network", str(error)))
         if progress is not None:
             progress(done, len(windows), window.label)
-    found = batched[1] if batched is not None else window_warnings(networks)
+    # the per-window networks' warnings beside the batch's, in window order
+    order = {w.label: k for k, w in enumerate(windows)}
+    found += window_warnings({label: net for label, net in networks.items()
+                              if label not in batched})
+    found.sort(key=lambda warning: order.get(str(warning.window), -1))
     for warning in _summarized(found, where, len(windows)):
         warnings.warn(warning, stacklevel=caller_stacklevel())
     networks.failures = tuple(failures)
@@ -434,30 +438,33 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
 
 def _batched_networks(
     recording: Recording, windows: Sequence[Window], signals: Sequence[str], p: NetworkParameters
-) -> tuple[list[FunctionalNetwork], list[FuncnetWarning]] | None:
-    """The windows' networks through the batched engine (:func:`funcnet.batch.batch_pairs`),
-    equal (``==``) to :func:`_window_network`'s, and their :func:`window_warnings`; None where
-    it does not apply (no short window, explicit ``eps``, NaN or a constant signal in a window,
-    any error): the per-window path then computes them, and raises its located errors."""
+) -> tuple[dict[str, FunctionalNetwork], list[FuncnetWarning]]:
+    """The windows' networks through the batched engine (:func:`funcnet.core.batch.batch_pairs`),
+    equal (``==``) to :func:`_window_network`'s, by label, and their :func:`window_warnings`.
+
+    Windows with NaN or a constant signal are left out (the per-window path computes them and
+    raises or drops what it does); nothing where the batch does not apply (no short window,
+    explicit ``eps``, any error), and the per-window path computes every window."""
     values = recording.data[list(signals)].to_numpy(np.float64)
     times = recording.data.index.to_numpy()
     try:  # the rows Recording.window selects (and its errors: then the per-window path's)
         spans = [recording.window(w.start, w.stop).data.index[[0, -1]] for w in windows]
     except FuncnetError:
-        return None
+        return {}, []
     firsts = np.searchsorted(times, [span[0] for span in spans])
     parts = [values[first : int(np.searchsorted(times, span[1])) + 1]
              for first, span in zip(firsts.tolist(), spans, strict=True)]
+    kept = [k for k, part in enumerate(parts) if np.isfinite(part).all()
+            and not (p.normalize and (np.ptp(part, axis=0) == 0).any())]
+    windows = [windows[k] for k in kept]
+    parts = [parts[k] for k in kept]
     # Long windows inside the batch go through the per-window path; none short: no batch.
-    if not any(batch.applies(part.shape[0], p) for part in parts) or any(
-        not np.isfinite(part).all() or (p.normalize and (np.ptp(part, axis=0) == 0).any())
-        for part in parts
-    ):
-        return None
+    if not any(batch.applies(part.shape[0], p) for part in parts):
+        return {}, []
     try:
         result = batch.batch_pairs(parts, names=[str(s) for s in signals], parameters=p)
     except FuncnetError:
-        return None
+        return {}, []
     n_pairs, n_rows = len(result.pairs), len(windows) * len(result.pairs)
     columns: dict[str, list[Any]] = {"x": [x for x, _ in result.pairs] * len(windows),
                                      "y": [y for _, y in result.pairs] * len(windows)}
@@ -501,7 +508,7 @@ def _batched_networks(
                     "phase": window.phase, "offset": window.offset,
                     "source": recording.source, "dropped": ()},
         ))
-    return networks, found
+    return {str(w.label): net for w, net in zip(windows, networks, strict=True)}, found
 
 
 def _without(p: NetworkParameters, kept: Sequence[bool]) -> NetworkParameters:
@@ -546,7 +553,7 @@ def window_warnings(networks: Mapping[str, FunctionalNetwork]) -> list[FuncnetWa
     Returns
     -------
     list of FuncnetWarning
-        In window order, then as :func:`funcnet.measures.threshold_warnings` orders them: a
+        In window order, then as :func:`funcnet.core.measures.threshold_warnings` orders them: a
         :class:`~funcnet.errors.ThresholdWarning` for pairs whose ``eps_ordered`` is False
         (``problem="eps_order"``) and for pairs whose ``rate_exceeded`` is True, degenerate
         pairs aside (``"rate_exceeded"``), a :class:`~funcnet.errors.DegenerateWarning` for the

@@ -2,7 +2,8 @@
 
 Commands: ``demo`` (simulate the paper's plan, analyse it, write the report), ``simulate``,
 ``network`` (the functional networks of one trace: one per phase, or of one window),
-``inspect`` (the engineer's HTML report of traces), ``backlash`` (diagnose backlash in traces),
+``inspect`` (the engineer's HTML report of traces), ``compare`` (a run against earlier
+runs of its program), ``backlash`` (diagnose backlash in traces),
 ``study`` (a batch from a TOML file) and ``report`` (HTML report of a study's results).
 ``funcnet COMMAND --help`` is each command's reference.
 
@@ -35,13 +36,11 @@ from collections.abc import Callable, Sequence
 from typing import Annotated, Any
 
 import typer
-
-# typer vendors click: these are the classes it raises (not the separate ``click`` package's).
-from typer._click.exceptions import ClickException, NoArgsIsHelpError
 from typer.core import TyperCommand, TyperGroup
 
 from funcnet import __version__
 from funcnet.cli.backlash_commands import backlash, backlash_report
+from funcnet.cli.compare_command import compare
 from funcnet.cli.inspect_command import inspect
 from funcnet.cli.messages import one_line
 from funcnet.cli.network_commands import network, stability
@@ -64,24 +63,28 @@ class _PlainErrorsGroup(TyperGroup):
         complete_var: str | None = None,
         standalone_mode: bool = True,
         windows_expand_args: bool = True,
-        **extra: Any,
+        **extra: object,
     ) -> Any:
-        forwarded = dict(extra, windows_expand_args=windows_expand_args)
+        forwarded: dict[str, Any] = dict(extra, windows_expand_args=windows_expand_args)
         if not standalone_mode:
             return super().main(args, prog_name, complete_var, standalone_mode, **forwarded)
         try:
             # Not standalone, click raises its errors here and returns typer.Exit's status, or
             # the command's value (None) when it ends normally.
             status = super().main(args, prog_name, complete_var, False, **forwarded)
-        except NoArgsIsHelpError as exc:
-            sys.stdout.write(exc.ctx.get_help() + "\n")  # bare `funcnet`: the help
-            sys.exit(exc.exit_code)
-        except ClickException as exc:
-            sys.stderr.write(f"funcnet: error: {one_line(exc.format_message())}\n")
-            sys.exit(exc.exit_code)
         except typer.Abort:
             sys.stderr.write("funcnet: error: aborted\n")
             sys.exit(1)
+        except typer.TyperException as exc:
+            # typer vendors click; its public base class is all we name. A usage error carries
+            # the context; bare `funcnet` raises one whose message is the help itself.
+            message = exc.format_message()  # type: ignore[attr-defined]
+            ctx = getattr(exc, "ctx", None)
+            if ctx is not None and message == ctx.get_help():
+                sys.stdout.write(message + "\n")
+            else:
+                sys.stderr.write(f"funcnet: error: {one_line(message)}\n")
+            sys.exit(exc.exit_code)  # type: ignore[attr-defined]
         sys.exit(status if isinstance(status, int) else 0)
 
 
@@ -136,7 +139,8 @@ def _main_options(
 #: Every command, in the order ``funcnet --help`` lists them (its name: the function's, with
 #: dashes).
 COMMANDS: tuple[Callable[..., None], ...] = (
-    demo, simulate, network, backlash, inspect, study, report, stability, backlash_report,
+    demo, simulate, network, backlash, inspect, compare, study, report, stability,
+    backlash_report,
 )
 for _command in COMMANDS:
     app.command(cls=_PlainUsageCommand)(_command)
@@ -147,5 +151,7 @@ def main() -> None:
     # An application's choice, not the library's: idle OpenMP threads that spin instead of
     # sleeping made the kernels ~3x slower on a loaded 2-core machine.
     os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+    # The one choice of matplotlib's backend: a command only writes files, never opens a window.
+    os.environ.setdefault("MPLBACKEND", "Agg")
     app(prog_name="funcnet")
 

@@ -4,7 +4,7 @@ simulated sweep that calibrates it scored against its truth.
 ``backlash-report`` reads a folder that ``funcnet simulate --plan backlash-sweep`` (or any
 reversal plan) wrote -- traces and ``manifest.csv`` with the truth -- or an indicator table
 (``.csv``) saved from a sweep, and writes
-:func:`funcnet.report.sweep_report.write_sweep_report`'s page.
+:func:`funcnet.validation.sweep_report.write_sweep_report`'s page.
 """
 
 from __future__ import annotations
@@ -62,7 +62,11 @@ def backlash(
 
         with progress_bar(quiet, "backlash"):
             results = diagnose_backlash(*traces, channels=channels, axis=axis)
-        if output is not None:
+        if output is not None and output.suffix.lower() == ".html":
+            from funcnet.report import write_backlash_page
+
+            write_backlash_page(results, output)
+        elif output is not None:
             write_results(results, output)
         cmap = channel_map(channels)
     for result in results:
@@ -86,10 +90,14 @@ def _backlash_numbers(result: Any) -> str:
         spread = "" if result.score_spread is None else f" ± {result.score_spread:.3g}"
         score = f"backlash_score {result.backlash_score:.4g}{spread} deg ({result.score_indicator})"
     if result.lost_motion is None:
-        return f"{score}; lost_motion none ({result.lost_motion_reason or 'no AP'})"
-    # Backlash is read in arcmin (1/60 deg); the JSON keeps degrees, as the manifest does.
-    spread = "" if result.lost_motion_spread is None else f" ± {60 * result.lost_motion_spread:.2f}"
-    line = f"{score}; lost_motion {60 * result.lost_motion:.2f}{spread} arcmin"
+        line = f"{score}; lost_motion none ({result.lost_motion_reason or 'no AP'})"
+        if result.lost_motion_high is None:  # nothing measured: no gear either
+            return line
+    else:
+        # Backlash is read in arcmin (1/60 deg); the JSON keeps degrees, as the manifest does.
+        spread = ("" if result.lost_motion_spread is None
+                  else f" ± {60 * result.lost_motion_spread:.2f}")
+        line = f"{score}; lost_motion {60 * result.lost_motion:.2f}{spread} arcmin"
     parts = result.gear_parts
     if parts is not None and parts.dead_zone is not None:
         line += (f" (over the run, where the torque changes sign: dead zone "
@@ -148,8 +156,8 @@ def backlash_report(
     with reported_errors(summarized=True):
         import pandas as pd
 
-        from funcnet.diagnosis.sweep import folder_indicators
-        from funcnet.report.sweep_report import write_sweep_report
+        from funcnet.validation.sweep import folder_indicators
+        from funcnet.validation.sweep_report import write_sweep_report
 
         if output.suffix.lower() not in (".html", ".htm"):
             raise ParameterError(f"-o {output}: the report is an .html page")

@@ -13,6 +13,7 @@ from funcnet.cli.options import (
     Axis,
     Channels,
     EvidenceSeed,
+    Intervals,
     NetworkOptions,
     Quiet,
     Resamples,
@@ -70,6 +71,7 @@ def inspect(
     seed: EvidenceSeed = 0,
     resamples: Resamples = 200,
     surrogate_method: SurrogateMethod = "shift",
+    intervals: Intervals = "testable",
     repeated: Annotated[
         bool,
         typer.Option(
@@ -106,7 +108,7 @@ def inspect(
             names = list(DETRENDED_NODES)
         # the same evidence options, checks and messages as funcnet network's
         options = evidence_settings(evidence, surrogates, alpha, seed, resamples, "paper",
-                                    surrogate_method)
+                                    surrogate_method, intervals)
         parameters = network.parameters()
 
         with progress_bar(quiet, "inspect") as progress:

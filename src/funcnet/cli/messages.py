@@ -66,7 +66,8 @@ def reported_errors(*, summarized: bool = False, verbose: bool = False) -> Itera
     messages: list[str] = []
     problems: dict[str, int] = {}
 
-    def collect(message: Any, *_: Any, **__: Any) -> None:
+    def collect(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+                file: object = None, line: str | None = None) -> None:
         # What the reader left out or split is said in full: it is about the file, not a pair.
         if isinstance(message, FuncnetWarning) and not verbose and not isinstance(
             message, RecordingWarning

@@ -28,6 +28,7 @@ from funcnet.cli.options import (
     EdgeRule,
     Evidence,
     EvidenceSeed,
+    Intervals,
     NetworkOptions,
     Quiet,
     Resamples,
@@ -148,6 +149,7 @@ def network(
     resamples: Resamples = 200,
     edge_rule: EdgeRule = "paper",
     surrogate_method: SurrogateMethod = "shift",
+    intervals: Intervals = "testable",
     verbose: Verbose = False,
     quiet: Quiet = False,
 ) -> None:
@@ -180,7 +182,7 @@ def network(
     with reported_errors(verbose=verbose):
         inches = parse_size(size)
         evidence_keywords = evidence_settings(evidence, surrogates, alpha, seed, resamples,
-                                              edge_rule, surrogate_method)
+                                              edge_rule, surrogate_method, intervals)
         if arrows not in ("direction", "rule"):
             raise ParameterError(f"--arrows must be direction or rule, got {arrows!r}")
         if output is not None and output.suffix.lower() not in _NETWORK_SUFFIXES:
@@ -204,7 +206,7 @@ def network(
             if list_phases:
                 print_phases(recording, trace)
                 return
-            from funcnet.embedding import MIN_STATES
+            from funcnet.core.embedding import MIN_STATES
 
             chosen = chosen_windows(
                 recording, trace, phase, whole, bounds,
@@ -291,9 +293,6 @@ def _write(frames: list[Any], results: list[Any], labels: list[str], output: Pat
             else:
                 table.to_parquet(tmp, index=False)
         return [output]
-    import matplotlib
-
-    matplotlib.use("Agg")
     from funcnet.plot import plot_stability
 
     written = network_files(output, labels)

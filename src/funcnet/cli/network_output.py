@@ -131,9 +131,6 @@ def write_network(net: Any, output: Path, inches: tuple[float, float], trace: Pa
 
         write_text_atomic(output, net.pairs.to_csv(index=False))
         return
-    import matplotlib
-
-    matplotlib.use("Agg")
     from funcnet.plot import network_title, save_network
 
     save_network(net, output, size=inches, title=network_title(net, source=str(trace)),

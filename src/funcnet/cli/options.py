@@ -19,7 +19,7 @@ from typing import Annotated, Any, TypeVar
 import typer
 
 from funcnet.errors import ParameterError
-from funcnet.parameters import NetworkParameters
+from funcnet.parameters import EvidenceSettings, NetworkParameters
 
 __all__ = [
     "FLAGS", "NO_OPTION", "NetworkOptions", "network_options", "spelled_as_options",
@@ -35,7 +35,7 @@ FLAGS = {
     "degenerate": "--keep-degenerate",
     "resample": "--resample",
     **{name: "--" + name.replace("_", "-")
-       for name in ("surrogates", "alpha", "resamples", "surrogate_method")},
+       for name in ("surrogates", "alpha", "resamples", "surrogate_method", "intervals")},
 }
 #: Network parameters with no option: explicit thresholds replace the rates.
 NO_OPTION = ("eps",)
@@ -130,7 +130,7 @@ def network_options(command: Command) -> Command:
     names = [option.name for option in _NETWORK_OPTIONS]
 
     @functools.wraps(command)
-    def with_options(**given: Any) -> Any:
+    def with_options(**given: object) -> Any:
         values = {name: given.pop(name) for name in names}
         return command(**given, network=NetworkOptions(values))
 
@@ -219,6 +219,13 @@ SurrogateMethod = Annotated[
                  help="Surrogates of the coupling test: shift (circular time shifts) or twin "
                  "(twin surrogates); with --evidence."),
 ]
+Intervals = Annotated[
+    str,
+    typer.Option("--intervals", metavar="PAIRS",
+                 help="Whose C_diff/T_diff intervals are drawn (with --evidence): testable "
+                 "(the pairs whose coupling test can reach --alpha, known before anything is "
+                 "computed) or all (every pair's: slower)."),
+]
 
 
 # --------------------------------------------------------------------------------------------
@@ -278,8 +285,8 @@ def signal_list(text: str | None) -> list[str] | None:
 
 
 def evidence_settings(evidence: bool, surrogates: int | None, alpha: float, seed: int,
-                      resamples: int, edge_rule: str,
-                      surrogate_method: str) -> dict[str, Any] | None:
+                      resamples: int, edge_rule: str, surrogate_method: str,
+                      intervals: str = "testable") -> EvidenceSettings | None:
     """The evidence keywords of :func:`funcnet.functional_network`, checked and spelled as the
     command's flags; ``None`` without ``--evidence``."""
     from funcnet.evidence import EDGE_RULES, check_evidence_arguments
@@ -295,6 +302,7 @@ def evidence_settings(evidence: bool, surrogates: int | None, alpha: float, seed
     if edge_rule == "interval" and resamples == 0:
         raise ParameterError("--edge-rule interval needs intervals: --resamples must be >= 1")
     with spelled_as_options():
-        check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
-    return {"surrogates": surrogates, "alpha": alpha, "seed": seed, "resamples": resamples,
-            "edge_rule": edge_rule, "surrogate_method": surrogate_method}
+        check_evidence_arguments(surrogates, alpha, resamples, surrogate_method, intervals)
+    return EvidenceSettings(surrogates=surrogates, alpha=alpha, seed=seed, resamples=resamples,
+                            edge_rule=edge_rule, surrogate_method=surrogate_method,
+                            intervals=intervals)

@@ -150,7 +150,7 @@ def check_signals(names: list[str] | None, recording: Any, trace: Path) -> None:
     )
 
 
-#: Above either, one network is refused unless --force (issue 9: a forecast, not a promise).
+#: Above either, one network is refused unless --force (a forecast, not a promise).
 COST_LIMIT_SECONDS = 60.0
 COST_LIMIT_BYTES = 4 * 2**30
 
@@ -175,7 +175,7 @@ def _moving_phases(recording: Any, trace: Path) -> list[Any]:
 def check_cost(recording: Any, windows: Sequence[Any], names: Sequence[str] | None,
                 parameters: Any, force: bool) -> None:
     """Refuse, before computing, a network forecast over a minute or 4 GiB (unless --force)."""
-    from funcnet.recurrence import estimate_cost
+    from funcnet.core.recurrence import estimate_cost
     from funcnet.robot import paper_nodes
 
     if force:

@@ -27,8 +27,8 @@ def demo(
     """
     # The report counts the analyses' warnings per problem: not printed once per trial here.
     with reported_errors(summarized=True):
-        from funcnet.report import build_demo_report
-        from funcnet.robot import paper_plan, write_plan
+        from funcnet.paper.demo import build_demo_report
+        from funcnet.sim import paper_plan, write_plan
 
         plan_dir = out / "plan"
         with progress_bar(quiet, "simulating") as progress:
@@ -60,8 +60,7 @@ def simulate(
     simulated again. The same seed gives the same bytes.
     """
     with reported_errors():
-        from funcnet.robot import named_plan, paper_plan, read_plan, write_plan
-        from funcnet.robot.sim import NAMED_PLANS
+        from funcnet.sim import NAMED_PLANS, named_plan, paper_plan, read_plan, write_plan
 
         if plan == "paper":
             trials = paper_plan()

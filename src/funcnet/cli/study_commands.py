@@ -48,7 +48,8 @@ def study(
     signals) are written to OUT/rows/<key>.parquet, keyed by content, so a re-run computes only
     what is new and a killed run resumes where it stopped. OUT/study.json keeps the study and its
     provenance. Exit status 1 when some windows could not be analysed (see study.json);
-    windows where the axis stands still are skipped and listed, not failed.
+    a window that cannot be analysed because the axis stands still in it is skipped and
+    listed, not failed.
     """
     # Warnings are counted per problem over the tasks (printed below), wherever they ran.
     with reported_errors(summarized=True):

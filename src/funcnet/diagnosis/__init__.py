@@ -1,14 +1,14 @@
-"""Backlash diagnosis from controller traces, validated on a simulated sweep (issue 11).
+"""Backlash diagnosis from controller traces, read on a calibration from a simulated sweep.
 
 :mod:`~funcnet.diagnosis.reversals` finds the direction changes of an axis,
 :mod:`~funcnet.diagnosis.indicators` computes the backlash indicators at a reversal (physical
 baselines, motor-side functional-network features, the paper's signature),
-:mod:`~funcnet.diagnosis.two_encoder` the two-encoder lost motion among them,
-:mod:`~funcnet.diagnosis.sweep` simulates the sweep and scores the indicators against the
-truth, and :mod:`~funcnet.diagnosis.diagnose` diagnoses real traces
+:mod:`~funcnet.diagnosis.two_encoder` the two-encoder lost motion among them, and
+:mod:`~funcnet.diagnosis.diagnose` diagnoses real traces
 (:func:`diagnose_backlash`; :mod:`~funcnet.diagnosis.segments` reads a recording with gaps
-segment by segment, :mod:`~funcnet.diagnosis.results` writes the diagnoses). Names are imported
-lazily.
+segment by segment, :mod:`~funcnet.diagnosis.results` writes the diagnoses). The shipped
+calibration (``calibration.json``) is data; the sweep it comes from is the bench's
+(:mod:`funcnet.validation.sweep`), which this package never imports. Names are imported lazily.
 
 Examples
 --------
@@ -33,10 +33,6 @@ _EXPORTS = {
     "lost_motion": "funcnet.diagnosis.two_encoder",
     "ArmStart": "funcnet.diagnosis.two_encoder",
     "first_start": "funcnet.diagnosis.two_encoder",
-    "run_sweep": "funcnet.diagnosis.sweep",
-    "folder_indicators": "funcnet.diagnosis.sweep",
-    "score_indicators": "funcnet.diagnosis.sweep",
-    "calibration": "funcnet.diagnosis.sweep",
     "SCORE": "funcnet.diagnosis.diagnose",
     "MOTOR_LOOP_SCORE": "funcnet.diagnosis.diagnose",
     "BacklashResult": "funcnet.diagnosis.diagnose",

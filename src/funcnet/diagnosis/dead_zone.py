@@ -100,7 +100,7 @@ def gear_parts(
     against its friction, decelerating; a load overcome): each torque sign, and the torque and
     direction both differing and agreeing, on at least :data:`PARTS_SHARE` of the samples, else
     ``dead_zone`` is None with the reason (a load keeping the torque on one flank). The motor's own
-    friction stays in the motor torque and so in ``friction`` (docs/backlash.md).
+    friction stays in the motor torque and so in ``friction`` (docs/validation/backlash.md).
 
     Parameters
     ----------

@@ -2,13 +2,16 @@
 
 :func:`diagnose_backlash` reads traces (SINUMERIK XML, CSV, Parquet), finds the direction
 changes of the set-point, computes at each reversal the motor-side indicator the simulated
-sweep supports best (:data:`SCORE`, see ``docs/backlash.md``) and, when the trace has the
+sweep supports best (:data:`SCORE`, see ``docs/validation/backlash.md``) and, when the trace has the
 arm-side encoder AP, the two-encoder lost motion; and reads the score on the sweep's
 calibration, which ships with the package (``calibration.json``, written by
 ``benchmarks/bench_backlash.py --calibrate``). The reading is **model-based**: it says which
 backlash widths gave such values on the simulated axis, not on this machine. The results are
 written by :mod:`~funcnet.diagnosis.results` (JSON, the trend table and its page). A recording
 with gaps is read segment by segment (:mod:`~funcnet.diagnosis.segments`).
+
+Length: over 600 lines because the two-encoder and the one-encoder diagnosis, their results and
+the lost motion's bound belong together.
 """
 
 from __future__ import annotations
@@ -25,7 +28,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet.diagnosis.dead_zone import GearParts, gear_parts
-from funcnet.diagnosis.indicators import reversal_indicators
+from funcnet.diagnosis.indicators import reversal_indicators, with_contact_score
 from funcnet.diagnosis.reversal_error import (
     GearFit,
     fit_gear,
@@ -41,7 +44,6 @@ from funcnet.diagnosis.segments import (
     segment_part,
     segments_note,
 )
-from funcnet.diagnosis.sweep import with_contact_score
 from funcnet.diagnosis.two_encoder import lost_motion
 from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
@@ -56,23 +58,24 @@ __all__ = [
     "BacklashResult",
     "diagnose_backlash",
     "diagnose_recording",
+    "resolved_lost_motion",
     "load_calibration",
     "MODEL_NOTE",
 ]
 
 #: The indicator reported as ``backlash_score`` when the trace has the arm encoder AP (so the
 #: position loop can read it, as on the paper's robot): the motor-side indicator with the best
-#: detection on the simulated sweep (``docs/backlash.md``).
+#: detection on the simulated sweep (``docs/validation/backlash.md``).
 SCORE = "motor_hysteresis"
 #: ``backlash_score`` of a trace without AP: its position loop must read the motor encoder,
 #: where ``motor_hysteresis`` sees nothing; the best motor-side indicator of that sweep
-#: (:func:`funcnet.diagnosis.sweep.with_contact_score`: motor travel to the gear's contact and
+#: (:func:`funcnet.diagnosis.indicators.with_contact_score`: motor travel to the gear's contact and
 #: the current's step there, each against the sweep's no-backlash trials).
 MOTOR_LOOP_SCORE = "motor_contact"
 
 #: What every reading says about itself.
 MODEL_NOTE = (
-    "model-based: read on the simulated sweep (funcnet.robot.sim), not on this machine; a "
+    "model-based: read on the simulated sweep (funcnet.sim), not on this machine; a "
     "real axis differs in its mechanics, tuning and noise"
 )
 
@@ -91,8 +94,9 @@ class ReversalResult:
         The trace's score indicator (deg) at a reversal; None after a standstill (the
         calibration holds reversals only).
     lost_motion : float or None
-        Two-encoder lost motion (deg; None without AP or when the arm does not restart):
-        :func:`.two_encoder.lost_motion`, at a continuous change :func:`.reversal_error`.
+        Two-encoder lost motion (deg; None without AP, when the arm does not restart, or where
+        the data do not resolve it: ``lost_motion_reason``): :func:`.two_encoder.lost_motion`,
+        at a continuous change :func:`.reversal_error`. Never negative.
     indicators : dict
         Every motor-side indicator computed there (physical ones; NaN -> None).
     traversed : bool
@@ -100,7 +104,13 @@ class ReversalResult:
     lost_motion_low, lost_motion_high : float or None
         deg, the lost motion's interval: at a continuous change the bootstrap's 95 %; where the
         arm rests, the simulated sweep's validated accuracy (5 % or two arm-encoder steps,
-        whichever is more; docs/backlash.md section 3.1).
+        whichever is more; docs/validation/backlash.md section 3.1). Where the lost motion is
+        not resolved (the interval reaches 0) ``low`` is 0 and ``high`` the bound.
+    lost_motion_reason : str or None
+        Why ``lost_motion`` is None where it was measured: below what the estimate resolves.
+    lost_motion_terms : tuple of str
+        The error terms the interval carries (``"noise"``, ``"motor friction bias"``,
+        ``"sweep accuracy"``).
     """
 
     change: DirectionChange
@@ -111,6 +121,8 @@ class ReversalResult:
     traversed: bool = False
     lost_motion_low: float | None = None
     lost_motion_high: float | None = None
+    lost_motion_reason: str | None = None
+    lost_motion_terms: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready."""
@@ -121,6 +133,8 @@ class ReversalResult:
             "lost_motion": self.lost_motion,
             "lost_motion_low": self.lost_motion_low,
             "lost_motion_high": self.lost_motion_high,
+            "lost_motion_reason": self.lost_motion_reason,
+            "lost_motion_terms": list(self.lost_motion_terms),
             "traversed": self.traversed,
             "indicators": dict(self.indicators),
         }
@@ -145,10 +159,11 @@ class BacklashResult:
         on the simulated sweep at the backlash width read, with friction, stiffness, TCP and
         noise varied; None without a reading.
     lost_motion : float or None
-        Mean two-encoder lost motion over every direction change (deg); None without AP.
+        Mean two-encoder lost motion over every direction change measured (deg); None without
+        AP, and where the data do not resolve it (``lost_motion_reason``). Never negative.
     lost_motion_spread : float or None
         Half the range of the lost motions over the direction changes (None with fewer than
-        two).
+        two, or without a resolved ``lost_motion``).
     reversals : tuple of ReversalResult
         Every direction change (reversals and changes after a standstill), in time order; in
         a recording with gaps, those of every segment (none left out: ``left_out``).
@@ -163,7 +178,9 @@ class BacklashResult:
     reading_reason : str or None
         Why ``reading`` is None (None when there is a reading).
     lost_motion_reason : str or None
-        Why ``lost_motion`` is None: no AP, or no direction change (None when there is one).
+        Why ``lost_motion`` is None: no AP, no direction change, or below what the estimate
+        resolves (``"below what this estimate resolves: <= 0.2 arcmin"``; None when there is
+        one).
     gear : GearFit or None
         With AP and continuous changes: the gear's fit over the recording (:func:`.fit_gear`).
     gear_parts : GearParts or None
@@ -180,6 +197,12 @@ class BacklashResult:
         What was done to the units (positions converted from rad to deg, or of unknown unit
         and computed as degrees); None when the trace's positions are in degrees. The JSON
         then has the key ``units``.
+    lost_motion_low, lost_motion_high : float or None
+        deg, the axis's lost motion's interval: the means of its direction changes' interval
+        ends (the mean's error terms, added up as if they agreed: its bias does not average
+        out); unresolved, 0 and the bound. None without a lost motion measured.
+    lost_motion_terms : tuple of str
+        The error terms of that interval (every direction change's).
     """
 
     path: str
@@ -199,6 +222,9 @@ class BacklashResult:
     segments: tuple[tuple[float, float], ...] = ()
     left_out: tuple[LeftOut, ...] = ()
     units: str | None = None
+    lost_motion_low: float | None = None
+    lost_motion_high: float | None = None
+    lost_motion_terms: tuple[str, ...] = ()
 
     @property
     def score_unit(self) -> str:
@@ -216,6 +242,9 @@ class BacklashResult:
             "score_unit": self.score_unit,
             "score_spread": self.score_spread,
             "lost_motion": self.lost_motion,
+            "lost_motion_low": self.lost_motion_low,
+            "lost_motion_high": self.lost_motion_high,
+            "lost_motion_terms": list(self.lost_motion_terms),
             "lost_motion_spread": self.lost_motion_spread,
             "reversals": [r.to_dict() for r in self.reversals],
             "reading": self.reading,
@@ -343,11 +372,13 @@ def diagnose_recording(
     gear = fit_gear(rec) if has_ap and continuous else None
     quantum = encoder_step(rec.data["AP"].to_numpy(dtype=np.float64)) if has_ap else math.nan
     results = []
+    estimates: list[tuple[float, float, float, tuple[str, ...]]] = []  # lost, low, high, terms
     for change in changes:
         part = segment_part(rec, change)  # the recording itself without gaps
         speed = _move_speed(part, change)
         traversed = torque_traversed(rec, change)
         low = high = None
+        terms: tuple[str, ...] = ()
         if change.kind == "reversal":
             values = reversal_indicators(part, change, networks=False, arm_start=arm_start)
             if not has_ap:
@@ -366,6 +397,7 @@ def diagnose_recording(
                 error = reversal_error(rec, change, gear, traversed=traversed)
                 lost, low, high = (_none(error.lost_motion), _none(error.low),
                                    _none(error.high))  # fmt: skip
+                terms = error.terms
         else:
             score = None
             lost = _none(lost_motion(part, change)) if has_ap else None
@@ -374,9 +406,18 @@ def diagnose_recording(
             # the sweep's validated accuracy: 5 % or two arm-encoder steps (section 3.1)
             width = max(0.05 * abs(lost), 2 * quantum)
             low, high = lost - width, lost + width
-        results.append(ReversalResult(change, speed, score, lost, shown, traversed, low, high))
+            terms = ("sweep accuracy",)
+        if lost is not None and low is not None and high is not None:
+            estimates.append((lost, low, high, terms))
+        shown_lost = resolved_lost_motion(lost, low, high)
+        results.append(ReversalResult(change, speed, score, shown_lost[0], shown, traversed,
+                                      shown_lost[1], shown_lost[2], shown_lost[3], terms))
     scores = [r.backlash_score for r in results if r.backlash_score is not None]
-    losses = [r.lost_motion for r in results if r.lost_motion is not None]
+    losses = [lost for lost, *_ in estimates]
+    axis_lost = resolved_lost_motion(
+        float(np.mean(losses)) if losses else None,
+        float(np.mean([e[1] for e in estimates])) if estimates else None,
+        float(np.mean([e[2] for e in estimates])) if estimates else None)
     score = float(np.mean(scores)) if scores else None
     reading = None
     spread = None
@@ -411,7 +452,7 @@ def diagnose_recording(
             reading["text"] if reading else f"no reading ({reason})" if reason else "no score"
         )
     message = "; ".join(m for m in (message, segments_note(segmented)) if m)
-    lost_reason = (None if losses else "no AP" if not has_ap else "no direction change"
+    lost_reason = (axis_lost[3] if losses else "no AP" if not has_ap else "no direction change"
                    if not changes else "the arm does not restart")  # fmt: skip
     return BacklashResult(
         units=units.note or None,
@@ -419,8 +460,9 @@ def diagnose_recording(
         score_indicator=indicator,
         backlash_score=score,
         score_spread=spread,
-        lost_motion=float(np.mean(losses)) if losses else None,
-        lost_motion_spread=float(np.ptp(losses) / 2) if len(losses) > 1 else None,
+        lost_motion=axis_lost[0],
+        lost_motion_spread=(float(np.ptp(losses) / 2) if len(losses) > 1
+                            and axis_lost[0] is not None else None),
         reversals=tuple(results),
         reading=reading,
         message=message,
@@ -430,11 +472,20 @@ def diagnose_recording(
         gear_parts=gear_parts(rec) if gear is not None else None,
         segments=segmented.segments,
         left_out=segmented.left_out,
+        lost_motion_low=axis_lost[1],
+        lost_motion_high=axis_lost[2],
+        lost_motion_terms=tuple(dict.fromkeys(t for *_, terms in estimates for t in terms)),
     )
 
 
 #: Seconds either side of a direction change read for the one-encoder signatures.
 _AROUND_TURN = 0.1
+
+
+def _span(low: float, high: float) -> str:
+    """``"1.2-3.4"``, or one number where both ends print alike."""
+    a, b = f"{low:.3g}", f"{high:.3g}"
+    return a if a == b else f"{a}-{b}"
 
 
 def _one_encoder(
@@ -482,13 +533,13 @@ def _one_encoder(
         peaks_ = [p for p in peaks if p is not None]
         if peaks_:
             label = "arcmin" if units.position == "deg" else "x 60, unit unknown"
-            found += (f"; following error |RP - AP| there {60 * min(peaks_):.3g}-"
-                      f"{60 * max(peaks_):.3g} {label}")
+            found += (f"; following error |RP - AP| there "
+                      f"{_span(60 * min(peaks_), 60 * max(peaks_))} {label}")
         steps = [r.indicators.get("current_step") for r in results]
         steps_ = [abs(v) for v in steps if v is not None]
         if steps_ and current is not None:
             unit = unit_of(rec.signals[current])
-            found += (f"; {current} steps by {min(steps_):.3g}-{max(steps_):.3g} {unit} "
+            found += (f"; {current} steps by {_span(min(steps_), max(steps_))} {unit} "
                       "across a turn")
     message = "; ".join(m for m in (
         f"one measured position per joint ({'AP' if has_ap else 'none'}): {need}", found,
@@ -499,6 +550,43 @@ def _one_encoder(
         message=message, reading_reason=need, lost_motion_reason="one encoder per joint, no MP",
         segments=segmented.segments, left_out=segmented.left_out, units=units.note or None,
     )
+
+
+def resolved_lost_motion(lost: float | None, low: float | None, high: float | None,
+                         ) -> tuple[float | None, float | None, float | None, str | None]:
+    """A lost motion as it may be said: the estimate where its interval lies above 0, else
+    none, with 0 and the bound as its interval and the reason.
+
+    A lost motion is never negative; an interval reaching 0 (or below it: the estimator's bias
+    beyond its bound) says only that the lost motion is below what the estimate resolves: the
+    interval's upper end, or its width where that end is below 0.
+
+    Parameters
+    ----------
+    lost, low, high : float or None
+        deg, the estimate and its interval.
+
+    Returns
+    -------
+    tuple
+        ``(lost_motion, low, high, reason)``; the reason None where resolved (or nothing
+        measured).
+
+    Examples
+    --------
+    >>> resolved_lost_motion(0.01, 0.008, 0.012)
+    (0.01, 0.008, 0.012, None)
+    >>> lost, low, high, reason = resolved_lost_motion(-0.0015, -0.0018, 0.003)
+    >>> lost, low, high, reason
+    (None, 0.0, 0.003, 'below what this estimate resolves: <= 0.18 arcmin')
+    """
+    if lost is None or low is None or high is None:
+        return lost, low, high, None
+    if low > 0:
+        return lost, low, high, None
+    bound = high if high > 0 else high - low
+    return None, 0.0, bound, (f"below what this estimate resolves: <= {bound * 60:.2g} "
+                              "arcmin")
 
 
 def _outside(speed: float, rec: Recording, table: Mapping[str, Any], has_ap: bool) -> str | None:
@@ -560,7 +648,7 @@ def diagnose_backlash(
     Examples
     --------
     >>> import pathlib, tempfile
-    >>> from funcnet.robot.sim import Trial, simulate_trial, write_trace
+    >>> from funcnet.sim import Trial, simulate_trial, write_trace
     >>> sim = simulate_trial(Trial("rev", "s", speed=175, tcp=1.6, step=1, reverse=True,
     ...                            backlash=2 / 60, sensors="real", seed=1))
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "rev.xml"

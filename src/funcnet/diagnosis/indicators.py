@@ -57,6 +57,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import pandas as pd
 
 from funcnet.diagnosis.reversals import DirectionChange
 from funcnet.diagnosis.two_encoder import (
@@ -81,6 +82,8 @@ __all__ = [
     "MOTOR_SIDE",
     "reversal_indicators",
     "lost_motion",
+    "CONTACT_FEATURES",
+    "with_contact_score",
 ]
 
 #: Physical indicators (the baselines).
@@ -237,8 +240,8 @@ def _coupled(values: np.ndarray, nodes: Sequence[str], parameters: NetworkParame
     (``resamples=0``) where :func:`funcnet.evidence.pairwise_evidence` allows it (else the
     smallest number, 1) unless ``intervals`` subsamples are asked for (to time them).
     """
+    from funcnet.core.normalization import normalize
     from funcnet.evidence import pairwise_evidence
-    from funcnet.normalization import normalize
 
     try:
         values = normalize(values, parameters.normalize, names=list(nodes))
@@ -356,3 +359,34 @@ def reversal_indicators(
         result["signature"] = math.nan
     return result
 
+
+#: The motor-side features ``motor_contact`` adds up (:func:`with_contact_score`): where the gear
+#: closes and how much load the motor takes up there.
+CONTACT_FEATURES = ("motor_travel", "current_step")
+
+def with_contact_score(
+    table: pd.DataFrame, reference: dict[str, Any], *, by: str = "peak_speed"
+) -> pd.DataFrame:
+    """``table`` with ``motor_contact``: the features' robust z-scores against no backlash, summed.
+
+    Each of :data:`CONTACT_FEATURES` is centred on its median without backlash at the nearest
+    reference speed and divided by its interquartile range there; the two are added (higher =
+    more backlash). It is the motor-side score of an axis whose position loop reads the motor
+    encoder (``docs/validation/backlash.md``).
+
+    Examples
+    --------
+    >>> ref = {"35": {"motor_travel": [2.0, 1.0], "current_step": [0.5, 0.25]}}
+    >>> t = pd.DataFrame({"peak_speed": [35.0], "motor_travel": [4.0], "current_step": [1.0]})
+    >>> float(with_contact_score(t, ref)["motor_contact"].iloc[0])
+    4.0
+    """
+    speeds = sorted(float(s) for s in reference)
+    score = np.zeros(len(table))
+    for i, speed in enumerate(table[by].to_numpy(dtype=float)):
+        key = f"{min(speeds, key=lambda s: abs(math.log(s / speed))):g}"
+        score[i] = sum(
+            (float(table[name].iloc[i]) - reference[key][name][0]) / reference[key][name][1]
+            for name in CONTACT_FEATURES
+        )
+    return table.assign(motor_contact=score)

@@ -6,7 +6,8 @@ the turn, elastically. ``MP - AP`` there is the gear's wind-up under its torque,
 motion -- the reversal error of ISO 230-2: the arm lags the motor by more in one direction than
 in the other (backlash crossed where the gear torque changes sign; friction in the gear) -- plus
 what the two encoders' timing adds: an encoder read a little earlier than the other reads
-``speed x skew`` apart (on the KUKA KR 300 runs 2.8-3.1 ms on every axis, docs/backlash.md).
+``speed x skew`` apart (on the KUKA KR 300 runs 2.8-3.1 ms on every axis,
+docs/validation/backlash.md).
 
 :func:`fit_gear` fits, over the recording's samples where the motor moves faster than 1 deg/s,
 
@@ -44,6 +45,7 @@ __all__ = [
     "GearFit",
     "ReversalError",
     "fit_gear",
+    "friction_bias",
     "gear_torque",
     "reversal_error",
     "torque_traversed",
@@ -52,7 +54,8 @@ __all__ = [
     "WINDOW",
 ]
 
-#: deg/s the motor must exceed for a sample to enter the gear's fit (the plain fit of the issue).
+#: deg/s the motor must exceed for a sample to enter the gear's fit (as in the plain least-squares
+#: fit).
 FIT_SPEED = 1.0
 #: s of each stretch beside the turn over which the step is measured.
 WINDOW = 0.25
@@ -226,8 +229,8 @@ def gear_torque(rec: Recording, *, motor_inertia: float = 0.0) -> tuple[np.ndarr
     ms (the torque ripples at 10-25 Hz on a real robot); its noise is the standard deviation of
     the torque about that mean, divided by the root of the samples averaged. The motor's own
     friction, which flips with the motor's direction, is left in: it cannot be told apart from
-    the arm's in the motor torque (docs/backlash.md). In a recording with gaps both are taken
-    within each segment (NaN in a gap).
+    the arm's in the motor torque (docs/validation/backlash.md). In a recording with gaps both are
+    taken within each segment (NaN in a gap).
 
     Parameters
     ----------
@@ -369,17 +372,37 @@ class ReversalError:
     lost_motion : float
         deg, the step of ``MP - AP`` the torque and the speed do not explain, from before the
         turn to after it, in the old direction's sign (positive: the arm lags the motor more
-        in each direction of motion).
+        in each direction of motion). The estimate itself: it may be negative where the data
+        cannot resolve the lost motion (:attr:`resolved`).
     low, high : float
-        deg, the interval (95 %; :func:`reversal_error`).
+        deg, the interval (95 %; :func:`reversal_error`): ``lost_motion - noise`` to
+        ``lost_motion + noise + bias`` (``bias`` counted where it is bounded).
     traversed : bool
         The gear torque changed sign there (:func:`torque_traversed`).
+    noise : float
+        deg, the bootstrap's half-width (:func:`reversal_error`).
+    bias : float
+        deg, the bound of the motor friction's bias (:func:`friction_bias`): the estimate lies
+        below the lost motion by at most this; NaN where it cannot be bounded.
     """
 
     lost_motion: float
     low: float
     high: float
     traversed: bool
+    noise: float = math.nan
+    bias: float = math.nan
+
+    @property
+    def terms(self) -> tuple[str, ...]:
+        """The error terms the interval carries: ``"noise"``, and ``"motor friction bias"``
+        where it is bounded."""
+        return ("noise",) + (("motor friction bias",) if math.isfinite(self.bias) else ())
+
+    @property
+    def resolved(self) -> bool:
+        """Whether the interval lies above 0: a lost motion the data resolve."""
+        return bool(self.low > 0)
 
 
 def _blocks(
@@ -414,6 +437,13 @@ def reversal_error(
     motor_inertia: float = 0.0, traversed: bool | None = None,
 ) -> ReversalError:  # fmt: skip
     """The lost motion at a direction change in continuous motion, with an interval.
+
+    The interval carries two error terms (:attr:`ReversalError.terms`): the noise (a
+    bootstrap, below) and the motor friction's bias. The motor torque holds the motor's own
+    friction, which never reaches the gear and flips with the motor's direction; taking the
+    gear's wind-up as ``compliance * torque`` counts it as wind-up, and the step measured falls
+    short of the lost motion by ``2 * compliance * F_motor``. That is bounded by
+    :func:`friction_bias` and added to the interval's upper end only.
 
     Parameters
     ----------
@@ -469,8 +499,10 @@ def reversal_error(
     ...                              index=pd.Index(t, name="time")), {}, info, sample_period=0.004)
     >>> change = find_direction_changes(rec)[0]
     >>> error = reversal_error(rec, change)
-    >>> round(error.lost_motion, 3), error.high - error.low < 0.002, error.traversed
+    >>> round(error.lost_motion, 3), error.noise < 0.001, error.traversed
     (0.02, True, True)
+    >>> error.terms, math.isclose(error.high, error.lost_motion + error.noise + error.bias)
+    (('noise', 'motor friction bias'), True)
     """
     if not (window > 0 and resamples >= 0 and 0 < level < 1):
         raise ParameterError.of("window", "must be > 0 s, resamples >= 0, level in (0, 1)")
@@ -507,4 +539,51 @@ def reversal_error(
     # t quantile with as many degrees of freedom as blocks in both less two (as batch means)
     dof = max(1, -(-before.size // block) + -(-after.size // block) - 2)
     half = float(student_t.ppf((1 + level) / 2, dof) * np.std(draws)) if draws else 0.0
-    return ReversalError(point, point - half, point + half, traversed)
+    bias = friction_bias(t, torque, gear.compliance, before, after, change)
+    upper = point + half + (bias if math.isfinite(bias) else 0.0)
+    return ReversalError(point, point - half, upper, traversed, half, bias)
+
+
+def friction_bias(t: np.ndarray, torque: np.ndarray, compliance: float, before: np.ndarray,
+                  after: np.ndarray, change: DirectionChange) -> float:
+    """The bound of the motor friction's bias of a reversal error (deg, at least 0).
+
+    The torque's smooth part (the arm's weight and inertia) runs on through the turn; its
+    friction (the motor's and the gear's) jumps by twice their sum where the motor turns. A
+    straight line fitted to the torque over each stretch beside the turn, both read at the
+    turn, gives that jump ``J``; the motor's share ``2 F_motor`` is at most ``|J|``, so the
+    bias ``2 * compliance * F_motor`` is at most ``|compliance * J|``.
+
+    Parameters
+    ----------
+    t, torque : ndarray
+        Times and the motor torque (or current) of the recording.
+    compliance : float
+        The gear's (:class:`GearFit`).
+    before, after : ndarray of int
+        The stretches' ticks (finite torque).
+    change : DirectionChange
+        Its ``turn`` (else the middle of ``stop`` and ``start``) is where the lines are read.
+
+    Returns
+    -------
+    float
+        NaN with fewer than three ticks in a stretch.
+
+    Examples
+    --------
+    >>> from funcnet.diagnosis.reversals import DirectionChange
+    >>> t = np.arange(0, 2, 0.004)
+    >>> torque = 3 * t + np.where(t < 1, -0.5, 0.5)  # a ramp, friction jumping by 1 at 1 s
+    >>> change = DirectionChange(0.9, 1.1, 0.0, -1, "continuous", 1.0)
+    >>> before = np.flatnonzero((t >= 0.65) & (t < 0.9))
+    >>> after = np.flatnonzero((t >= 1.1) & (t < 1.35))
+    >>> round(friction_bias(t, torque, 0.002, before, after, change), 6)
+    0.002
+    """
+    if before.size < 3 or after.size < 3:
+        return math.nan
+    at = change.turn if change.turn is not None else 0.5 * (change.stop + change.start)
+    ends = [np.polyval(np.polyfit(t[part] - at, torque[part], 1), 0.0)
+            for part in (before, after)]
+    return float(abs(compliance * (ends[1] - ends[0])))

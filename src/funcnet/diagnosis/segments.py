@@ -1,4 +1,4 @@
-"""A recording with gaps diagnosed segment by segment (issue 21).
+"""A recording with gaps diagnosed segment by segment.
 
 Missing values split a recording into segments (:attr:`funcnet.robot.Recording.gaps`). The
 diagnosis reads each direction change within the segment that holds it: the set-point's moves

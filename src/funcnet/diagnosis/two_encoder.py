@@ -1,9 +1,9 @@
-"""The two-encoder lost motion at a direction change (issue 11; needs AP and MP).
+"""The two-encoder lost motion at a direction change (needs AP and MP).
 
 ``MP - AP`` changes across a reversal by the motor's travel while the arm rests -- the gear's
 dead zone plus its wind-up on both flanks -- plus what the arm still coasts forward after the
 motor has turned: :func:`lost_motion` measures that change from the motor's turning point to
-the arm's restart, the simulator's truth (:class:`funcnet.robot.sim.axis.SimulatedTrial`). The
+the arm's restart, the simulator's truth (:class:`funcnet.sim.axis.SimulatedTrial`). The
 restart is the first after the set-point's turn with which the arm moves the new way from a
 rest (a reading it reached moving the old way, or two equal readings: a loop hunting across the
 dead zone stops the arm in it); the turn is the motor's last move the old way before it
@@ -17,7 +17,7 @@ and, where the arm first starts from a long rest in the same recording, there
 jerk-driven cube law bent by the gear-arm resonance, :func:`_restart_time`) -- the motor
 hitting the flank at speed -- the latter is taken. After a standstill: the motor's travel from
 its rest to the arm's restart (the shape-only fit). Each choice and its validation:
-docs/backlash.md section 3.1.
+docs/validation/backlash.md section 3.1.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ _SHAPE_SPAN = 100  # ... and for the gear-arm resonance that bends the start
 _OMEGAS = tuple(np.arange(0.0, 401.0, 10.0))  # rad/s: the resonance's candidates
 # the spring's bend is offset in part by the friction's Stribeck drop early on: the restart is
 # fitted with this share of the fitted resonance (chosen on every third trial of the sweep,
-# confirmed on the rest and on the other sweeps; docs/backlash.md section 3.1)
+# confirmed on the rest and on the other sweeps; docs/validation/backlash.md section 3.1)
 _STRIBECK = 0.7
 # encoder steps by which the physical start's estimate may fall below the shape-only one
 # (chosen on every third trial of the sweep with the physical start's spans; section 3.1)
@@ -162,13 +162,13 @@ def _restart_time(
 
 
 # The physical start (:func:`_fit_restart`). Assumed, not fitted -- the simulator's values, a real
-# axis's are unknown (docs/backlash.md section 3.1): the gear-arm mode's damping ratio (its
-# ``gear_damping``: about 10 %) and the arm bearing's Stribeck velocity (rad/s)
+# axis's are unknown (docs/validation/backlash.md section 3.1): the gear-arm mode's damping ratio
+# (its ``gear_damping``: about 10 %) and the arm bearing's Stribeck velocity (rad/s)
 _ZETA = 0.1
 _STRIBECK_VELOCITY = 0.002
 # encoder steps of the arm's travel over which w and s are fitted (with t0), and over which t0
 # is then fitted alone; chosen on every third no-backlash trial of the sweep, confirmed on the
-# rest and on the other sweeps (docs/backlash.md section 3.1)
+# rest and on the other sweeps (docs/validation/backlash.md section 3.1)
 _PARAM_SPAN = 200
 _START_SPAN = 25
 _TICKS = 24  # readings at most, from the first beyond the rest's rounding
@@ -267,9 +267,9 @@ def _fit_restart(
     alone over those up to ``_START_SPAN`` steps (where the model with the fitted parameters
     is closest; the larger span carries the parameters). Assumed, not fitted: the gear's
     damping ratio ``_ZETA`` and the Stribeck velocity ``v_s`` -- the simulator's values
-    (:class:`funcnet.robot.sim.axis.AxisParameters`: ``gear_damping`` gives about 10 %,
-    ``arm_stribeck_velocity`` 0.002 rad/s); a real axis's are unknown (docs/backlash.md section
-    3.1 gives the estimate's sensitivity to them).
+    (:class:`funcnet.sim.axis.AxisParameters`: ``gear_damping`` gives about 10 %,
+    ``arm_stribeck_velocity`` 0.002 rad/s); a real axis's are unknown (docs/validation/backlash.md
+    section 3.1 gives the estimate's sensitivity to them).
 
     Parameters
     ----------
@@ -349,7 +349,7 @@ _REST_READINGS = 25
 # readings over which the start from a long rest is fitted, and the RMS residual (encoder steps)
 # up to which that fit stands (:func:`first_start`; the bound chosen on the main sweep's seeds 1-3
 # and a motor-encoder loop sweep, where 2.5-4 give the same misses; validated on other seeds:
-# docs/backlash.md section 3.1)
+# docs/validation/backlash.md section 3.1)
 _START_READINGS = 40
 _START_RESIDUAL = 3.0
 
@@ -382,8 +382,8 @@ def first_start(rec: Recording) -> ArmStart | None:
     half that the motor leads), they steady the restart's fit at a reversal
     (:func:`lost_motion`'s ``axis``, which takes the mean of both fits): on the main sweep the
     resonance fitted at the start is off the simulator's ``sqrt(k / J)`` by 3.5 % (s.d.), at the
-    reversal by 20 %, a few reversals falling into a wrong minimum (docs/backlash.md section
-    3.1). The fit is that of the reversal's restart (:func:`_fit_restart`), with its assumed
+    reversal by 20 %, a few reversals falling into a wrong minimum (docs/validation/backlash.md
+    section 3.1). The fit is that of the reversal's restart (:func:`_fit_restart`), with its assumed
     damping ratio and Stribeck velocity, over ``_START_READINGS`` readings whatever the arm's
     travel (160 ms: a period of the resonance or more at 40 rad/s and above, which pins it where
     the reversal's span of 24 readings at most -- shorter than a period below about 65 rad/s --

@@ -19,7 +19,7 @@ module             what it holds
 
 This package sits above the measures and below the network (it never imports
 :mod:`funcnet.network`); :func:`funcnet.network.functional_network` calls it with
-``evidence=True``. Its calibration and error rates are in ``docs/evidence.md``.
+``evidence=True``. Its calibration and error rates are in ``docs/validation/evidence.md``.
 
 Examples
 --------
@@ -54,6 +54,8 @@ _EXPORTS = {
     "interval_from": "funcnet.evidence.interval",
     "interval_kind": "funcnet.evidence.interval",
     "pairwise_evidence": "funcnet.evidence.pairs",
+    "planned_surrogates": "funcnet.evidence.dependence",
+    "INTERVAL_SCOPES": "funcnet.evidence.pairs",
     "repetition_evidence": "funcnet.evidence.repetitions",
     "repetition_tests": "funcnet.evidence.repetitions",
     "repetitions_needed": "funcnet.evidence.repetitions",

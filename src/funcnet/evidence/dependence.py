@@ -9,7 +9,7 @@ Statistic
     (``|i - j| > theiler``), of the recurrence indicators ``A_X[i, j]`` and ``A_Y[i, j]`` --
     the excess of joint recurrences (Romano et al. 2004) over what the two recurrence rates
     of the window give by chance, scaled to [-1, 1]. ``A_X`` and ``A_Y`` are each signal's
-    recurrence matrix over the whole window (thresholds by rate, :mod:`funcnet.recurrence`),
+    recurrence matrix over the whole window (thresholds by rate, :mod:`funcnet.core.recurrence`),
     computed once.
 
 Surrogates: a lattice of non-circular time shifts on equal-length windows
@@ -19,7 +19,7 @@ Surrogates: a lattice of non-circular time shifts on equal-length windows
     around: a circular shift joins the end of Y to its start, so the pairs of times that
     straddle the wrap get a different lag in Y than in X; two independent copies of the same
     oscillator recur at the same lags, the wrap destroys exactly that, and the circular test
-    rejected independence in about 20 % of such pairs (issue 10). With equal-length windows and
+    rejected independence in about 20 % of such pairs. With equal-length windows and
     no wrap, every surrogate is, when X and Y are independent and each is stationary, a draw
     of the same law as the observed window, whatever the signals' periods.
 
@@ -38,7 +38,7 @@ p-value
     Benjamini-Hochberg at level ``alpha`` needs ``K >= m / alpha - 1``
     (:func:`default_surrogates`).
 
-Direction (tested, kept as a secondary reading; see docs/evidence.md for its error rates)
+Direction (tested, kept as a secondary reading; see docs/validation/evidence.md for its error rates)
     The mean conditional probabilities of recurrence ``MCR(X|Y) = <sum_j JR_ij / sum_j
     A_Y[i, j]>_i`` and ``MCR(Y|X)`` (Romano et al. 2007): if X drives Y, Y's recurrences imply
     X's more than the reverse, ``MCR(X|Y) > MCR(Y|X)``. Two signals of different character
@@ -50,10 +50,10 @@ Twin surrogates (``method="twin"``, :mod:`funcnet.evidence.surrogates`)
     An option: Y is replaced by twin surrogates (Thiel et al. 2006), index sequences that jump
     between states with identical neighbourhoods; the observed window and every surrogate hold
     all ``M`` states, so ``K`` is never limited by the window. Where they are valid and where
-    not is measured in docs/evidence.md.
+    not is measured in docs/validation/evidence.md.
 
 Validity needs stationarity inside the window: a ramp or a spin-up makes every time offset a
-different part of the trend (docs/evidence.md, "Robot windows").
+different part of the trend (docs/validation/evidence.md, "Robot windows").
 
 References
 ----------
@@ -88,6 +88,7 @@ __all__ = [
     "decorrelation_time",
     "shift_plan",
     "surrogate_plan",
+    "planned_surrogates",
     "check_surrogate_method",
     "dependence_test",
     "recurrent_pairs",
@@ -290,6 +291,53 @@ def surrogate_plan(method: str, a_y: np.ndarray, surrogates: int, *, min_shift: 
     return shift_plan(m, surrogates, min_shift=min_shift)
 
 
+def planned_surrogates(method: str, n_states: int, surrogates: int, *,
+                       min_shift: int = 1) -> int:
+    """``K``, the surrogates a test of ``n_states`` states will hold, before any recurrence.
+
+    What :func:`surrogate_plan` gives, from the sizes alone: the shift lattice's ``2 k``
+    (:func:`shift_plan`), or ``surrogates`` twins; 0 where the window is too short to test.
+    Whether a pair can reach a level is thus known before anything is computed
+    (:func:`funcnet.evidence.reading.untestable`).
+
+    Parameters
+    ----------
+    method : {"shift", "twin"}
+    n_states : int
+        ``M``, states per signal.
+    surrogates : int
+        ``K`` asked.
+    min_shift : int
+        ``s0`` of the shift lattice (ignored by twins).
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ParameterError
+        Unknown ``method`` or ``surrogates < 1``.
+
+    Examples
+    --------
+    >>> planned_surrogates("shift", 140, 99, min_shift=20), planned_surrogates("twin", 140, 99)
+    (6, 99)
+    >>> planned_surrogates("shift", 30, 99, min_shift=20)  # no window of 20 states is left
+    0
+    """
+    method = check_surrogate_method(method)
+    if isinstance(surrogates, bool) or not isinstance(surrogates, (int, np.integer)) or \
+            surrogates < 1:
+        raise ParameterError.of("surrogates", f"must be an integer >= 1, got {surrogates!r}")
+    if method == "twin":
+        return int(surrogates) if n_states >= MIN_WINDOW else 0
+    try:
+        return shift_plan(int(n_states), int(surrogates), min_shift=min_shift).surrogates
+    except ParameterError:
+        return 0
+
+
 @dataclass(frozen=True)
 class DependenceResult:
     """The dependence test of one pair, and the direction reading of the same surrogates.
@@ -363,9 +411,9 @@ def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan | TwinPlan
 
     Examples
     --------
-    >>> from funcnet.embedding import embed
-    >>> from funcnet.recurrence import auto_recurrence
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.core.embedding import embed
+    >>> from funcnet.core.recurrence import auto_recurrence
+    >>> from funcnet.validation.systems import henon_pair
     >>> data = henon_pair(300, 0.6, seed=0)
     >>> a_x, a_y = (auto_recurrence(embed(data[:, k], 2, 1), rr=0.05).to_dense().astype(np.uint8)
     ...             for k in (0, 1))

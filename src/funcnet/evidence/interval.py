@@ -13,7 +13,7 @@ Politis and Romano 1999). Why this design:
   recurrent with its copy and cross-recurrent with the same states, which inflates the
   clustering of exactly the repeated nodes; subsampling without replacement has no copies (a
   full-size block bootstrap that never links copies was measured too: it was too narrow for
-  white noise and Lorenz copies, docs/evidence.md section 2);
+  white noise and Lorenz copies, docs/validation/evidence.md section 2);
 * **blocks** keep the serial dependence inside each block (block length ``ceil(sqrt(M))`` by
   default);
 * **an estimated rate**: the spread of ``C_diff`` over independent realizations does not
@@ -29,8 +29,8 @@ Politis and Romano 1999). Why this design:
   deviations that scale the interval (Bertail, Politis and Romano estimate the rate from
   quantile ranges too). The fractions 0.4 / 0.75 (the first version: 0.5 / 0.75 and the central
   68 % range for ``beta``) were chosen on seeds 5000-5199 and validated on seeds 2000-2199
-  (docs/evidence.md sections 2, 3): between 0.5 and 0.75 the model's spread ratio only moves
-  from 1.58 (``beta = 0.1``) to 1.96 (``beta = 1``), within the noise of two spreads of 100
+  (docs/validation/evidence.md sections 2, 3): between 0.5 and 0.75 the model's spread ratio only
+  moves from 1.58 (``beta = 0.1``) to 1.96 (``beta = 1``), within the noise of two spreads of 100
   resamples; going further down than 0.4 fails at 140 samples (11 blocks of 12 states), where a
   subsample of three blocks (0.3: 36 states) no longer shrinks the spread of ``C_diff``;
 * **normalization and thresholds again**: under min-max most of the scatter of ``C_diff`` for
@@ -48,7 +48,7 @@ the previous version covered 0 in 85 % of 100 noise pairs (seeds 5000-5099, N = 
 where the symmetric one covered 90-93 %: under min-max half of a noise window's resamples lose
 an extreme sample and fall back towards 0, and the reflection turns that tail away from 0. The
 fraction of the smaller resamples with the sign of ``d`` is a stability figure, not a
-probability. Calibration: docs/evidence.md, section 3 (``benchmarks/bench_interval.py``).
+probability. Calibration: docs/validation/evidence.md, section 3 (``benchmarks/bench_interval.py``).
 
 Length: over 600 lines because the module notes carry the method's calibration history.
 
@@ -73,15 +73,13 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from funcnet import _batch_kernels
-from funcnet._batch_kernels import DIRECT_MAX_STATES
-from funcnet._isrn_kernels import _METRIC_CODE
-from funcnet.batch import _block_size, _kernel, _ranks
-from funcnet.embedding import MIN_STATES
+from funcnet.core.batch import DIRECT_MAX_STATES, stacked_measures, windows_per_block
+from funcnet.core.embedding import MIN_STATES
+from funcnet.core.measures import isrn_measures
+from funcnet.core.recurrence import auto_recurrence, cross_recurrence
+from funcnet.core.thresholds import signal_thresholds
 from funcnet.errors import ParameterError
-from funcnet.measures import isrn_measures
 from funcnet.parameters import NetworkParameters
-from funcnet.recurrence import _signal_thresholds, auto_recurrence, cross_recurrence
 
 __all__ = ["AsymmetryInterval", "half_samples", "subsamples", "resampled_differences",
            "rate_factor", "interval_from", "asymmetry_interval", "asymmetry_intervals",
@@ -103,7 +101,7 @@ BETA_MIN = 0.1
 #: seeds 5000-5099 (100 pairs per process at 140 and 300 samples) over 0.65, 0.75, 0.85, 1:
 #: with 1 noise covered 0.89-0.93 and Lorenz 0.80-0.94, with 0.75 0.91-0.95 and 0.83-0.94;
 #: validated on seeds 1000-1199; kept for the fractions (0.4, 0.75) after comparing 0.65-0.85
-#: on seeds 5000-5199 (benchmarks/bench_interval.py, docs/evidence.md section 3).
+#: on seeds 5000-5199 (benchmarks/bench_interval.py, docs/validation/evidence.md section 3).
 BETA_MAX = 0.75
 
 
@@ -269,14 +267,14 @@ def resampled_differences(states: Sequence[np.ndarray], pairs: Sequence[tuple[in
 
     Each signal's kept states are normalized again and its recurrence thresholded again once
     per resample, and reused in all its pairs (module notes). Resamples of at most
-    :data:`funcnet._batch_kernels.DIRECT_MAX_STATES` states with thresholds by rate go through
+    :data:`funcnet.core.batch.DIRECT_MAX_STATES` states with thresholds by rate go through
     the batched engine's compiled kernel, all resamples and pairs in one pass (the same
     numbers as one resample at a time, bit for bit).
 
     Parameters
     ----------
     states : sequence of ndarray (M, c * dim)
-        Embedded states of every signal (:func:`funcnet.embedding.signal_states`).
+        Embedded states of every signal (:func:`funcnet.core.embedding.signal_states`).
     pairs : sequence of (i, j)
         The pairs, as positions in ``states``.
     chosen : ndarray of int, shape (R, n_kept)
@@ -291,15 +289,15 @@ def resampled_differences(states: Sequence[np.ndarray], pairs: Sequence[tuple[in
 
     Examples
     --------
-    >>> from funcnet.embedding import embed
-    >>> from funcnet.systems import white_noise
+    >>> from funcnet.core.embedding import embed
+    >>> from funcnet.validation.systems import white_noise
     >>> data = white_noise(200, seed=0)
     >>> states = [embed(data[:, k], 3, 1) for k in (0, 1)]
     >>> resampled_differences(states, [(0, 1)], half_samples(198, 5)).shape
     (1, 5, 2)
     """
     p = parameters if parameters is not None else NetworkParameters()
-    thresholds, (cr, cross_eps) = _signal_thresholds(p, len(states))
+    thresholds, (cr, cross_eps) = signal_thresholds(p, len(states))
     batched = _batched(states, pairs, chosen, p)
     if batched is not None:
         return batched
@@ -342,7 +340,8 @@ def _batched(states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
     with ``dim = D`` and ``delay = n`` as ``z[t + c n] = S[t, c]``, so each resample is one
     window of the batched engine, already normalized, and the kernel computes its thresholds,
     recurrences and measures with the operations, and in the order, of the per-window path
-    (:mod:`funcnet._batch_kernels`): the same numbers, bit for bit. Applies to thresholds by
+    (:func:`funcnet.core.batch.stacked_measures`): the same numbers, bit for bit. Applies to
+    thresholds by
     rate, nodes of equally many channels, ``MIN_STATES <= n <= DIRECT_MAX_STATES`` and finite
     values below 1e38; everything else returns None (the per-resample path, which also raises
     what it raises).
@@ -358,11 +357,8 @@ def _batched(states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
     pair_x = np.array([i for i, _ in pairs], dtype=np.int64)
     pair_y = np.array([j for _, j in pairs], dtype=np.int64)
     rows = n * width
-    n_states = np.full(1, n, dtype=np.int64)
-    auto_rank, _, cross_rank, _ = _ranks(p, n_states, n_signals)
-    pyunicorn = p.rule == "pyunicorn"
     out = np.empty((len(pairs), n_resamples, 2), dtype=np.float64)
-    block = _block_size(n_signals, n)
+    block = windows_per_block(n_signals, n)
     for first in range(0, n_resamples, block):
         kept = chosen[first:first + block]
         table = np.empty((kept.shape[0] * rows, n_signals), dtype=np.float64)
@@ -372,14 +368,7 @@ def _batched(states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
                     signal[index], p.normalize, p.dim).T.ravel()
         if not (np.abs(table) < 1e38).all():  # NaN compares False too
             return None
-        bounds = np.arange(kept.shape[0] + 1, dtype=np.int64) * rows
-        measures = _kernel(kept.shape[0], len(pairs), n_signals)(
-            table, bounds[:-1], bounds[1:], bounds, 0, False, width, n, _METRIC_CODE[p.metric],
-            p.theiler, pyunicorn,
-            np.ascontiguousarray(np.repeat(auto_rank, kept.shape[0], axis=0)),
-            np.repeat(cross_rank, kept.shape[0]), pair_x, pair_y, n,
-            _batch_kernels.DIRECT_PAIRS,
-        )[4]
+        measures = stacked_measures(table, kept.shape[0], width, n, p, pair_x, pair_y)
         out[:, first:first + kept.shape[0], 0] = (measures[:, :, 0] - measures[:, :, 1]).T
         out[:, first:first + kept.shape[0], 1] = (measures[:, :, 2] - measures[:, :, 3]).T
     return out
@@ -596,8 +585,8 @@ def asymmetry_intervals(states: Sequence[np.ndarray], pairs: Sequence[tuple[int,
 
     Examples
     --------
-    >>> from funcnet.embedding import embed
-    >>> from funcnet.systems import white_noise
+    >>> from funcnet.core.embedding import embed
+    >>> from funcnet.validation.systems import white_noise
     >>> data = white_noise(200, seed=0)
     >>> states = [embed(data[:, k], 3, 1) for k in (0, 1)]
     >>> [iv] = asymmetry_intervals(states, [(0, 1)], [(0.0, 0.0)], resamples=10)
@@ -640,7 +629,7 @@ def asymmetry_interval(x_states: np.ndarray, y_states: np.ndarray, *, c_diff: fl
     x_states, y_states : ndarray, shape (M, c * dim)
         The pair's embedded states, built from the normalized signals.
     c_diff, t_diff : float
-        The observed differences (:func:`funcnet.measures.cross_measures` on the same states).
+        The observed differences (:func:`funcnet.core.measures.cross_measures` on the same states).
     parameters : NetworkParameters, optional
         Normalization, embedding dimension (for the channels), thresholds, metric.
     resamples : int
@@ -665,9 +654,9 @@ def asymmetry_interval(x_states: np.ndarray, y_states: np.ndarray, *, c_diff: fl
 
     Examples
     --------
-    >>> from funcnet.embedding import embed
-    >>> from funcnet.measures import cross_measures
-    >>> from funcnet.systems import logistic_pair
+    >>> from funcnet.core.embedding import embed
+    >>> from funcnet.core.measures import cross_measures
+    >>> from funcnet.validation.systems import logistic_pair
     >>> data = logistic_pair(300, 3.7, 4.0, seed=0)
     >>> x = (data[:, 0] - data[:, 0].min()) / np.ptp(data[:, 0])
     >>> y = (data[:, 1] - data[:, 1].min()) / np.ptp(data[:, 1])

@@ -1,7 +1,8 @@
 """Evidence for every pair of a set of signals: coupling test, intervals, direction, reading.
 
 :func:`pairwise_evidence` embeds each signal and computes its recurrence matrix once (the
-thresholds of :func:`funcnet.measures.pairwise_cross_measures`, so ``c_diff``/``t_diff`` are the
+thresholds of :func:`funcnet.core.measures.pairwise_cross_measures`, so ``c_diff``/``t_diff`` are
+the
 network's own numbers), then per pair runs the dependence test
 (:mod:`funcnet.evidence.dependence`) and the half-sampling intervals
 (:mod:`funcnet.evidence.interval`), and adjusts the coupling and direction p-values across the
@@ -22,18 +23,21 @@ The reading of a pair (:func:`evidence_label`):
 =====================  ===================================================================
 
 "not-coupled" means the test found nothing, not that the signals are independent: smooth
-(long-memory) signals leave the test few surrogates and little power (docs/evidence.md).
+(long-memory) signals leave the test few surrogates and little power (docs/validation/evidence.md).
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 
-from funcnet.embedding import signal_states
+from funcnet.core.embedding import signal_states
+from funcnet.core.measures import isrn_measures
+from funcnet.core.recurrence import auto_recurrence, cross_recurrence
+from funcnet.core.thresholds import signal_thresholds
 from funcnet.errors import ParameterError, SignalError
 from funcnet.evidence.dependence import (
     benjamini_hochberg,
@@ -41,24 +45,22 @@ from funcnet.evidence.dependence import (
     decorrelation_time,
     default_surrogates,
     dependence_test,
+    planned_surrogates,
     recurrent_pairs,
     surrogate_plan,
 )
 from funcnet.evidence.interval import AsymmetryInterval, asymmetry_intervals
-from funcnet.measures import isrn_measures
-from funcnet.parameters import PAIR_FIELDS, NetworkParameters, resolve
-from funcnet.recurrence import (
-    _signal_thresholds,
-    auto_recurrence,
-    cross_recurrence,
-)
+from funcnet.parameters import PAIR_FIELDS, NetworkParameters, ParameterOverrides, resolve
 
-__all__ = ["EVIDENCE_LABELS", "PairEvidence", "pairwise_evidence", "evidence_label",
-           "check_evidence_arguments"]
+__all__ = ["EVIDENCE_LABELS", "INTERVAL_SCOPES", "PairEvidence", "pairwise_evidence",
+           "evidence_label", "check_evidence_arguments"]
 
 #: The readings of a pair (the ``evidence`` column).
 EVIDENCE_LABELS: tuple[str, ...] = ("coupled-directed", "coupled", "not-coupled",
                                     "asymmetry-only", "untestable")
+#: The pairs whose asymmetry intervals are drawn: those whose coupling test can reach the level
+#: (``"testable"``, the default: an untestable pair's intervals are never read), or every pair.
+INTERVAL_SCOPES: tuple[str, ...] = ("testable", "all")
 
 
 @dataclass(frozen=True)
@@ -137,7 +139,7 @@ def evidence_label(coupled: bool, direction: str, kind: str, *,
     """
     if coupled:
         # Two independent readings must agree: the conditional-recurrence direction alone named
-        # a direction for 55 % of common-driver pairs (docs/evidence.md).
+        # a direction for 55 % of common-driver pairs (docs/validation/evidence.md).
         return "coupled-directed" if direction and direction == kind else "coupled"
     if untestable:
         return "untestable"
@@ -158,11 +160,11 @@ def _check_alpha(alpha: Any) -> float:
 
 
 def check_evidence_arguments(surrogates: Any, alpha: Any, resamples: Any,
-                             surrogate_method: Any = "shift") -> None:
+                             surrogate_method: Any = "shift", intervals: Any = "testable") -> None:
     """Raise a :class:`ParameterError` naming the first bad evidence argument.
 
     ``resamples=0`` is allowed (no intervals); ``surrogate_method`` is ``"shift"`` or
-    ``"twin"``.
+    ``"twin"``; ``intervals`` one of :data:`INTERVAL_SCOPES`.
 
     Examples
     --------
@@ -179,6 +181,9 @@ def check_evidence_arguments(surrogates: Any, alpha: Any, resamples: Any,
             resamples < 0:
         raise ParameterError.of("resamples", f"must be an integer >= 0, got {resamples!r}")
     check_surrogate_method(surrogate_method)
+    if intervals not in INTERVAL_SCOPES:
+        raise ParameterError.of("intervals", f"must be one of {list(INTERVAL_SCOPES)}, got "
+                                f"{intervals!r}")
 
 
 def pairwise_evidence(
@@ -192,7 +197,9 @@ def pairwise_evidence(
     resamples: int = 200,
     level: float = 0.95,
     surrogate_method: str = "shift",
-    **overrides: Any,
+    intervals: str = "testable",
+    observed: Mapping[tuple[Any, Any], tuple[float, float]] | None = None,
+    **overrides: Unpack[ParameterOverrides],
 ) -> dict[tuple[Any, Any], PairEvidence]:
     """Coupling test, intervals and direction of every pair ``i < j`` of equally long signals.
 
@@ -205,7 +212,7 @@ def pairwise_evidence(
         Keys of the result (default positions).
     parameters : NetworkParameters, optional
         Embedding and thresholds (``dim``, ``delay``, ``rr``, ``cr``, ``eps``, ``metric``,
-        ``rule``, ``theiler``), as :func:`funcnet.measures.pairwise_cross_measures`.
+        ``rule``, ``theiler``), as :func:`funcnet.core.measures.pairwise_cross_measures`.
     surrogates : int, optional
         ``K`` asked per pair; default :func:`default_surrogates` of the number of pairs.
     alpha : float
@@ -222,7 +229,18 @@ def pairwise_evidence(
     surrogate_method : {"shift", "twin"}
         Surrogates of the dependence test: the non-circular time-shift lattice (default) or
         twin surrogates of the second signal of each pair (Thiel et al. 2006;
-        :mod:`funcnet.evidence.surrogates`; where each is valid: docs/evidence.md).
+        :mod:`funcnet.evidence.surrogates`; where each is valid: docs/validation/evidence.md).
+    intervals : {"testable", "all"}
+        Whose intervals are drawn (:data:`INTERVAL_SCOPES`): ``"testable"`` those of the pairs
+        whose coupling test can reach ``alpha``, decided from the window's size before any
+        measure (:func:`~funcnet.evidence.dependence.planned_surrogates`,
+        :func:`~funcnet.evidence.reading.untestable`); an untestable pair's intervals are NaN
+        as with ``resamples=0``. ``"all"``: every pair's. A pair's interval is the same number
+        either way (each pair's resamples depend on its two signals alone).
+    observed : mapping, optional
+        ``{(name_i, name_j): (c_diff, t_diff)}``: the pairs' differences already computed on
+        these signals with these parameters (a network's pairs table); default computed here.
+        Given, no cross recurrence is computed but for the intervals.
     **overrides
         Fields of ``parameters`` (pair fields only).
 
@@ -230,7 +248,7 @@ def pairwise_evidence(
     -------
     dict
         ``{(name_i, name_j): PairEvidence}``, the keys of
-        :func:`funcnet.measures.pairwise_cross_measures`.
+        :func:`funcnet.core.measures.pairwise_cross_measures`.
 
     Raises
     ------
@@ -246,7 +264,7 @@ def pairwise_evidence(
 
     Examples
     --------
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.validation.systems import henon_pair
     >>> data = henon_pair(400, 0.6, seed=0)
     >>> result = pairwise_evidence([data[:, 0], data[:, 1]], names=["x", "y"], delay=1,
     ...                            resamples=50)
@@ -257,8 +275,19 @@ def pairwise_evidence(
     ...                          resamples=0, surrogate_method="twin")[("x", "y")]
     >>> twin.coupled, twin.surrogates, bool(np.isnan(twin.c_diff_low))
     (True, 99, True)
+
+    Nine surrogates cannot reach 0.05 (``1 / 10``): no interval unless asked for.
+
+    >>> few = pairwise_evidence([data[:, 0], data[:, 1]], names=["x", "y"], delay=1,
+    ...                         resamples=20, surrogates=9)[("x", "y")]
+    >>> few.surrogates, bool(np.isnan(few.c_diff_low))
+    (10, True)
+    >>> every = pairwise_evidence([data[:, 0], data[:, 1]], names=["x", "y"], delay=1,
+    ...                           resamples=20, surrogates=9, intervals="all")[("x", "y")]
+    >>> bool(every.c_diff_low <= every.c_diff <= every.c_diff_high)
+    True
     """
-    check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
+    check_evidence_arguments(surrogates, alpha, resamples, surrogate_method, intervals)
     alpha = float(alpha)
     p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
     signals = list(signals)
@@ -274,7 +303,7 @@ def pairwise_evidence(
     n_pairs = n * (n - 1) // 2
     k = default_surrogates(n_pairs, alpha) if surrogates is None else surrogates
     called = [f"signals[{i}]" if names is None else repr(str(keys[i])) for i in range(n)]
-    thresholds, (cr, cross_eps) = _signal_thresholds(p, n)
+    thresholds, (cr, cross_eps) = signal_thresholds(p, n)
     states = [signal_states(s, parameters=p, name=c) for s, c in zip(signals, called, strict=True)]
     autos = [
         auto_recurrence(s, rr=rate, eps=eps, parameters=p, name=c)
@@ -285,13 +314,29 @@ def pairwise_evidence(
     recurrent = [recurrent_pairs(d) for d in dense] if surrogate_method == "shift" else None
     decorrelation = [decorrelation_time(s) for s in signals]
     span = (p.dim - 1) * p.delay + 1
+    # Whether each pair can reach alpha is known from the sizes: the intervals of those that
+    # cannot are not drawn (unless asked for).
+    n_states = int(np.shape(states[0])[0])
+    planned = [planned_surrogates(surrogate_method, n_states, k,
+                                  min_shift=max(decorrelation[i], decorrelation[j], span))
+               for i in range(n) for j in range(i + 1, n)]
+    # the least p-value each can reach, BH-adjusted (funcnet.evidence.reading.untestable)
+    k_planned = np.asarray(planned, dtype=np.float64)
+    with np.errstate(divide="ignore"):
+        least = benjamini_hochberg(np.where(k_planned > 0, 1.0 / (k_planned + 1.0), np.nan))
+    drawn = least <= alpha if intervals == "testable" else np.ones(n_pairs, bool)
     raw: list[dict[str, Any]] = []
     for i in range(n):
         for j in range(i + 1, n):
-            cr_ij = cross_recurrence(states[i], states[j], cr=cr, eps=cross_eps, parameters=p,
-                                     names=(called[i], called[j]))
-            measures = isrn_measures(autos[i], autos[j], cr_ij,
-                                     parameters=p.for_pair(i, j))
+            if observed is None:
+                cr_ij = cross_recurrence(states[i], states[j], cr=cr, eps=cross_eps,
+                                         parameters=p, names=(called[i], called[j]))
+                measures = isrn_measures(autos[i], autos[j], cr_ij,
+                                         parameters=p.for_pair(i, j))
+                differences = (measures.c_diff, measures.t_diff)
+            else:
+                c_diff, t_diff = observed[(keys[i], keys[j])]
+                differences = (float(c_diff), float(t_diff))
             try:
                 plan = surrogate_plan(
                     surrogate_method, dense[j], k,
@@ -309,21 +354,21 @@ def pairwise_evidence(
                     recurrent=None if recurrent is None else (recurrent[i], recurrent[j]))
                 entry.update(statistic=test.statistic, p=test.p_value, k=test.surrogates,
                              index=test.direction_index, index_p=test.direction_p)
-            entry["observed"] = (measures.c_diff, measures.t_diff)
+            entry["observed"] = differences
             entry["pair"] = (i, j)
             raw.append(entry)
-    if resamples:
+    for e in raw:
+        c_diff, t_diff = e["observed"]
+        e["interval"] = AsymmetryInterval.without_resamples(c_diff, t_diff, level=level)
+    chosen = [e for e, draw in zip(raw, drawn, strict=True) if draw]
+    if resamples and chosen:
         # One set of subsamples for the network: each signal is re-thresholded once per
         # resample.
-        intervals = asymmetry_intervals(states, [e["pair"] for e in raw],
-                                        [e["observed"] for e in raw], parameters=p,
-                                        resamples=resamples, level=level, seed=seed)
-        for e, interval in zip(raw, intervals, strict=True):
+        found = asymmetry_intervals(states, [e["pair"] for e in chosen],
+                                    [e["observed"] for e in chosen], parameters=p,
+                                    resamples=resamples, level=level, seed=seed)
+        for e, interval in zip(chosen, found, strict=True):
             e["interval"] = interval
-    else:
-        for e in raw:
-            c_diff, t_diff = e["observed"]
-            e["interval"] = AsymmetryInterval.without_resamples(c_diff, t_diff, level=level)
     coupling_p = benjamini_hochberg([e["p"] for e in raw])
     direction_p = benjamini_hochberg([e["index_p"] for e in raw])
     out: dict[tuple[Any, Any], PairEvidence] = {}

@@ -33,7 +33,7 @@ stays what the test gave.
 References
 ----------
 Y. Benjamini, Y. Hochberg, "Controlling the false discovery rate", J. R. Stat. Soc. B 57,
-289-300 (1995). docs/evidence.md (why short robot windows hold few surrogates).
+289-300 (1995). docs/validation/evidence.md (why short robot windows hold few surrogates).
 """
 
 from __future__ import annotations

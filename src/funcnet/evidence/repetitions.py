@@ -1,8 +1,8 @@
 """Coupling tested across repetitions of one motion: does Y follow X beyond the command?
 
 In a closed loop every signal follows the set-point, and a smooth robot window holds too few
-time-shift surrogates to decide anything (docs/evidence.md, "Robot windows"). Repetitions of the
-same motion, aligned on the set-point, give what one window cannot: an independent sample per
+time-shift surrogates to decide anything (docs/validation/evidence.md, "Robot windows"). Repetitions
+of the same motion, aligned on the set-point, give what one window cannot: an independent sample per
 repetition. :func:`repetition_evidence` asks, for every pair, whether X and Y share more than
 the command.
 
@@ -22,7 +22,8 @@ Signals: residuals about the mean over the repetitions (the default, ``residuals
     embedded as the network's signals are. On raw signals the recurrences are those of the
     command's shape, the same in every repetition, and the fluctuations beyond it barely move
     ``phi``; the residuals keep only the fluctuations. Chosen by the validation
-    (docs/evidence.md, "Repetitions": power on the physical links, residuals against raw).
+    (docs/validation/evidence.md, "Repetitions": power on the physical links, residuals against
+    raw).
 
 Surrogates: repetition shuffles
     A surrogate pairs X of repetition ``i`` with Y of repetition ``pi(i)`` for a permutation
@@ -46,7 +47,7 @@ Direction
 
 Asymmetry
     ``C_diff`` and ``T_diff`` of each repetition's own network (the raw signals, the network's
-    numbers, :func:`funcnet.batch.batch_pairs`), their mean and a Student-t interval of the
+    numbers, :func:`funcnet.core.batch.batch_pairs`), their mean and a Student-t interval of the
     mean from their spread across the repetitions; ``kind_share`` is the share of repetitions
     whose network gives the pair its most common kind (``kind``).
 
@@ -72,23 +73,24 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
 from scipy.stats import t as student_t
 
-from funcnet.batch import batch_pairs
-from funcnet.embedding import signal_states
+from funcnet.core.batch import batch_pairs
+from funcnet.core.embedding import signal_states
+from funcnet.core.kinds import measure_kinds
+from funcnet.core.normalization import normalize
+from funcnet.core.recurrence import auto_recurrence
+from funcnet.core.thresholds import signal_thresholds
 from funcnet.errors import ParameterError, SignalError
 from funcnet.evidence._kernels import _repetition_counts
 from funcnet.evidence.dependence import benjamini_hochberg, default_surrogates
 from funcnet.evidence.pairs import _check_alpha, _check_surrogates
 from funcnet.evidence.reading import evidence_readings
-from funcnet.kinds import measure_kinds
-from funcnet.normalization import normalize
-from funcnet.parameters import NetworkParameters, resolve
-from funcnet.recurrence import _signal_thresholds, auto_recurrence
+from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
 
 __all__ = ["REPETITION_COLUMNS", "repetition_evidence", "repetition_tests", "repetitions_needed",
            "smallest_p_value", "EXHAUSTIVE_MAX"]
@@ -219,7 +221,7 @@ def _recurrences(stack: np.ndarray, p: NetworkParameters, residuals: bool, names
     the states' number; the nodes constant in every repetition."""
     values = stack - stack.mean(axis=0) if residuals else stack
     r, _, n = values.shape
-    thresholds, _ = _signal_thresholds(p, n)
+    thresholds, _ = signal_thresholds(p, n)
     dense, pairs, offsets = [], [], []
     constants: set[int] = set()
     length = 0
@@ -298,7 +300,7 @@ def repetition_tests(
     seed: int = 0,
     surrogates: int | None = None,
     residuals: bool = True,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> pd.DataFrame:
     """The repetition coupling test of every pair alone, unadjusted (module notes).
 
@@ -328,7 +330,7 @@ def repetition_tests(
 
     Examples
     --------
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.validation.systems import henon_pair
     >>> runs = [henon_pair(200, 0.6, seed=s) for s in range(5)]
     >>> tests = repetition_tests(runs, signals=["x", "y"], delay=1)
     >>> int(tests.surrogates.item()), round(float(tests.p_value.item()), 4)
@@ -378,7 +380,7 @@ def repetition_evidence(
     surrogates: int | None = None,
     residuals: bool = True,
     level: float = 0.95,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> pd.DataFrame:
     """Evidence for every pair from ``R`` aligned repetitions of one motion (module notes).
 
@@ -439,7 +441,7 @@ def repetition_evidence(
 
     Examples
     --------
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.validation.systems import henon_pair
     >>> runs = [henon_pair(300, 0.6, seed=s) for s in range(6)]
     >>> table = repetition_evidence(runs, signals=["x", "y"], delay=1)
     >>> row = table.iloc[0]

@@ -19,7 +19,7 @@ with the other signal without needing stationarity of a time shift:
 With few twins (the usual case at a fixed recurrence rate of 5 % for flows and noise; Thiel et
 al. choose the threshold to get enough of them) a surrogate is mostly a random start run to the
 end and restarted: a random circular shift with random joins. Where that is not valid is
-measured in docs/evidence.md.
+measured in docs/validation/evidence.md.
 
 References
 ----------

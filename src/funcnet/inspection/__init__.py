@@ -8,8 +8,10 @@ computed, and the backlash diagnosis (:func:`inspect_recording`, a :class:`Trace
 :mod:`~funcnet.inspection.robot` does it for each axis of a recording of several axes and adds
 the robot-wide network, its pairs told apart within and between axes (:func:`inspect_robot`).
 :mod:`~funcnet.inspection.repeated` reads the repetitions of one motion in the traces together
-(:func:`inspect_repetitions`).
-Names are imported lazily.
+(:func:`inspect_repetitions`, :func:`repetitions_of` the inspections).
+:mod:`~funcnet.inspection.files` reads a trace file and inspects it as one axis or as a robot
+(:func:`inspect_file`). The report (:mod:`funcnet.report`) only draws what these return. Names
+are imported lazily.
 
 Examples
 --------
@@ -33,6 +35,8 @@ _EXPORTS = {
     "pair_scope": "funcnet.inspection.robot",
     "RepeatedInspection": "funcnet.inspection.repeated",
     "inspect_repetitions": "funcnet.inspection.repeated",
+    "repetitions_of": "funcnet.inspection.repeated",
+    "inspect_file": "funcnet.inspection.files",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

@@ -3,23 +3,27 @@
 :func:`inspect_repetitions` finds the repetitions of the most repeated motion in the inspected
 recordings (:func:`funcnet.robot.find_repetitions`) and reads every pair per phase with the
 repetition test (:func:`funcnet.repetition_evidence`): coupling beyond the command, which one
-short window cannot test (docs/evidence.md, sections 5 and 7). With too few repetitions it says
-how many a decision needs.
+short window cannot test (docs/validation/evidence.md, sections 5 and 7). With too few repetitions
+it says how many a decision needs.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import pandas as pd
 
 from funcnet.errors import FuncnetError
 from funcnet.evidence.repetitions import repetition_evidence, repetitions_needed
-from funcnet.parameters import NetworkParameters
+from funcnet.parameters import EvidenceSettings, NetworkParameters
 from funcnet.robot import Recording, find_repetitions
 
-__all__ = ["RepeatedInspection", "inspect_repetitions"]
+if TYPE_CHECKING:
+    from funcnet.inspection.trace import TraceInspection
+
+__all__ = ["RepeatedInspection", "inspect_repetitions", "repetitions_of"]
 
 
 @dataclass(frozen=True)
@@ -113,3 +117,30 @@ def _left_out_sentence(left_out: Sequence[str], limit: int = 6) -> str:
     shown = "; ".join(left_out[:limit])
     more = f"; and {len(left_out) - limit} more" if len(left_out) > limit else ""
     return f"; not taken: {shown}{more}"
+
+
+def repetitions_of(inspections: Sequence[TraceInspection],
+                   evidence_options: EvidenceSettings | None = None) -> RepeatedInspection | None:
+    """:func:`inspect_repetitions` of inspected traces, with their nodes and parameters.
+
+    Parameters
+    ----------
+    inspections : sequence of TraceInspection
+        The single-axis inspections to read together; the first one's nodes and parameters
+        are used.
+    evidence_options : EvidenceSettings, optional
+        ``alpha`` and ``seed`` are used (default 0.05 and 0).
+
+    Returns
+    -------
+    RepeatedInspection or None
+        None when there is no inspection to read.
+    """
+    if not inspections:
+        return None
+    options = evidence_options or EvidenceSettings()
+    first = inspections[0]
+    return inspect_repetitions([ins.recording for ins in inspections], first.signals,
+                               parameters=first.parameters,
+                               alpha=float(options.get("alpha", 0.05)),
+                               seed=int(options.get("seed", 0)))

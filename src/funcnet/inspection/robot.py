@@ -18,16 +18,16 @@ from __future__ import annotations
 import dataclasses
 import functools
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Unpack
 
 import pandas as pd
 
 from funcnet.inspection.trace import TraceInspection, _step, inspect_recording
 from funcnet.network import FunctionalNetwork
 from funcnet.network.edge_evidence import check_evidence_settings
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.pipeline import WindowFailure, window_evidence, window_networks
 from funcnet.robot import Recording, Window, paper_nodes
 from funcnet.robot.axes import split_qualified
@@ -131,8 +131,8 @@ def inspect_robot(
     evidence: bool = True,
     backlash: bool = True,
     progress: Callable[[int, int, str], None] | None = None,
-    evidence_options: Mapping[str, Any] | None = None,
-    **overrides: Any,
+    evidence_options: EvidenceSettings | None = None,
+    **overrides: Unpack[ParameterOverrides],
 ) -> RobotInspection:
     """Inspect each axis of a recording of several axes, and the robot as one network.
 
@@ -169,7 +169,7 @@ def inspect_robot(
         raise ParameterError.of("recording", "holds one axis: use inspect_recording")
     p = resolve(parameters, overrides)
     if evidence:
-        check_evidence_settings(**dict(evidence_options or {}))
+        check_evidence_settings(**(evidence_options or EvidenceSettings()))
     nodes = list(signals) if signals is not None else paper_nodes(recording.data.columns)
     windows = tuple(
         dataclasses.replace(span_window(a, b), label=f"whole recording {a:g}-{b:g} s")
@@ -182,7 +182,7 @@ def inspect_robot(
     failures = list(networks.failures)
     if evidence:
         networks = window_evidence(recording, networks, windows, errors="collect",
-                                   **dict(evidence_options or {}))
+                                   **(evidence_options or EvidenceSettings()))
         failures += networks.failures
     axes: dict[int, TraceInspection] = {}
     errors: dict[int, str] = {}

@@ -28,27 +28,31 @@ import time
 import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any, Unpack
 
+import numpy as np
 import pandas as pd
 
 from funcnet.errors import ChannelError, FuncnetError, RecordingWarning
 from funcnet.inspection.motion import motion_summary, segment_phases, turns_across_gaps
 from funcnet.network import FunctionalNetwork
 from funcnet.network.edge_evidence import check_evidence_settings
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.pipeline import WindowFailure, window_evidence, window_networks, window_warnings
 from funcnet.robot import PAPER_NODES, Recording, Window, phase_windows
 from funcnet.robot.load import prepare_recording
 from funcnet.robot.phases import Turn
 from funcnet.robot.preprocess import DERIVED_SIGNALS, staircase_signals
 
+if TYPE_CHECKING:  # the diagnosis loads when it runs
+    from funcnet.diagnosis.diagnose import BacklashResult
+
 __all__ = ["TraceInspection", "inspect_recording", "DETRENDED_NODES"]
 
 #: Detrended nodes (``funcnet inspect --detrended``): the positions' ramps replaced by the
 #: following error FE = RP - AP and the torsion TORSION = MP - AP, with V and the currents.
 #: In cruise the positions are ramps, which time-shift surrogates cannot treat as stationary
-#: (issue 10, item 5; docs/evidence.md).
+#: (docs/validation/evidence.md).
 DETRENDED_NODES = ("FE", "TORSION", "V", "RC", "AC")
 
 # Phases summarized, not networked: the set-point is constant there.
@@ -94,8 +98,8 @@ class TraceInspection:
     problems : pandas.DataFrame
         The networks' flagged problems, counted: ``problem, windows, of, which, pairs
         (windows)``.
-    backlash : Any
-        The :class:`funcnet.diagnosis.BacklashResult`, or None.
+    backlash : BacklashResult or None
+        The backlash diagnosis (:func:`funcnet.diagnosis.diagnose_recording`), or None.
     backlash_error : str
         Why there is no diagnosis ("" when there is one).
     parameters : NetworkParameters
@@ -110,6 +114,11 @@ class TraceInspection:
         The set-point's direction changes across a gap, which no segment holds
         (:func:`~funcnet.inspection.motion.turns_across_gaps`): the end of the move before and
         the start of the next, the other way.
+    reversal_residual : ndarray or None
+        Per sample of ``recording``, deg: ``MP - AP`` less the gear's wind-up and the encoders'
+        skew (:func:`funcnet.diagnosis.reversal_error.unexplained` with the diagnosis's gear
+        fit), what the reversal error steps at a direction change in continuous motion; None
+        without a gear fit or without both encoders.
     """
 
     source: str
@@ -125,7 +134,7 @@ class TraceInspection:
     networks: dict[str, FunctionalNetwork]
     failures: tuple[WindowFailure, ...]
     problems: pd.DataFrame
-    backlash: Any
+    backlash: BacklashResult | None
     backlash_error: str
     parameters: NetworkParameters
     evidence: bool
@@ -133,6 +142,8 @@ class TraceInspection:
     elapsed: float
     recording: Recording = dataclasses.field(repr=False)
     turns_across_gaps: tuple[tuple[float, float], ...] = ()
+    reversal_residual: np.ndarray | None = dataclasses.field(default=None, repr=False,
+                                                             compare=False)
 
     def failed(self, part: str) -> dict[str, str]:
         """Window label -> why, for the windows that lack ``part`` (``"network"``,
@@ -205,8 +216,8 @@ def inspect_recording(
     interpolate: bool = True,
     backlash: bool = True,
     progress: Callable[[int, int, str], None] | None = None,
-    evidence_options: Mapping[str, Any] | None = None,
-    **overrides: Any,
+    evidence_options: EvidenceSettings | None = None,
+    **overrides: Unpack[ParameterOverrides],
 ) -> TraceInspection:
     """Summarize a recording's motion and compute a functional network per phase of each move.
 
@@ -269,7 +280,7 @@ def inspect_recording(
     started = time.perf_counter()
     p = resolve(parameters, overrides)
     if evidence:
-        check_evidence_settings(**dict(evidence_options or {}))
+        check_evidence_settings(**(evidence_options or EvidenceSettings()))
     where = recording.source or "<recording>"
     raw = recording
     if signals is not None:
@@ -297,7 +308,7 @@ def inspect_recording(
             rec, networks, windows, errors="collect",
             progress=lambda k, n, label: _step(progress, 1 + len(windows) + k, total,
                                                f"evidence {label}"),
-            **dict(evidence_options or {}))
+            **(evidence_options or EvidenceSettings()))
         failures += networks.failures
     diagnosis, diagnosis_error = None, ""
     if backlash:
@@ -332,7 +343,17 @@ def inspect_recording(
         elapsed=time.perf_counter() - started,
         recording=rec,
         turns_across_gaps=turns_across_gaps(moves, raw.gaps),
+        reversal_residual=_reversal_residual(rec, diagnosis),
     )
+
+
+def _reversal_residual(rec: Recording, diagnosis: BacklashResult | None) -> np.ndarray | None:
+    """What the reversal error steps, on the recording the networks were computed on."""
+    if diagnosis is None or diagnosis.gear is None or not {"AP", "MP"} <= set(rec.data.columns):
+        return None
+    from funcnet.diagnosis.reversal_error import unexplained
+
+    return unexplained(rec, diagnosis.gear)
 
 
 def _step(progress: Callable[[int, int, str], None] | None, done: int, total: int,

@@ -13,8 +13,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from funcnet.core.normalization import normalize as normalize_signals
 from funcnet.errors import ParameterError, SignalError
-from funcnet.normalization import normalize as normalize_signals
 
 __all__ = ["column_names", "float_columns", "node_groups", "PreparedSignals", "prepared_signals"]
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import dataclasses
 import inspect
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Unpack
 
 import pandas as pd
 
@@ -27,7 +27,7 @@ from funcnet.evidence.pairs import PairEvidence
 from funcnet.network._inputs import PreparedSignals, prepared_signals
 from funcnet.network.rule import edges_from_pairs, kinds_for
 from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS, pairs_frame
-from funcnet.parameters import NetworkParameters
+from funcnet.parameters import EvidenceSettings, NetworkParameters
 
 if TYPE_CHECKING:
     from funcnet.network.functional import FunctionalNetwork
@@ -55,14 +55,14 @@ def check_edge_rule(edge_rule: Any, evidence: bool) -> None:
         raise ParameterError.of("edge_rule", "'interval' needs evidence=True")
 
 
-def check_evidence_settings(**settings: Any) -> None:
+def check_evidence_settings(**settings: Unpack[EvidenceSettings]) -> None:
     """Check the evidence keywords of :func:`add_evidence` before any data is read.
 
     Parameters
     ----------
     **settings
         ``surrogates``, ``alpha``, ``seed``, ``resamples``, ``surrogate_method``,
-        ``edge_rule``; those not given take :func:`add_evidence`'s defaults.
+        ``edge_rule``, ``intervals``; those not given take :func:`add_evidence`'s defaults.
 
     Raises
     ------
@@ -84,17 +84,18 @@ def check_evidence_settings(**settings: Any) -> None:
     given = bound.arguments
     check_edge_rule(given["edge_rule"], evidence=True)
     check_evidence_arguments(given["surrogates"], given["alpha"], given["resamples"],
-                             given["surrogate_method"])
+                             given["surrogate_method"], given["intervals"])
 
 
 def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkParameters, *,
                      surrogates: int | None, alpha: float, seed: int, resamples: int,
-                     surrogate_method: str,
-                     edge_rule: str) -> tuple[pd.DataFrame, dict[str, Any]]:
+                     surrogate_method: str, edge_rule: str,
+                     intervals: str = "testable") -> tuple[pd.DataFrame, dict[str, Any]]:
     """A plain pairs table with the evidence columns, and the settings that made them.
 
     Under ``edge_rule="interval"`` the kinds follow the interval rule
-    (:func:`funcnet.evidence.interval_kind`).
+    (:func:`funcnet.evidence.interval_kind`), and every pair's intervals are drawn (the rule
+    reads them), whatever ``intervals``.
 
     Parameters
     ----------
@@ -104,7 +105,7 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
         The nodes' signals the table was computed from.
     p : NetworkParameters
         The network's parameters.
-    surrogates, alpha, seed, resamples, surrogate_method, edge_rule
+    surrogates, alpha, seed, resamples, surrogate_method, edge_rule, intervals
         As in :func:`funcnet.network.functional_network` (checked by the caller).
 
     Returns
@@ -112,13 +113,19 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
     (pandas.DataFrame, dict)
         The pairs table with the evidence columns, and the network's ``evidence`` settings.
     """
+    if edge_rule == "interval":
+        intervals = "all"
+    # the table's own differences: the measures are not computed again
+    observed = {(str(x), str(y)): (float(c), float(t)) for x, y, c, t in zip(
+        pairs["x"], pairs["y"], pairs["c_diff"], pairs["t_diff"], strict=True)}
     found = pairwise_evidence(
         list(prepared.signals), names=list(prepared.names), parameters=p, surrogates=surrogates,
         alpha=alpha, seed=seed, resamples=resamples, surrogate_method=surrogate_method,
+        intervals=intervals, observed=observed,
     )
     settings = {"surrogates": surrogates, "alpha": float(alpha), "seed": int(seed),
                 "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule,
-                "surrogate_method": surrogate_method}
+                "surrogate_method": surrogate_method, "intervals": intervals}
     return _with_evidence(pairs, found, p, edge_rule, float(alpha)), settings
 
 
@@ -195,7 +202,8 @@ def with_readings(pairs: pd.DataFrame, alpha: float) -> pd.DataFrame:
 
 def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | None = None,
                  alpha: float = 0.05, seed: int = 0, resamples: int = 200,
-                 surrogate_method: str = "shift", edge_rule: str = "paper") -> FunctionalNetwork:
+                 surrogate_method: str = "shift", edge_rule: str = "paper",
+                 intervals: str = "testable") -> FunctionalNetwork:
     """The network with the evidence columns, from the data it was computed from.
 
     Equal to ``functional_network(data, ..., evidence=True, ...)`` with the network's nodes and
@@ -209,7 +217,7 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
         The samples the network was computed from: a DataFrame with a column per node (or per
         channel of a multichannel node; other columns are ignored), or, for one-column nodes
         only, an array with one column per node in node order.
-    surrogates, alpha, seed, resamples, surrogate_method, edge_rule
+    surrogates, alpha, seed, resamples, surrogate_method, edge_rule, intervals
         As in :func:`funcnet.network.functional_network`.
 
     Returns
@@ -229,13 +237,13 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
 
     References
     ----------
-    docs/evidence.md (the dependence test, the intervals, the readings).
+    docs/validation/evidence.md (the dependence test, the intervals, the readings).
 
     Examples
     --------
     >>> import numpy as np
     >>> from funcnet.network import functional_network
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.validation.systems import henon_pair
     >>> data = henon_pair(300, 0.6, seed=0)
     >>> plain = functional_network(data, names=["x", "y"], delay=1, warn=False)
     >>> full = add_evidence(plain, data, surrogates=19, resamples=0)
@@ -246,7 +254,8 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     ['x->y', 'x->y', 'coupled-directed']
     """
     check_evidence_settings(surrogates=surrogates, alpha=alpha, resamples=resamples,
-                            surrogate_method=surrogate_method, edge_rule=edge_rule)
+                            surrogate_method=surrogate_method, edge_rule=edge_rule,
+                            intervals=intervals)
     if network.evidence is not None:
         raise ParameterError.of("network", "already has evidence columns")
     channels = network.channels or {node: (node,) for node in network.nodes}
@@ -271,6 +280,7 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     pairs, settings = evidence_columns(
         network.pairs, prepared, network.parameters, surrogates=surrogates, alpha=alpha,
         seed=seed, resamples=resamples, surrogate_method=surrogate_method, edge_rule=edge_rule,
+        intervals=intervals,
     )
     edges = edges_from_pairs(pairs, degenerate=network.parameters.degenerate)
     return dataclasses.replace(network, pairs=pairs, edges=edges, evidence=settings)

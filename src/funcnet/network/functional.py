@@ -2,7 +2,8 @@
 
 :func:`functional_network` normalizes each signal over the data it is given -- one analysis
 window -- (``normalize="minmax"`` by default, section 3.3), computes the cross measures of every
-unordered pair of nodes (:func:`funcnet.measures.pairwise_cross_measures`, Eq. 6-10) and applies
+unordered pair of nodes (:func:`funcnet.core.measures.pairwise_cross_measures`, Eq. 6-10) and
+applies
 the edge rule of :mod:`funcnet.network.rule` to the pairs table. A node is one signal (a column)
 or a group of columns embedded jointly (a multichannel signal).
 
@@ -19,20 +20,20 @@ import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Unpack
 
 import networkx as nx
 import pandas as pd
 
+from funcnet.core.measures import pairwise_cross_measures
 from funcnet.evidence import check_evidence_arguments
-from funcnet.measures import pairwise_cross_measures
 from funcnet.network import readwrite
 from funcnet.network._inputs import prepared_signals
 from funcnet.network.direction import direction_columns
 from funcnet.network.edge_evidence import check_edge_rule, evidence_columns
 from funcnet.network.rule import edges_from_pairs, pair_kinds
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
 
 __all__ = ["FunctionalNetwork", "functional_network"]
 
@@ -398,14 +399,15 @@ def functional_network(
     resamples: int = 200,
     surrogate_method: str = "shift",
     edge_rule: str = "paper",
-    **overrides: Any,
+    intervals: str = "testable",
+    **overrides: Unpack[ParameterOverrides],
 ) -> FunctionalNetwork:
     """Functional network of simultaneously sampled signals (section 2.3-2.4, 3.4).
 
     Each column is normalized, each node embedded (a group of columns jointly: each column
     embedded with ``dim``, ``delay`` and the states concatenated) and its recurrence network
     computed once; every unordered pair of nodes (X, Y), X first in node order, gives ``C^XY``,
-    ``C^YX``, ``T^XY``, ``T^YX`` (:func:`funcnet.measures.pairwise_cross_measures`), the
+    ``C^YX``, ``T^XY``, ``T^YX`` (:func:`funcnet.core.measures.pairwise_cross_measures`), the
     differences of Eq. 10, a kind under ``mu_c``/``mu_t`` and the weight of Eq. 13
     (:mod:`funcnet.network.rule`).
 
@@ -428,7 +430,7 @@ def functional_network(
     label : str, optional
         Stored on the network (e.g. the window's name).
     warn : bool
-        Emit the threshold warnings of the pairs (:func:`funcnet.measures.threshold_warnings`);
+        Emit the threshold warnings of the pairs (:func:`funcnet.core.measures.threshold_warnings`);
         with False, the flags in the pairs table are the only record.
     evidence : bool
         Add the evidence columns (:data:`~funcnet.network.schema.EVIDENCE_COLUMNS`): the
@@ -449,11 +451,17 @@ def functional_network(
         intervals, their columns NaN).
     surrogate_method : {"shift", "twin"}
         Surrogates of the dependence test: the non-circular time-shift lattice (default) or
-        twin surrogates (:mod:`funcnet.evidence.surrogates`; validity in docs/evidence.md).
+        twin surrogates (:mod:`funcnet.evidence.surrogates`; validity in
+        docs/validation/evidence.md).
     edge_rule : {"paper", "interval"}
         ``"paper"`` (default): ``|diff| >= mu`` (section 2.4). ``"interval"`` (needs
         ``evidence=True``): a measure is directed only when its interval excludes 0 and
         ``|diff| >= mu``; ``c_kind``, ``t_kind`` and ``kind`` then follow this rule.
+    intervals : {"testable", "all"}
+        Whose intervals are drawn: by default only those of the pairs whose coupling test can
+        reach ``alpha`` (known from the window's size before anything is computed; the others'
+        are NaN: an untestable pair is unread); ``"all"`` every pair's. Under
+        ``edge_rule="interval"`` every pair's, whatever this says.
     **overrides
         Any parameter by name, applied to ``parameters`` (``delay=1``).
 
@@ -513,7 +521,7 @@ def functional_network(
     p = resolve(parameters, overrides)
     check_edge_rule(edge_rule, evidence)
     if evidence:
-        check_evidence_arguments(surrogates, alpha, resamples, surrogate_method)
+        check_evidence_arguments(surrogates, alpha, resamples, surrogate_method, intervals)
     prepared = prepared_signals(data, names, nodes, p.normalize)
     results = pairwise_cross_measures(list(prepared.signals), names=list(prepared.names),
                                       parameters=p, warn=warn)
@@ -523,6 +531,7 @@ def functional_network(
         pairs, settings = evidence_columns(
             pairs, prepared, p, surrogates=surrogates, alpha=alpha, seed=seed,
             resamples=resamples, surrogate_method=surrogate_method, edge_rule=edge_rule,
+            intervals=intervals,
         )
     channels = None if nodes is None else {
         name: tuple(prepared.columns[i] for i in group)

@@ -31,15 +31,15 @@ any pair, but :func:`edges_from_pairs` leaves them out unless asked to keep them
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
 
+from funcnet.core.kinds import combine_kinds, combined_kinds, edge_kind, measure_kinds
 from funcnet.errors import ParameterError
-from funcnet.kinds import combine_kinds, combined_kinds, edge_kind, measure_kinds
 from funcnet.network.schema import PAIR_COLUMNS, PAIR_DTYPES, edges_frame
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
 
 __all__ = ["edge_kind", "combine_kinds", "pair_kinds", "kinds_for", "edges_from_pairs"]
 
@@ -108,7 +108,7 @@ def kinds_for(pairs: pd.DataFrame, measure: str) -> pd.Series:
 
 
 def pair_kinds(pairs: pd.DataFrame, parameters: NetworkParameters | None = None,
-               **overrides: Any) -> pd.DataFrame:
+               **overrides: Unpack[ParameterOverrides]) -> pd.DataFrame:
     """The pairs table with the rule's columns ``c_kind``, ``t_kind``, ``kind``, ``weight``.
 
     Parameters

@@ -117,7 +117,7 @@ MEASURE_COLUMNS: tuple[str, ...] = (
     "c_xy", "c_yx", "t_xy", "t_yx", "c_diff", "t_diff", "eps_x", "eps_y", "eps_xy",
     "achieved_rr_x", "achieved_rr_y", "achieved_cr",
 )  # fmt: skip
-#: Every column taken from a pair's :class:`funcnet.measures.CrossMeasures`, by field name.
+#: Every column taken from a pair's :class:`funcnet.core.measures.CrossMeasures`, by field name.
 RESULT_COLUMNS: tuple[str, ...] = (
     *MEASURE_COLUMNS, "eps_ordered", "rate_exceeded", "degenerate", "degenerate_reason",
 )  # fmt: skip

@@ -53,7 +53,7 @@ which each pair is degenerate, under either policy.
 **Work.** Settings that differ only in the rule's fields (``mu``, ``mu_c``, ``mu_t``,
 ``measure``) share one computation of the measures: the rule (:mod:`funcnet.network.rule`) is
 re-applied to the same ``C_diff`` and ``T_diff``. Every other distinct setting is one pass of
-the batched engine (:func:`funcnet.batch.batch_pairs`, bit-identical to
+the batched engine (:func:`funcnet.core.batch.batch_pairs`, bit-identical to
 :func:`~funcnet.network.functional_network`), or of :func:`functional_network` for nodes of
 several columns. The kinds are those of the paper's rule (``edge_rule="paper"``); the
 interval rule of the evidence is not varied here.
@@ -68,17 +68,17 @@ import numbers
 from collections import Counter
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
 
-from funcnet.batch import batch_pairs
+from funcnet.core.batch import batch_pairs
 from funcnet.errors import FuncnetError, ParameterError, SignalError
 from funcnet.network._inputs import column_names, float_columns, node_groups
 from funcnet.network.functional import functional_network
 from funcnet.network.rule import pair_kinds
-from funcnet.parameters import METRICS, PAIR_FIELDS, NetworkParameters, resolve
+from funcnet.parameters import METRICS, PAIR_FIELDS, NetworkParameters, ParameterOverrides, resolve
 
 __all__ = [
     "EdgeStability", "edge_stability", "default_grid", "check_grid", "GRID_FIELDS",
@@ -439,7 +439,7 @@ def edge_stability(
     parameters: NetworkParameters | None = None,
     grid: Mapping[Any, Sequence[Any]] | None = None,
     full: bool = False,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> EdgeStability:
     """Per pair, the fraction of a grid of settings that keep the kind it has at the base.
 
@@ -477,7 +477,7 @@ def edge_stability(
         and the field); a product of more than 10,000 settings.
     SignalError
         As :func:`functional_network` at the base; at another setting (e.g. a window too short
-        for a larger embedding) the message starts with ``setting delay=20: ``.
+        for a larger embedding) the message starts with ``setting delay=20:``.
 
     Notes
     -----

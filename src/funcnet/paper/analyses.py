@@ -1,6 +1,6 @@
 """The paper's section 4 analyses on a plan of simulated trials, every finding measured.
 
-:func:`run_paper_analyses` reads a plan (:func:`funcnet.robot.write_plan`), cuts each trial
+:func:`run_paper_analyses` reads a plan (:func:`funcnet.sim.write_plan`), cuts each trial
 into the paper's windows, computes the networks with :func:`funcnet.pipeline.window_networks`
 under one :class:`~funcnet.parameters.NetworkParameters` (:data:`PAPER_PARAMETERS` by default)
 and measures the findings (:mod:`funcnet.paper.evaluate`).
@@ -18,7 +18,7 @@ import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
@@ -31,7 +31,7 @@ from funcnet.paper.evaluate import (
     reversal_findings,
     velocity_findings,
 )
-from funcnet.parameters import NetworkParameters, resolve
+from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.windows import PAPER_NODES
 
 __all__ = [
@@ -183,7 +183,7 @@ class PaperAnalyses:
                                   abs(float(trials.loc[a.trial, "tcp"]) - 1.6)))
 
 
-def _select(trials: pd.DataFrame, **where: Any) -> pd.DataFrame:
+def _select(trials: pd.DataFrame, **where: float | str | bool) -> pd.DataFrame:
     mask = np.ones(len(trials), dtype=bool)
     for column, value in where.items():
         column_values = trials[column]
@@ -307,6 +307,19 @@ def _analyse(name: str, path: Any, recording: Any,
     return TrialAnalysis(name, str(path), data, phases, windows, networks, errors, dropped)
 
 
+class AnalysisOptions(ParameterOverrides, total=False):
+    """The keywords of :func:`run_paper_analyses` besides the plan and the progress callback,
+    for functions that pass them on (:func:`funcnet.paper.demo.build_demo_report`)."""
+
+    parameters: NetworkParameters | None
+    signals: Sequence[str]
+    max_phase_length: float
+    fixed_lengths: Mapping[str, float] | None
+    reversal_width: float | None
+    timeline_width: float
+    timeline_step: float
+
+
 def run_paper_analyses(
     plan_dir: Any,
     *,
@@ -318,11 +331,11 @@ def run_paper_analyses(
     reversal_width: float | None = REVERSAL_WIDTH,
     timeline_width: float = 0.6,
     timeline_step: float = 0.2,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> PaperAnalyses:
     """The paper's section 4 analyses on a plan of trials, with every finding measured.
 
-    Reads ``manifest.csv`` and the traces of ``plan_dir`` (:func:`funcnet.robot.write_plan`),
+    Reads ``manifest.csv`` and the traces of ``plan_dir`` (:func:`funcnet.sim.write_plan`),
     derives V from AP (Eq. 11-12) over each whole recording
     (:func:`funcnet.robot.read_recording`), detects the phases from RP
     (:func:`funcnet.robot.detect_phases`) and computes (:func:`funcnet.window_networks`):

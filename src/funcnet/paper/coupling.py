@@ -1,7 +1,7 @@
 """Coupling evidence of the paper's claimed relations: is each claimed pair coupled at all?
 
 The paper's arrows come from the asymmetry of cross-clustering and cross-transitivity, which
-does not look at time alignment (issue 10): an arrow can be drawn between two signals that are
+does not look at time alignment: an arrow can be drawn between two signals that are
 not coupled. For every relation a finding claims (a pair of signals in one window), this module
 runs the joint-recurrence dependence test of :mod:`funcnet.evidence` on that window's network
 (:func:`funcnet.functional_network` with ``evidence=True, resamples=0``: the test only, no
@@ -9,8 +9,8 @@ intervals) and counts, per finding, the claimed relations whose pair the test sh
 
 Untestable is not uncoupled. The test's surrogates are time shifts of at least the
 decorrelation time; a short window holds few of them (4-12 on the paper's 140- and 300-sample
-robot windows, docs/evidence.md), and with ``K`` surrogates no p-value is below ``1/(K+1)``.
-A pair that could not have been shown coupled whatever the data (that bound, after the
+robot windows, docs/validation/evidence.md), and with ``K`` surrogates no p-value is below
+``1/(K+1)``. A pair that could not have been shown coupled whatever the data (that bound, after the
 Benjamini-Hochberg adjustment over the window's pairs, above ``alpha``, or no surrogate at all:
 :func:`funcnet.evidence.untestable`) is counted as *untestable*, never as *not coupled*.
 
@@ -218,7 +218,8 @@ def claims_coupling(
             for finding_id, found in sites.items()}
 
 
-def _tested_pairs(trial: TrialAnalysis, key: Any, **settings: Any) -> pd.DataFrame | None:
+def _tested_pairs(trial: TrialAnalysis, key: Any, *, alpha: float, seed: int,
+                  surrogates: int | None, surrogate_method: str) -> pd.DataFrame | None:
     """The window's pairs table with the coupling test, or None (no network, or it failed)."""
     from funcnet.errors import FuncnetError
     from funcnet.network import functional_network
@@ -229,7 +230,8 @@ def _tested_pairs(trial: TrialAnalysis, key: Any, **settings: Any) -> pd.DataFra
     part = trial.window_data(key)[list(net.nodes)]
     try:
         full = functional_network(part, parameters=net.parameters, label=net.label, warn=False,
-                                  evidence=True, resamples=0, **settings)
+                                  evidence=True, resamples=0, alpha=alpha, seed=seed,
+                                  surrogates=surrogates, surrogate_method=surrogate_method)
     except FuncnetError:
         return None
     # The same network: only the evidence columns are new (a guard against a data mismatch).

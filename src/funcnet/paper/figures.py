@@ -2,7 +2,7 @@
 :mod:`funcnet.plot`.
 
 Figures 1, 2 and 5 (sections 2.1-2.4) are computed from the paper's synthetic signals with
-funcnet's own core (:mod:`funcnet.embedding`, :mod:`funcnet.recurrence`,
+funcnet's own core (:mod:`funcnet.core.embedding`, :mod:`funcnet.core.recurrence`,
 :func:`funcnet.network.functional_network`); Figures 9, 10 and 11 (section 4) lay out networks
 already computed (:func:`funcnet.paper.analyses.run_paper_analyses`); nothing is re-derived in
 :mod:`funcnet.plot`, which only draws.
@@ -27,11 +27,11 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from funcnet import plot
-from funcnet.embedding import embed
+from funcnet.core.embedding import embed
+from funcnet.core.normalization import normalize
+from funcnet.core.recurrence import isrn_adjacency, recurrence_matrix
 from funcnet.network import FunctionalNetwork, functional_network
-from funcnet.normalization import normalize
 from funcnet.parameters import NetworkParameters
-from funcnet.recurrence import isrn_adjacency, recurrence_matrix
 
 __all__ = [
     "figure_embedding_network",
@@ -583,7 +583,7 @@ def figure_recurrence_plots(
 
     Each column is normalized as the network's signals are (``parameters.normalize``, paper
     section 3.3) and its recurrence matrix computed at ``parameters``' rate and embedding
-    (:func:`funcnet.recurrence.recurrence_matrix`, Eq. 2), then drawn by
+    (:func:`funcnet.core.recurrence.recurrence_matrix`, Eq. 2), then drawn by
     :func:`funcnet.plot.plot_recurrence`. Beyond the paper.
 
     Parameters

@@ -25,8 +25,8 @@ def plot_recurrence(
     Parameters
     ----------
     matrix : array_like of bool, shape (M, M) or (M_X, M_Y)
-        The computed matrix, e.g. :func:`funcnet.recurrence.recurrence_matrix` (Eq. 2) or
-        :func:`funcnet.recurrence.cross_recurrence_matrix` (Eq. 3).
+        The computed matrix, e.g. :func:`funcnet.core.recurrence.recurrence_matrix` (Eq. 2) or
+        :func:`funcnet.core.recurrence.cross_recurrence_matrix` (Eq. 3).
     cross : bool
         Label the axes as a cross plot (rows X, columns Y).
     ax : matplotlib.axes.Axes, optional

@@ -131,6 +131,8 @@ def plot_edge_timeline(
     for handle in kind_legend.legend_handles:  # same size for every kind in the key
         if isinstance(handle, PathCollection):
             handle.set_sizes([30.0])
+    # an artist that is not clipped counts in the figure's layout (a clipped one is cut off)
+    kind_legend.set_clip_on(False)
     ax.add_artist(kind_legend)
     scale = [Line2D([], [], linestyle="", marker="o", color="0.5",
                     markersize=float(np.sqrt(max(4.0, size_scale * w))), label=f"{w:g}")

@@ -12,7 +12,9 @@ import html
 import os
 import re
 import sys
+from collections import Counter
 from collections.abc import Callable, Iterable, Mapping
+from html.parser import HTMLParser
 from pathlib import Path
 from typing import Any
 
@@ -22,7 +24,8 @@ from funcnet._io import atomic_path
 from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS
 
 __all__ = ["Progress", "PACKAGES", "save_figure", "escape", "table", "mapping_table",
-           "provenance", "pairs_table", "figure_html", "page", "step", "contents"]
+           "provenance", "pairs_table", "figure_html", "page", "step", "contents",
+           "repeated_texts"]
 
 Progress = Callable[[int, int, str], None] | None
 _HYPHENATED = re.compile(r"(\S*-\S*)")
@@ -125,8 +128,9 @@ def table(frame: pd.DataFrame, *, classes: Mapping[str, Callable[[Any], str]] | 
 
 
 def mapping_table(mapping: Mapping[str, Any], key: str = "name", value: str = "value") -> str:
-    """A two-column table of a mapping (values as text)."""
-    return table(pd.DataFrame({key: list(mapping), value: [str(v) for v in mapping.values()]}))
+    """A two-column table of a mapping (values as text; a value not set, None, as "—")."""
+    return table(pd.DataFrame({key: list(mapping), value: ["—" if v is None else str(v)
+                                                           for v in mapping.values()]}))
 
 
 def provenance(items: Mapping[str, Any] | None = None, *, qualifier: str = "",
@@ -209,6 +213,66 @@ def step(progress: Progress, done: int, total: int, description: str) -> None:
         progress(done, total, description)
 
 
+
+
+class _Blocks(HTMLParser):
+    """The text of each block of a page: a table cell, paragraph, list item, caption."""
+
+    _BLOCKS = frozenset({"td", "th", "p", "li", "figcaption", "summary", "h1", "h2", "h3"})
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.blocks: list[str] = []
+        self._open: list[list[str]] = []
+
+    def handle_starttag(self, tag: str, attrs: Any) -> None:
+        if tag in self._BLOCKS:
+            self._open.append([])
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag in self._BLOCKS and self._open:
+            text = " ".join("".join(self._open.pop()).split())
+            if text:
+                self.blocks.append(text)
+
+    def handle_data(self, data: str) -> None:
+        if self._open:
+            self._open[-1].append(data)
+
+
+def repeated_texts(document: str, *, longer_than: int = 60, most: int = 2) -> dict[str, int]:
+    """The texts of a page said more than ``most`` times: what a page should say once.
+
+    Texts that differ only in their numbers count as one (every number read as ``#``): the
+    same sentence with another count is the same sentence.
+
+    Parameters
+    ----------
+    document : str
+        An HTML page.
+    longer_than : int
+        Only blocks (table cells, paragraphs, list items, captions) of more characters count.
+    most : int
+        How often a text may appear.
+
+    Returns
+    -------
+    dict
+        Text -> how often, for the texts over the limit.
+
+    Examples
+    --------
+    >>> cells = "".join(f"<td>{k} in continuous motion, {'x' * 40}</td>" for k in (1, 2, 3))
+    >>> repeated_texts("<table><tr>" + cells + "</tr></table>")
+    {'# in continuous motion, xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx': 3}
+    >>> repeated_texts("<p>short</p>" * 5)
+    {}
+    """
+    parser = _Blocks()
+    parser.feed(document)
+    counts = Counter(re.sub(r"\d+(\.\d+)?", "#", text) for text in parser.blocks
+                     if len(text) > longer_than)
+    return {text: n for text, n in counts.items() if n > most}
 
 
 def setpoint_html(networks: Any) -> str:

@@ -1,11 +1,13 @@
 """The engineer's report of a controller trace: "here is a trace of my axis: what is it doing?".
 
-:func:`inspect_trace` reads one or several traces and writes, for each, one HTML page that reads
-from the top: a plain summary of the motion (moves, phases with their times, speeds, peak
+:func:`inspect_trace` has one or several traces read and inspected
+(:func:`funcnet.inspection.inspect_file`) and writes, for each, one HTML page that reads from the
+top: a plain summary of the motion (moves, phases with their times, speeds, peak
 currents, following error, lost motion at the direction changes where both encoders exist),
 then the functional network of every phase of every move with its evidence, the edge timeline,
 the backlash diagnosis, and what an arrow does and does not say. Several traces get an index
-page. The computation is :func:`funcnet.inspection.inspect_recording` (a
+page. This module only draws: the computation is
+:func:`funcnet.inspection.inspect_recording` (a
 :class:`~funcnet.inspection.TraceInspection`); :func:`write_inspection` renders it. A file of
 several axes read without ``axis`` is :func:`funcnet.inspection.inspect_robot`'s, rendered by
 :func:`write_robot_inspection`: the robot's page (a summary per axis, the robot network with
@@ -25,20 +27,20 @@ References
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
-from matplotlib.figure import Figure
 
 from funcnet._io import write_text_atomic
 from funcnet.errors import ParameterError
-from funcnet.inspection import TraceInspection, inspect_recording
-from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection, inspect_robot
-from funcnet.parameters import NetworkParameters, resolve
-from funcnet.plot import plot_network
+from funcnet.inspection import TraceInspection
+from funcnet.inspection.files import inspect_file
+from funcnet.inspection.repeated import repetitions_of
+from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.report.html import (
     Progress,
     contents,
@@ -63,15 +65,15 @@ from funcnet.report.inspect_figures import (
 from funcnet.report.inspect_text import (
     failed_windows,
     gaps_sentence,
+    lost_motion_cell,
     partial_evidence,
     summary_html,
 )
 from funcnet.report.repetitions_page import write_repetitions
-from funcnet.robot import read_trace
-from funcnet.robot.axes import split_qualified
+from funcnet.report.robot_figures import figure_robot_matrix
+from funcnet.report.robot_summary import axis_findings
 from funcnet.robot.channels import channel_map
 from funcnet.robot.grid import format_spans
-from funcnet.robot.units import in_degrees
 
 __all__ = ["inspect_trace", "write_inspection", "write_robot_inspection", "READING_AN_ARROW"]
 
@@ -113,8 +115,8 @@ def _backlash_html(ins: TraceInspection) -> str:
 
     rows = [{"change": r.change.kind, "stop [s]": r.change.stop, "start [s]": r.change.start,
              "dwell [s]": r.change.dwell, "direction": "+" if r.change.direction > 0 else "−",
-             "lost motion [arcsec]": _fmt(None if r.lost_motion is None
-                                          else r.lost_motion * 3600),
+             "lost motion [arcsec]": lost_motion_cell(r.lost_motion, r.lost_motion_high,
+                                                      3600),
              "backlash score": _fmt(r.backlash_score)} for r in result.reversals]
     reading = result.reading.get("text", "") if result.reading else ""
     return (f"<p>{escape(result.message)}.{' ' + escape(reading) if reading else ''}</p>"
@@ -190,7 +192,8 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
                                             if ins.gaps else "."))
     add(1, "networks", figure_networks,
         "Figure 2 — the functional network of every phase window (rows: moves; columns: "
-        "phases), each node at the same place in every panel. Black arrow: the direction "
+        "phases; where a move repeats a phase, every window its own panel in time order), "
+        "each node at the same place in every panel. Black arrow: the direction "
         "reading X → Y (X's past improves Y's prediction, Y's does not improve X's); pale "
         "line: undecided (the pairs table's direction_reason says why); width ∝ weight "
         "(Eq. 13); no line: a degenerate pair. The rule's arrows (kind) are in the pairs "
@@ -304,38 +307,26 @@ def write_inspection(
 # --- a recording of several axes: the robot's page and one page per axis
 
 
-def _axis_rows(ins: RobotInspection) -> pd.DataFrame:
-    rows = []
-    for axis in ins.recording.axes:
-        one = ins.axes.get(axis)
-        if one is None:
-            rows.append({"axis": axis, "moves": None, "networks": None,
-                         "backlash": ins.axis_errors.get(axis, ""), "lost motion [arcmin]": None})
-            continue
-        result = one.backlash
-        lost: float | str | None = None if result is None else round(60 * result.lost_motion, 3) \
-            if result.lost_motion is not None else f"none ({result.lost_motion_reason or 'no AP'})"
-        rows.append({
-            "axis": axis, "moves": len(one.moves), "networks": len(one.networks),
-            "backlash": result.message if result is not None else one.backlash_error,
-            "lost motion [arcmin]": lost})
-    return pd.DataFrame(rows)
-
-
-def _groups(nodes: tuple[str, ...]) -> dict[str, list[str]]:
-    groups: dict[str, list[str]] = {}
-    for name in nodes:
-        axis, _ = split_qualified(name)
-        groups.setdefault("common" if axis is None else f"A{axis}", []).append(name)
-    return groups
+def _findings_html(ins: RobotInspection, axis_names: tuple[str, ...] = ()) -> str:
+    """The per-axis table, each axis linked to its page, and its notes said once."""
+    found = axis_findings(ins.axes, ins.axis_errors, tuple(ins.recording.axes), ins.source)
+    frame = found.table.copy()
+    if axis_names:
+        frame.insert(1, "name", [axis_names[int(a) - 1] if int(a) <= len(axis_names) else ""
+                                 for a in frame["axis"]])
+    html_table = table(frame)
+    for axis in ins.axes:  # the axis's number links to its own page
+        html_table = html_table.replace(
+            f"<tr><td>{axis}</td>", f'<tr><td><a href="axis-{axis}/index.html">{axis}</a></td>',
+            1)
+    items = "".join(
+        f"<li>{escape(text)} ({'axis' if len(axes) == 1 else 'axes'} "
+        f"{', '.join(map(str, axes))}).</li>" for text, axes in found.notes)
+    return html_table + (f"<ol class=\"notes\">{items}</ol>" if items else "")
 
 
 def _figure(ins: RobotInspection, label: str) -> Any:
-    fig = Figure(figsize=(9, 9.6), dpi=100, layout="constrained")
-    ax = fig.add_subplot()
-    plot_network(ins.networks[label], ax, groups=_groups(ins.signals), node_size=0.09,
-                 fontsize=9, title=label, arrows="direction")
-    return fig
+    return figure_robot_matrix(ins.networks[label], label)
 
 
 def _scope_counts(pairs: pd.DataFrame) -> str:
@@ -346,6 +337,24 @@ def _scope_counts(pairs: pd.DataFrame) -> str:
     between = int((edges["scope"] == BETWEEN_AXES).sum())
     return (f"{len(edges)} edges of {len(pairs)} pairs: {within} within an axis, {between} "
             "between axes")
+
+
+def _evidence_sentence(pairs: pd.DataFrame) -> str:
+    """What the evidence says of a robot network's pairs, in one sentence ("" without it)."""
+    if "evidence" not in pairs.columns:
+        return ""
+    counts = pairs["evidence"].value_counts()
+    said = ", ".join(f"{n} {label}" for label, n in counts.items())
+    blind = pairs[pairs["evidence"] == "untestable"]
+    why = ""
+    if len(blind):
+        reasons = blind["evidence_reason"].value_counts()
+        drawn = "c_diff_low" in blind and not blind["c_diff_low"].isna().all()
+        why = (f" Untestable: {reasons.index[0]}" + (" (the most common reason)"
+                                                     if len(reasons) > 1 else "")
+               + ("." if drawn else "; their asymmetry intervals are not drawn (--intervals "
+                  "all draws them)."))
+    return escape(f" Evidence: {said} of {len(pairs)} pairs.{why}")
 
 
 def write_robot_inspection(
@@ -380,14 +389,9 @@ def write_robot_inspection(
     for axis, one in ins.axes.items():
         write_inspection(one, out / f"axis-{axis}", progress=progress,
                          axis_label=axis_label(axis) if axis_names else None)
-    rows = _axis_rows(ins)
-    if axis_names:
-        rows.insert(1, "name", [axis_names[a - 1] if a <= len(axis_names) else ""
-                                for a in rows["axis"]])
+    findings = _findings_html(ins, axis_names)
     gaps = gaps_sentence(ins.recording.gaps, ins.recording.segments)
     gaps += " The robot network is one per segment." if gaps else ""
-    links = "".join(
-        f'<li><a href="axis-{a}/index.html">{escape(axis_label(a))}</a></li>' for a in ins.axes)
     name = Path(ins.source).name
     network_parts = []
     for k, window in enumerate(ins.windows):
@@ -398,14 +402,15 @@ def write_robot_inspection(
                                  "</p>")
             continue
         pairs = ins.pairs[label]
-        caption = (f"The robot network of {label}: every axis's signals, grouped per axis "
-                   "(each axis a sector, its name outside the circle); an edge within a sector "
-                   "is within an axis, one across the circle between axes. Black arrow: "
-                   "the direction reading (the source's past improves the target's "
-                   "prediction); pale line: undecided; width ∝ weight (Eq. 13).")
+        caption = (f"The robot network of {label} as a matrix: row X, column Y, the axes in "
+                   "blocks (on the diagonal: within an axis; off it: between two axes), each "
+                   "block's signals in the same order. Blue: a directed edge X → Y in the "
+                   "rule's sense (row → column); red: bidirectional; darker: heavier (Eq. 13); "
+                   "a dot: the coupling test rejects independence.")
         network_parts.append(figure_html(out, f"robot-network-{k + 1}", _figure(ins, label),
                                          caption))
-        network_parts.append(f"<p>{escape(_scope_counts(pairs))}.</p>")
+        network_parts.append(f"<p>{escape(_scope_counts(pairs))}.{_evidence_sentence(pairs)}"
+                             "</p>")
         shown = pairs_table(pairs)
         scope = table(pairs[["x", "y", "axis_x", "axis_y", "scope", "kind", "weight"]])
         network_parts.append("<details><summary>pairs with their scope</summary>" + scope
@@ -416,9 +421,11 @@ def write_robot_inspection(
         setpoint_html(ins.networks),
         f"<section id=\"axes\"><h2>Each axis</h2><p>{len(ins.recording.axes)} axes, "
         f"{ins.recording.duration:.1f} s sampled every {ins.recording.sample_period * 1000:g} "
-        f"ms. {escape(gaps + ' ' if gaps else '')}Each axis's own report (moves, a network per "
-        "phase, evidence, backlash): </p>"
-        f"<ul>{links}</ul>{table(rows)}</section>",
+        f"ms. {escape(gaps + ' ' if gaps else '')}An axis's number opens its own report "
+        "(moves, a network per phase, evidence, backlash). Peaks are over the moves; the lost "
+        "motion is the mean over the direction changes, ≤ a bound where the data do not "
+        "resolve it.</p>"
+        f"{findings}</section>",
         "<section id=\"robot\"><h2>The robot as one network</h2>",
         f"<p>Nodes: {escape(', '.join(ins.signals))}.</p>", *network_parts, "</section>",
         f"<section id=\"arrows\"><h2>Reading an arrow</h2><p>{escape(READING_AN_ARROW)}</p>"
@@ -450,16 +457,18 @@ def inspect_trace(
     channels: Any = None,
     axis: int | None = None,
     progress: Progress = None,
-    evidence_options: Mapping[str, Any] | None = None,
+    evidence_options: EvidenceSettings | None = None,
     repeated: bool = False,
-    **overrides: Any,
+    **overrides: Unpack[ParameterOverrides],
 ) -> Path:
     """Read traces and write the engineer's report of each (and an index for several).
 
     Parameters
     ----------
     *paths : path-like
-        Trace files (SINUMERIK XML, CSV, Parquet: :func:`funcnet.robot.read_trace`).
+        Trace files (SINUMERIK XML, CSV, Parquet, MATLAB, HDF5:
+        :func:`funcnet.robot.read_trace`), each read and inspected by
+        :func:`funcnet.inspection.inspect_file`.
     out_dir : path-like
         The report folder. One trace: ``out_dir/index.html``; several: one folder per trace
         (named after the file) and ``out_dir/index.html`` linking them.
@@ -505,19 +514,13 @@ def inspect_trace(
     cmap = channel_map(channels)
 
     def inspected(path: Any, folder: Path) -> TraceInspection | RobotInspection:
-        # Thresholds, arcmin and arcsec are in degrees: angles in rad converted (said).
-        recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis,
-                                             keep_setpoint=True))
-        found: TraceInspection | RobotInspection
-        if recording.axes:
-            found = inspect_robot(recording, signals=signals, parameters=p, evidence=evidence,
-                                  progress=progress, evidence_options=evidence_options)
+        found = inspect_file(path, channels=channels, axis=axis, signals=signals, parameters=p,
+                             evidence=evidence, progress=progress,
+                             evidence_options=evidence_options)
+        if isinstance(found, RobotInspection):
             write_robot_inspection(found, folder, progress=progress,
                                    axis_names=cmap.axis_names)
         else:
-            found = inspect_recording(recording, signals=signals, parameters=p,
-                                      evidence=evidence, progress=progress,
-                                      evidence_options=evidence_options)
             write_inspection(found, folder, progress=progress,
                              axis_label=cmap.axis_label(axis)
                              if axis is not None and cmap.axis_names else None)
@@ -526,8 +529,8 @@ def inspect_trace(
     if len(paths) == 1:
         single = inspected(paths[0], out)
         if repeated:
-            write_repetitions([single] if isinstance(single, TraceInspection) else [], out,
-                              evidence_options)
+            write_repetitions(repetitions_of([single] if isinstance(single, TraceInspection)
+                                             else [], evidence_options), out)
         return out / "index.html"
     taken: set[str] = set()
     rows = []
@@ -552,6 +555,6 @@ def inspect_trace(
              "<th>duration [s]</th><th>moves</th><th>networks</th><th>backlash</th></tr>"
              f"</thead><tbody>{''.join(rows)}</tbody></table>")
     if repeated:
-        write_repetitions(inspections, out, evidence_options)
+        write_repetitions(repetitions_of(inspections, evidence_options), out)
         index += "<p><a href=\"repeated.html\">The repetitions of the traces together</a></p>"
     return write_text_atomic(out / "index.html", page("funcnet inspect", [index]))

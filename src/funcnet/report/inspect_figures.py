@@ -30,6 +30,7 @@ _EVIDENCE_LEGEND = {"asymmetry-only": "asymmetry-only (tested, not coupled)",
                     "not-coupled": "not-coupled (tested)",
                     "untestable": "untestable (too few surrogates)"}
 _MAX_MOVE_COLUMNS = 6  # the motion figure zooms into at most this many moves
+_MAX_NETWORK_COLUMNS = 6  # networks per row where a move holds several cycles
 
 
 
@@ -171,14 +172,11 @@ def figure_networks(inspection: TraceInspection) -> Any:
 
     from funcnet import plot
 
-    kinds = _kinds_present(inspection.windows)
-    moves = sorted({_move_of(inspection, w) for w in inspection.windows}) or [0]
-    cols = max(len(kinds), 1)
-    fig = Figure(figsize=(2.6 * cols + 0.6, 2.7 * len(moves) + 1.0), layout="constrained")
+    cells, rows, cols = _panels(inspection)
+    fig = Figure(figsize=(2.6 * cols + 0.6, 2.7 * rows + 1.0), layout="constrained")
     degenerate = dropped = with_evidence = False
-    for w in inspection.windows:
-        r, c = moves.index(_move_of(inspection, w)), kinds.index(str(w.phase))
-        ax = fig.add_subplot(len(moves), cols, r * cols + c + 1)
+    for w, (r, c) in zip(inspection.windows, cells, strict=True):
+        ax = fig.add_subplot(rows, cols, r * cols + c + 1)
         title = f"{w.label}\n{w.start:.2f}–{w.stop:.2f} s"
         net = inspection.networks.get(w.label)
         if net is None:
@@ -203,6 +201,38 @@ def figure_networks(inspection: TraceInspection) -> Any:
         fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=9,
                    frameon=False).set_gid("legend:network")
     return fig
+
+
+def _panels(inspection: TraceInspection) -> tuple[list[tuple[int, int]], int, int]:
+    """Each window's panel (row, column), the rows and the columns.
+
+    One row per move and one column per kind of phase, where no move holds two windows of one
+    kind; else (cycles within a move) every window a panel of its own, in time order, a move's
+    windows wrapped at :data:`_MAX_NETWORK_COLUMNS` columns: never two networks in one panel.
+    """
+    windows = inspection.windows
+    moves = [_move_of(inspection, w) for w in windows]
+    kinds = _kinds_present(windows)
+    if len(set(zip(moves, (str(w.phase) for w in windows), strict=True))) == len(windows):
+        order = sorted(set(moves)) or [0]
+        cells = [(order.index(m), kinds.index(str(w.phase)))
+                 for m, w in zip(moves, windows, strict=True)]
+        return cells, len(order), max(len(kinds), 1)
+    per_move: dict[int, int] = {}
+    for m in moves:
+        per_move[m] = per_move.get(m, 0) + 1
+    cols = min(max(per_move.values()), _MAX_NETWORK_COLUMNS)
+    first_row, row = {}, 0
+    for m in sorted(per_move):
+        first_row[m] = row
+        row += -(-per_move[m] // cols)
+    seen: dict[int, int] = {}
+    cells = []
+    for m in moves:
+        k = seen.get(m, 0)
+        seen[m] = k + 1
+        cells.append((first_row[m] + k // cols, k % cols))
+    return cells, row, cols
 
 
 def _move_of(inspection: TraceInspection, window: Window) -> int:
@@ -306,8 +336,8 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
 
     After a rest, MP − AP itself; at a direction change in continuous motion, the part of it the
     gear's wind-up and the encoders' skew do not explain
-    (:func:`funcnet.diagnosis.reversal_error.unexplained`), with the two stretches whose means
-    differ by the reversal error.
+    (:attr:`~funcnet.inspection.TraceInspection.reversal_residual`), with the two stretches whose
+    means differ by the reversal error.
 
     Parameters
     ----------
@@ -321,15 +351,14 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
     from matplotlib.figure import Figure
 
     from funcnet import plot
-    from funcnet.diagnosis.reversal_error import WINDOW, unexplained
+    from funcnet.diagnosis.reversal_error import WINDOW
 
     data = inspection.recording.data
     result = inspection.backlash
     if result is None or not result.reversals or not {"AP", "MP"} <= set(data.columns):
         return None
     changes = result.reversals[:_MAX_MOVE_COLUMNS]
-    rest = (unexplained(inspection.recording, result.gear) if result.gear is not None
-            else None)  # fmt: skip
+    rest = inspection.reversal_residual
     fig = Figure(figsize=(max(6.0, 3.6 * len(changes)), 3.6), layout="constrained")
     t_all = data.index.to_numpy(dtype=float)
     for k, reversal in enumerate(changes):
@@ -355,9 +384,10 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
                     color=plot.signal_color("TORSION"), linewidth=1)  # fmt: skip
             where = change.start
         ax.axvline(where, color="0.3", linewidth=0.8, linestyle=":")
-        lost = reversal.lost_motion
+        lost, bound = reversal.lost_motion, reversal.lost_motion_high
         text = (f"lost motion {lost * 3600:.3g} arcsec" if lost is not None
-                else "no lost motion measured")
+                else f"lost motion ≤ {bound * 3600:.2g} arcsec (not resolved)"
+                if bound is not None else "no lost motion measured")
         ax.set_title(f"{change.kind} at {where:.2f} s\n{text}", fontsize=9)
         ax.set_xlabel("time [s]", fontsize=9)
         ax.tick_params(labelsize=9)

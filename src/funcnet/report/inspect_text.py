@@ -18,7 +18,8 @@ from funcnet.inspection import TraceInspection
 from funcnet.report.html import escape
 from funcnet.robot.grid import format_spans
 
-__all__ = ["summary_html", "gaps_sentence", "failed_windows", "partial_evidence"]
+__all__ = ["summary_html", "gaps_sentence", "failed_windows", "partial_evidence",
+           "lost_motion_cell"]
 
 
 def gaps_sentence(gaps: Sequence[tuple[float, float]], segments: Sequence[tuple[float, float]],
@@ -222,8 +223,12 @@ def _evidence_count(ins: TraceInspection) -> str:
              for net in ins.networks.values() if "evidence" in net.pairs.columns]
     k = pd.concat(blind) if blind else pd.Series(dtype=float)
     span = "" if not len(k) else str(k.min()) if k.min() == k.max() else f"{k.min()}–{k.max()}"
+    undrawn = any(net.pairs.loc[net.pairs["evidence"] == "untestable", "c_diff_low"].isna().all()
+                  and (net.pairs["evidence"] == "untestable").any()
+                  for net in ins.networks.values() if "evidence" in net.pairs.columns)
     note = (f"; untestable: the windows leave the test {span} surrogates, too few to reject "
-            "whatever the data" if span else "")
+            "whatever the data" + ("; their asymmetry intervals are not drawn" if undrawn
+                                   else "") if span else "")
     return f" (pairs over the windows: {text}{note})"
 
 
@@ -241,15 +246,37 @@ def partial_evidence(ins: TraceInspection) -> pd.DataFrame:
     return pd.DataFrame(rows, columns=["window", "left out", "why"])
 
 
+def lost_motion_cell(lost: float | None, high: float | None, scale: float) -> str:
+    """A lost motion as a cell: the value, its bound where the data do not resolve it
+    (``"≤ 12"``), or a dash; ``scale`` turns degrees into the cell's unit.
+
+    Examples
+    --------
+    >>> lost_motion_cell(0.01, 0.012, 60), lost_motion_cell(None, 0.003, 60)
+    ('0.6', '≤ 0.18')
+    >>> lost_motion_cell(None, None, 60)
+    '—'
+    """
+    if lost is not None:
+        return f"{lost * scale:.3g}"
+    return "—" if high is None else f"≤ {high * scale:.2g}"
+
+
 def _lost_motion_item(ins: TraceInspection) -> str:
     result = ins.backlash
     if result is None:
         return ""
-    if result.lost_motion is None:
+    measured = [r for r in result.reversals
+                if r.lost_motion is not None or r.lost_motion_high is not None]
+    if not measured:
         return f"<li>backlash: {escape(result.message)}</li>"
-    values = [r.lost_motion for r in result.reversals if r.lost_motion is not None]
-    listed = ", ".join(f"{v * 3600:.3g}" for v in values)
-    return (f"<li>lost motion at the {len(values)} direction change(s), from both encoders: "
-            f"{listed} arcsec (mean {result.lost_motion * 3600:.3g} arcsec)</li>")
+    listed = ", ".join(lost_motion_cell(r.lost_motion, r.lost_motion_high, 3600)
+                       for r in measured)
+    whole = (f"mean {result.lost_motion * 3600:.3g} arcsec" if result.lost_motion is not None
+             else f"as a whole {result.lost_motion_reason}")
+    unresolved = ("; ≤: below what the estimate resolves (its noise and the motor friction's "
+                  "bias)" if any(r.lost_motion is None for r in measured) else "")
+    return (f"<li>lost motion at the {len(measured)} direction change(s), from both encoders: "
+            f"{escape(listed)} arcsec ({escape(whole)}{escape(unresolved)})</li>")
 
 

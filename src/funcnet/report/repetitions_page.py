@@ -1,26 +1,23 @@
 """The repetitions page of an inspection: one motion repeated in the traces, tested per phase.
 
-:func:`write_repetitions` renders :func:`funcnet.inspection.repeated.inspect_repetitions` of the
+:func:`write_repetitions` renders :func:`funcnet.inspection.repeated.repetitions_of` the
 inspected traces as ``repeated.html`` (``funcnet inspect ... --repeated``): the repetitions
-found, per phase the repetition evidence (docs/evidence.md, section 7), or how many repetitions
-a decision needs.
+found, per phase the repetition evidence (docs/validation/evidence.md, section 7), or how many
+repetitions a decision needs.
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
 
 from funcnet._io import write_text_atomic
-from funcnet.inspection import TraceInspection
-from funcnet.inspection.repeated import inspect_repetitions
+from funcnet.inspection.repeated import RepeatedInspection
 from funcnet.report.html import escape, page, table
 
 __all__ = ["REPETITIONS_NOTE", "write_repetitions"]
 
-#: What the repetitions page says about its test (docs/evidence.md, section 7).
+#: What the repetitions page says about its test (docs/validation/evidence.md, section 7).
 REPETITIONS_NOTE = (
     "Moves of the same set-point profile, aligned on the set-point, are repetitions of one "
     "motion. Per phase, each pair is tested for coupling beyond the command: X of one "
@@ -39,33 +36,25 @@ _REPEATED_COLUMNS = ["x", "y", "coupling_statistic", "coupling_p", "evidence", "
                      "t_diff_low", "t_diff_high"]
 
 
-def write_repetitions(inspections: Sequence[TraceInspection], out_dir: str | os.PathLike[str],
-                      evidence_options: Mapping[str, Any] | None = None) -> Path:
+def write_repetitions(found: RepeatedInspection | None, out_dir: str | os.PathLike[str]) -> Path:
     """Write ``repeated.html``: the repetitions of the inspected traces, read together.
 
     Parameters
     ----------
-    inspections : sequence of TraceInspection
-        Their recordings, nodes and parameters are used (at least one).
+    found : RepeatedInspection or None
+        :func:`funcnet.inspection.repetitions_of` the inspections; None when there was no
+        single-axis trace to read.
     out_dir : path-like
-    evidence_options : mapping, optional
-        ``alpha`` and ``seed`` are used.
 
     Returns
     -------
     pathlib.Path
     """
-    options = dict(evidence_options or {})
     body = ["<h1>funcnet inspect — repetitions</h1>"]
-    if not inspections:
+    if found is None:
         body.append("<p>No single-axis trace to read repetitions in.</p>")
         return write_text_atomic(Path(out_dir) / "repeated.html",
                                  page("funcnet inspect — repetitions", body))
-    first = inspections[0]
-    found = inspect_repetitions([ins.recording for ins in inspections], first.signals,
-                                parameters=first.parameters,
-                                alpha=float(options.get("alpha", 0.05)),
-                                seed=int(options.get("seed", 0)))
     body += [f"<p>{escape(found.message)}.</p>", f"<p>{escape(REPETITIONS_NOTE)}</p>"]
     if len(found.moves):
         body.append(table(found.moves.round(4)))

@@ -1,10 +1,10 @@
-"""Robot-axis controller traces: reading, preprocessing, phases and windows; a simulated axis.
+"""Robot-axis controller traces: reading, preprocessing, phases and windows.
 
 Everything here sits below the numerical core and imports none of it: a trace becomes a
 :class:`Recording` (:func:`read_trace`, :func:`read_recording`), its phases and windows are
 tables and :class:`Window` lists. Networks per window are made by
 :func:`funcnet.window_networks` (:mod:`funcnet.pipeline`). The simulated axis lives in
-:mod:`funcnet.robot.sim`. Names are imported lazily.
+:mod:`funcnet.sim`, which this package never imports. Names are imported lazily.
 
 Examples
 --------
@@ -44,17 +44,6 @@ _EXPORTS = {
     "complete_span": "funcnet.robot.windows",
     "Repetitions": "funcnet.robot.repeats",
     "find_repetitions": "funcnet.robot.repeats",
-    "AxisParameters": "funcnet.robot.sim.axis",
-    "SimulatedTrial": "funcnet.robot.sim.axis",
-    "simulate_trial": "funcnet.robot.sim.axis",
-    "write_trace": "funcnet.robot.sim.writer",
-    "Trial": "funcnet.robot.sim.trial",
-    "real_axis_parameters": "funcnet.robot.sim.axis",
-    "paper_plan": "funcnet.robot.sim.plan",
-    "backlash_sweep_plan": "funcnet.robot.sim.plan",
-    "named_plan": "funcnet.robot.sim.plan",
-    "read_plan": "funcnet.robot.sim.plan",
-    "write_plan": "funcnet.robot.sim.plan",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

@@ -24,6 +24,7 @@ not state them (``act_torque_abs_nm = "N m"``).
 
 from __future__ import annotations
 
+import functools
 import os
 import re
 import tomllib
@@ -313,6 +314,18 @@ def channel_map(
     if isinstance(channels, Mapping):
         return DEFAULT_CHANNEL_MAP.updated(channels)
     path = Path(channels)
+    try:
+        # read once per content: a study or a loop over runs reads one map many times
+        stat = path.stat()
+        return _map_file(str(path), stat.st_mtime_ns, stat.st_size)
+    except OSError as exc:
+        raise ChannelError(path, f"cannot read the channel map: {exc}") from exc
+
+
+@functools.lru_cache(maxsize=32)
+def _map_file(name: str, mtime_ns: int, size: int) -> ChannelMap:
+    """:func:`channel_map` of a TOML file, cached by its name, modification time and size."""
+    path = Path(name)
     try:
         document = tomllib.loads(path.read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:

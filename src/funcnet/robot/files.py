@@ -314,8 +314,8 @@ def read_signal_files(
     if beyond:
         warnings.warn(
             RecordingWarning(
-                f"{path}: files {'start and ' if any('starts' in b for b in beyond) else ''}end "
-                f"at different times; read over the time stamps they share, {start:g}-{stop:g} s: "
+                f"{path}: files {_which_ends(beyond)} at different times; read over the time "
+                f"stamps they share, {start:g}-{stop:g} s: "
                 f"{', '.join(beyond)}",
                 problem="trimmed", signals=tuple(e.signal for e in entries),
             ),
@@ -323,6 +323,13 @@ def read_signal_files(
         )
     n_ticks = int(np.floor((stop - start) / period + GRID_TOLERANCE)) + 1
     return _joined(path, cmap, axis, by_file, tables, grids, start, period, n_ticks)
+
+
+def _which_ends(beyond: Sequence[str]) -> str:
+    """"start", "end" or "start and end": which ends of the files differ."""
+    starts = any("first at" in b for b in beyond)
+    ends = any("last at" in b for b in beyond)
+    return "start and end" if starts and ends else "start" if starts else "end"
 
 
 def _check_names(cmap: ChannelMap, path: Path) -> None:
@@ -367,10 +374,16 @@ def _joined(
         table = tables[file]
         _, ticks = grids[file]
         # The file's samples on the common grid: tick 0 is `start`.
+        rows: slice | None = None
         if ticks is not None:
             offset = int(round((table.time[0] - start) / period))
             ticks = ticks + offset
             inside = (ticks >= 0) & (ticks < n_ticks)
+            # every tick of the span present once, in order: the rows are a slice
+            first = int(np.argmax(inside)) if inside.any() else 0
+            if (inside.sum() == n_ticks and ticks[first] == 0
+                    and ticks[first + n_ticks - 1] == n_ticks - 1):
+                rows = slice(first, first + n_ticks)
         for layout in layouts:
             role = cmap.role_of(layout.signal)
             base = role or layout.signal
@@ -394,6 +407,8 @@ def _joined(
                 if ticks is None:  # off its grid, interpolated onto the common one
                     grid_time = start + np.arange(n_ticks) * period
                     on = np.interp(grid_time, table.time, raw, left=np.nan, right=np.nan)
+                elif rows is not None:
+                    on = raw[rows]
                 else:
                     on = np.full(n_ticks, np.nan)
                     on[ticks[inside]] = raw[inside]

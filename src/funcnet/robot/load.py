@@ -17,8 +17,7 @@ import pandas as pd
 from funcnet.errors import ParameterError
 from funcnet.robot.axes import qualified, split_qualified
 from funcnet.robot.channels import ChannelMap
-from funcnet.robot.preprocess import DERIVED_SIGNALS, add_derived_signals
-from funcnet.robot.preprocess import resample as resampled
+from funcnet.robot.preprocess import DERIVED_SIGNALS, add_derived_signals, resample as resampled
 from funcnet.robot.recording import Recording, read_trace
 from funcnet.robot.units import in_degrees
 

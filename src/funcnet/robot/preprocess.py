@@ -3,8 +3,9 @@
 Velocity from the arm-side position (Eq. 11-12), an encoder's step, derived signals (V,
 following error, torsion), trimming to the motion or a time range, and resampling of mixed-rate
 signals to a common grid.
-Normalization per analysis window is the network's job (:func:`funcnet.normalization.normalize`,
-called by :func:`funcnet.functional_network`), not done here.
+Normalization per analysis window is the network's job
+(:func:`funcnet.core.normalization.normalize`, called by :func:`funcnet.functional_network`),
+not done here.
 """
 
 from __future__ import annotations

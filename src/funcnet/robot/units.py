@@ -59,15 +59,51 @@ _ANGLES = {
 
 
 def unit_of(info: SignalInfo) -> str:
-    """The signal's unit: the file's or the map's, else the format's, else ``"unknown"``."""
+    """The signal's unit: the file's or the map's, else the format's, else ``"unknown"``.
+
+    Parameters
+    ----------
+    info : SignalInfo
+
+    Returns
+    -------
+    str
+        ``info.unit``; else ``"deg"`` for a SINUMERIK ``posn``, ``"A"`` for its ``current``;
+        else :data:`UNKNOWN`.
+
+    Examples
+    --------
+    >>> unit_of(SignalInfo("act_torque_abs_nm", None, "double", 0.004, "N m"))
+    'N m'
+    >>> unit_of(SignalInfo("nckServoDataActCurr32 [u1, 7]", "current", "float", 0.002))
+    'A'
+    """
     if info.unit:
         return info.unit
     return _FORMAT_UNITS.get(info.units_type or "", UNKNOWN)
 
 
 def to_degrees(unit: str) -> tuple[float, str] | None:
-    """``(factor, unit)`` that turn an angle or angular speed into degrees (per second);
-    None when ``unit`` is neither."""
+    """The factor that turns an angle or an angular speed into degrees (per second).
+
+    Parameters
+    ----------
+    unit : str
+        ``"rad"``, ``"deg"``, ``"rad/s"``, ``"deg/min"``, ... (case and blanks ignored).
+
+    Returns
+    -------
+    (float, str) or None
+        The factor and the unit it gives (``"deg"`` or ``"deg/s"``); None when ``unit`` is
+        neither an angle nor an angular speed.
+
+    Examples
+    --------
+    >>> to_degrees("deg/min")
+    (0.016666666666666666, 'deg/s')
+    >>> to_degrees("N m") is None
+    True
+    """
     return _ANGLES.get(unit.strip().lower().replace(" ", ""))
 
 

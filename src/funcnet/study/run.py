@@ -213,7 +213,7 @@ def run_study(
 def check_simulated_signals(study: Study) -> None:
     """Refuse, before simulating anything, signals the simulated traces cannot provide.
 
-    A simulated trace holds the roles of :data:`funcnet.robot.sim.writer.SIGNALS`; the derived
+    A simulated trace holds the roles of :data:`funcnet.sim.writer.SIGNALS`; the derived
     signals (V, FE, TORSION, VM) are computed from them. Any other name would fail every task
     of every trial, one identical error each, after the whole plan was simulated.
 
@@ -237,7 +237,7 @@ def check_simulated_signals(study: Study) -> None:
     if study.simulated is None or study.signals is None:
         return
     from funcnet.robot.preprocess import DERIVED_SIGNALS
-    from funcnet.robot.sim.writer import SIGNALS
+    from funcnet.sim.writer import SIGNALS
 
     unknown = [name for name in study.signals
                if name not in SIGNALS and name not in DERIVED_SIGNALS]

@@ -26,14 +26,14 @@ def simulated_recordings(
     out : Path
         The results folder; the plan goes to ``study.plan_dir`` or ``out/plan``.
     progress : callable, optional
-        Passed to :func:`funcnet.robot.write_plan`.
+        Passed to :func:`funcnet.sim.write_plan`.
 
     Returns
     -------
     list of Path
         One trace per trial, in the plan's order.
     """
-    from funcnet.robot import paper_plan, read_plan, write_plan
+    from funcnet.sim import paper_plan, read_plan, write_plan
 
     if study.simulated is None:
         return []
@@ -85,7 +85,7 @@ def sources(paths: Iterable[Path], base_dir: Path) -> list[Source]:
 
 
 def manifest_trials(manifest: Path) -> dict[str, str]:
-    """File name -> trial name from a plan's manifest (:func:`funcnet.robot.write_plan`).
+    """File name -> trial name from a plan's manifest (:func:`funcnet.sim.write_plan`).
 
     Parameters
     ----------

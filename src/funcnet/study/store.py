@@ -368,7 +368,7 @@ def network_from_rows(rows: pd.DataFrame) -> FunctionalNetwork:
     Examples
     --------
     >>> from funcnet.network import functional_network
-    >>> from funcnet.systems import henon_pair
+    >>> from funcnet.validation.systems import henon_pair
     >>> net = functional_network(henon_pair(300, 0.6, seed=0), names=["x", "y"], delay=1,
     ...                          warn=False)
     >>> identity = {"recording": "r.csv", "trial": "", "source_sha256": "", "window": "w",

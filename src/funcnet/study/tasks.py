@@ -94,7 +94,7 @@ class Outcome:
     skipped: str | None = None
 
 
-def content_key(**content: Any) -> str:
+def content_key(**content: object) -> str:
     """The SHA-256 of ``content`` as canonical JSON: a task's key.
 
     Parameters
@@ -285,6 +285,16 @@ def standstill(recording: Any, window: Any) -> str | None:
     return (f"the set-point {held} over {window.start:g}-{window.stop:g} s: {who} still")
 
 
+def _standstill_of(task: NetworkTask, error: Exception) -> str | None:
+    """:func:`standstill` of the task's window, for a window that could not be analysed."""
+    import funcnet.robot as robot
+
+    try:
+        return standstill(_cached_recording(task), robot.Window(**task.window))
+    except FuncnetError:
+        return None
+
+
 def network_rows(task: NetworkTask) -> Outcome:
     """Worker side: compute one network and return its rows as an Arrow table.
 
@@ -296,7 +306,8 @@ def network_rows(task: NetworkTask) -> Outcome:
     -------
     Outcome
         ``value``: :func:`funcnet.study.store.rows_table`; ``warnings``: :func:`task_warnings`;
-        ``error`` if the window cannot be analysed (a constant signal, too short ...).
+        ``error`` if the window cannot be analysed (a constant signal, too short ...);
+        ``skipped`` instead where it cannot because the axis stands still in it.
     """
     import funcnet.robot as robot
     from funcnet.pipeline import window_evidence, window_networks
@@ -305,9 +316,6 @@ def network_rows(task: NetworkTask) -> Outcome:
         recording = _cached_recording(task)
         signals = _nodes(task.signals, recording.data.columns, robot.PAPER_NODES)
         window = robot.Window(**task.window)
-        resting = standstill(recording, window)
-        if resting is not None:
-            return Outcome(task.key, skipped=resting)
         with _one_thread_per_task():
             networks = window_networks(
                 recording, [window], signals=signals, parameters=task.parameters,
@@ -322,6 +330,10 @@ def network_rows(task: NetworkTask) -> Outcome:
     except ParameterError as exc:
         return Outcome(task.key, fatal=str(exc))
     except FuncnetError as exc:
+        # A window where the axis stands still has nothing to analyse: listed, not failed.
+        resting = _standstill_of(task, exc)
+        if resting is not None:
+            return Outcome(task.key, skipped=f"{resting} ({exc})")
         return Outcome(task.key, error=str(exc))
     pairs = network.pairs
     unstable: tuple[tuple[str, int, str], ...] = ()

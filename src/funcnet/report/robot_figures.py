@@ -1,0 +1,112 @@
+"""The figure of a robot's page: its network as an adjacency matrix ordered by axis and role.
+
+A network of every axis's signals (21 nodes on a six-axis robot with two encoders on three
+axes, 24 with four signals each) drawn as a circle is a tangle of some 200 edges; as a matrix it
+reads at any size: row X, column Y, one cell per pair; the axes are blocks along the diagonal
+(within an axis) and off it (between two axes), each block's rows and columns in the same order
+of roles (RP, AP, MP, V, RC, AC as recorded).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from funcnet.network import FunctionalNetwork
+from funcnet.robot.axes import split_qualified
+
+__all__ = ["figure_robot_matrix"]
+
+_DIRECTED = "Blues"
+_BIDIRECTIONAL = "Reds"
+_COUPLED = ("coupled", "coupled-directed")
+
+
+def figure_robot_matrix(network: FunctionalNetwork, title: str = "") -> Any:
+    """The robot network as an adjacency matrix: rows the source X, columns the target Y.
+
+    Parameters
+    ----------
+    network : FunctionalNetwork
+        Of nodes named ``A<axis>.<signal>`` (a node without an axis comes last).
+    title : str
+        Above the matrix.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A directed edge X -> Y is the cell (X, Y) in blue, a bidirectional edge both cells in
+        red, darker with its weight (Eq. 13); an empty cell is no edge (a conflict, a degenerate
+        pair). Where the evidence's test rejects independence the cell holds a dot. Lines part
+        the axes; each axis is named above its columns and beside its rows.
+    """
+    from matplotlib import colormaps
+    from matplotlib.colors import Normalize
+    from matplotlib.figure import Figure
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    nodes = list(network.nodes)
+    axes = [split_qualified(name)[0] for name in nodes]
+    order = sorted(range(len(nodes)), key=lambda k: (axes[k] is None, axes[k] or 0, k))
+    nodes = [nodes[k] for k in order]
+    axes = [axes[k] for k in order]
+    place = {name: k for k, name in enumerate(nodes)}
+    n = len(nodes)
+    edges = network.edges
+    weights = edges["weight"].to_numpy(dtype=float) if len(edges) else np.zeros(0)
+    top = float(weights.max()) if weights.size and weights.max() > 0 else 1.0
+    shade = Normalize(0.0, top)
+    image = np.ones((n, n, 4))
+    image[np.arange(n), np.arange(n)] = (0.85, 0.85, 0.85, 1.0)
+    for row in edges.itertuples():
+        i, j = place[str(row.source)], place[str(row.target)]
+        level = 0.25 + 0.75 * shade(float(row.weight))
+        if row.kind == "bidirectional":
+            image[i, j] = image[j, i] = colormaps[_BIDIRECTIONAL](level)
+        else:
+            image[i, j] = colormaps[_DIRECTED](level)
+    size = max(6.0, 0.34 * n + 2.6)
+    fig = Figure(figsize=(size + 1.2, size), layout="constrained")
+    ax = fig.add_subplot()
+    ax.imshow(image, interpolation="nearest")
+    if "evidence" in network.pairs.columns:
+        coupled = network.pairs[network.pairs["evidence"].isin(_COUPLED)]
+        for x, y in zip(coupled["x"], coupled["y"], strict=True):
+            i, j = place[str(x)], place[str(y)]
+            ax.plot([j, i], [i, j], linestyle="", marker="o", markersize=4, color="black")
+    roles = [split_qualified(name)[1] if a is not None else name
+             for name, a in zip(nodes, axes, strict=True)]
+    ax.set_xticks(range(n), roles, rotation=90, fontsize=9)
+    ax.set_yticks(range(n), roles, fontsize=9)
+    ax.tick_params(top=True, labeltop=True, bottom=False, labelbottom=False, length=0)
+    bounds = [k for k in range(1, n) if axes[k] != axes[k - 1]]
+    for k in bounds:
+        ax.hlines(k - 0.5, -0.5, n - 0.5, color="0.2", linewidth=1.0)
+        ax.vlines(k - 0.5, -0.5, n - 0.5, color="0.2", linewidth=1.0)
+    for side in ("bottom", "left", "right"):
+        ax.spines[side].set_visible(False)
+    starts = [0, *bounds]
+    ends = [*bounds, n]
+    for a, b in zip(starts, ends, strict=True):
+        name = "common" if axes[a] is None else f"A{axes[a]}"
+        middle = (a + b - 1) / 2
+        ax.text(middle, n - 0.3, name, ha="center", va="top", fontsize=10, fontweight="bold")
+        ax.text(-1.6, middle, name, ha="right", va="center", fontsize=10, fontweight="bold")
+    ax.set_xlim(-0.5, n - 0.5)
+    ax.set_ylim(n + 0.6, -0.5)
+    ax.set_xlabel("target Y", fontsize=9)
+    ax.set_ylabel("source X", fontsize=9, labelpad=28)
+    if title:
+        ax.set_title(title, fontsize=10)
+    handles = [Patch(facecolor=colormaps[_DIRECTED](0.8), label="X → Y: directed (row → column)"),
+               Patch(facecolor=colormaps[_BIDIRECTIONAL](0.8),
+                     label="bidirectional (|diff| < μ), both cells"),
+               Patch(facecolor="white", edgecolor="0.6", label="no edge (conflict, degenerate)"),
+               Line2D([], [], linestyle="", marker="o", markersize=4, color="black",
+                      label="coupled (the test rejects independence)")]
+    fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=9,
+               frameon=False, title=f"darker: heavier (weight up to {top:.2g}, Eq. 13)",
+               title_fontsize=9)
+    return fig

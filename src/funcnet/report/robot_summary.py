@@ -1,0 +1,186 @@
+"""The findings of a robot's page, first: one compact row per axis and the notes they share.
+
+What an engineer asks of each axis of a :class:`~funcnet.inspection.robot.RobotInspection`:
+how often it moves and turns, its peak speed, torque (or current) and following error, its lost
+motion (or the bound below which the data cannot resolve it), the gear's parts where they are
+measured, and anything unusual. Every sentence that explains a cell is a numbered note said
+once, with the axes it applies to: a reason shared by several axes is not repeated per row.
+No cell holds a file path or "None".
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from funcnet.inspection import TraceInspection
+from funcnet.report.inspect_text import lost_motion_cell
+
+__all__ = ["AxisFindings", "axis_findings"]
+
+
+@dataclass(frozen=True)
+class AxisFindings:
+    """The per-axis table and its notes.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        One row per axis; every cell a short string.
+    notes : tuple of (str, tuple of int)
+        Each note's text and the axes it applies to, in the order the table cites them
+        (``notes`` column: their numbers, from 1).
+    """
+
+    table: pd.DataFrame
+    notes: tuple[tuple[str, tuple[int, ...]], ...]
+
+
+def _number(value: Any, digits: int = 3) -> str:
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "—"
+    return f"{float(value):.{digits}g}"
+
+
+def _without_paths(text: str, source: str) -> str:
+    """A message without the recording's file (as given, and its name alone)."""
+    for where in (f"{source}: ", source, Path(source).name):
+        if where:
+            text = text.replace(where, "the recording")
+    return text.replace("the recording the recording", "the recording").strip()
+
+
+def _general(message: str) -> str:
+    """A diagnosis's message as a note several axes can share: the counts the table holds
+    left out (``"no reversal (...): 3 in continuous motion ..."`` is the same finding on
+    every axis whatever the 3)."""
+    found = re.match(r"no reversal \(([^)]*)\)", message)
+    if found:
+        return (f"no reversal ({found.group(1)}): no motor-side backlash score, which is "
+                "calibrated on reversals only")
+    if message.startswith("one measured position per joint"):
+        # what it measures at each turn is on the axis's page
+        return message.split("; ")[0] + "; what each turn shows is on the axis's page"
+    return message
+
+
+def _peak(moves: pd.DataFrame, column: str, scale: float = 1.0) -> str:
+    if column not in moves or not len(moves):
+        return "—"
+    return _number(float(moves[column].max()) * scale)
+
+
+def _torque_cell(one: TraceInspection) -> str:
+    if "peak |AC|" not in one.moves or not len(one.moves):
+        return "—"
+    info = one.recording.signals.get("AC")
+    unit = info.unit if info is not None and info.unit else "A"
+    return f"{_peak(one.moves, 'peak |AC|')} {unit}"
+
+
+def _gear_cell(result: Any, cite: Any) -> str:
+    parts = None if result is None else result.gear_parts
+    if parts is None:
+        return "—"
+    if parts.dead_zone is None:
+        if parts.reason:
+            cite(f"gear parts not told apart: {parts.reason}")
+        return "—"
+    return (f"dead zone {_part(parts.dead_zone, parts.dead_zone_low, parts.dead_zone_high)}, "
+            f"friction {_part(parts.friction, parts.friction_low, parts.friction_high)}")
+
+
+def _part(value: float | None, low: float | None, high: float | None) -> str:
+    """A gear part in arcmin: its value, or ``≤`` its bound where the interval reaches 0 (a
+    part of a lost motion is never negative)."""
+    if value is None:
+        return "—"
+    if low is not None and high is not None and low <= 0:
+        return f"≤ {60 * max(high, 0.0):.2g}"
+    return f"{60 * value:.2g}"
+
+
+def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
+                  order: tuple[int, ...], source: str) -> AxisFindings:
+    """The per-axis table of a robot's page and its notes (module notes).
+
+    Parameters
+    ----------
+    axes : dict
+        Axis -> its :class:`~funcnet.inspection.TraceInspection`.
+    errors : dict
+        Axis -> why it could not be inspected.
+    order : tuple of int
+        The recording's axes, in order.
+    source : str
+        The recording's file: left out of every message.
+
+    Returns
+    -------
+    AxisFindings
+        Columns: ``axis``, ``moves``, ``direction changes``, ``peak speed [°/s]``,
+        ``peak torque or current``, ``peak following error [arcmin]``,
+        ``lost motion [arcmin]`` (a value, ``≤`` a bound where not resolved, or —),
+        ``gear dead zone, friction [arcmin]``, ``notes``.
+    """
+    notes: dict[str, list[int]] = {}
+    rows = []
+    for axis in order:
+        cited: list[int] = []
+
+        def cite(text: str, axis: int = axis, cited: list[int] = cited) -> None:
+            text = _without_paths(text, source).rstrip(".")
+            notes.setdefault(text, [])
+            if axis not in notes[text]:
+                notes[text].append(axis)
+            number = list(notes).index(text) + 1
+            if number not in cited:
+                cited.append(number)
+
+        one = axes.get(axis)
+        if one is None:
+            cite(f"not inspected: {errors.get(axis, 'no reason given')}")
+            rows.append({"axis": str(axis), "moves": "—", "direction changes": "—",
+                         "peak speed [°/s]": "—", "peak torque or current": "—",
+                         "peak following error [arcmin]": "—", "lost motion [arcmin]": "—",
+                         "gear dead zone, friction [arcmin]": "—",
+                         "notes": ", ".join(map(str, sorted(cited)))})
+            continue
+        result = one.backlash
+        if result is None:
+            cite(f"no backlash diagnosis: {one.backlash_error or 'not asked for'}")
+            lost = "—"
+        else:
+            lost = lost_motion_cell(result.lost_motion, result.lost_motion_high, 60)
+            if result.lost_motion is None and result.lost_motion_high is not None:
+                terms = " and ".join(result.lost_motion_terms) or "error"
+                cite(f"lost motion ≤ a bound: below what the estimate resolves (its "
+                     f"{terms}); the interval reaches 0")
+            elif result.lost_motion is None:
+                cite(f"no lost motion: {result.lost_motion_reason or 'not measured'}")
+            if result.backlash_score is None:
+                cite(_general(result.message))
+        gear = _gear_cell(result, cite)
+        networks = len(one.networks)
+        if networks < len(one.windows):
+            cite(f"{len(one.windows) - networks} of {len(one.windows)} phase windows without "
+                 "a network (too short or constant: see the axis's page)")
+        if not len(one.moves):
+            cite("the axis never moves")
+        rows.append({
+            "axis": str(axis), "moves": str(len(one.moves)),
+            "direction changes": str(len(one.turns) + len(one.turns_across_gaps)),
+            "peak speed [°/s]": _peak(one.moves, "peak speed"),
+            "peak torque or current": _torque_cell(one),
+            "peak following error [arcmin]": _peak(one.moves, "peak |FE|", 60.0),
+            "lost motion [arcmin]": lost,
+            "gear dead zone, friction [arcmin]": gear,
+            "notes": ", ".join(map(str, sorted(cited))),
+        })
+    return AxisFindings(table=pd.DataFrame(rows),
+                        notes=tuple((text, tuple(axes_)) for text, axes_ in notes.items()))
