@@ -326,7 +326,9 @@ def _findings_html(ins: RobotInspection, axis_names: tuple[str, ...] = ()) -> st
 
 
 def _figure(ins: RobotInspection, label: str) -> Any:
-    return figure_robot_matrix(ins.networks[label], label)
+    net = ins.networks[label]
+    return figure_robot_matrix(net, label, arrows="direction" if "direction" in net.pairs.columns
+                               else "rule")
 
 
 def _scope_counts(pairs: pd.DataFrame) -> str:
@@ -404,9 +406,10 @@ def write_robot_inspection(
         pairs = ins.pairs[label]
         caption = (f"The robot network of {label} as a matrix: row X, column Y, the axes in "
                    "blocks (on the diagonal: within an axis; off it: between two axes), each "
-                   "block's signals in the same order. Blue: a directed edge X → Y in the "
-                   "rule's sense (row → column); red: bidirectional; darker: heavier (Eq. 13); "
-                   "a dot: the coupling test rejects independence.")
+                   "block's signals in the same order. Blue: the direction reading X → Y "
+                   "(X's past improves Y's prediction; row → column), an undecided pair "
+                   "empty; darker: heavier (Eq. 13); a dot: the coupling test rejects "
+                   "independence. The rule's kinds are in the pairs tables.")
         network_parts.append(figure_html(out, f"robot-network-{k + 1}", _figure(ins, label),
                                          caption))
         network_parts.append(f"<p>{escape(_scope_counts(pairs))}.{_evidence_sentence(pairs)}"

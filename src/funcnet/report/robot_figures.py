@@ -23,7 +23,8 @@ _BIDIRECTIONAL = "Reds"
 _COUPLED = ("coupled", "coupled-directed")
 
 
-def figure_robot_matrix(network: FunctionalNetwork, title: str = "") -> Any:
+def figure_robot_matrix(network: FunctionalNetwork, title: str = "", *,
+                        arrows: str = "rule") -> Any:
     """The robot network as an adjacency matrix: rows the source X, columns the target Y.
 
     Parameters
@@ -32,6 +33,9 @@ def figure_robot_matrix(network: FunctionalNetwork, title: str = "") -> Any:
         Of nodes named ``A<axis>.<signal>`` (a node without an axis comes last).
     title : str
         Above the matrix.
+    arrows : {"rule", "direction"}
+        Whose edges: the rule's (``kind``), or the ``direction`` reading's (a directed cell
+        where one past improves the other's prediction; undecided pairs empty).
 
     Returns
     -------
@@ -54,7 +58,13 @@ def figure_robot_matrix(network: FunctionalNetwork, title: str = "") -> Any:
     axes = [axes[k] for k in order]
     place = {name: k for k, name in enumerate(nodes)}
     n = len(nodes)
-    edges = network.edges
+    if arrows == "direction":
+        from funcnet.plot.network_diagram import direction_edges
+
+        edges = direction_edges(network)
+        edges = edges[edges["kind"] == "directed"]
+    else:
+        edges = network.edges
     weights = edges["weight"].to_numpy(dtype=float) if len(edges) else np.zeros(0)
     top = float(weights.max()) if weights.size and weights.max() > 0 else 1.0
     shade = Normalize(0.0, top)
@@ -100,7 +110,9 @@ def figure_robot_matrix(network: FunctionalNetwork, title: str = "") -> Any:
     ax.set_ylabel("source X", fontsize=9, labelpad=28)
     if title:
         ax.set_title(title, fontsize=10)
-    handles = [Patch(facecolor=colormaps[_DIRECTED](0.8), label="X → Y: directed (row → column)"),
+    directed = ("X → Y: X's past improves Y's prediction (row → column); undecided: empty"
+                if arrows == "direction" else "X → Y: directed (row → column)")
+    handles = [Patch(facecolor=colormaps[_DIRECTED](0.8), label=directed),
                Patch(facecolor=colormaps[_BIDIRECTIONAL](0.8),
                      label="bidirectional (|diff| < μ), both cells"),
                Patch(facecolor="white", edgecolor="0.6", label="no edge (conflict, degenerate)"),
