@@ -163,7 +163,7 @@ def network(
     text when piped. First comes the set-point check: how often the rule's arrows and the
     direction reading point into the position set-point RP (which nothing drives) and out of
     it. Every pair also gets a direction (x->y, y->x or none, with its reason): whether one
-    signal's past improves the prediction of the other beyond its own past (docs/direction.md);
+    signal's past improves the prediction of the other beyond its own past (docs/guide/direction.md);
     a drawing (-o net.png) shows these arrows, --arrows rule the rule's. Degenerate pairs (too
     few distinct states) are flagged and are no edges unless --keep-degenerate.
 

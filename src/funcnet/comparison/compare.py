@@ -14,7 +14,7 @@ RUN departs beyond it (:func:`~funcnet.comparison.intervals.find_intervals`). Th
 
 The functional networks' measures over sliding windows are the other reading
 (:mod:`funcnet.comparison.networks`); ``readings`` says which carry the intervals
-(docs/compare.md: on the UR5 runs with a force sensor, the current residual does).
+(docs/guide/compare.md: on the UR5 runs with a force sensor, the current residual does).
 """
 
 from __future__ import annotations

@@ -24,7 +24,7 @@ The reading (abstaining where the data cannot tell)
     directions of a pair are two tests (Bonferroni); pairs are not adjusted against each
     other (a pair's reading does not depend on how many other signals the network has).
 
-Why this test (measured, docs/direction.md)
+Why this test (measured, docs/guide/direction.md)
     A set-point computed ahead by a planner is predicted by its own past; a measured signal of
     the axis is not, and the set-point's past improves it. Over the SINUMERIK trace and both
     KUKA runs (every axis and phase, and the whole robot) the reading points into a set-point

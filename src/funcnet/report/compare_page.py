@@ -33,11 +33,11 @@ from funcnet.report.html import (
 
 __all__ = ["write_comparison", "changes", "CARRIED_BY"]
 
-#: What the page says of the readings (docs/compare.md has the comparison with the sensor).
+#: What the page says of the readings (docs/guide/compare.md has the comparison with the sensor).
 CARRIED_BY = {
     "residuals": "The intervals come from the residuals (current residual AC - RC and "
                  "following error RP - AP) against the references' band: measured against a "
-                 "force sensor's record of nine pushes on a UR5 (docs/compare.md) they found all "
+                 "force sensor's record of nine pushes on a UR5 (docs/guide/compare.md) they found all "
                  "nine, with two false intervals in the run's once-only first move.",
     "networks": "The intervals come from the functional networks' measures over sliding "
                 "windows.",
@@ -45,7 +45,7 @@ CARRIED_BY = {
 _NETWORKS_NOTE = ("The networks' reading (C/T differences and coupling over sliding windows) is "
                   "shown beside it, not used for the intervals: against the force sensor it "
                   "found the same pushes and nothing the residuals missed, and its 1 s windows "
-                  "marked half of the run as changed (docs/compare.md).")
+                  "marked half of the run as changed (docs/guide/compare.md).")
 
 
 def _interval_rows(intervals: tuple[Interval, ...]) -> pd.DataFrame:
