@@ -592,8 +592,7 @@ def save_network(net: Any, path: str | os.PathLike[str], *,
         raise ParameterError.of("size", f"must be two positive sizes in inches, got {size!r}")
     fig = Figure(figsize=(float(size[0]), float(size[1])), dpi=dpi, layout="constrained")
     ax = fig.add_subplot()
-    if "direction" not in net.pairs.columns:
-        arrows = "rule"
+    arrows = arrows if "direction" in net.pairs.columns else "rule"
     plot_network(net, ax, legend=True, arrows=arrows)
     ax.set_title(network_title(net) if title is None else title, fontsize=10)
     with atomic_path(path) as tmp:

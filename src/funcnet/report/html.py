@@ -172,7 +172,8 @@ def pairs_table(pairs: pd.DataFrame) -> str:
     ...     rows).index("<th>kind</th>")
     (3, True)
     """
-    columns = [c for c in PAIR_COLUMNS if c in pairs.columns]
+    # direction_reason stays in the files: a sentence per pair would fill a page
+    columns = [c for c in PAIR_COLUMNS if c in pairs.columns and c != "direction_reason"]
     # a network with evidence (or a study's stability): those columns too, when they hold any
     for extra in (EVIDENCE_COLUMNS, ("stability",)):
         if extra[-1] in pairs.columns and pairs[extra[-1]].notna().any():
