@@ -163,9 +163,10 @@ def network(
     text when piped. First comes the set-point check: how often the rule's arrows and the
     direction reading point into the position set-point RP (which nothing drives) and out of
     it. Every pair also gets a direction (x->y, y->x or none, with its reason): whether one
-    signal's past improves the prediction of the other beyond its own past (docs/guide/direction.md);
-    a drawing (-o net.png) shows these arrows, --arrows rule the rule's. Degenerate pairs (too
-    few distinct states) are flagged and are no edges unless --keep-degenerate.
+    signal's past improves the prediction of the other beyond its own past
+    (docs/guide/direction.md); a drawing (-o net.png) shows these arrows, --arrows rule the
+    rule's. Degenerate pairs (too few distinct states) are flagged and are no edges unless
+    --keep-degenerate.
 
     Without --phase or --window: one network per detected phase of every move (standstill
     left out: the set-point is constant there), printed one after the other; with -o one file

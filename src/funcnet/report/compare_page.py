@@ -37,8 +37,8 @@ __all__ = ["write_comparison", "changes", "CARRIED_BY"]
 CARRIED_BY = {
     "residuals": "The intervals come from the residuals (current residual AC - RC and "
                  "following error RP - AP) against the references' band: measured against a "
-                 "force sensor's record of nine pushes on a UR5 (docs/guide/compare.md) they found all "
-                 "nine, with two false intervals in the run's once-only first move.",
+                 "force sensor's record of nine pushes on a UR5 (docs/guide/compare.md) they "
+                 "found all nine, with two false intervals in the run's once-only first move.",
     "networks": "The intervals come from the functional networks' measures over sliding "
                 "windows.",
 }

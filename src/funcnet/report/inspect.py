@@ -141,9 +141,8 @@ def _network_tables(ins: TraceInspection) -> str:
             note += f"; without its {partial[w.label]} (too short: see problems)"
         columns = [c for c in ("x", "y", "kind", "direction", "weight", "c_diff", "t_diff",
                                "degenerate", "evidence", "coupling_p", "surrogates",
-                               "c_diff_low", "c_diff_high", "evidence_reason",
-                               "direction_reason")
-                   if c in net.pairs.columns]
+                               "c_diff_low", "c_diff_high", "evidence_reason")
+                   if c in net.pairs.columns]  # direction_reason stays in the files
         frame = net.pairs[columns].assign(kind=net.pairs["kind"].map(
             lambda k: f"{ARROWS.get(k, '')} {k}"))
         parts.append(f"<details><summary>{escape(w.label)} ({span}, {net.n_samples} samples"
