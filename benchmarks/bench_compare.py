@@ -17,13 +17,13 @@ from __future__ import annotations
 
 import os
 import platform
-import time
 import warnings
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
+from benchmarks.bench_core import timed
 from funcnet.comparison import compare_runs
 from funcnet.robot.recording import Recording, SignalInfo
 
@@ -72,22 +72,14 @@ def competitor(run: Recording, refs: list[Recording]) -> np.ndarray:
         return np.nansum(np.abs(residual - np.nanmean(others, axis=0))[:, :3], axis=1)
 
 
-def timed(function, repeats: int = 3) -> tuple[float, float]:  # type: ignore[no-untyped-def]
-    times = []
-    for _ in range(repeats):
-        started = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - started)
-    return float(np.median(times)), float(min(times))
-
 
 def main() -> None:
     run = simulated(3, 1.1, 30.0)
     refs = [simulated(1, 0.0, 16.0), simulated(2, 2.5, 22.0)]
     compare_runs(run, refs)  # warm-up: compiles the kernels
-    full, full_best = timed(lambda: compare_runs(run, refs))
-    plain, _ = timed(lambda: compare_runs(run, refs, networks=False))
-    rival, _ = timed(lambda: competitor(run, refs))
+    full, full_best, _, _ = timed(lambda: compare_runs(run, refs), 3)
+    plain, _, _, _ = timed(lambda: compare_runs(run, refs, networks=False), 3)
+    rival, _, _, _ = timed(lambda: competitor(run, refs), 3)
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, "
           f"load {os.getloadavg()[0]:.1f}")
     print(f"compare_runs, 30 s x 6 joints vs 2 references, with networks: median {full:.2f} s "
@@ -108,7 +100,7 @@ def main() -> None:
                 recs = [read_trace(folder / n, channels=channels) for n in names]
             compare_runs(recs[0], recs[1:])
 
-        median, best = timed(real)
+        median, best, _, _ = timed(real, 3)
         print(f"UR5 No9 ForceSensor (34.4 s) vs No8 and No9 NoDist, reading included: median "
               f"{median:.2f} s (best {best:.2f} s)")
 

@@ -14,13 +14,12 @@ from __future__ import annotations
 
 import os
 import platform
-import time
 import warnings
 
-import numpy as np
 import pandas as pd
 
 import funcnet
+from benchmarks.bench_core import timed
 from funcnet.sim import Trial, simulate_trial
 
 SIGNALS = ["RP", "AP", "MP", "RC", "AC"]
@@ -34,24 +33,16 @@ def windows() -> list[pd.DataFrame]:
             .reset_index(drop=True) for seed in range(1, R + 1)]
 
 
-def timed(function, repeats: int) -> tuple[float, float]:  # type: ignore[no-untyped-def]
-    times = []
-    for _ in range(repeats):
-        started = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - started)
-    return float(np.median(times)), float(min(times))
-
 
 def main() -> None:
     data = windows()
     funcnet.repetition_evidence(data[:5])  # compile
     for window in data[:2]:
         funcnet.functional_network(window, evidence=True, resamples=0)
-    median, best = timed(lambda: funcnet.repetition_evidence(data), 5)
+    median, best, _, _ = timed(lambda: funcnet.repetition_evidence(data), 5)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", funcnet.FuncnetWarning)
-        single, single_best = timed(
+        single, single_best, _, _ = timed(
             lambda: [funcnet.functional_network(w, evidence=True, resamples=0) for w in data], 3)
     table = funcnet.repetition_evidence(data)
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, "
