@@ -77,9 +77,88 @@ def direction_lags(parameters: NetworkParameters) -> int:
     return (parameters.dim - 1) * parameters.delay + 1
 
 
-def _lagged(v: np.ndarray, p: int) -> np.ndarray:
-    n = v.size
-    return np.column_stack([v[p - k - 1 : n - k - 1] for k in range(p)])
+def _p_matrix(columns: np.ndarray, lags: int) -> np.ndarray:
+    """p-values of every ordered pair of columns: ``P[i, j]`` that column j's past improves
+    the prediction of column i beyond i's own past (NaN: too short, constant, or exact).
+
+    One QR factorization of the window's lag matrix ``W = [1, v_k(t - l) for every column k
+    and lag l = 0..p]`` (rows ``t = p..N-1``) serves every pair: a pair's design and target
+    ``[1, y(t-1..t-p), x(t-1..t-p), y(t)]`` is a column subset ``W S = Q (R_W S)``, so its
+    triangular factor is that of the small ``R_W S`` (at most ``1 + k (p + 1)`` rows, however
+    long the window). In that factor ``R`` (target column ``c = 2 p + 1``) the full model's
+    residual sum of squares is ``R[c, c]^2`` and the improvement over the restricted model is
+    ``sum R[p+1..2p, c]^2``: orthogonal throughout (lagged smooth signals are nearly collinear,
+    normal equations would square their condition number), and the improvement is never the
+    difference of two nearly equal numbers. Where the diagonal of ``R`` spans more than
+    ``1 / _SCREEN`` (a numerically rank-deficient design), singular values decide as least
+    squares does: directions at most ``eps max(n, columns) s_max`` are dropped, from the full
+    and the restricted design alike. A target its own past predicts to the rounding of the
+    arithmetic (``RSS_r <= (eps max(n, columns))^2 |y|^2``: a set-point that is a polynomial
+    over the window) leaves nothing to explain: NaN, as a constant signal.
+    """
+    n_samples, k = columns.shape
+    out = np.full((k, k), np.nan)
+    p = lags
+    chosen = np.asarray([i for i in range(k) if n_samples - 3 * p - 1 >= 1
+                         and np.ptp(columns[:, i]) > 0], dtype=np.intp)
+    if chosen.size < 2:
+        return out
+    v = columns[:, chosen]
+    v = (v - v.mean(axis=0)) / v.std(axis=0)
+    kk, n = chosen.size, n_samples - p
+    window = np.lib.stride_tricks.sliding_window_view(v, p + 1, axis=0)  # (n, kk, p + 1)
+    design = np.empty((n, 1 + kk * (p + 1)))
+    design[:, 0] = 1.0
+    design[:, 1:] = window[:, :, ::-1].reshape(n, kk * (p + 1))  # lags 0..p, node by node
+    r_window = np.linalg.qr(design, mode="r")
+    target, source = np.nonzero(~np.eye(kk, dtype=bool))
+    lag = np.arange(1, p + 1)
+    subset = np.column_stack([np.zeros(target.size, dtype=np.intp),
+                              1 + target[:, None] * (p + 1) + lag,
+                              1 + source[:, None] * (p + 1) + lag,
+                              1 + target * (p + 1)])  # (pairs, 2p + 2)
+    c = 2 * p + 1
+    dfd = n - c
+    values = np.empty(target.size)
+    step = max(1, _CHUNK // (r_window.shape[0] * (c + 1)))
+    for first in range(0, target.size, step):
+        part = slice(first, first + step)
+        r = np.linalg.qr(r_window[:, subset[part]].transpose(1, 0, 2), mode="r")
+        y = r[:, :, c]
+        full = y[:, c] ** 2
+        gain = (y[:, p + 1 : c] ** 2).sum(axis=1)
+        own = gain + full
+        diagonal = np.abs(np.diagonal(r[:, :c, :c], axis1=1, axis2=2))
+        for m in np.flatnonzero(diagonal.min(axis=1) <= _SCREEN * diagonal.max(axis=1)):
+            dropped_full = _dropped(r[m, :c, :c], y[m, :c], n)
+            dropped_own = _dropped(r[m, : p + 1, : p + 1], y[m, : p + 1], n)
+            full[m] += dropped_full
+            own[m] += dropped_own
+            gain[m] = max(gain[m] + dropped_own - dropped_full, 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            found = special.fdtrc(p, dfd, gain / p / (full / dfd))  # F's upper tail (f.sf)
+        # predicted by its own past to the rounding of the arithmetic: nothing left to explain
+        exact = own <= (_EPS * max(n, c)) ** 2 * (y**2).sum(axis=1)
+        found[exact | ~(full > 0.0)] = np.nan
+        values[part] = found
+    out[chosen[target], chosen[source]] = values
+    return out
+
+
+def _dropped(r: np.ndarray, y: np.ndarray, n: int) -> float:
+    """The target's part that least squares leaves unexplained beyond ``r``'s own residual:
+    along the singular directions of ``r`` at most ``eps max(n, columns) s_max``, which
+    :func:`numpy.linalg.lstsq` treats as zero."""
+    u, s, _ = np.linalg.svd(r)
+    along = (u.T @ y) ** 2
+    return float(along[s <= _EPS * max(n, r.shape[1]) * s[0]].sum())
+
+
+_EPS = float(np.finfo(np.float64).eps)
+#: Designs whose triangular diagonal spans less than ``1 / _SCREEN`` are read from ``R`` alone.
+_SCREEN = 1e-6
+#: Elements of one batch of triangular factors (bounds the memory of a long window).
+_CHUNK = 2_000_000
 
 
 def prediction_p(x: Any, y: Any, lags: int) -> float:
@@ -121,50 +200,7 @@ def prediction_p(x: Any, y: Any, lags: int) -> float:
     ys = np.asarray(y, dtype=np.float64).ravel()
     if xs.size != ys.size:
         raise ParameterError.of("y", f"has {ys.size} samples, x has {xs.size}")
-    past_x, past_y = _Past.of(xs, int(lags)), _Past.of(ys, int(lags))
-    return _p_value(past_x, past_y)
-
-
-class _Past:
-    """A signal standardized, its lagged design ``1, v[t-1..t-p]``, and the residual sum of
-    squares of its prediction from its own past (shared by every pair it is the target of)."""
-
-    def __init__(self, values: np.ndarray | None, lags: int) -> None:
-        self.lags = lags
-        self.values = values
-        self.size = 0 if values is None else values.size
-        if values is None:
-            return
-        self.target = values[lags:]
-        self.own = np.column_stack([np.ones(self.target.size), _lagged(values, lags)])
-        self.rss = _rss(self.own, self.target)
-
-    @classmethod
-    def of(cls, v: np.ndarray, lags: int) -> _Past:
-        # too short (N - 3p - 1 < 1) or constant: nothing to test (values None)
-        if v.size - 3 * lags - 1 < 1 or np.ptp(v) == 0:
-            empty = cls(None, lags)
-            empty.size = v.size
-            return empty
-        return cls((v - v.mean()) / v.std(), lags)
-
-
-def _rss(design: np.ndarray, target: np.ndarray) -> float:
-    residual = target - design @ np.linalg.lstsq(design, target, rcond=None)[0]
-    return float(residual @ residual)
-
-
-def _p_value(x: _Past, y: _Past) -> float:
-    """p-value that X's past improves Y's prediction beyond Y's own (both prepared)."""
-    if x.values is None or y.values is None:
-        return float("nan")
-    p = y.lags
-    dfd = y.values.size - p - (2 * p + 1)
-    full = _rss(np.column_stack([y.own, x.own[:, 1:]]), y.target)
-    if full <= 0.0:
-        return float("nan")
-    f = max(y.rss - full, 0.0) / p / (full / dfd)
-    return float(special.fdtrc(p, dfd, f))  # the F distribution's upper tail (f.sf)
+    return float(_p_matrix(np.column_stack([xs, ys]), int(lags))[1, 0])
 
 
 def _g(value: float) -> str:
@@ -207,17 +243,15 @@ def read_direction(x: Any, y: Any, lags: int, *, alpha: float = DIRECTION_ALPHA,
         raise ParameterError.of("y", f"has {ys.size} samples, x has {xs.size}")
     if isinstance(lags, bool) or not isinstance(lags, (int, np.integer)) or lags < 1:
         raise ParameterError.of("lags", f"must be an integer >= 1, got {lags!r}")
-    return _reading(_Past.of(xs, int(lags)), _Past.of(ys, int(lags)), alpha, names)
+    found = _p_matrix(np.column_stack([xs, ys]), int(lags))
+    return _reading(found[1, 0], found[0, 1], xs.size, int(lags), alpha, names)
 
 
-def _reading(px: _Past, py: _Past, alpha: float, names: tuple[str, str]) -> tuple[str, str]:
-    """:func:`read_direction` of two prepared pasts."""
-    lags = px.lags
+def _reading(forward: float, backward: float, n: int, lags: int, alpha: float,
+             names: tuple[str, str]) -> tuple[str, str]:
+    """:func:`read_direction` of a pair's two p-values (X's past for Y, Y's for X)."""
     a, b = names
-    forward = _p_value(px, py)
-    backward = _p_value(py, px)
     if np.isnan(forward) or np.isnan(backward):
-        n = px.size
         if n < 3 * lags + 2:
             return "none", (f"window too short: {n} samples for {lags} lags (needs at least "
                             f"{3 * lags + 2})")
@@ -271,26 +305,27 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
     if not 0.0 < alpha < 1.0:
         raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha!r}")
     out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
-    pasts: dict[Any, _Past | None] = {}  # each node prepared once for all its pairs
-
-    def past(name: Any) -> _Past | None:
-        if name not in pasts:
-            v = np.asarray(signals[name], dtype=np.float64)
-            pasts[name] = (None if v.ndim > 1 and v.shape[1] > 1
-                           else _Past.of(v.ravel(), lags))
-        return pasts[name]
-
-    for x, y, flagged in zip(pairs["x"], pairs["y"], pairs["degenerate"], strict=True):
-        if bool(flagged):
+    tested = [bool(flagged) for flagged in pairs["degenerate"]]
+    names = list(dict.fromkeys(name for x, y, flagged in zip(pairs["x"], pairs["y"], tested,
+                                                             strict=True)
+                               if not flagged for name in (x, y)))
+    arrays = {name: np.asarray(signals[name], dtype=np.float64) for name in names}
+    single = [name for name in names if arrays[name].ndim < 2 or arrays[name].shape[1] == 1]
+    sizes = {arrays[name].shape[0] for name in single}
+    if len(sizes) > 1:
+        raise ParameterError.of("signals", f"have unequal lengths {sorted(sizes)}")
+    column = {name: k for k, name in enumerate(single)}
+    n = sizes.pop() if sizes else 0
+    found = _p_matrix(np.column_stack([arrays[name].ravel() for name in single])
+                      if single else np.empty((0, 0)), lags)  # every pair of one window at once
+    for x, y, flagged in zip(pairs["x"], pairs["y"], tested, strict=True):
+        if flagged:
             reading = ("none", "degenerate pair: too few distinct states")
-            out["direction"].append(reading[0])
-            out["direction_reason"].append(reading[1])
-            continue
-        px, py = past(x), past(y)
-        if px is None or py is None:
+        elif x not in column or y not in column:
             reading = ("none", "a multichannel node: the test reads one channel per node")
         else:
-            reading = _reading(px, py, alpha, (str(x), str(y)))
+            i, j = column[x], column[y]
+            reading = _reading(found[j, i], found[i, j], n, lags, alpha, (str(x), str(y)))
         out["direction"].append(reading[0])
         out["direction_reason"].append(reading[1])
     return out
