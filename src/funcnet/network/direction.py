@@ -65,6 +65,11 @@ DIRECTIONS: tuple[str, ...] = ("x->y", "y->x", "none")
 #: Level of a pair's two tests together (each at half of it).
 DIRECTION_ALPHA = 0.05
 
+#: Samples of the other signal's past left out before its lags begin: a logging offset of one
+#: sample between two channels makes their lag-1 relation a simultaneous one, which has no
+#: direction.
+DIRECTION_GAP = 1
+
 
 def direction_lags(parameters: NetworkParameters) -> int:
     """The lags ``p`` of the test: the embedding span ``(dim - 1) * delay + 1``.
@@ -77,13 +82,15 @@ def direction_lags(parameters: NetworkParameters) -> int:
     return (parameters.dim - 1) * parameters.delay + 1
 
 
-def _p_matrix(columns: np.ndarray, lags: int) -> np.ndarray:
-    """p-values of every ordered pair of columns: ``P[i, j]`` that column j's past improves
-    the prediction of column i beyond i's own past (NaN: too short, constant, or exact).
+def _p_matrix(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
+    """p-values of every ordered pair of columns: ``P[i, j]`` that column j's past (lags
+    ``gap + 1 .. gap + p``) improves the prediction of column i beyond i's own past (lags
+    ``1 .. p``); NaN: too short, constant, or exact.
 
     One QR factorization of the window's lag matrix ``W = [1, v_k(t - l) for every column k
-    and lag l = 0..p]`` (rows ``t = p..N-1``) serves every pair: a pair's design and target
-    ``[1, y(t-1..t-p), x(t-1..t-p), y(t)]`` is a column subset ``W S = Q (R_W S)``, so its
+    and lag l = 0..p + gap]`` (rows ``t = p + gap..N-1``) serves every pair: a pair's design and
+    target ``[1, y(t-1..t-p), x(t-1-gap..t-p-gap), y(t)]`` is a column subset ``W S = Q (R_W S)``,
+    so its
     triangular factor is that of the small ``R_W S`` (at most ``1 + k (p + 1)`` rows, however
     long the window). In that factor ``R`` (target column ``c = 2 p + 1``) the full model's
     residual sum of squares is ``R[c, c]^2`` and the improvement over the restricted model is
@@ -99,24 +106,25 @@ def _p_matrix(columns: np.ndarray, lags: int) -> np.ndarray:
     n_samples, k = columns.shape
     out = np.full((k, k), np.nan)
     p = lags
-    chosen = np.asarray([i for i in range(k) if n_samples - 3 * p - 1 >= 1
+    span = p + gap
+    chosen = np.asarray([i for i in range(k) if n_samples - 3 * p - 1 - gap >= 1
                          and np.ptp(columns[:, i]) > 0], dtype=np.intp)
     if chosen.size < 2:
         return out
     v = columns[:, chosen]
     v = (v - v.mean(axis=0)) / v.std(axis=0)
-    kk, n = chosen.size, n_samples - p
-    window = np.lib.stride_tricks.sliding_window_view(v, p + 1, axis=0)  # (n, kk, p + 1)
-    design = np.empty((n, 1 + kk * (p + 1)))
+    kk, n = chosen.size, n_samples - span
+    window = np.lib.stride_tricks.sliding_window_view(v, span + 1, axis=0)  # (n, kk, span+1)
+    design = np.empty((n, 1 + kk * (span + 1)))
     design[:, 0] = 1.0
-    design[:, 1:] = window[:, :, ::-1].reshape(n, kk * (p + 1))  # lags 0..p, node by node
+    design[:, 1:] = window[:, :, ::-1].reshape(n, kk * (span + 1))  # lags 0..span per node
     r_window = np.linalg.qr(design, mode="r")
     target, source = np.nonzero(~np.eye(kk, dtype=bool))
     lag = np.arange(1, p + 1)
     subset = np.column_stack([np.zeros(target.size, dtype=np.intp),
-                              1 + target[:, None] * (p + 1) + lag,
-                              1 + source[:, None] * (p + 1) + lag,
-                              1 + target * (p + 1)])  # (pairs, 2p + 2)
+                              1 + target[:, None] * (span + 1) + lag,
+                              1 + source[:, None] * (span + 1) + gap + lag,
+                              1 + target * (span + 1)])  # (pairs, 2p + 2)
     c = 2 * p + 1
     dfd = n - c
     values = np.empty(target.size)
@@ -161,7 +169,7 @@ _SCREEN = 1e-6
 _CHUNK = 2_000_000
 
 
-def prediction_p(x: Any, y: Any, lags: int) -> float:
+def prediction_p(x: Any, y: Any, lags: int, *, gap: int = DIRECTION_GAP) -> float:
     """p-value that X's past improves the linear prediction of Y beyond Y's own past.
 
     Parameters
@@ -170,17 +178,19 @@ def prediction_p(x: Any, y: Any, lags: int) -> float:
         Equally long signals (standardized here: any affine scaling gives the same p-value).
     lags : int
         ``p``, samples of each past.
+    gap : int
+        Samples of X's past left out: X's lags are ``gap + 1 .. gap + p`` (Y's own ``1 .. p``).
 
     Returns
     -------
     float
-        The F test's upper-tail p-value; NaN when ``N - 3 p - 1 < 1`` (too short), a signal
-        is constant or the full prediction is exact.
+        The F test's upper-tail p-value; NaN when ``N - 3 p - 1 - gap < 1`` (too short), a
+        signal is constant, or Y's own past predicts it to the rounding of the arithmetic.
 
     Raises
     ------
     ParameterError
-        ``lags < 1`` or signals of unequal length.
+        ``lags < 1``, ``gap < 0`` or signals of unequal length.
 
     References
     ----------
@@ -190,8 +200,10 @@ def prediction_p(x: Any, y: Any, lags: int) -> float:
     --------
     >>> rng = np.random.default_rng(0)
     >>> x = rng.standard_normal(400)
-    >>> y = np.concatenate([[0.0], 0.8 * x[:-1]]) + 0.3 * rng.standard_normal(400)
+    >>> y = np.concatenate([[0.0, 0.0], 0.8 * x[:-2]]) + 0.3 * rng.standard_normal(400)
     >>> prediction_p(x, y, 2) < 1e-6, prediction_p(y, x, 2) > 0.05
+    (True, True)
+    >>> prediction_p(x[:-1], y[1:], 2) > 0.05, prediction_p(x[:-1], y[1:], 2, gap=0) < 1e-6
     (True, True)
     """
     if isinstance(lags, bool) or not isinstance(lags, (int, np.integer)) or lags < 1:
@@ -200,14 +212,15 @@ def prediction_p(x: Any, y: Any, lags: int) -> float:
     ys = np.asarray(y, dtype=np.float64).ravel()
     if xs.size != ys.size:
         raise ParameterError.of("y", f"has {ys.size} samples, x has {xs.size}")
-    return float(_p_matrix(np.column_stack([xs, ys]), int(lags))[1, 0])
+    return float(_p_matrix(np.column_stack([xs, ys]), int(lags), _gap(gap))[1, 0])
 
 
 def _g(value: float) -> str:
     return f"{value:.2g}"
 
 
-def read_direction(x: Any, y: Any, lags: int, *, alpha: float = DIRECTION_ALPHA,
+def read_direction(x: Any, y: Any, lags: int, *, gap: int = DIRECTION_GAP,
+                   alpha: float = DIRECTION_ALPHA,
                    names: tuple[str, str] = ("X", "Y")) -> tuple[str, str]:
     """The direction of one pair and why (module notes).
 
@@ -216,6 +229,8 @@ def read_direction(x: Any, y: Any, lags: int, *, alpha: float = DIRECTION_ALPHA,
     x, y : array_like, shape (N,)
     lags : int
         ``p`` (:func:`direction_lags`).
+    gap : int
+        As :func:`prediction_p` (:data:`DIRECTION_GAP`).
     alpha : float in (0, 1)
         Level of the pair's two tests together; each is decided at ``alpha / 2``.
     names : (str, str)
@@ -230,9 +245,9 @@ def read_direction(x: Any, y: Any, lags: int, *, alpha: float = DIRECTION_ALPHA,
     --------
     >>> rng = np.random.default_rng(0)
     >>> x = rng.standard_normal(400)
-    >>> y = np.concatenate([[0.0], 0.8 * x[:-1]]) + 0.3 * rng.standard_normal(400)
+    >>> y = np.concatenate([[0.0, 0.0], 0.8 * x[:-2]]) + 0.3 * rng.standard_normal(400)
     >>> read_direction(x, y, 2, names=("RP", "AC"))
-    ('x->y', "RP's past improves AC's prediction (p 3.8e-181), AC's does not improve RP's (p 0.6)")
+    ('x->y', "RP's past improves AC's prediction (p 1.2e-175), AC's does not improve RP's (p 0.8)")
     >>> read_direction(x, rng.standard_normal(400), 2)[0]
     'none'
     """
@@ -243,18 +258,24 @@ def read_direction(x: Any, y: Any, lags: int, *, alpha: float = DIRECTION_ALPHA,
         raise ParameterError.of("y", f"has {ys.size} samples, x has {xs.size}")
     if isinstance(lags, bool) or not isinstance(lags, (int, np.integer)) or lags < 1:
         raise ParameterError.of("lags", f"must be an integer >= 1, got {lags!r}")
-    found = _p_matrix(np.column_stack([xs, ys]), int(lags))
-    return _reading(found[1, 0], found[0, 1], xs.size, int(lags), alpha, names)
+    found = _p_matrix(np.column_stack([xs, ys]), int(lags), _gap(gap))
+    return _reading(found[1, 0], found[0, 1], xs.size, int(lags), int(gap), alpha, names)
 
 
-def _reading(forward: float, backward: float, n: int, lags: int, alpha: float,
+def _gap(gap: int) -> int:
+    if isinstance(gap, bool) or not isinstance(gap, (int, np.integer)) or gap < 0:
+        raise ParameterError.of("gap", f"must be an integer >= 0, got {gap!r}")
+    return int(gap)
+
+
+def _reading(forward: float, backward: float, n: int, lags: int, gap: int, alpha: float,
              names: tuple[str, str]) -> tuple[str, str]:
     """:func:`read_direction` of a pair's two p-values (X's past for Y, Y's for X)."""
     a, b = names
     if np.isnan(forward) or np.isnan(backward):
-        if n < 3 * lags + 2:
+        if n < 3 * lags + 2 + gap:
             return "none", (f"window too short: {n} samples for {lags} lags (needs at least "
-                            f"{3 * lags + 2})")
+                            f"{3 * lags + 2 + gap})")
         return "none", "a signal constant or predicted exactly by its own past: nothing to test"
     level = alpha / 2
     fwd, bwd = forward <= level, backward <= level
@@ -296,7 +317,7 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
     --------
     >>> rng = np.random.default_rng(1)
     >>> x = rng.standard_normal(300)
-    >>> y = np.concatenate([[0.0], x[:-1]]) + 0.5 * rng.standard_normal(300)
+    >>> y = np.concatenate([[0.0, 0.0], x[:-2]]) + 0.5 * rng.standard_normal(300)
     >>> pairs = pd.DataFrame({"x": ["A"], "y": ["B"], "degenerate": [False]})
     >>> direction_columns(pairs, {"A": x, "B": y}, NetworkParameters(delay=1))["direction"]
     ['x->y']
@@ -316,8 +337,9 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
         raise ParameterError.of("signals", f"have unequal lengths {sorted(sizes)}")
     column = {name: k for k, name in enumerate(single)}
     n = sizes.pop() if sizes else 0
+    # every pair of the window at once
     found = _p_matrix(np.column_stack([arrays[name].ravel() for name in single])
-                      if single else np.empty((0, 0)), lags)  # every pair of one window at once
+                      if single else np.empty((0, 0)), lags, DIRECTION_GAP)
     for x, y, flagged in zip(pairs["x"], pairs["y"], tested, strict=True):
         if flagged:
             reading = ("none", "degenerate pair: too few distinct states")
@@ -325,7 +347,8 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
             reading = ("none", "a multichannel node: the test reads one channel per node")
         else:
             i, j = column[x], column[y]
-            reading = _reading(found[j, i], found[i, j], n, lags, alpha, (str(x), str(y)))
+            reading = _reading(found[j, i], found[i, j], n, lags, DIRECTION_GAP, alpha,
+                               (str(x), str(y)))
         out["direction"].append(reading[0])
         out["direction_reason"].append(reading[1])
     return out
