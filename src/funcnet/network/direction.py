@@ -71,12 +71,14 @@ testing Granger causality", IEEE Trans. Signal Process. 64, 2746-2760 (2016).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 import pandas as pd
 from scipy import special
+from threadpoolctl import ThreadpoolController
 
 from funcnet.errors import ParameterError
 from funcnet.parameters import NetworkParameters
@@ -128,6 +130,20 @@ def _p_matrix(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
     arithmetic (``RSS_r <= (eps max(n, columns))^2 |y|^2``: a set-point that is a polynomial
     over the window) leaves nothing to explain: NaN, as a constant signal.
     """
+    with _blas().limit(limits=1, user_api="blas"):
+        return _p_matrix_here(columns, lags, gap)
+
+
+@functools.cache
+def _blas() -> ThreadpoolController:
+    """The BLAS thread pools: one thread for the small factorizations of a window (several
+    threads spin on matrices of this size, and compete with the rule's compiled kernels: ten
+    times slower on two busy cores)."""
+    return ThreadpoolController()
+
+
+def _p_matrix_here(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
+    """:func:`_p_matrix`, in the calling thread's BLAS setting."""
     n_samples, k = columns.shape
     out = np.full((k, k), np.nan)
     p = lags
@@ -143,7 +159,7 @@ def _p_matrix(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
     design = np.empty((n, 1 + kk * (span + 1)))
     design[:, 0] = 1.0
     design[:, 1:] = window[:, :, ::-1].reshape(n, kk * (span + 1))  # lags 0..span per node
-    r_window = np.linalg.qr(design, mode="r")
+    r_window = _triangular(design)
     target, source = np.nonzero(~np.eye(kk, dtype=bool))
     lag = np.arange(1, p + 1)
     subset = np.column_stack([np.zeros(target.size, dtype=np.intp),
@@ -156,7 +172,7 @@ def _p_matrix(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
     step = max(1, _CHUNK // (r_window.shape[0] * (c + 1)))
     for first in range(0, target.size, step):
         part = slice(first, first + step)
-        r = np.linalg.qr(r_window[:, subset[part]].transpose(1, 0, 2), mode="r")
+        r = _triangular(r_window[:, subset[part]].transpose(1, 0, 2))
         y = r[:, :, c]
         full = y[:, c] ** 2
         gain = (y[:, p + 1 : c] ** 2).sum(axis=1)
@@ -178,6 +194,12 @@ def _p_matrix(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
     return out
 
 
+def _triangular(a: np.ndarray) -> np.ndarray:
+    """The triangular factor ``R`` of ``a = Q R`` (of each matrix of a stack), without ``Q``."""
+    factor: Any = np.linalg.qr  # NumPy's stubs lack mode "r" for stacks
+    return np.asarray(factor(a, mode="r"))
+
+
 def _dropped(r: np.ndarray, y: np.ndarray, n: int) -> float:
     """The target's part that least squares leaves unexplained beyond ``r``'s own residual:
     along the singular directions of ``r`` at most ``eps max(n, columns) s_max``, which
@@ -189,7 +211,7 @@ def _dropped(r: np.ndarray, y: np.ndarray, n: int) -> float:
 
 _EPS = float(np.finfo(np.float64).eps)
 #: Designs whose triangular diagonal spans less than ``1 / _SCREEN`` are read from ``R`` alone.
-_SCREEN = 1e-6
+_SCREEN = 1e-8
 #: Elements of one batch of triangular factors (bounds the memory of a long window).
 _CHUNK = 2_000_000
 
