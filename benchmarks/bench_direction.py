@@ -3,6 +3,7 @@
 Run from the repository root::
 
     PYTHONPATH=src python -m benchmarks.bench_direction [--plan DIR] [--seed N] [--candidates]
+        [--variants]
 
 For every real recording in ``../shared/data`` -- the SINUMERIK trace (its phase windows), both
 KUKA KR 300 runs (``examples/kuka-kr300-channels.toml``; every axis's phase windows, and the
@@ -15,12 +16,17 @@ paper's rule (``kind``) and for ``direction`` (:func:`funcnet.network.setpoint_c
 The cost: each window's network is timed (``window_networks``, which reads the direction too)
 and the direction reading alone on the same windows (``direction_columns``); the rule alone is
 their difference, and the ratio (rule + direction) / rule is printed per recording (target:
-at most 2).
+at most 2). The SINUMERIK trace is computed once untimed first (compilation, caches).
 
-``--candidates`` adds the methods the direction was chosen among, over the same set-point
-pairs: the prediction test at 3 and 10 lags beside the embedding span, and the lead of the
-cross-map skill (lagged convergent cross mapping, Ye et al. 2015; lead = the lag of the best
-skill, both ways agreeing, at least 2 samples).
+``--variants`` adds, per recording, the set-point shares of the reading's variants: the gap
+before the other signal's lags (0, 1 = the default, 2) and the time-reversal check (a reading
+kept only where the time-reversed signals read the opposite way; Haufe et al. 2013, Winkler et
+al. 2016), with and without the gap.
+
+``--candidates`` adds the methods the direction was first chosen among (without the gap), over
+the same set-point pairs: the prediction test at 3 and 10 lags beside the embedding span, and
+the lead of the cross-map skill (lagged convergent cross mapping, Ye et al. 2015; lead = the
+lag of the best skill, both ways agreeing, at least 2 samples).
 """
 
 from __future__ import annotations
