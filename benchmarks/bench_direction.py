@@ -281,6 +281,9 @@ def main(argv: list[str] | None = None) -> None:
                         help="also the candidate methods over the set-point pairs")
     parser.add_argument("--variants", action="store_true",
                         help="also the gap and time-reversal variants, per recording")
+    parser.add_argument("--only", nargs="+", default=None, metavar="WORD",
+                        help="only the recordings whose group names one of these words "
+                        "(SINUMERIK, KUKA, UR5, simulated)")
     args = parser.parse_args(argv)
     from funcnet.sim import paper_plan, write_plan
 
@@ -293,6 +296,8 @@ def main(argv: list[str] | None = None) -> None:
         warnings.simplefilter("ignore")
         warm_up()
         for group, name, recording in recordings(args.plan):
+            if args.only and not any(word in group for word in args.only):
+                continue
             nets, total, direction = networks_and_cost(recording)
             print(f"{group}, {name}: {len(nets)} networks, {total:.1f} s", file=sys.stderr,
                   flush=True)
@@ -356,6 +361,7 @@ def main(argv: list[str] | None = None) -> None:
     run.footer("PYTHONPATH=src python -m benchmarks.bench_direction"
                + (" --candidates" if args.candidates else "")
                + (" --variants" if args.variants else "")
+               + (" --only " + " ".join(args.only) if args.only else "")
                + (f" --seed {args.seed}" if args.seed else ""))
 
 
