@@ -117,10 +117,10 @@ def _p_matrix(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
     One QR factorization of the window's lag matrix ``W = [1, v_k(t - l) for every column k
     and lag l = 0..p + gap]`` (rows ``t = p + gap..N-1``) serves every pair: a pair's design and
     target ``[1, y(t-1..t-p), x(t-1-gap..t-p-gap), y(t)]`` is a column subset ``W S = Q (R_W S)``,
-    so its
-    triangular factor is that of the small ``R_W S`` (at most ``1 + k (p + 1)`` rows, however
-    long the window). In that factor ``R`` (target column ``c = 2 p + 1``) the full model's
-    residual sum of squares is ``R[c, c]^2`` and the improvement over the restricted model is
+    so its triangular factor is that of the small ``R_W S`` (at most ``1 + k (p + gap + 1)``
+    rows, however long the window). In that factor ``R`` (target column ``c = 2 p + 1``) the
+    full model's residual sum of squares is ``R[c, c]^2`` and the improvement over the
+    restricted model is
     ``sum R[p+1..2p, c]^2``: orthogonal throughout (lagged smooth signals are nearly collinear,
     normal equations would square their condition number), and the improvement is never the
     difference of two nearly equal numbers. Where the diagonal of ``R`` spans more than
@@ -211,6 +211,9 @@ def _dropped(r: np.ndarray, y: np.ndarray, n: int) -> float:
 
 _EPS = float(np.finfo(np.float64).eps)
 #: Designs whose triangular diagonal spans less than ``1 / _SCREEN`` are read from ``R`` alone.
+#: The diagonal only bounds the condition number from below; least squares drops directions
+#: below ``eps max(n, columns)`` (1e-14 to 1e-12 here), four orders under the screen. Over every
+#: window of the recordings, screens from 1e-6 to 1e-12 gave the same p-values.
 _SCREEN = 1e-8
 #: Elements of one batch of triangular factors (bounds the memory of a long window).
 _CHUNK = 2_000_000
