@@ -46,6 +46,7 @@ from funcnet.network import (
     functional_network,
     pair_kinds,
 )
+from funcnet.network._blas import one_blas_thread
 from funcnet.network.direction import direction_columns
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.schema import DIRECTION_COLUMNS, RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
@@ -471,15 +472,16 @@ def _batched_networks(
     columns.update({name: result[name].ravel().tolist() for name in RESULT_COLUMNS})
     columns.update({**dict.fromkeys(RULE_COLUMNS, [""] * n_rows), "weight": [0.0] * n_rows})
     readings: dict[str, list[str]] = {name: [] for name in DIRECTION_COLUMNS}
-    for w in range(len(windows)):
-        mine = slice(w * n_pairs, (w + 1) * n_pairs)
-        read = direction_columns(
-            pd.DataFrame({name: columns[name][mine] for name in ("x", "y", "degenerate")}),
-            # normalized as functional_network's nodes are: the same bits, the same reading
-            dict(zip(result.names, normalize_signals(parts[w], p.normalize).T, strict=True)),
-            p)
-        for name in DIRECTION_COLUMNS:
-            readings[name] += read[name]
+    with one_blas_thread():  # many small least-squares solves (funcnet.network._blas)
+        for w in range(len(windows)):
+            mine = slice(w * n_pairs, (w + 1) * n_pairs)
+            read = direction_columns(
+                pd.DataFrame({name: columns[name][mine] for name in ("x", "y", "degenerate")}),
+                # normalized as functional_network's nodes are: the same bits, the same reading
+                dict(zip(result.names, normalize_signals(parts[w], p.normalize).T, strict=True)),
+                p)
+            for name in DIRECTION_COLUMNS:
+                readings[name] += read[name]
     columns.update(readings)
     table = pair_kinds(pairs_frame(columns), p)  # every window's rows, then sliced
     # Edges of every window at once (the rule is row by row); rows named by their position

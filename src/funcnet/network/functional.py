@@ -28,6 +28,7 @@ import pandas as pd
 from funcnet.core.measures import pairwise_cross_measures
 from funcnet.evidence import check_evidence_arguments
 from funcnet.network import readwrite
+from funcnet.network._blas import one_blas_thread
 from funcnet.network._inputs import prepared_signals
 from funcnet.network.direction import direction_columns
 from funcnet.network.edge_evidence import check_edge_rule, evidence_columns
@@ -563,7 +564,8 @@ def _pairs_table(results: Mapping[tuple[str, str], Any], parameters: NetworkPara
     columns["degenerate"] = [bool(flag) for flag in columns["degenerate"]]
     columns.update(dict.fromkeys(RULE_COLUMNS, [""] * len(measures)))
     columns["weight"] = [0.0] * len(measures)  # set by the rule
-    columns.update(direction_columns(pd.DataFrame(
-        {name: columns[name] for name in ("x", "y", "degenerate")}), signals, parameters))
+    with one_blas_thread():  # many small least-squares solves (funcnet.network._blas)
+        columns.update(direction_columns(pd.DataFrame(
+            {name: columns[name] for name in ("x", "y", "degenerate")}), signals, parameters))
     return pair_kinds(pairs_frame(columns), parameters)
 
