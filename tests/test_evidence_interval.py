@@ -330,6 +330,21 @@ def test_all_resamples_in_one_pass_are_one_at_a_time_bit_for_bit(changes) -> Non
         assert np.array_equal(got.view(np.int64), expected.view(np.int64))
 
 
+def test_resamples_of_some_pairs_keep_each_signal_with_its_rate() -> None:
+    # pairs that leave signals out (1 here), with a rate per signal: the same numbers as one
+    # resample and one pair at a time
+    p = NetworkParameters(rr=(0.05, 0.1, 0.08, 0.03), delay=2)
+    rng = np.random.default_rng(8)
+    raw = np.column_stack([np.cumsum(rng.standard_normal(300)) for _ in range(4)])
+    values = normalize(raw, p.normalize)
+    states = [signal_states(values[:, k], parameters=p) for k in range(4)]
+    pairs = [(0, 2), (2, 3), (0, 3)]
+    chosen = subsamples(states[0].shape[0], 3, 0.4, seed=6)
+    got = resampled_differences(states, pairs, chosen, parameters=p)
+    expected = _one_resample_at_a_time(states, pairs, chosen, p)
+    assert np.array_equal(got.view(np.int64), expected.view(np.int64))
+
+
 def test_multichannel_nodes_in_resamples_match_one_at_a_time() -> None:
     # nodes of two channels (states of 2 * dim coordinates): the same numbers
     p = NetworkParameters(delay=2)

@@ -362,9 +362,16 @@ def _batched(states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
     if len(widths) != 1 or not MIN_STATES <= n <= RESAMPLE_MAX_STATES or p.theiler >= n - 1:
         return None
     (width,) = widths
+    # Only the signals of the pairs (the testable pairs may leave some out): each signal's
+    # recurrence depends on itself alone, and its rate goes with it.
+    used = sorted({i for pair in pairs for i in pair})
+    column = {signal: k for k, signal in enumerate(used)}
+    if isinstance(p.rr, tuple):
+        p = p.replace(rr=tuple(p.rr[i] for i in used))
+    states = [states[i] for i in used]
     n_signals = len(states)
-    pair_x = np.array([i for i, _ in pairs], dtype=np.int64)
-    pair_y = np.array([j for _, j in pairs], dtype=np.int64)
+    pair_x = np.array([column[i] for i, _ in pairs], dtype=np.int64)
+    pair_y = np.array([column[j] for _, j in pairs], dtype=np.int64)
     rows = n * width
     out = np.empty((len(pairs), n_resamples, 2), dtype=np.float64)
     block = windows_per_block(n_signals, n)
