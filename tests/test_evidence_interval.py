@@ -13,15 +13,18 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
+from funcnet.core.batch import DIRECT_MAX_STATES
 from funcnet.core.embedding import signal_states
 from funcnet.core.measures import isrn_measures
 from funcnet.core.normalization import normalize
 from funcnet.core.recurrence import auto_recurrence, cross_recurrence
 from funcnet.errors import ParameterError
+from funcnet.evidence import interval as interval_module
 from funcnet.evidence.interval import (
     BETA_MAX,
     BETA_MIN,
     FRACTIONS,
+    RESAMPLE_MAX_STATES,
     asymmetry_interval,
     asymmetry_intervals,
     half_samples,
@@ -327,6 +330,21 @@ def test_all_resamples_in_one_pass_are_one_at_a_time_bit_for_bit(changes) -> Non
         assert np.array_equal(got.view(np.int64), expected.view(np.int64))
 
 
+def test_resamples_of_some_pairs_keep_each_signal_with_its_rate() -> None:
+    # pairs that leave signals out (1 here), with a rate per signal: the same numbers as one
+    # resample and one pair at a time
+    p = NetworkParameters(rr=(0.05, 0.1, 0.08, 0.03), delay=2)
+    rng = np.random.default_rng(8)
+    raw = np.column_stack([np.cumsum(rng.standard_normal(300)) for _ in range(4)])
+    values = normalize(raw, p.normalize)
+    states = [signal_states(values[:, k], parameters=p) for k in range(4)]
+    pairs = [(0, 2), (2, 3), (0, 3)]
+    chosen = subsamples(states[0].shape[0], 3, 0.4, seed=6)
+    got = resampled_differences(states, pairs, chosen, parameters=p)
+    expected = _one_resample_at_a_time(states, pairs, chosen, p)
+    assert np.array_equal(got.view(np.int64), expected.view(np.int64))
+
+
 def test_multichannel_nodes_in_resamples_match_one_at_a_time() -> None:
     # nodes of two channels (states of 2 * dim coordinates): the same numbers
     p = NetworkParameters(delay=2)
@@ -336,4 +354,30 @@ def test_multichannel_nodes_in_resamples_match_one_at_a_time() -> None:
     chosen = subsamples(states[0].shape[0], 4, 0.4, seed=1)
     got = resampled_differences(states, [(0, 1)], chosen, parameters=p)
     expected = _one_resample_at_a_time(states, [(0, 1)], chosen, p)
+    assert np.array_equal(got.view(np.int64), expected.view(np.int64))
+
+
+def test_resamples_above_the_window_limit_go_through_the_kernel_bit_for_bit(monkeypatch) -> None:
+    # Resamples of more states than the batched limit of plain windows (DIRECT_MAX_STATES),
+    # up to RESAMPLE_MAX_STATES: the batched kernel, never the per-resample path, and the
+    # numbers of one resample and one pair at a time.
+    p = NetworkParameters()
+    rng = np.random.default_rng(11)
+    n = 2600
+    t = np.arange(n)
+    raw = np.column_stack([np.sin(t / 40) + 0.05 * rng.standard_normal(n),
+                           np.cumsum(rng.standard_normal(n)),
+                           np.sin(t / 40 + 0.3) ** 3 + 0.2 * rng.standard_normal(n)])
+    values = normalize(raw, p.normalize)
+    states = [signal_states(values[:, k], parameters=p) for k in range(3)]
+    pairs = [(0, 1), (0, 2), (1, 2)]
+    chosen = subsamples(states[0].shape[0], 2, 0.4, seed=3)
+    assert DIRECT_MAX_STATES < chosen.shape[1] <= RESAMPLE_MAX_STATES
+    expected = _one_resample_at_a_time(states, pairs, chosen, p)
+
+    def no_fill(*args: object) -> None:
+        raise AssertionError("the per-resample path was taken")
+
+    monkeypatch.setattr(interval_module, "_fill", no_fill)
+    got = resampled_differences(states, pairs, chosen, parameters=p)
     assert np.array_equal(got.view(np.int64), expected.view(np.int64))

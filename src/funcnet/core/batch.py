@@ -284,7 +284,9 @@ def stacked_measures(table: np.ndarray, n_windows: int, width: int, n_states: in
         coordinates one after the other.
     n_windows, width, n_states : int
         Windows in the stack, coordinates per state (``dim`` times the channels), states per
-        window (at most :data:`DIRECT_MAX_STATES`).
+        window (any number from ``MIN_STATES``: the kernel is exact at every size; it is the
+        faster path up to about :data:`DIRECT_MAX_STATES` for plain windows, and further for
+        the resamples of a network, whose signals serve many pairs).
     parameters : NetworkParameters
         Thresholds by rate (``eps`` None), metric, Theiler window and rule.
     pair_x, pair_y : ndarray of int64

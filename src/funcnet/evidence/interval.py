@@ -73,7 +73,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from funcnet.core.batch import DIRECT_MAX_STATES, stacked_measures, windows_per_block
+from funcnet.core.batch import stacked_measures, windows_per_block
 from funcnet.core.embedding import MIN_STATES
 from funcnet.core.measures import isrn_measures
 from funcnet.core.recurrence import auto_recurrence, cross_recurrence
@@ -83,7 +83,8 @@ from funcnet.parameters import NetworkParameters
 
 __all__ = ["AsymmetryInterval", "half_samples", "subsamples", "resampled_differences",
            "rate_factor", "interval_from", "asymmetry_interval", "asymmetry_intervals",
-           "interval_kind", "FRACTIONS", "BETA_MIN", "BETA_MAX", "EDGE_RULES"]
+           "interval_kind", "FRACTIONS", "BETA_MIN", "BETA_MAX", "EDGE_RULES",
+           "RESAMPLE_MAX_STATES"]
 
 #: Edge rules: the paper's (``mu`` only, the default) and ``mu`` with the interval.
 EDGE_RULES: tuple[str, ...] = ("paper", "interval")
@@ -103,6 +104,14 @@ BETA_MIN = 0.1
 #: validated on seeds 1000-1199; kept for the fractions (0.4, 0.75) after comparing 0.65-0.85
 #: on seeds 5000-5199 (benchmarks/bench_interval.py, docs/validation/evidence.md section 3).
 BETA_MAX = 0.75
+#: Largest resample (kept states) computed by the batched engine's kernel, all resamples and
+#: pairs of a network in one compiled pass. Above :data:`~funcnet.core.batch.DIRECT_MAX_STATES`
+#: (the limit for plain windows) the kernel still beats the per-resample path here, where each
+#: of many pairs shares its signals' recurrences: measured on the 30 nodes (435 pairs) of a
+#: 26 s UR5 run, one thread each, 1.6x at 1,254 kept states, 1.4x at 1,596, 1.0x at 1,881 and
+#: 0.9x at 2,394 (benchmarks/RESULTS.md, "Intervals of large windows"). The numbers are the
+#: same either way.
+RESAMPLE_MAX_STATES = 1600
 
 
 @dataclass(frozen=True)
@@ -267,7 +276,7 @@ def resampled_differences(states: Sequence[np.ndarray], pairs: Sequence[tuple[in
 
     Each signal's kept states are normalized again and its recurrence thresholded again once
     per resample, and reused in all its pairs (module notes). Resamples of at most
-    :data:`funcnet.core.batch.DIRECT_MAX_STATES` states with thresholds by rate go through
+    :data:`RESAMPLE_MAX_STATES` states with thresholds by rate go through
     the batched engine's compiled kernel, all resamples and pairs in one pass (the same
     numbers as one resample at a time, bit for bit).
 
@@ -342,7 +351,7 @@ def _batched(states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
     recurrences and measures with the operations, and in the order, of the per-window path
     (:func:`funcnet.core.batch.stacked_measures`): the same numbers, bit for bit. Applies to
     thresholds by
-    rate, nodes of equally many channels, ``MIN_STATES <= n <= DIRECT_MAX_STATES`` and finite
+    rate, nodes of equally many channels, ``MIN_STATES <= n <= RESAMPLE_MAX_STATES`` and finite
     values below 1e38; everything else returns None (the per-resample path, which also raises
     what it raises).
     """
@@ -350,12 +359,19 @@ def _batched(states: Sequence[np.ndarray], pairs: Sequence[tuple[int, int]],
         return None
     n_resamples, n = chosen.shape
     widths = {int(np.shape(s)[1]) for s in states}
-    if len(widths) != 1 or not MIN_STATES <= n <= DIRECT_MAX_STATES or p.theiler >= n - 1:
+    if len(widths) != 1 or not MIN_STATES <= n <= RESAMPLE_MAX_STATES or p.theiler >= n - 1:
         return None
     (width,) = widths
+    # Only the signals of the pairs (the testable pairs may leave some out): each signal's
+    # recurrence depends on itself alone, and its rate goes with it.
+    used = sorted({i for pair in pairs for i in pair})
+    column = {signal: k for k, signal in enumerate(used)}
+    if isinstance(p.rr, tuple):
+        p = p.replace(rr=tuple(p.rr[i] for i in used))
+    states = [states[i] for i in used]
     n_signals = len(states)
-    pair_x = np.array([i for i, _ in pairs], dtype=np.int64)
-    pair_y = np.array([j for _, j in pairs], dtype=np.int64)
+    pair_x = np.array([column[i] for i, _ in pairs], dtype=np.int64)
+    pair_y = np.array([column[j] for _, j in pairs], dtype=np.int64)
     rows = n * width
     out = np.empty((len(pairs), n_resamples, 2), dtype=np.float64)
     block = windows_per_block(n_signals, n)

@@ -238,8 +238,9 @@ def pairwise_evidence(
         ``alpha`` (known after the test, before any interval). ``"testable"``: the pairs
         whose coupling test can reach ``alpha``, decided from the window's size before any
         measure (:func:`~funcnet.evidence.dependence.planned_surrogates`,
-        :func:`~funcnet.evidence.reading.untestable`). ``"all"``: every pair's. A pair's interval is the same number
-        either way (each pair's resamples depend on its two signals alone).
+        :func:`~funcnet.evidence.reading.untestable`). ``"all"``: every pair's. A drawn
+        pair's interval is the same number under each choice (the network's resamples do not
+        depend on which pairs are drawn).
     observed : mapping, optional
         ``{(name_i, name_j): (c_diff, t_diff)}``: the pairs' differences already computed on
         these signals with these parameters (a network's pairs table); default computed here.
