@@ -50,6 +50,7 @@ __all__ = [
 ARROWS = ("rule", "direction")
 #: An undecided pair (``direction`` ``none``) under ``arrows="direction"``: a thin pale line.
 UNDECIDED_COLOR = "0.8"
+_UNDECIDED_GAP = 0.03  # between an undecided line and a node's rim, in data units
 
 #: Readings of :data:`funcnet.network.schema.EVIDENCE_LABELS` whose pair the coupling test did
 #: not show coupled: their edges are drawn dotted and pale (the paper's arrow, nothing more).
@@ -378,13 +379,15 @@ def plot_network(
         color = BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR
         style = "-"
         if edge.kind == "none":  # undecided: a line, no head, no weight to read
+            # The small gap at the rims in data units (about 2 pt in a panel 2.5 in wide):
+            # matplotlib's shrink in points would clip the curve twice at every draw.
             line = FancyArrowPatch(
-                *_trim(position[edge.source], position[edge.target], radius[edge.source],
-                       radius[edge.target]),
-                arrowstyle="-", linewidth=min_width, color=UNDECIDED_COLOR,
+                *_trim(position[edge.source], position[edge.target],
+                       radius[edge.source] + _UNDECIDED_GAP, radius[edge.target] + _UNDECIDED_GAP),
+                arrowstyle="-", linewidth=min_width, color=UNDECIDED_COLOR, shrinkA=0, shrinkB=0,
                 connectionstyle="arc3,rad=0.08", zorder=1)
             line.set_gid(f"edge:{edge.source}->{edge.target}:none")
-            ax.add_patch(line)
+            ax.add_artist(line)
             continue
         reading = "" if readings is None else readings[k]
         if reading in NO_COUPLING_EVIDENCE:
@@ -410,7 +413,9 @@ def plot_network(
                                    radius[edge.source], radius[edge.target]))
         suffix = (":degenerate" if edge.degenerate else "") + (f":{reading}" if reading else "")
         arrow.set_gid(f"edge:{edge.source}->{edge.target}:{edge.kind}{suffix}")
-        ax.add_patch(arrow)
+        # add_artist, not add_patch: the limits are fixed below, and add_patch would lay out
+        # each arrow's curved path in display coordinates only to widen them.
+        ax.add_artist(arrow)
     ax.set_xlim(-1.3, 1.3)
     ax.set_ylim(-1.3, 1.3)
     ax.set_aspect("equal")
