@@ -449,7 +449,7 @@ def _trim(a: tuple[float, float], b: tuple[float, float], ra: float,
     return tuple(pa + ra * unit), tuple(pb - rb * unit)
 
 
-def plot_no_network(ax: Axes, label: Any = None) -> Axes:
+def plot_no_network(ax: Axes, label: Any = None, *, fontsize: float = 9.0) -> Axes:
     """Mark a panel whose network could not be computed: "no network", no axes.
 
     Parameters
@@ -458,6 +458,9 @@ def plot_no_network(ax: Axes, label: Any = None) -> Axes:
         The panel.
     label : str, optional
         Its title.
+    fontsize : float
+        Size of the title, to match its neighbours' (:func:`plot_network` titles at
+        ``fontsize + 1``).
 
     Returns
     -------
@@ -470,7 +473,7 @@ def plot_no_network(ax: Axes, label: Any = None) -> Axes:
     """
     ax.set_axis_off()
     if label is not None:
-        ax.set_title(str(label), fontsize=9)
+        ax.set_title(str(label), fontsize=fontsize)
     ax.text(0.5, 0.5, "no network", ha="center", va="center", transform=ax.transAxes)
     return ax
 

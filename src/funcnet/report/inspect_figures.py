@@ -186,7 +186,7 @@ def figure_networks(inspection: TraceInspection) -> Any:
         title = f"{w.label}\n{w.start:.2f}–{w.stop:.2f} s"
         net = inspection.networks.get(w.label)
         if net is None:
-            plot.plot_no_network(ax, title)
+            plot.plot_no_network(ax, title, fontsize=11)  # as plot_network's titles
             continue
         plot.plot_network(net, ax, nodes=list(inspection.signals), title=title, legend=False,
                           arrows="direction")
