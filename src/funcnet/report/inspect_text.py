@@ -139,7 +139,7 @@ def converted_sentence(signals: Mapping[str, Any]) -> str:
     """
     from funcnet.robot.axes import split_qualified
 
-    axes_of: dict[tuple[str, str], list[int]] = {}
+    axes_of: dict[tuple[str, str], list[int | None]] = {}
     for column, info in signals.items():
         if info.converted_from:
             axis, role = split_qualified(column)
