@@ -543,7 +543,7 @@ def test_an_undecided_line_stops_just_short_of_both_node_rims():
     plot.plot_network(net_of(pairs), ax, arrows="direction", legend=False)
     FigureCanvasAgg(fig).draw()
     circles = {p.get_gid()[5:]: p for p in ax.patches if (p.get_gid() or "").startswith("node:")}
-    line = next(p for p in edge_patches(ax) if p.get_gid() == "edge:RP->AP:none")
+    line = next(p for p in ax.patches if p.get_gid() == "edge:RP->AP:none")
     vertices = ax.transData.transform(line.get_path().vertices)
     points_per_pixel = 72 / fig.dpi
     for end, node in ((vertices[0], "RP"), (vertices[-1], "AP")):

@@ -18,7 +18,8 @@ import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
-from matplotlib.patches import Circle, FancyArrowPatch
+from matplotlib.patches import Circle, FancyArrowPatch, PathPatch
+from matplotlib.path import Path as BezierPath
 
 from funcnet._io import atomic_path
 from funcnet.errors import ParameterError
@@ -310,8 +311,9 @@ def plot_network(
     -------
     matplotlib.axes.Axes
         The axes; each node is a :class:`~matplotlib.patches.Circle` with gid ``node:NAME``,
-        each edge a :class:`~matplotlib.patches.FancyArrowPatch` with gid
-        ``edge:SOURCE->TARGET:KIND``, black when directed and red when bidirectional; an edge
+        each edge a :class:`~matplotlib.patches.FancyArrowPatch` (an undecided line a
+        :class:`~matplotlib.patches.PathPatch`) with gid ``edge:SOURCE->TARGET:KIND``, black
+        when directed and red when bidirectional; an edge
         of a degenerate pair is grey and dashed, with gid ``edge:SOURCE->TARGET:KIND:degenerate``.
         For a network with evidence (:func:`edge_evidence`), each edge's gid ends with its
         pair's reading (``edge:RP->AP:directed:coupled``), an edge whose pair the coupling
@@ -379,13 +381,16 @@ def plot_network(
         color = BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR
         style = "-"
         if edge.kind == "none":  # undecided: a line, no head, no weight to read
-            # The small gap at the rims in data units (about 2 pt in a panel 2.5 in wide):
-            # matplotlib's shrink in points would clip the curve twice at every draw.
-            line = FancyArrowPatch(
-                *_trim(position[edge.source], position[edge.target],
-                       radius[edge.source] + _UNDECIDED_GAP, radius[edge.target] + _UNDECIDED_GAP),
-                arrowstyle="-", linewidth=min_width, color=UNDECIDED_COLOR, shrinkA=0, shrinkB=0,
-                connectionstyle="arc3,rad=0.08", zorder=1)
+            # The arc of connectionstyle "arc3,rad=0.08" built once in data units (the axes'
+            # aspect is equal, so it is the arc an arrow draws), with a small gap at the rims
+            # (about 2 pt in a panel 2.5 in wide): most pairs are undecided, and an arrow patch
+            # would lay out and clip its curve anew at every draw.
+            line = PathPatch(
+                _arc(*_trim(position[edge.source], position[edge.target],
+                            radius[edge.source] + _UNDECIDED_GAP,
+                            radius[edge.target] + _UNDECIDED_GAP), 0.08),
+                fill=False, linewidth=min_width, edgecolor=UNDECIDED_COLOR, capstyle="round",
+                joinstyle="round", zorder=1)
             line.set_gid(f"edge:{edge.source}->{edge.target}:none")
             ax.add_artist(line)
             continue
@@ -440,6 +445,14 @@ def plot_network(
 def _node_radius(name: Any, node_size: float) -> float:
     """A node large enough for its name: names of up to three characters fit ``node_size``."""
     return node_size * max(1.0, 0.25 * len(str(name)))
+
+
+def _arc(a: Any, b: Any, rad: float) -> BezierPath:
+    """The quadratic Bezier arc from ``a`` to ``b`` of matplotlib's ``arc3`` connection style."""
+    (x1, y1), (x2, y2) = a, b
+    control = ((x1 + x2) / 2 + rad * (y2 - y1), (y1 + y2) / 2 - rad * (x2 - x1))
+    return BezierPath([a, control, b],
+                      [BezierPath.MOVETO, BezierPath.CURVE3, BezierPath.CURVE3])
 
 
 def _trim(a: tuple[float, float], b: tuple[float, float], ra: float,
