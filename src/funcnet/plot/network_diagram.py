@@ -361,10 +361,13 @@ def plot_network(
                         linewidth=0.8, zorder=3,
                         linestyle="-" if name in present else "--")
         circle.set_gid(f"node:{name}")
-        ax.add_patch(circle)
+        # add_artist, not add_patch, and the names kept out of the layout: everything sits
+        # inside the fixed limits set below, so neither the data limits nor a constrained
+        # layout has anything to learn from them (and both cost a layout of each)
+        ax.add_artist(circle)
         text = label.get(name, str(name))
         ax.text(*position[name], text, ha="center", va="center", zorder=4,
-                fontsize=fontsize * min(1.0, 4.0 / max(len(text), 1)) ** 0.5)
+                fontsize=fontsize * min(1.0, 4.0 / max(len(text), 1)) ** 0.5, in_layout=False)
     for group, members in (groups or {}).items():
         placed = [angle[m] for m in members if m in angle]
         if placed:
@@ -418,9 +421,7 @@ def plot_network(
                                    radius[edge.source], radius[edge.target]))
         suffix = (":degenerate" if edge.degenerate else "") + (f":{reading}" if reading else "")
         arrow.set_gid(f"edge:{edge.source}->{edge.target}:{edge.kind}{suffix}")
-        # add_artist, not add_patch: the limits are fixed below, and add_patch would lay out
-        # each arrow's curved path in display coordinates only to widen them.
-        ax.add_artist(arrow)
+        ax.add_artist(arrow)  # as the nodes: the limits are fixed below
     ax.set_xlim(-1.3, 1.3)
     ax.set_ylim(-1.3, 1.3)
     ax.set_aspect("equal")
