@@ -312,7 +312,8 @@ def figure_evidence(inspection: TraceInspection) -> Any:
         for r, (a, b) in enumerate(pairs):
             if (a, b) not in table_.index:
                 used["left out"] = _EVIDENCE_COLORS["left out"]
-                ax.text(c, r, "–", ha="center", va="center", fontsize=9, color="0.4")
+                ax.text(c, r, "–", ha="center", va="center", fontsize=9, color="0.4",
+                        in_layout=False)
                 continue
             row = table_.loc[(a, b)]
             if bool(row["degenerate"]):
@@ -324,8 +325,10 @@ def figure_evidence(inspection: TraceInspection) -> Any:
             colour = _EVIDENCE_COLORS.get(key, plot.KIND_COLORS.get(key, "0.8"))
             used[key] = colour
             image[r, c] = to_rgb(colour)
+            # in_layout=False: a cell's arrow lies inside the image, nothing for the layout
             ax.text(c, r, ARROWS.get(str(row["kind"]), "?"), ha="center", va="center",
-                    fontsize=10, color="0.55" if key == "untestable" else "black")
+                    fontsize=10, color="0.55" if key == "untestable" else "black",
+                    in_layout=False)
     ax.imshow(image, aspect="auto", interpolation="nearest")
     ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
     ax.set_yticks(range(len(pairs)), [f"{a}–{b}" for a, b in pairs], fontsize=9)
