@@ -4,6 +4,9 @@ Paper section 3.4: nodes on a circle, one per signal, every node drawn even with
 directed edges black with an arrow head at the target, bidirectional edges red; line width
 proportional to the weight of Eq. 13 on an absolute scale, so that widths compare across panels.
 Edges of degenerate pairs (kept only with ``degenerate="keep"``) are drawn dashed and grey.
+
+Length: just over 600 lines; the drawing, its edge styles per reading and the shared legend
+belong together.
 """
 
 from __future__ import annotations
@@ -207,7 +210,6 @@ def network_nodes(net: FunctionalNetwork) -> list[str]:
     return list(net.nodes)
 
 
-
 def edge_evidence(net: FunctionalNetwork, edges: pd.DataFrame) -> list[str] | None:
     """The ``evidence`` reading of each edge's pair, or ``None`` for a network without evidence.
 
@@ -361,10 +363,7 @@ def plot_network(
                         linewidth=0.8, zorder=3,
                         linestyle="-" if name in present else "--")
         circle.set_gid(f"node:{name}")
-        # add_artist, not add_patch, and the names kept out of the layout: everything sits
-        # inside the fixed limits set below, so neither the data limits nor a constrained
-        # layout has anything to learn from them (and both cost a layout of each)
-        ax.add_artist(circle)
+        ax.add_artist(circle)  # not add_patch, names not in the layout: inside fixed limits
         text = label.get(name, str(name))
         ax.text(*position[name], text, ha="center", va="center", zorder=4,
                 fontsize=fontsize * min(1.0, 4.0 / max(len(text), 1)) ** 0.5, in_layout=False)
@@ -384,16 +383,13 @@ def plot_network(
         color = BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR
         style = "-"
         if edge.kind == "none":  # undecided: a line, no head, no weight to read
-            # The arc of connectionstyle "arc3,rad=0.08" built once in data units (the axes'
-            # aspect is equal, so it is the arc an arrow draws), with a small gap at the rims
-            # (about 2 pt in a panel 2.5 in wide): most pairs are undecided, and an arrow patch
-            # would lay out and clip its curve anew at every draw.
-            line = PathPatch(
-                _arc(*_trim(position[edge.source], position[edge.target],
-                            radius[edge.source] + _UNDECIDED_GAP,
-                            radius[edge.target] + _UNDECIDED_GAP), 0.08),
-                fill=False, linewidth=min_width, edgecolor=UNDECIDED_COLOR, capstyle="round",
-                joinstyle="round", zorder=1)
+            # arc3's curve built once in data units (equal aspect: the same arc), not an arrow
+            # patch laid out at every draw; a gap of about 2 pt at the rims
+            line = PathPatch(_arc(*_trim(position[edge.source], position[edge.target],
+                                         radius[edge.source] + _UNDECIDED_GAP,
+                                         radius[edge.target] + _UNDECIDED_GAP), 0.08),
+                             fill=False, linewidth=min_width, edgecolor=UNDECIDED_COLOR,
+                             capstyle="round", joinstyle="round", zorder=1)
             line.set_gid(f"edge:{edge.source}->{edge.target}:none")
             ax.add_artist(line)
             continue
@@ -452,8 +448,7 @@ def _arc(a: Any, b: Any, rad: float) -> BezierPath:
     """The quadratic Bezier arc from ``a`` to ``b`` of matplotlib's ``arc3`` connection style."""
     (x1, y1), (x2, y2) = a, b
     control = ((x1 + x2) / 2 + rad * (y2 - y1), (y1 + y2) / 2 - rad * (x2 - x1))
-    return BezierPath([a, control, b],
-                      [BezierPath.MOVETO, BezierPath.CURVE3, BezierPath.CURVE3])
+    return BezierPath([a, control, b], [BezierPath.MOVETO, *[BezierPath.CURVE3] * 2])
 
 
 def _trim(a: tuple[float, float], b: tuple[float, float], ra: float,
@@ -473,8 +468,7 @@ def plot_no_network(ax: Axes, label: Any = None, *, fontsize: float = 9.0) -> Ax
     label : str, optional
         Its title.
     fontsize : float
-        Size of the title, to match its neighbours' (:func:`plot_network` titles at
-        ``fontsize + 1``).
+        Size of the title, to match its neighbours' (:func:`plot_network`: ``fontsize + 1``).
 
     Returns
     -------
