@@ -3,6 +3,7 @@
 Run from the repository root::
 
     PYTHONPATH=src python -m benchmarks.bench_direction [--plan DIR] [--seed N] [--candidates]
+        [--variants]
 
 For every real recording in ``../shared/data`` -- the SINUMERIK trace (its phase windows), both
 KUKA KR 300 runs (``examples/kuka-kr300-channels.toml``; every axis's phase windows, and the
@@ -15,12 +16,17 @@ paper's rule (``kind``) and for ``direction`` (:func:`funcnet.network.setpoint_c
 The cost: each window's network is timed (``window_networks``, which reads the direction too)
 and the direction reading alone on the same windows (``direction_columns``); the rule alone is
 their difference, and the ratio (rule + direction) / rule is printed per recording (target:
-at most 2).
+at most 2). The SINUMERIK trace is computed once untimed first (compilation, caches).
 
-``--candidates`` adds the methods the direction was chosen among, over the same set-point
-pairs: the prediction test at 3 and 10 lags beside the embedding span, and the lead of the
-cross-map skill (lagged convergent cross mapping, Ye et al. 2015; lead = the lag of the best
-skill, both ways agreeing, at least 2 samples).
+``--variants`` adds, per recording, the set-point shares of the reading's variants: the gap
+before the other signal's lags (0, 1 = the default, 2) and the time-reversal check (a reading
+kept only where the time-reversed signals read the opposite way; Haufe et al. 2013, Winkler et
+al. 2016), with and without the gap.
+
+``--candidates`` adds the methods the direction was first chosen among (without the gap), over
+the same set-point pairs: the prediction test at 3 and 10 lags beside the embedding span, and
+the lead of the cross-map skill (lagged convergent cross mapping, Ye et al. 2015; lead = the
+lag of the best skill, both ways agreeing, at least 2 samples).
 """
 
 from __future__ import annotations
@@ -116,6 +122,14 @@ def networks_and_cost(recording: Any) -> tuple[list[Any], float, float]:
     return list(nets.values()), total, time.perf_counter() - start
 
 
+def warm_up() -> None:
+    """Compile the kernels and fill the caches once (the first recording, untimed), so the
+    first recording's cost is not the compiler's."""
+    from funcnet.robot import read_recording
+
+    networks_and_cost(read_recording(DATA / "sinumerik" / "axis7-braking-trace.xml"))
+
+
 def counts(nets: list[Any], column: str) -> dict[str, tuple[int, int, int]]:
     from funcnet.network.setpoint import setpoint_check
 
@@ -147,12 +161,67 @@ def candidate_rows(nets: list[Any], recording: Any, windows: list[Any]) -> list[
             b = part[other].to_numpy(np.float64)
             row = {"type": node_role(other)}
             for lags in (3, 10, direction_lags(net.parameters)):
-                reading = read_direction(a, b, lags)[0]
+                reading = read_direction(a, b, lags, gap=0)[0]  # as the choice was made
                 row[f"prediction, {lags} lags"] = {"x->y": "out", "y->x": "into"}.get(reading,
                                                                                     "none")
             row["cross-map lead"] = _ccm_lead(a, b, net.parameters.dim, net.parameters.delay)
             rows.append(row)
     return rows
+
+
+#: The readings ``--variants`` compares: (gap, time-reversal check).
+VARIANTS: dict[str, tuple[int, bool]] = {
+    "gap 0": (0, False), "gap 1 (default)": (1, False), "gap 2": (2, False),
+    "time reversal, gap 0": (0, True), "time reversal, gap 1": (1, True)}
+
+
+def _decide(found: np.ndarray, i: int, j: int, level: float) -> str:
+    """The reading of nodes i (x), j (y) from a p-value matrix (``P[target, source]``)."""
+    forward, backward = found[j, i], found[i, j]
+    if np.isnan(forward) or np.isnan(backward):
+        return "none"
+    fwd, bwd = forward <= level, backward <= level
+    return "x->y" if fwd and not bwd else "y->x" if bwd and not fwd else "none"
+
+
+def variant_counts(nets: list[Any], recording: Any,
+                   windows: list[Any]) -> dict[str, list[int]]:
+    """Per variant, [into, out, pairs] over the set-point pairs (``--variants``). Time
+    reversal (Haufe et al. 2013; Winkler et al. 2016): a reading is kept only where the
+    time-reversed signals read the opposite way."""
+    from funcnet.core.normalization import normalize
+    from funcnet.network.direction import DIRECTION_ALPHA, _p_matrix, direction_lags
+    from funcnet.network.setpoint import node_role
+
+    spans = {w.label: w for w in windows}
+    out = {name: [0, 0, 0] for name in VARIANTS}
+    level = DIRECTION_ALPHA / 2
+    for net in nets:
+        span = spans[net.label]
+        part = recording.window(span.start, span.stop).data[list(net.nodes)]
+        signals = normalize(part.to_numpy(np.float64), net.parameters.normalize)
+        column = {name: k for k, name in enumerate(net.nodes)}
+        lags = direction_lags(net.parameters)
+        for name, (gap, reverse) in VARIANTS.items():
+            found = _p_matrix(signals, lags, gap)
+            back = _p_matrix(signals[::-1].copy(), lags, gap) if reverse else None
+            for x, y, flagged in zip(net.pairs["x"], net.pairs["y"], net.pairs["degenerate"],
+                                     strict=True):
+                x_set, y_set = node_role(x) == "RP", node_role(y) == "RP"
+                if flagged or not (x_set or y_set):
+                    continue
+                reading = _decide(found, column[x], column[y], level)
+                if back is not None and reading != "none":
+                    flipped = {"x->y": "y->x", "y->x": "x->y"}[reading]
+                    if _decide(back, column[x], column[y], level) != flipped:
+                        reading = "none"
+                counts = out[name]
+                counts[2] += 1
+                if reading == "none":
+                    continue
+                into = x_set and y_set or reading == ("x->y" if y_set else "y->x")
+                counts[0 if into else 1] += 1
+    return out
 
 
 def _embed(x: np.ndarray, m: int, tau: int) -> np.ndarray:
@@ -210,6 +279,11 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--seed", type=int, default=0, help="noise seed of the simulated plan")
     parser.add_argument("--candidates", action="store_true",
                         help="also the candidate methods over the set-point pairs")
+    parser.add_argument("--variants", action="store_true",
+                        help="also the gap and time-reversal variants, per recording")
+    parser.add_argument("--only", nargs="+", default=None, metavar="WORD",
+                        help="only the recordings whose group names one of these words "
+                        "(SINUMERIK, KUKA, UR5, simulated)")
     args = parser.parse_args(argv)
     from funcnet.sim import paper_plan, write_plan
 
@@ -220,7 +294,10 @@ def main(argv: list[str] | None = None) -> None:
     candidates: list[dict[str, Any]] = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
+        warm_up()
         for group, name, recording in recordings(args.plan):
+            if args.only and not any(word in group for word in args.only):
+                continue
             nets, total, direction = networks_and_cost(recording)
             print(f"{group}, {name}: {len(nets)} networks, {total:.1f} s", file=sys.stderr,
                   flush=True)
@@ -230,6 +307,12 @@ def main(argv: list[str] | None = None) -> None:
             entry["nets"] += nets
             entry["total"] += total
             entry["direction"] += direction
+            if args.variants:
+                found = variant_counts(nets, recording, windows_of(recording))
+                for variant, numbers in found.items():
+                    kept = entry.setdefault("variants", {}).setdefault(variant, [0, 0, 0])
+                    for k in range(3):
+                        kept[k] += numbers[k]
             if args.candidates and scope == "axes":
                 for row in candidate_rows(nets, recording, windows_of(recording)):
                     candidates.append({"group": "simulated" if group == "simulated plan"
@@ -252,6 +335,18 @@ def main(argv: list[str] | None = None) -> None:
               f"{_cell(dir_in, dir_out, pairs)} ({dir_in / max(pairs, 1):.1%} into, "
               f"{dir_out / max(pairs, 1):.1%} out) | {by_type_rule} | {by_type_dir} | "
               f"{ratio:.3f} ({entry['total']:.1f} s) |")
+    if args.variants:
+        print("\nVariants over the set-point pairs (into / out share of the pairs; time "
+              "reversal keeps a reading only where the reversed signals read the opposite "
+              "way):\n")
+        print("| recording | pairs | " + " | ".join(VARIANTS) + " |")
+        print("|---|---|" + "---|" * len(VARIANTS))
+        for label, entry in groups.items():
+            found = entry["variants"]
+            pairs = next(iter(found.values()))[2]
+            cells = [f"{v[0] / max(v[2], 1):.1%} / {v[1] / max(v[2], 1):.1%}"
+                     for v in found.values()]
+            print(f"| {label} | {pairs} | " + " | ".join(cells) + " |")
     if candidates:
         frame = pd.DataFrame(candidates)
         methods = [c for c in frame.columns if c not in ("group", "type")]
@@ -265,6 +360,8 @@ def main(argv: list[str] | None = None) -> None:
             print(f"| {group} | {len(part)} | " + " | ".join(cells) + " |")
     run.footer("PYTHONPATH=src python -m benchmarks.bench_direction"
                + (" --candidates" if args.candidates else "")
+               + (" --variants" if args.variants else "")
+               + (" --only " + " ".join(args.only) if args.only else "")
                + (f" --seed {args.seed}" if args.seed else ""))
 
 

@@ -50,7 +50,8 @@ def test_only_testable_pairs_get_intervals_and_they_are_the_same_numbers():
     data = _signals(400, 0)
     names = ["s1", "s2", "r1", "r2"]
     columns = [data[:, k] for k in range(4)]
-    testable = pairwise_evidence(columns, names=names, delay=1, resamples=40, seed=3)
+    testable = pairwise_evidence(columns, names=names, delay=1, resamples=40, seed=3,
+                                 intervals="testable")
     every = pairwise_evidence(columns, names=names, delay=1, resamples=40, seed=3,
                               intervals="all")
     # the reference: which pairs can reach alpha, from K alone (1/(K+1), BH over the pairs)
@@ -78,6 +79,26 @@ def test_only_testable_pairs_get_intervals_and_they_are_the_same_numbers():
                                            one.t_diff_high)
 
 
+def test_by_default_only_coupled_pairs_get_intervals_and_they_are_the_same_numbers():
+    rng = np.random.default_rng(4)
+    x = rng.standard_normal(500)
+    y = np.concatenate([[0.0], x[:-1]]) + 0.3 * rng.standard_normal(500)  # coupled to x
+    columns = [x, y, rng.standard_normal(500), rng.standard_normal(500)]
+    names = ["x", "y", "n1", "n2"]
+    default = pairwise_evidence(columns, names=names, delay=1, resamples=30, seed=2)
+    every = pairwise_evidence(columns, names=names, delay=1, resamples=30, seed=2,
+                              intervals="all")
+    coupled = {key for key, e in every.items() if e.coupled}
+    assert ("x", "y") in coupled and len(coupled) < len(every)  # both kinds of pair
+    for key, one in every.items():
+        other = default[key]
+        assert (other.coupling_p, other.coupled) == (one.coupling_p, one.coupled)
+        if key in coupled:  # the same resamples: the same interval, bit for bit
+            assert (other.c_diff_low, other.t_diff_high) == (one.c_diff_low, one.t_diff_high)
+        else:
+            assert math.isnan(other.c_diff_low) and not math.isnan(one.c_diff_low)
+
+
 def test_a_network_whose_pairs_are_all_untestable_draws_no_interval_unless_asked():
     data = _signals(300, 1)[:, :2]  # two smooth signals: few shifts, K < 19
     plain = functional_network(data, names=["a", "b"], delay=1, warn=False)
@@ -87,7 +108,7 @@ def test_a_network_whose_pairs_are_all_untestable_draws_no_interval_unless_asked
     net = add_evidence(plain, data, resamples=30)
     row = net.pairs.iloc[0]
     assert row["evidence"] == "untestable" and row["surrogates"] == k
-    assert math.isnan(row["c_diff_low"]) and net.evidence["intervals"] == "testable"
+    assert math.isnan(row["c_diff_low"]) and net.evidence["intervals"] == "coupled"
     asked = add_evidence(plain, data, resamples=30, intervals="all")
     assert asked.pairs.iloc[0]["c_diff_low"] <= row["c_diff"] <= asked.pairs.iloc[0][
         "c_diff_high"]

@@ -52,10 +52,14 @@ def test_readings_of_known_pairs(networks):
     # Uncoupled logistic maps: the paper's rule draws an arrow, nothing supports coupling.
     row = pairs.loc[("c", "d")]
     assert row["kind"] == "y->x" and not row["coupled"] and row["evidence"] == "asymmetry-only"
-    # 6 pairs: the default K is 6 / 0.05 - 1 = 119, and every interval holds its difference.
+    # 6 pairs: the default K is 6 / 0.05 - 1 = 119; the coupled pairs' intervals are drawn
+    # (by default theirs only) and hold their difference.
     assert (full.pairs["surrogates"] == 120).all()  # an even lattice: 2 x 60
-    assert (full.pairs["c_diff_low"] <= full.pairs["c_diff"]).all()
-    assert (full.pairs["c_diff"] <= full.pairs["c_diff_high"]).all()
+    coupled = full.pairs["coupled"].astype(bool)
+    drawn = full.pairs[coupled]
+    assert len(drawn) and (drawn["c_diff_low"] <= drawn["c_diff"]).all()
+    assert (drawn["c_diff"] <= drawn["c_diff_high"]).all()
+    assert full.pairs.loc[~coupled, "c_diff_low"].isna().all()
     assert full.evidence["alpha"] == 0.05 and full.evidence["edge_rule"] == "paper"
 
 

@@ -86,44 +86,100 @@ def test_setpoint_check_between_set_points_and_degenerate_pairs():
     assert node_role("A12.RP") == "RP" and node_role("RP.x") == "RP.x"
 
 
-def test_prediction_p_matches_normal_equations():
-    rng = np.random.default_rng(3)
-    x = rng.standard_normal(120)
-    y = np.roll(x, 2) * 0.5 + rng.standard_normal(120)
-    p = 3
-    # The reference: lag rows built one by one, least squares by the normal equations.
+def _lstsq_p(x, y, p, gap):
+    """The reference: lag rows built one by one, each model solved by least squares (SVD)."""
+    from scipy import stats
+
     xs, ys = (x - x.mean()) / x.std(), (y - y.mean()) / y.std()
     own_rows, full_rows, target = [], [], []
-    for t in range(p, 120):
+    for t in range(p + gap, len(x)):
         own = [1.0] + [ys[t - k] for k in range(1, p + 1)]
         own_rows.append(own)
-        full_rows.append(own + [xs[t - k] for k in range(1, p + 1)])
+        full_rows.append(own + [xs[t - gap - k] for k in range(1, p + 1)])
         target.append(ys[t])
     rss = []
     for rows in (own_rows, full_rows):
         a, b = np.array(rows), np.array(target)
-        beta = np.linalg.solve(a.T @ a, a.T @ b)
+        beta = np.linalg.lstsq(a, b, rcond=None)[0]
         rss.append(float(((b - a @ beta) ** 2).sum()))
     dfd = len(target) - 2 * p - 1
-    from scipy import stats
+    return stats.f.sf(max(rss[0] - rss[1], 0.0) / p / (rss[1] / dfd), p, dfd)
 
-    expected = stats.f.sf((rss[0] - rss[1]) / p / (rss[1] / dfd), p, dfd)
-    assert prediction_p(x, y, p) == pytest.approx(expected, rel=1e-8)
+
+@pytest.mark.parametrize("gap", [0, 1, 2])
+def test_prediction_p_matches_least_squares(gap):
+    rng = np.random.default_rng(3)
+    x = rng.standard_normal(120)
+    y = np.roll(x, 3) * 0.5 + rng.standard_normal(120)
+    assert prediction_p(x, y, 3, gap=gap) == pytest.approx(_lstsq_p(x, y, 3, gap), rel=1e-8)
+    assert prediction_p(y, x, 3, gap=gap) == pytest.approx(_lstsq_p(y, x, 3, gap), rel=1e-8)
+
+
+def _smooth_window(seed, n=160):
+    """A jerk-limited-looking set-point logged to 6 decimals, a lagging measured position, a
+    rough current: lagged columns nearly collinear, as in a robot's phase window."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(n) / 125.0
+    setpoint = np.round(0.3 * t**2 + 0.05 * np.sin(3 * t), 6)
+    measured = np.round(np.concatenate([[setpoint[0]] * 3, setpoint[:-3]])
+                        + 1e-4 * np.cumsum(rng.standard_normal(n)) / 10, 6)
+    current = np.gradient(np.gradient(setpoint)) * 1e4 + 0.3 * rng.standard_normal(n)
+    return {"RP": setpoint, "AP": measured, "AC": current}
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_direction_columns_agree_with_pairwise_least_squares(seed):
+    """Every ordered pair of one window, read at once from one QR, against least squares run
+    pair by pair: p-values close, decisions equal, on nearly collinear smooth windows."""
+    from funcnet.network.direction import DIRECTION_GAP, _p_matrix
+
+    signals = _smooth_window(seed)
+    names = list(signals)
+    found = _p_matrix(np.column_stack([signals[k] for k in names]), 21, DIRECTION_GAP)
+    for i, target in enumerate(names):
+        for j, source in enumerate(names):
+            if i == j:
+                continue
+            expected = _lstsq_p(signals[source], signals[target], 21, DIRECTION_GAP)
+            assert (found[i, j] <= 0.025) == (expected <= 0.025), (source, target)
+            if expected > 1e-12:
+                assert found[i, j] == pytest.approx(expected, rel=1e-4, abs=1e-10)
+
+
+def test_a_target_its_own_past_predicts_exactly_is_untestable():
+    ramp = np.arange(200.0) ** 2  # a polynomial: its own past predicts it to rounding
+    other = np.random.default_rng(0).standard_normal(200)
+    assert np.isnan(prediction_p(other, ramp, 3))
+    assert read_direction(other, ramp, 3)[1].startswith("a signal constant or predicted")
+    assert not np.isnan(prediction_p(ramp, other, 3))
+
+
+def test_one_sample_relation_has_no_direction_beyond_the_gap():
+    """A channel logged a sample ahead of the other: their lag-1 relation is simultaneous."""
+    rng = np.random.default_rng(5)
+    x = rng.standard_normal(500)
+    y = np.concatenate([[0.0], x[:-1]]) + 0.2 * rng.standard_normal(500)
+    assert read_direction(x, y, 3, gap=0)[0] == "x->y"
+    assert read_direction(x, y, 3)[0] == "none"
+    late = np.concatenate([[0.0, 0.0], x[:-2]]) + 0.2 * rng.standard_normal(500)
+    assert read_direction(x, late, 3)[0] == "x->y"
+    with pytest.raises(Exception, match="gap"):
+        prediction_p(x, y, 3, gap=-1)
 
 
 def test_read_direction_abstains_on_feedback_and_short_windows():
     rng = np.random.default_rng(4)
     n = 600
     x, y = np.zeros(n), np.zeros(n)
-    for t in range(1, n):  # each drives the other
-        x[t] = 0.5 * x[t - 1] + 0.6 * y[t - 1] + rng.standard_normal()
-        y[t] = 0.5 * y[t - 1] + 0.6 * x[t - 1] + rng.standard_normal()
+    for t in range(1, n):  # each drives the other (stable: eigenvalues 0.9 and 0.1)
+        x[t] = 0.5 * x[t - 1] + 0.4 * y[t - 2] + rng.standard_normal()
+        y[t] = 0.5 * y[t - 1] + 0.4 * x[t - 2] + rng.standard_normal()
     assert read_direction(x, y, 2)[0] == "none"
     assert "each past" in read_direction(x, y, 2)[1]
-    assert read_direction(x[:10], y[:10], 3) == (
-        "none", "window too short: 10 samples for 3 lags (needs at least 11)")
-    assert read_direction(x[:11], y[:11], 3)[1].startswith("neither") or "each" in \
-        read_direction(x[:11], y[:11], 3)[1]
+    assert read_direction(x[:11], y[:11], 3) == (
+        "none", "window too short: 11 samples for 3 lags (needs at least 12)")
+    assert read_direction(x[:12], y[:12], 3)[1].startswith("neither") or "each" in \
+        read_direction(x[:12], y[:12], 3)[1]
 
 
 def test_direction_out_of_the_set_point_on_simulated_phases(simulated_networks):
@@ -136,7 +192,7 @@ def test_direction_out_of_the_set_point_on_simulated_phases(simulated_networks):
 def test_direction_always_in_the_table_and_files(tmp_path):
     rng = np.random.default_rng(0)
     x = rng.standard_normal(300)
-    y = np.concatenate([[0.0], x[:-1]]) + 0.3 * rng.standard_normal(300)
+    y = np.concatenate([[0.0, 0.0], x[:-2]]) + 0.3 * rng.standard_normal(300)
     net = functional_network(np.column_stack([x, y]), names=["RP", "AC"], delay=1, warn=False)
     assert net.pairs.loc[0, "direction"] == "x->y"
     assert FunctionalNetwork.read(net.write(tmp_path / "n.graphml")) == net

@@ -71,7 +71,7 @@ def inspect(
     seed: EvidenceSeed = 0,
     resamples: Resamples = 200,
     surrogate_method: SurrogateMethod = "shift",
-    intervals: Intervals = "testable",
+    intervals: Intervals = "coupled",
     repeated: Annotated[
         bool,
         typer.Option(

@@ -149,7 +149,7 @@ def network(
     resamples: Resamples = 200,
     edge_rule: EdgeRule = "paper",
     surrogate_method: SurrogateMethod = "shift",
-    intervals: Intervals = "testable",
+    intervals: Intervals = "coupled",
     verbose: Verbose = False,
     quiet: Quiet = False,
 ) -> None:

@@ -222,9 +222,10 @@ SurrogateMethod = Annotated[
 Intervals = Annotated[
     str,
     typer.Option("--intervals", metavar="PAIRS",
-                 help="Whose C_diff/T_diff intervals are drawn (with --evidence): testable "
-                 "(the pairs whose coupling test can reach --alpha, known before anything is "
-                 "computed) or all (every pair's: slower)."),
+                 help="Whose C_diff/T_diff intervals are drawn (with --evidence): coupled "
+                 "(the pairs whose coupling test rejects at --alpha), testable (those whose "
+                 "test can reach --alpha, known before anything is computed) or all (every "
+                 "pair's: slowest)."),
 ]
 
 
@@ -286,7 +287,7 @@ def signal_list(text: str | None) -> list[str] | None:
 
 def evidence_settings(evidence: bool, surrogates: int | None, alpha: float, seed: int,
                       resamples: int, edge_rule: str, surrogate_method: str,
-                      intervals: str = "testable") -> EvidenceSettings | None:
+                      intervals: str = "coupled") -> EvidenceSettings | None:
     """The evidence keywords of :func:`funcnet.functional_network`, checked and spelled as the
     command's flags; ``None`` without ``--evidence``."""
     from funcnet.evidence import EDGE_RULES, check_evidence_arguments

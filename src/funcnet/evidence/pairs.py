@@ -58,9 +58,11 @@ __all__ = ["EVIDENCE_LABELS", "INTERVAL_SCOPES", "PairEvidence", "pairwise_evide
 #: The readings of a pair (the ``evidence`` column).
 EVIDENCE_LABELS: tuple[str, ...] = ("coupled-directed", "coupled", "not-coupled",
                                     "asymmetry-only", "untestable")
-#: The pairs whose asymmetry intervals are drawn: those whose coupling test can reach the level
-#: (``"testable"``, the default: an untestable pair's intervals are never read), or every pair.
-INTERVAL_SCOPES: tuple[str, ...] = ("testable", "all")
+#: The pairs whose asymmetry intervals are drawn: those whose coupling test rejects
+#: (``"coupled"``, the default: an interval says how precisely a coupled pair's asymmetry is
+#: known; a pair without coupling has no influence to qualify), those whose test can reach the
+#: level (``"testable"``), or every pair.
+INTERVAL_SCOPES: tuple[str, ...] = ("coupled", "testable", "all")
 
 
 @dataclass(frozen=True)
@@ -160,7 +162,7 @@ def _check_alpha(alpha: Any) -> float:
 
 
 def check_evidence_arguments(surrogates: Any, alpha: Any, resamples: Any,
-                             surrogate_method: Any = "shift", intervals: Any = "testable") -> None:
+                             surrogate_method: Any = "shift", intervals: Any = "coupled") -> None:
     """Raise a :class:`ParameterError` naming the first bad evidence argument.
 
     ``resamples=0`` is allowed (no intervals); ``surrogate_method`` is ``"shift"`` or
@@ -197,7 +199,7 @@ def pairwise_evidence(
     resamples: int = 200,
     level: float = 0.95,
     surrogate_method: str = "shift",
-    intervals: str = "testable",
+    intervals: str = "coupled",
     observed: Mapping[tuple[Any, Any], tuple[float, float]] | None = None,
     **overrides: Unpack[ParameterOverrides],
 ) -> dict[tuple[Any, Any], PairEvidence]:
@@ -230,12 +232,13 @@ def pairwise_evidence(
         Surrogates of the dependence test: the non-circular time-shift lattice (default) or
         twin surrogates of the second signal of each pair (Thiel et al. 2006;
         :mod:`funcnet.evidence.surrogates`; where each is valid: docs/validation/evidence.md).
-    intervals : {"testable", "all"}
-        Whose intervals are drawn (:data:`INTERVAL_SCOPES`): ``"testable"`` those of the pairs
+    intervals : {"coupled", "testable", "all"}
+        Whose intervals are drawn (:data:`INTERVAL_SCOPES`); the others' are NaN as with
+        ``resamples=0``. ``"coupled"`` (default): the pairs whose coupling test rejects at
+        ``alpha`` (known after the test, before any interval). ``"testable"``: the pairs
         whose coupling test can reach ``alpha``, decided from the window's size before any
         measure (:func:`~funcnet.evidence.dependence.planned_surrogates`,
-        :func:`~funcnet.evidence.reading.untestable`); an untestable pair's intervals are NaN
-        as with ``resamples=0``. ``"all"``: every pair's. A pair's interval is the same number
+        :func:`~funcnet.evidence.reading.untestable`). ``"all"``: every pair's. A pair's interval is the same number
         either way (each pair's resamples depend on its two signals alone).
     observed : mapping, optional
         ``{(name_i, name_j): (c_diff, t_diff)}``: the pairs' differences already computed on
@@ -324,7 +327,7 @@ def pairwise_evidence(
     k_planned = np.asarray(planned, dtype=np.float64)
     with np.errstate(divide="ignore"):
         least = benjamini_hochberg(np.where(k_planned > 0, 1.0 / (k_planned + 1.0), np.nan))
-    drawn = least <= alpha if intervals == "testable" else np.ones(n_pairs, bool)
+    can_reach = least <= alpha if intervals != "all" else np.ones(n_pairs, bool)
     raw: list[dict[str, Any]] = []
     for i in range(n):
         for j in range(i + 1, n):
@@ -360,6 +363,8 @@ def pairwise_evidence(
     for e in raw:
         c_diff, t_diff = e["observed"]
         e["interval"] = AsymmetryInterval.without_resamples(c_diff, t_diff, level=level)
+    coupling_p = benjamini_hochberg([e["p"] for e in raw])
+    drawn = can_reach & (coupling_p <= alpha) if intervals == "coupled" else can_reach
     chosen = [e for e, draw in zip(raw, drawn, strict=True) if draw]
     if resamples and chosen:
         # One set of subsamples for the network: each signal is re-thresholded once per
@@ -369,7 +374,6 @@ def pairwise_evidence(
                                     resamples=resamples, level=level, seed=seed)
         for e, interval in zip(chosen, found, strict=True):
             e["interval"] = interval
-    coupling_p = benjamini_hochberg([e["p"] for e in raw])
     direction_p = benjamini_hochberg([e["index_p"] for e in raw])
     out: dict[tuple[Any, Any], PairEvidence] = {}
     for e, cp, dp in zip(raw, coupling_p, direction_p, strict=True):

@@ -90,7 +90,7 @@ def check_evidence_settings(**settings: Unpack[EvidenceSettings]) -> None:
 def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkParameters, *,
                      surrogates: int | None, alpha: float, seed: int, resamples: int,
                      surrogate_method: str, edge_rule: str,
-                     intervals: str = "testable") -> tuple[pd.DataFrame, dict[str, Any]]:
+                     intervals: str = "coupled") -> tuple[pd.DataFrame, dict[str, Any]]:
     """A plain pairs table with the evidence columns, and the settings that made them.
 
     Under ``edge_rule="interval"`` the kinds follow the interval rule
@@ -203,7 +203,7 @@ def with_readings(pairs: pd.DataFrame, alpha: float) -> pd.DataFrame:
 def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | None = None,
                  alpha: float = 0.05, seed: int = 0, resamples: int = 200,
                  surrogate_method: str = "shift", edge_rule: str = "paper",
-                 intervals: str = "testable") -> FunctionalNetwork:
+                 intervals: str = "coupled") -> FunctionalNetwork:
     """The network with the evidence columns, from the data it was computed from.
 
     Equal to ``functional_network(data, ..., evidence=True, ...)`` with the network's nodes and

@@ -399,7 +399,7 @@ def functional_network(
     resamples: int = 200,
     surrogate_method: str = "shift",
     edge_rule: str = "paper",
-    intervals: str = "testable",
+    intervals: str = "coupled",
     **overrides: Unpack[ParameterOverrides],
 ) -> FunctionalNetwork:
     """Functional network of simultaneously sampled signals (section 2.3-2.4, 3.4).
@@ -457,10 +457,11 @@ def functional_network(
         ``"paper"`` (default): ``|diff| >= mu`` (section 2.4). ``"interval"`` (needs
         ``evidence=True``): a measure is directed only when its interval excludes 0 and
         ``|diff| >= mu``; ``c_kind``, ``t_kind`` and ``kind`` then follow this rule.
-    intervals : {"testable", "all"}
-        Whose intervals are drawn: by default only those of the pairs whose coupling test can
-        reach ``alpha`` (known from the window's size before anything is computed; the others'
-        are NaN: an untestable pair is unread); ``"all"`` every pair's. Under
+    intervals : {"coupled", "testable", "all"}
+        Whose intervals are drawn (the others' are NaN): by default only those of the pairs
+        whose coupling test rejects at ``alpha`` (an interval qualifies a coupling; without one
+        there is nothing to qualify); ``"testable"`` those whose test can reach ``alpha``
+        (known from the window's size before anything is computed); ``"all"`` every pair's. Under
         ``edge_rule="interval"`` every pair's, whatever this says.
     **overrides
         Any parameter by name, applied to ``parameters`` (``delay=1``).
