@@ -137,8 +137,7 @@ def _shared_reasons(ins: TraceInspection) -> dict[str, int]:
             for reason in net.pairs["evidence_reason"].dropna().astype(str):
                 if len(reason) > _LONG_REASON:
                     seen[reason] = seen.get(reason, 0) + 1
-    shared = [reason for reason, n in seen.items() if n > 1]
-    return {reason: k + 1 for k, reason in enumerate(shared)}
+    return {reason: k + 1 for k, reason in enumerate(r for r, n in seen.items() if n > 1)}
 
 
 def _network_tables(ins: TraceInspection) -> str:
