@@ -72,6 +72,32 @@ def test_inspect_real_trace_end_to_end(real_report, tmp_path):
     assert str(TRACE.parent) not in shown, "absolute path of the trace in the page"
 
 
+def test_real_trace_page_says_no_long_text_more_than_twice(real_report):
+    # A reason several pairs share (the same Benjamini-Hochberg sentence in three windows) is
+    # said once below the pairs tables, with the pairs it is for; the cells point to it.
+    import html as html_module
+
+    from funcnet.report.html import repeated_texts
+    from test_inspect_robot import long_texts_said_more_than_twice
+
+    out, result = real_report
+    assert result.returncode == 0, result.stderr
+    text = (out / "index.html").read_text(encoding="utf-8")
+    assert not long_texts_said_more_than_twice(text)
+    assert repeated_texts(text) == {}
+    notes = re.findall(r'<ol class="notes">(.*?)</ol>', text, re.S)
+    assert len(notes) == 1
+    items = [html_module.unescape(re.sub(r"<[^>]+>", "", i))
+             for i in re.findall(r"<li>(.*?)</li>", notes[0], re.S)]
+    plain = html_module.unescape(re.sub(r"<[^>]+>", "", text))
+    assert items
+    for k, item in enumerate(items, start=1):  # said once, for several pairs, cited in cells
+        reason, pairs = item.rsplit(" (", 1)
+        assert len(reason) > 60 and plain.count(reason) == 1
+        assert len(pairs.split(", ")) >= 2
+        assert text.count(f"<td>note {k} below</td>") == len(pairs.split(", "))
+
+
 def _synthetic():
     from funcnet.robot import Recording, SignalInfo
 

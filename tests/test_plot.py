@@ -531,3 +531,32 @@ def test_a_network_with_evidence_draws_its_readings():
         reading = readings.get((source, target), readings.get((target, source)))
         assert gid.endswith(f":{reading}")
         assert arrow.get_linestyle() == (":" if reading in plot.NO_COUPLING_EVIDENCE else "-")
+
+
+def test_an_undecided_line_stops_just_short_of_both_node_rims():
+    # The pale line of an undecided pair ends outside each node's circle, a small gap (about
+    # 2 pt) before the rim, as every other edge stops at the rim: measured on the drawing.
+    pairs = pd.DataFrame({"x": ["RP", "RP"], "y": ["AP", "AC"], "kind": ["x->y", "x->y"],
+                          "weight": [0.2, 0.3], "direction": ["none", "x->y"]})
+    fig = Figure(figsize=(2.6, 2.6), dpi=100)
+    ax = fig.add_subplot()
+    plot.plot_network(net_of(pairs), ax, arrows="direction", legend=False)
+    FigureCanvasAgg(fig).draw()
+    circles = {p.get_gid()[5:]: p for p in ax.patches if (p.get_gid() or "").startswith("node:")}
+    line = next(p for p in ax.patches if p.get_gid() == "edge:RP->AP:none")
+    vertices = ax.transData.transform(line.get_path().vertices)
+    points_per_pixel = 72 / fig.dpi
+    for end, node in ((vertices[0], "RP"), (vertices[-1], "AP")):
+        circle = circles[node]
+        centre = ax.transData.transform(circle.center)
+        rim = ax.transData.transform((circle.center[0] + circle.radius, circle.center[1]))
+        radius = rim[0] - centre[0]
+        gap = (np.hypot(*(end - centre)) - radius) * points_per_pixel
+        assert 0.5 < gap < 4.0, (node, gap)
+
+
+def test_a_panel_without_network_takes_its_neighbours_title_size():
+    ax = Figure().add_subplot()
+    plot.plot_no_network(ax, "early spin-up", fontsize=11)
+    assert ax.title.get_fontsize() == 11 and ax.title.get_text() == "early spin-up"
+    assert plot.plot_no_network(Figure().add_subplot(), "x").title.get_fontsize() == 9

@@ -246,6 +246,67 @@ def test_an_arm_at_rest_gets_a_page_that_says_so(tmp_path):
     assert "AC 4 A on average" in page  # 2.0 * j with j = 2, as written
 
 
+def test_a_robot_at_rest_gets_its_pages_with_their_figures(tmp_path):
+    # The whole arm never moves: the robot's page and every axis's page, each axis's motion
+    # figure showing what it measured at rest (not an empty frame); the conversion from rad
+    # said once on the robot's page, as the map's units state it.
+    import tomllib
+
+    from PIL import Image
+
+    run, _ = _resting(tmp_path)
+    out = tmp_path / "page"
+    result = runner.invoke(app, ["inspect", str(run), "--channels", str(UR5_MAP),
+                                 "--no-evidence", "-q", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    robot = (out / "index.html").read_text()
+    spec = tomllib.loads(UR5_MAP.read_text())
+    roles = {spec["channels"][name]: unit for name, unit in spec["units"].items()
+             if name in spec["channels"] and unit.startswith("rad")}
+    said = ("Converted to degrees (deg/s) from the unit the file holds: "
+            + ", ".join(f"{role} ({unit})" for role, unit in roles.items())
+            + " on axes 1, 2, 3, 4, 5, 6.")
+    assert list(roles) == ["RP", "AP", "V"]
+    assert robot.count(said) == 1
+    for axis in range(1, 7):
+        page = (out / f"axis-{axis}" / "index.html").read_text()
+        assert "the whole trace (the axis never moves)" in page
+        image = np.asarray(Image.open(out / f"axis-{axis}" / "figures" / "motion.png"))
+        # the lower half holds the panels at rest: drawn, not left white
+        lower = image[image.shape[0] // 2:, :, :3]
+        assert (lower < 200).any(axis=2).mean() > 0.01
+
+
+def test_the_motion_figure_at_rest_draws_the_whole_trace():
+    import pandas as pd
+
+    from funcnet.inspection import inspect_recording
+    from funcnet.report.inspect_figures import figure_motion
+    from funcnet.robot import Recording, SignalInfo
+
+    t = np.arange(0, 2, 0.004)
+    rng = np.random.default_rng(1)
+    data = pd.DataFrame({"RP": np.full(t.size, 12.0), "AP": 12.0 + 1e-4 * rng.standard_normal(
+        t.size), "AC": 3.0 + 1e-3 * rng.standard_normal(t.size)},
+        index=pd.Index(t.round(9), name="time"))
+    info = {c: SignalInfo(c, "posn", "double", 0.004) for c in data}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ins = inspect_recording(Recording(data, {}, info, source="rest.csv",
+                                          sample_period=0.004), evidence=False)
+    assert len(ins.moves) == 0
+    fig = figure_motion(ins)
+    top, *panels = fig.axes
+    assert [ax.get_ylabel().split(" [")[0] for ax in panels] == ["position", "V", "AC",
+                                                                 "RP − AP"]
+    assert panels[0].get_title(loc="left").startswith("(b) no move: at rest over 0.00")
+    for ax in panels:  # every sample of the trace, not a zoom on a move
+        for line in ax.lines:
+            assert len(line.get_xdata()) == t.size
+    ap = next(line for line in panels[0].lines if line.get_label() == "AP")
+    assert np.allclose(ap.get_ydata(), data["AP"].to_numpy())
+
+
 def test_network_leaves_out_phases_too_short_for_the_embedding(tmp_path):
     from funcnet.robot import detect_phases, phase_windows
 

@@ -4,6 +4,9 @@ Paper section 3.4: nodes on a circle, one per signal, every node drawn even with
 directed edges black with an arrow head at the target, bidirectional edges red; line width
 proportional to the weight of Eq. 13 on an absolute scale, so that widths compare across panels.
 Edges of degenerate pairs (kept only with ``degenerate="keep"``) are drawn dashed and grey.
+
+Length: just over 600 lines; the drawing, its edge styles per reading and the shared legend
+belong together.
 """
 
 from __future__ import annotations
@@ -18,7 +21,8 @@ import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
-from matplotlib.patches import Circle, FancyArrowPatch
+from matplotlib.patches import Circle, FancyArrowPatch, PathPatch
+from matplotlib.path import Path as BezierPath
 
 from funcnet._io import atomic_path
 from funcnet.errors import ParameterError
@@ -50,6 +54,7 @@ __all__ = [
 ARROWS = ("rule", "direction")
 #: An undecided pair (``direction`` ``none``) under ``arrows="direction"``: a thin pale line.
 UNDECIDED_COLOR = "0.8"
+_UNDECIDED_GAP = 0.03  # between an undecided line and a node's rim, in data units
 
 #: Readings of :data:`funcnet.network.schema.EVIDENCE_LABELS` whose pair the coupling test did
 #: not show coupled: their edges are drawn dotted and pale (the paper's arrow, nothing more).
@@ -205,7 +210,6 @@ def network_nodes(net: FunctionalNetwork) -> list[str]:
     return list(net.nodes)
 
 
-
 def edge_evidence(net: FunctionalNetwork, edges: pd.DataFrame) -> list[str] | None:
     """The ``evidence`` reading of each edge's pair, or ``None`` for a network without evidence.
 
@@ -309,8 +313,9 @@ def plot_network(
     -------
     matplotlib.axes.Axes
         The axes; each node is a :class:`~matplotlib.patches.Circle` with gid ``node:NAME``,
-        each edge a :class:`~matplotlib.patches.FancyArrowPatch` with gid
-        ``edge:SOURCE->TARGET:KIND``, black when directed and red when bidirectional; an edge
+        each edge a :class:`~matplotlib.patches.FancyArrowPatch` (an undecided line a
+        :class:`~matplotlib.patches.PathPatch`) with gid ``edge:SOURCE->TARGET:KIND``, black
+        when directed and red when bidirectional; an edge
         of a degenerate pair is grey and dashed, with gid ``edge:SOURCE->TARGET:KIND:degenerate``.
         For a network with evidence (:func:`edge_evidence`), each edge's gid ends with its
         pair's reading (``edge:RP->AP:directed:coupled``), an edge whose pair the coupling
@@ -358,10 +363,10 @@ def plot_network(
                         linewidth=0.8, zorder=3,
                         linestyle="-" if name in present else "--")
         circle.set_gid(f"node:{name}")
-        ax.add_patch(circle)
+        ax.add_artist(circle)  # not add_patch, names not in the layout: inside fixed limits
         text = label.get(name, str(name))
         ax.text(*position[name], text, ha="center", va="center", zorder=4,
-                fontsize=fontsize * min(1.0, 4.0 / max(len(text), 1)) ** 0.5)
+                fontsize=fontsize * min(1.0, 4.0 / max(len(text), 1)) ** 0.5, in_layout=False)
     for group, members in (groups or {}).items():
         placed = [angle[m] for m in members if m in angle]
         if placed:
@@ -378,13 +383,15 @@ def plot_network(
         color = BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR
         style = "-"
         if edge.kind == "none":  # undecided: a line, no head, no weight to read
-            line = FancyArrowPatch(
-                *_trim(position[edge.source], position[edge.target], radius[edge.source],
-                       radius[edge.target]),
-                arrowstyle="-", linewidth=min_width, color=UNDECIDED_COLOR,
-                connectionstyle="arc3,rad=0.08", zorder=1)
+            # arc3's curve built once in data units (equal aspect: the same arc), not an arrow
+            # patch laid out at every draw; a gap of about 2 pt at the rims
+            line = PathPatch(_arc(*_trim(position[edge.source], position[edge.target],
+                                         radius[edge.source] + _UNDECIDED_GAP,
+                                         radius[edge.target] + _UNDECIDED_GAP), 0.08),
+                             fill=False, linewidth=min_width, edgecolor=UNDECIDED_COLOR,
+                             capstyle="round", joinstyle="round", zorder=1)
             line.set_gid(f"edge:{edge.source}->{edge.target}:none")
-            ax.add_patch(line)
+            ax.add_artist(line)
             continue
         reading = "" if readings is None else readings[k]
         if reading in NO_COUPLING_EVIDENCE:
@@ -410,7 +417,7 @@ def plot_network(
                                    radius[edge.source], radius[edge.target]))
         suffix = (":degenerate" if edge.degenerate else "") + (f":{reading}" if reading else "")
         arrow.set_gid(f"edge:{edge.source}->{edge.target}:{edge.kind}{suffix}")
-        ax.add_patch(arrow)
+        ax.add_artist(arrow)  # as the nodes: the limits are fixed below
     ax.set_xlim(-1.3, 1.3)
     ax.set_ylim(-1.3, 1.3)
     ax.set_aspect("equal")
@@ -437,6 +444,13 @@ def _node_radius(name: Any, node_size: float) -> float:
     return node_size * max(1.0, 0.25 * len(str(name)))
 
 
+def _arc(a: Any, b: Any, rad: float) -> BezierPath:
+    """The quadratic Bezier arc from ``a`` to ``b`` of matplotlib's ``arc3`` connection style."""
+    (x1, y1), (x2, y2) = a, b
+    control = ((x1 + x2) / 2 + rad * (y2 - y1), (y1 + y2) / 2 - rad * (x2 - x1))
+    return BezierPath([a, control, b], [BezierPath.MOVETO, *[BezierPath.CURVE3] * 2])
+
+
 def _trim(a: tuple[float, float], b: tuple[float, float], ra: float,
           rb: float) -> tuple[Any, Any]:
     pa, pb = np.asarray(a), np.asarray(b)
@@ -444,7 +458,7 @@ def _trim(a: tuple[float, float], b: tuple[float, float], ra: float,
     return tuple(pa + ra * unit), tuple(pb - rb * unit)
 
 
-def plot_no_network(ax: Axes, label: Any = None) -> Axes:
+def plot_no_network(ax: Axes, label: Any = None, *, fontsize: float = 9.0) -> Axes:
     """Mark a panel whose network could not be computed: "no network", no axes.
 
     Parameters
@@ -453,6 +467,8 @@ def plot_no_network(ax: Axes, label: Any = None) -> Axes:
         The panel.
     label : str, optional
         Its title.
+    fontsize : float
+        Size of the title, to match its neighbours' (:func:`plot_network`: ``fontsize + 1``).
 
     Returns
     -------
@@ -465,7 +481,7 @@ def plot_no_network(ax: Axes, label: Any = None) -> Axes:
     """
     ax.set_axis_off()
     if label is not None:
-        ax.set_title(str(label), fontsize=9)
+        ax.set_title(str(label), fontsize=fontsize)
     ax.text(0.5, 0.5, "no network", ha="center", va="center", transform=ax.transAxes)
     return ax
 

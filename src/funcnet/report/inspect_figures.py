@@ -73,8 +73,9 @@ def figure_motion(inspection: TraceInspection) -> Any:
     Returns
     -------
     matplotlib.figure.Figure
-        Row 0 the set-point over the whole trace; below, one column per move (at most six):
-        positions, V, AC and the following error RP - AP, the phases shaded in the colours of
+        Row 0 the set-point over the whole trace; below, one column per move (at most six;
+        an axis that never moves: one column, the whole trace at rest): positions, V, AC and
+        the following error RP - AP, the phases shaded in the colours of
         :data:`funcnet.plot.PHASE_COLORS` and the gaps (values missing) in
         :data:`funcnet.plot.GAP_COLOR`.
     """
@@ -109,9 +110,13 @@ def figure_motion(inspection: TraceInspection) -> Any:
         top.annotate(f"move {move.move}", ((move.start + move.stop) / 2, 1.0),
                      xycoords=top.get_xaxis_transform(), ha="center", va="bottom", fontsize=9)
     fe = (data["RP"] - data["AP"]) if "AP" in data else None
-    for k, move in enumerate(moves.itertuples()):
-        margin = 0.15 * (move.stop - move.start)
-        lo, hi = move.start - margin, move.stop + margin
+    # each move zoomed; an axis that never moves: the whole trace, what it measured at rest
+    spans = [(f"(b) move {move.move}: {move.start:.2f}–{move.stop:.2f} s",
+              move.start - 0.15 * (move.stop - move.start),
+              move.stop + 0.15 * (move.stop - move.start)) for move in moves.itertuples()]
+    if not spans:
+        spans = [(f"(b) no move: at rest over {t[0]:.2f}–{t[-1]:.2f} s", t[0], t[-1])]
+    for k, (title, lo, hi) in enumerate(spans):
         part = data.loc[(data.index >= lo) & (data.index <= hi)]
         tt = part.index.to_numpy(dtype=float)
         for row, (ylabel, columns) in enumerate(panels, start=1):
@@ -124,11 +129,12 @@ def figure_motion(inspection: TraceInspection) -> Any:
                 ax.plot(tt, values, color=plot.signal_color(column), linewidth=1,
                         label=column)
             ax.tick_params(labelsize=9)
+            if not len(moves):  # jitter at rest: the values themselves, not "+3.437e1" above
+                ax.ticklabel_format(axis="y", useOffset=False)
             if k == 0:
                 ax.set_ylabel(ylabel, fontsize=9)
             if row == 1:
-                ax.set_title(f"(b) move {move.move}: {move.start:.2f}–{move.stop:.2f} s",
-                             fontsize=10, loc="left")
+                ax.set_title(title, fontsize=10, loc="left")
                 if k == 0 and len(columns) > 1:
                     ax.legend(fontsize=9, frameon=False, loc="best")
             if row == len(panels):
@@ -180,7 +186,7 @@ def figure_networks(inspection: TraceInspection) -> Any:
         title = f"{w.label}\n{w.start:.2f}–{w.stop:.2f} s"
         net = inspection.networks.get(w.label)
         if net is None:
-            plot.plot_no_network(ax, title)
+            plot.plot_no_network(ax, title, fontsize=11)  # as plot_network's titles
             continue
         plot.plot_network(net, ax, nodes=list(inspection.signals), title=title, legend=False,
                           arrows="direction")
@@ -306,7 +312,8 @@ def figure_evidence(inspection: TraceInspection) -> Any:
         for r, (a, b) in enumerate(pairs):
             if (a, b) not in table_.index:
                 used["left out"] = _EVIDENCE_COLORS["left out"]
-                ax.text(c, r, "–", ha="center", va="center", fontsize=9, color="0.4")
+                ax.text(c, r, "–", ha="center", va="center", fontsize=9, color="0.4",
+                        in_layout=False)
                 continue
             row = table_.loc[(a, b)]
             if bool(row["degenerate"]):
@@ -318,8 +325,10 @@ def figure_evidence(inspection: TraceInspection) -> Any:
             colour = _EVIDENCE_COLORS.get(key, plot.KIND_COLORS.get(key, "0.8"))
             used[key] = colour
             image[r, c] = to_rgb(colour)
+            # in_layout=False: a cell's arrow lies inside the image, nothing for the layout
             ax.text(c, r, ARROWS.get(str(row["kind"]), "?"), ha="center", va="center",
-                    fontsize=10, color="0.55" if key == "untestable" else "black")
+                    fontsize=10, color="0.55" if key == "untestable" else "black",
+                    in_layout=False)
     ax.imshow(image, aspect="auto", interpolation="nearest")
     ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
     ax.set_yticks(range(len(pairs)), [f"{a}–{b}" for a, b in pairs], fontsize=9)

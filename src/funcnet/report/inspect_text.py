@@ -9,8 +9,9 @@ network and evidence, and which windows lack one or a part of it. The figures ar
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
 import pandas as pd
 
@@ -18,8 +19,8 @@ from funcnet.inspection import TraceInspection
 from funcnet.report.html import escape
 from funcnet.robot.grid import format_spans
 
-__all__ = ["summary_html", "gaps_sentence", "failed_windows", "partial_evidence",
-           "lost_motion_cell"]
+__all__ = ["summary_html", "gaps_sentence", "converted_sentence", "failed_windows",
+           "partial_evidence", "lost_motion_cell"]
 
 
 def gaps_sentence(gaps: Sequence[tuple[float, float]], segments: Sequence[tuple[float, float]],
@@ -109,6 +110,57 @@ def _units_facts(ins: TraceInspection) -> list[str]:
         facts.append(f"no unit stated for {', '.join(unknown)}: computed as if degrees "
                      "(thresholds of 1 deg/s), shown without a unit")
     return facts
+
+
+def converted_sentence(signals: Mapping[str, Any]) -> str:
+    """The signals of a robot's recording converted to degrees, said once for all its axes.
+
+    Parameters
+    ----------
+    signals : mapping of str to SignalInfo
+        The recording's signals by column (``A1.RP``, ...), each with ``converted_from``.
+
+    Returns
+    -------
+    str
+        ``""`` when nothing was converted; else one sentence naming each converted signal with
+        the unit the file holds and the axes it was converted on.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as S
+    >>> converted_sentence({"A1.RP": S(converted_from="rad"), "A2.RP": S(converted_from="rad"),
+    ...                     "A1.V": S(converted_from="rad/s"), "A1.AC": S(converted_from=None)})
+    ... # doctest: +NORMALIZE_WHITESPACE
+    'Converted to degrees (deg/s) from the unit the file holds: RP (rad) on axes 1, 2;
+     V (rad/s) on axis 1.'
+    >>> converted_sentence({"A1.RP": S(converted_from=None)})
+    ''
+    """
+    from funcnet.robot.axes import split_qualified
+
+    axes_of: dict[tuple[str, str], list[int | None]] = {}
+    for column, info in signals.items():
+        if info.converted_from:
+            axis, role = split_qualified(column)
+            axes_of.setdefault((role, info.converted_from), []).append(axis)
+    if not axes_of:
+        return ""
+    every = {tuple(a) for a in axes_of.values()}
+
+    def where(axes: list[Any]) -> str:
+        numbered = [str(a) for a in axes if a is not None]
+        if not numbered:
+            return ""
+        return f" on axis {numbered[0]}" if len(numbered) == 1 else (
+            f" on axes {', '.join(numbered)}")
+
+    if len(every) == 1:  # the same on every axis: the list once, then the axes
+        listed = ", ".join(f"{role} ({unit})" for role, unit in axes_of)
+        return ("Converted to degrees (deg/s) from the unit the file holds: "
+                f"{listed}{where(next(iter(axes_of.values())))}.")
+    listed = "; ".join(f"{role} ({unit}){where(axes)}" for (role, unit), axes in axes_of.items())
+    return f"Converted to degrees (deg/s) from the unit the file holds: {listed}."
 
 
 def _rest_facts(ins: TraceInspection) -> list[str]:
