@@ -148,8 +148,9 @@ def _p_matrix_here(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
     out = np.full((k, k), np.nan)
     p = lags
     span = p + gap
-    chosen = np.asarray([i for i in range(k) if n_samples - 3 * p - 1 - gap >= 1
-                         and np.ptp(columns[:, i]) > 0], dtype=np.intp)
+    if n_samples - 3 * p - 1 - gap < 1:  # too short for the full model's degrees of freedom
+        return out
+    chosen = np.flatnonzero(np.ptp(columns, axis=0) > 0)
     if chosen.size < 2:
         return out
     v = columns[:, chosen]

@@ -386,11 +386,11 @@ def _evidence_sentence(pairs: pd.DataFrame) -> str:
                                                      if len(reasons) > 1 else "")
                + ("." if drawn else "; their asymmetry intervals are not drawn (--intervals "
                   "all draws them)."))
-    undrawn = ("c_diff_low" in pairs
-               and int((pairs["c_diff_low"].isna() & ~pairs["coupled"].astype(bool)).sum()))
-    if undrawn and "not drawn" not in why:
-        why += (f" The asymmetry intervals of the {undrawn} pairs without coupling are not "
-                "drawn (--intervals all draws them).")
+    tested = pairs[pairs["evidence"] != "untestable"]  # their own sentence: above
+    undrawn = int((tested["c_diff_low"].isna() & ~tested["coupled"].astype(bool)).sum())
+    if undrawn:
+        why += (f" The asymmetry intervals of the {undrawn} tested pairs without coupling are "
+                "not drawn (--intervals all draws them).")
     return escape(f" Evidence: {said} of {len(pairs)} pairs.{why}")
 
 
