@@ -3,7 +3,7 @@
 Run from the repository root::
 
     PYTHONPATH=src python -m benchmarks.bench_direction [--plan DIR] [--seed N] [--candidates]
-        [--variants]
+        [--variants] [--contradicted] [--only WORD ...]
 
 For every real recording in ``../shared/data`` -- the SINUMERIK trace (its phase windows), both
 KUKA KR 300 runs (``examples/kuka-kr300-channels.toml``; every axis's phase windows, and the
@@ -21,7 +21,14 @@ at most 2). The SINUMERIK trace is computed once untimed first (compilation, cac
 ``--variants`` adds, per recording, the set-point shares of the reading's variants: the gap
 before the other signal's lags (0, 1 = the default, 2) and the time-reversal check (a reading
 kept only where the time-reversed signals read the opposite way; Haufe et al. 2013, Winkler et
-al. 2016), with and without the gap.
+al. 2016), with and without the gap -- and the readings tried after the gap
+(:data:`LATER_VARIANTS`): a rounding bound on the improvement, a pair left untested where a
+signal's own past predicts it within its logged step, and (whole-robot networks) a signal of
+another axis tested given the target axis's signals.
+
+``--contradicted`` lists every arrow of ``direction`` that the recording contradicts (into a
+set-point or between two), with the target's own-past prediction error in steps of the
+precision it is logged with (:func:`funcnet.network.direction.logged_step`).
 
 ``--candidates`` adds the methods the direction was first chosen among (without the gap), over
 the same set-point pairs: the prediction test at 3 and 10 lags beside the embedding span, and
@@ -104,7 +111,7 @@ def windows_of(recording: Any) -> list[Any]:
 def networks_and_cost(recording: Any) -> tuple[list[Any], float, float]:
     """The default networks of a recording, their time (s) and the direction reading's."""
     from funcnet.core.normalization import normalize
-    from funcnet.network.direction import direction_columns
+    from funcnet.network.direction import direction_columns, logged_step, normalized_steps
     from funcnet.pipeline import window_networks
 
     windows = windows_of(recording)
@@ -113,12 +120,17 @@ def networks_and_cost(recording: Any) -> tuple[list[Any], float, float]:
     total = time.perf_counter() - start
     start = time.perf_counter()
     spans = {w.label: w for w in windows}
+    # as window_networks reads it: each channel's logged step once, scaled per window
+    logged = {name: logged_step(recording.data[name].to_numpy(np.float64))
+              for name in recording.data.columns}
     for label, net in nets.items():
         span = spans[label]
         part = recording.window(span.start, span.stop).data[list(net.nodes)]
-        signals = dict(zip(net.nodes, normalize(part.to_numpy(np.float64),
-                                                net.parameters.normalize).T, strict=True))
-        direction_columns(net.pairs, signals, net.parameters)
+        raw = part.to_numpy(np.float64)
+        normalized = normalize(raw, net.parameters.normalize)
+        steps = normalized_steps([logged[name] for name in net.nodes], raw, normalized)
+        direction_columns(net.pairs, dict(zip(net.nodes, normalized.T, strict=True)),
+                          net.parameters, steps=dict(zip(net.nodes, steps, strict=True)))
     return list(nets.values()), total, time.perf_counter() - start
 
 
@@ -175,12 +187,15 @@ VARIANTS: dict[str, tuple[int, bool]] = {
     "time reversal, gap 0": (0, True), "time reversal, gap 1": (1, True)}
 
 
-def _decide(found: np.ndarray, i: int, j: int, level: float) -> str:
-    """The reading of nodes i (x), j (y) from a p-value matrix (``P[target, source]``)."""
-    forward, backward = found[j, i], found[i, j]
-    if np.isnan(forward) or np.isnan(backward):
+def _decide(found: tuple[np.ndarray, np.ndarray], i: int, j: int, level: float) -> str:
+    """The reading of nodes i (x), j (y) from a p-value matrix (``P[target, source]``) and
+    the targets predicted within their logged step (``W[target, source]``)."""
+    p, within = found
+    forward, backward = p[j, i], p[i, j]
+    if (np.isnan(forward) and not within[j, i]) or (np.isnan(backward) and not within[i, j]):
         return "none"
-    fwd, bwd = forward <= level, backward <= level
+    fwd = forward <= level and not within[j, i]
+    bwd = backward <= level and not within[i, j]
     return "x->y" if fwd and not bwd else "y->x" if bwd and not fwd else "none"
 
 
@@ -190,7 +205,13 @@ def variant_counts(nets: list[Any], recording: Any,
     reversal (Haufe et al. 2013; Winkler et al. 2016): a reading is kept only where the
     time-reversed signals read the opposite way."""
     from funcnet.core.normalization import normalize
-    from funcnet.network.direction import DIRECTION_ALPHA, _p_matrix, direction_lags
+    from funcnet.network.direction import (
+        DIRECTION_ALPHA,
+        _p_matrix,
+        direction_lags,
+        logged_step,
+        normalized_steps,
+    )
     from funcnet.network.setpoint import node_role
 
     spans = {w.label: w for w in windows}
@@ -199,12 +220,15 @@ def variant_counts(nets: list[Any], recording: Any,
     for net in nets:
         span = spans[net.label]
         part = recording.window(span.start, span.stop).data[list(net.nodes)]
-        signals = normalize(part.to_numpy(np.float64), net.parameters.normalize)
+        raw = part.to_numpy(np.float64)
+        signals = normalize(raw, net.parameters.normalize)
+        steps = normalized_steps([logged_step(recording.data[name].to_numpy(np.float64))
+                                  for name in net.nodes], raw, signals)
         column = {name: k for k, name in enumerate(net.nodes)}
         lags = direction_lags(net.parameters)
         for name, (gap, reverse) in VARIANTS.items():
-            found = _p_matrix(signals, lags, gap)
-            back = _p_matrix(signals[::-1].copy(), lags, gap) if reverse else None
+            found = _p_matrix(signals, lags, gap, steps)
+            back = _p_matrix(signals[::-1].copy(), lags, gap, steps) if reverse else None
             for x, y, flagged in zip(net.pairs["x"], net.pairs["y"], net.pairs["degenerate"],
                                      strict=True):
                 x_set, y_set = node_role(x) == "RP", node_role(y) == "RP"
@@ -222,6 +246,178 @@ def variant_counts(nets: list[Any], recording: Any,
                 into = x_set and y_set or reading == ("x->y" if y_set else "y->x")
                 counts[0 if into else 1] += 1
     return out
+
+
+#: Readings tried after the gap (``--variants``): from the log's resolution, and from the axes
+#: of a whole-robot network.
+LATER_VARIANTS = ("without the precision rule", "rounding bound",
+                  "pair untestable within a step", "target's axis conditioned")
+
+
+def _lags(v: np.ndarray, k: int, first: int, p: int, span: int) -> np.ndarray:
+    """Column k at lags ``first .. first + p - 1``, rows ``t = span .. N - 1``."""
+    return np.column_stack([v[span - lag : len(v) - lag, k] for lag in range(first, first + p)])
+
+
+def _fit(design: np.ndarray, y: np.ndarray) -> tuple[float, np.ndarray]:
+    beta = np.linalg.lstsq(design, y, rcond=None)[0]
+    return float(((y - design @ beta) ** 2).sum()), beta
+
+
+def _axis(name: str) -> str | None:
+    head, dot, _ = str(name).partition(".")
+    return head if dot and head[:1] == "A" and head[1:].isdigit() else None
+
+
+def later_variant_counts(nets: list[Any], recording: Any,
+                         windows: list[Any]) -> dict[str, list[int]]:
+    """[into, out, pairs] over the set-point pairs for :data:`LATER_VARIANTS`, each test by
+    least squares (gap 1), each reading without the precision rule of the default but for its
+    own change:
+
+    * without the precision rule: the reading before it (any significant improvement counts);
+    * rounding bound: an improvement of a target logged on a grid of step ``q`` counts only
+      beyond ``n (q^2 / 12) |a|^2``, ``a`` its own-past coefficients -- the rounding error
+      those coefficients carry into the residual, which a signal following the target's true
+      value takes back without acting on it (a first-order bound);
+    * pair untestable within a step: a pair reads ``none`` where either signal's own past
+      predicts it to within its logged step (the default instead shows no improvement of that
+      signal and still reads what its past improves);
+    * target's axis conditioned (whole-robot networks): a signal of another axis is tested
+      for what it adds to the target axis's other signals (conditional Granger, Geweke 1984).
+    """
+    from funcnet.network.direction import (
+        DIRECTION_ALPHA,
+        DIRECTION_GAP,
+        direction_lags,
+        logged_step,
+    )
+    from funcnet.network.setpoint import node_role
+
+    spans = {w.label: w for w in windows}
+    out = {name: [0, 0, 0] for name in LATER_VARIANTS}
+    for net in nets:
+        window = spans[net.label]
+        part = recording.window(window.start, window.stop).data[list(net.nodes)]
+        raw = part.to_numpy(np.float64)
+        spread = raw.std(axis=0)
+        scale = np.where(spread > 0, spread, 1.0)
+        v = (raw - raw.mean(axis=0)) / scale  # the reading standardizes (any normalization)
+        # the precision of a channel is the log's, read on the whole channel (a window may
+        # move many steps per sample, which hides the grid)
+        steps = np.array([logged_step(recording.data[name].to_numpy(np.float64))
+                          for name in net.nodes]) / scale
+        p = direction_lags(net.parameters)
+        short = len(v) - p - DIRECTION_GAP - 2 * p - 1 < 1
+        test = _window_tests(v, steps, list(net.nodes), p, DIRECTION_GAP, DIRECTION_ALPHA / 2)
+        column = {name: k for k, name in enumerate(net.nodes)}
+        for x, y, flagged in zip(net.pairs["x"], net.pairs["y"], net.pairs["degenerate"],
+                                 strict=True):
+            x_set, y_set = node_role(x) == "RP", node_role(y) == "RP"
+            if flagged or not (x_set or y_set):
+                continue
+            if short or spread[column[x]] == 0 or spread[column[y]] == 0:
+                for name in LATER_VARIANTS:  # none, as the reading says
+                    out[name][2] += 1
+                continue
+            forward, backward = test(x, y), test(y, x)
+            readings = {
+                "without the precision rule": (forward[0], backward[0]),
+                "rounding bound": (forward[1], backward[1]),
+                "pair untestable within a step": ((False, False) if forward[2] or backward[2]
+                                                  else (forward[0], backward[0])),
+                "target's axis conditioned": (forward[3], backward[3]),
+            }
+            for name, (fwd, bwd) in readings.items():
+                counts = out[name]
+                counts[2] += 1
+                if fwd == bwd:
+                    continue
+                into = x_set and y_set or (fwd if y_set else bwd)
+                counts[0 if into else 1] += 1
+    return out
+
+
+def _window_tests(v: np.ndarray, steps: np.ndarray, nodes: list[str], p: int, gap: int,
+                  level: float) -> Any:
+    """``test(source, target)`` on one window's standardized signals: (significant, beyond
+    the rounding bound, target within a step, significant given the target axis's signals)."""
+    from scipy import stats
+
+    column = {name: k for k, name in enumerate(nodes)}
+    span = p + gap
+    n = len(v) - span
+    own: dict[str, tuple[np.ndarray, float, np.ndarray, float]] = {}
+
+    def own_model(target: str) -> tuple[np.ndarray, float, np.ndarray, float]:
+        if target not in own:
+            k = column[target]
+            design = np.column_stack([np.ones(n), _lags(v, k, 1, p, span)])
+            rss, beta = _fit(design, v[span:, k])
+            own[target] = design, rss, beta, float(steps[k])
+        return own[target]
+
+    def f_test(rss_r: float, rss_f: float, dfd: int) -> bool:
+        return dfd > 0 and rss_f > 0 and stats.f.sf((rss_r - rss_f) / p / (rss_f / dfd), p,
+                                                    dfd) <= level
+
+    def test(source: str, target: str) -> tuple[bool, bool, bool, bool]:
+        design, rss_r, beta, q = own_model(target)
+        y = v[span:, column[target]]
+        if not rss_r > 1e-24 * float(y @ y):  # predicted exactly: nothing to test
+            return False, False, True, False
+        x = _lags(v, column[source], 1 + gap, p, span)
+        rss_f = _fit(np.column_stack([design, x]), y)[0]
+        significant = f_test(rss_r, rss_f, n - 2 * p - 1)
+        beyond = rss_r - rss_f > n * q**2 / 12 * float(beta[1:] @ beta[1:])
+        conditioned = significant
+        axis = _axis(target)
+        if axis is not None and _axis(source) != axis:
+            mates = [_lags(v, column[m], 1 + gap, p, span) for m in nodes
+                     if _axis(m) == axis and m != target]
+            base = np.column_stack([design, *mates])
+            conditioned = f_test(_fit(base, y)[0], _fit(np.column_stack([base, x]), y)[0],
+                                 n - base.shape[1] - p)
+        return significant, significant and beyond, rss_r / n <= q**2, conditioned
+
+    return test
+
+
+def contradicted_rows(nets: list[Any], recording: Any,
+                      windows: list[Any]) -> list[dict[str, Any]]:
+    """Every ``direction`` arrow into a set-point or between two (``--contradicted``): the
+    window, the arrow, its reason's p-values, and the target's own-past root mean square
+    prediction error (least squares, the reading's lags) in steps of its logged precision."""
+    from funcnet.network.direction import DIRECTION_GAP, direction_lags, logged_step
+    from funcnet.network.setpoint import node_role
+
+    spans = {w.label: w for w in windows}
+    rows = []
+    for net in nets:
+        pairs = net.pairs
+        arrows = pairs[pairs["direction"] != "none"]
+        if arrows.empty:
+            continue
+        window = spans[net.label]
+        raw = recording.window(window.start, window.stop).data[list(net.nodes)]
+        p = direction_lags(net.parameters)
+        span = p + DIRECTION_GAP
+        for x, y, arrow, reason in arrows[["x", "y", "direction", "direction_reason"]].itertuples(
+                index=False):
+            source, target = (x, y) if arrow == "x->y" else (y, x)
+            if node_role(target) != "RP":
+                continue
+            values = raw[target].to_numpy(np.float64)
+            design = np.column_stack([np.ones(len(values) - span),
+                                      _lags(values[:, None], 0, 1, p, span)])
+            rss = _fit(design, values[span:])[0]
+            step = logged_step(recording.data[target].to_numpy(np.float64))
+            error = np.sqrt(rss / design.shape[0])
+            rows.append({"window": net.label, "arrow": f"{source} -> {target}",
+                         "reason": reason,
+                         "own-past error (steps)": error / step if step else float("inf"),
+                         "step": step})
+    return rows
 
 
 def _embed(x: np.ndarray, m: int, tau: int) -> np.ndarray:
@@ -281,6 +477,8 @@ def main(argv: list[str] | None = None) -> None:
                         help="also the candidate methods over the set-point pairs")
     parser.add_argument("--variants", action="store_true",
                         help="also the gap and time-reversal variants, per recording")
+    parser.add_argument("--contradicted", action="store_true",
+                        help="also list the direction's arrows the recording contradicts")
     parser.add_argument("--only", nargs="+", default=None, metavar="WORD",
                         help="only the recordings whose group names one of these words "
                         "(SINUMERIK, KUKA, UR5, simulated)")
@@ -292,6 +490,7 @@ def main(argv: list[str] | None = None) -> None:
     write_plan(paper_plan(), args.plan, seed=args.seed, workers=1)
     groups: dict[str, dict[str, Any]] = {}
     candidates: list[dict[str, Any]] = []
+    contradicted: list[dict[str, Any]] = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         warm_up()
@@ -309,10 +508,14 @@ def main(argv: list[str] | None = None) -> None:
             entry["direction"] += direction
             if args.variants:
                 found = variant_counts(nets, recording, windows_of(recording))
+                found |= later_variant_counts(nets, recording, windows_of(recording))
                 for variant, numbers in found.items():
                     kept = entry.setdefault("variants", {}).setdefault(variant, [0, 0, 0])
                     for k in range(3):
                         kept[k] += numbers[k]
+            if args.contradicted:
+                for row in contradicted_rows(nets, recording, windows_of(recording)):
+                    contradicted.append({"recording": f"{group}, {name}", **row})
             if args.candidates and scope == "axes":
                 for row in candidate_rows(nets, recording, windows_of(recording)):
                     candidates.append({"group": "simulated" if group == "simulated plan"
@@ -339,14 +542,23 @@ def main(argv: list[str] | None = None) -> None:
         print("\nVariants over the set-point pairs (into / out share of the pairs; time "
               "reversal keeps a reading only where the reversed signals read the opposite "
               "way):\n")
-        print("| recording | pairs | " + " | ".join(VARIANTS) + " |")
-        print("|---|---|" + "---|" * len(VARIANTS))
+        names = [*VARIANTS, *LATER_VARIANTS]
+        print("| recording | pairs | " + " | ".join(names) + " |")
+        print("|---|---|" + "---|" * len(names))
         for label, entry in groups.items():
             found = entry["variants"]
             pairs = next(iter(found.values()))[2]
             cells = [f"{v[0] / max(v[2], 1):.1%} / {v[1] / max(v[2], 1):.1%}"
-                     for v in found.values()]
+                     + (f" of {v[2]}" if v[2] != pairs else "") for v in found.values()]
             print(f"| {label} | {pairs} | " + " | ".join(cells) + " |")
+    if contradicted:
+        print("\nArrows of direction the recordings contradict (target's own-past root mean "
+              "square prediction error in steps of its logged precision):\n")
+        print("| recording | window | arrow | own-past error (steps) | step | reason |")
+        print("|---|---|---|---|---|---|")
+        for row in contradicted:
+            print(f"| {row['recording']} | {row['window']} | {row['arrow']} | "
+                  f"{row['own-past error (steps)']:.3g} | {row['step']:.3g} | {row['reason']} |")
     if candidates:
         frame = pd.DataFrame(candidates)
         methods = [c for c in frame.columns if c not in ("group", "type")]
@@ -361,6 +573,7 @@ def main(argv: list[str] | None = None) -> None:
     run.footer("PYTHONPATH=src python -m benchmarks.bench_direction"
                + (" --candidates" if args.candidates else "")
                + (" --variants" if args.variants else "")
+               + (" --contradicted" if args.contradicted else "")
                + (" --only " + " ".join(args.only) if args.only else "")
                + (f" --seed {args.seed}" if args.seed else ""))
 

@@ -9,9 +9,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import assume, given, settings, strategies as st
 
 from funcnet.network import FunctionalNetwork, functional_network
-from funcnet.network.direction import prediction_p, read_direction
+from funcnet.network.direction import logged_step, prediction_p, read_direction
 from funcnet.network.setpoint import node_role, setpoint_check
 
 
@@ -135,8 +136,11 @@ def test_direction_columns_agree_with_pairwise_least_squares(seed):
 
     signals = _smooth_window(seed)
     names = list(signals)
-    found = _p_matrix(np.column_stack([signals[k] for k in names]), 21, DIRECTION_GAP)
+    columns = np.column_stack([signals[k] for k in names])
+    steps = np.array([1e-6, 1e-6, 0.0])  # six decimals; the current is computed
+    found, within = _p_matrix(columns, 21, DIRECTION_GAP, steps)
     for i, target in enumerate(names):
+        own = _own_rss(signals[target], 21, DIRECTION_GAP)
         for j, source in enumerate(names):
             if i == j:
                 continue
@@ -144,14 +148,88 @@ def test_direction_columns_agree_with_pairwise_least_squares(seed):
             assert (found[i, j] <= 0.025) == (expected <= 0.025), (source, target)
             if expected > 1e-12:
                 assert found[i, j] == pytest.approx(expected, rel=1e-4, abs=1e-10)
+            n = len(columns) - 21 - DIRECTION_GAP
+            assert within[i, j] == (own <= n * steps[i] ** 2), (source, target)
 
 
-def test_a_target_its_own_past_predicts_exactly_is_untestable():
+def _own_rss(y, p, gap):
+    """Residual sum of squares of y from its own past (lags 1..p), rows from p + gap on."""
+    rows = np.array([[1.0, *(y[t - k] for k in range(1, p + 1))] for t in range(p + gap, len(y))])
+    target = y[p + gap :]
+    beta = np.linalg.lstsq(rows, target, rcond=None)[0]
+    return float(((target - rows @ beta) ** 2).sum())
+
+
+def test_a_target_its_own_past_predicts_exactly_shows_no_improvement():
     ramp = np.arange(200.0) ** 2  # a polynomial: its own past predicts it to rounding
     other = np.random.default_rng(0).standard_normal(200)
     assert np.isnan(prediction_p(other, ramp, 3))
-    assert read_direction(other, ramp, 3)[1].startswith("a signal constant or predicted")
+    reading, reason = read_direction(other, ramp, 3, names=("AC", "RP"))
+    assert reading == "none"
+    assert "RP is predicted by its own past to within its logged step" in reason
     assert not np.isnan(prediction_p(ramp, other, 3))
+
+
+@settings(max_examples=40, deadline=None)
+@given(step=st.floats(1e-7, 1e-1), scale=st.floats(1e-3, 1e3), offset=st.floats(-1e3, 1e3),
+       seed=st.integers(0, 2**16))
+def test_logged_step_finds_the_grid_a_signal_was_logged_on(step, scale, offset, seed):
+    """Values written on a grid of ``step``, then converted (scaled, shifted), moving up to
+    thousands of steps per sample: the grid's step in the new unit, wherever it is over a
+    billionth of the values (a log's decimals are far coarser); computed values have none."""
+    rng = np.random.default_rng(seed)
+    logged = np.cumsum(rng.integers(0, 4000, 500)) * step * scale + offset
+    assume(step * scale >= 1e-9 * np.abs(logged).max())
+    assert logged_step(logged) == pytest.approx(step * scale, rel=1e-6)
+    assert logged_step(rng.standard_normal(500) * scale + offset) == 0.0
+
+
+def test_logged_step_of_single_precision_is_its_spacing():
+    """A channel stored in single precision: the root mean square of float32's spacing at its
+    values (no coarser grid)."""
+    values = np.float32(np.random.default_rng(3).uniform(-40.0, 40.0, 1000)).astype(np.float64)
+    spacing = np.array([np.spacing(np.float32(abs(v))) for v in values], dtype=np.float64)
+    assert logged_step(values) == pytest.approx(np.sqrt(np.mean(spacing**2)), rel=1e-12)
+
+
+def _trajectory(n, seed):
+    """A planned position: twice-integrated smooth random acceleration."""
+    rng = np.random.default_rng(seed)
+    acceleration = np.convolve(rng.standard_normal(n + 60), np.hanning(60), "valid")[:n]
+    return np.cumsum(np.cumsum(acceleration))
+
+
+def test_no_improvement_shown_into_a_signal_predicted_within_its_logged_step():
+    """A set-point logged to a step its own past predicts it within: a signal following its
+    true value improves its prediction (it undoes the rounding of the set-point's past), which
+    the log cannot tell from a drive, so no arrow into it; the set-point's past still shows
+    what it drives. Logged finer, the same pair is tested as before."""
+    rng = np.random.default_rng(8)
+    setpoint = _trajectory(2000, 7)
+    error = np.sqrt(_own_rss(setpoint, 5, 1) / (2000 - 6))  # the true value's own-past error
+    coarse = 300 * error
+    logged = np.round(setpoint / coarse) * coarse
+    assert np.sqrt(_own_rss(logged, 5, 1) / (2000 - 6)) <= coarse
+    assert logged_step(logged) == pytest.approx(coarse, rel=1e-9)
+    follower = setpoint + 0.01 * coarse * rng.standard_normal(2000)
+    names = ("AP", "RP")
+    assert read_direction(follower, logged, 5, names=names, steps=(0.0, 0.0))[0] == "x->y"
+    reading, reason = read_direction(follower, logged, 5, names=names)
+    assert reading == "none" and reason.startswith("RP is predicted by its own past to within")
+    driven = np.concatenate([[0.0] * 3, logged[:-3]]) + coarse * rng.standard_normal(2000)
+    assert read_direction(logged, driven, 5)[0] == "x->y"
+    fine = np.round(setpoint / error) * error
+    assert "logged step" not in read_direction(follower, fine, 5)[1]
+
+
+def test_a_driver_beyond_the_rounding_still_reads():
+    """A target rounded to a step far below its innovations: the arrow stays."""
+    rng = np.random.default_rng(9)
+    x = rng.standard_normal(1500)
+    y = np.zeros(1500)
+    for t in range(3, 1500):
+        y[t] = 0.5 * y[t - 1] + 0.8 * x[t - 3] + 0.3 * rng.standard_normal()
+    assert read_direction(x, np.round(y, 2), 3)[0] == "x->y"
 
 
 def test_one_sample_relation_has_no_direction_beyond_the_gap():

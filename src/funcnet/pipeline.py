@@ -46,7 +46,7 @@ from funcnet.network import (
     functional_network,
     pair_kinds,
 )
-from funcnet.network.direction import direction_columns
+from funcnet.network.direction import direction_columns, logged_step, normalized_steps
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.schema import DIRECTION_COLUMNS, RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
@@ -369,14 +369,17 @@ def window_networks(
     drop = constant == "drop" and p.normalize is not None
     networks = WindowNetworks()
     failures = []
-    batched, found = _batched_networks(recording, windows, signals, p)
+    # each channel's precision, read on the whole channel (a window moving many steps per
+    # sample may hide the grid): the direction reading shows no improvement below it
+    steps = {name: logged_step(recording.data[name].to_numpy(np.float64)) for name in signals}
+    batched, found = _batched_networks(recording, windows, signals, p, steps)
     for done, window in enumerate(windows, start=1):
         if window.label in batched:
             networks[window.label] = batched[window.label]
         else:
             try:
                 networks[window.label] = _window_network(recording, window, signals, p, drop,
-                                                         where)
+                                                         where, steps)
             except FuncnetError as error:
                 if not collect or isinstance(error, ParameterError):
                     raise
@@ -395,7 +398,8 @@ def window_networks(
 
 
 def _window_network(recording: Recording, window: Window, signals: Sequence[str],
-                    p: NetworkParameters, drop: bool, where: str) -> FunctionalNetwork:
+                    p: NetworkParameters, drop: bool, where: str,
+                    steps: Mapping[str, float]) -> FunctionalNetwork:
     """The network of one window, located (errors name the window; the network records it)."""
     part = recording.window(window.start, window.stop).data[list(signals)]
     values = part.to_numpy(dtype=np.float64)
@@ -417,8 +421,8 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
         p = _without(p, [name not in dropped for name in signals])
     try:
         network = functional_network(
-            part.drop(columns=list(dropped)), parameters=p, label=window.label, warn=False
-        )
+            part.drop(columns=list(dropped)), parameters=p, label=window.label, warn=False,
+            steps=steps)
     except FuncnetError as error:
         _locate(error, where, window)
         raise
@@ -437,7 +441,8 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
 
 
 def _batched_networks(
-    recording: Recording, windows: Sequence[Window], signals: Sequence[str], p: NetworkParameters
+    recording: Recording, windows: Sequence[Window], signals: Sequence[str], p: NetworkParameters,
+    steps: Mapping[str, float],
 ) -> tuple[dict[str, FunctionalNetwork], list[FuncnetWarning]]:
     """The windows' networks through the batched engine (:func:`funcnet.core.batch.batch_pairs`),
     equal (``==``) to :func:`_window_network`'s, by label, and their :func:`window_warnings`.
@@ -473,11 +478,13 @@ def _batched_networks(
     readings: dict[str, list[str]] = {name: [] for name in DIRECTION_COLUMNS}
     for w in range(len(windows)):
         mine = slice(w * n_pairs, (w + 1) * n_pairs)
+        normalized = normalize_signals(parts[w], p.normalize)
         read = direction_columns(
             pd.DataFrame({name: columns[name][mine] for name in ("x", "y", "degenerate")}),
             # normalized as functional_network's nodes are: the same bits, the same reading
-            dict(zip(result.names, normalize_signals(parts[w], p.normalize).T, strict=True)),
-            p)
+            dict(zip(result.names, normalized.T, strict=True)), p,
+            steps=dict(zip(result.names, normalized_steps(
+                [steps[name] for name in result.names], parts[w], normalized), strict=True)))
         for name in DIRECTION_COLUMNS:
             readings[name] += read[name]
     columns.update(readings)

@@ -15,6 +15,7 @@ import pandas as pd
 
 from funcnet.core.normalization import normalize as normalize_signals
 from funcnet.errors import ParameterError, SignalError
+from funcnet.network.direction import logged_step, normalized_steps
 
 __all__ = ["column_names", "float_columns", "node_groups", "PreparedSignals", "prepared_signals"]
 
@@ -137,6 +138,9 @@ class PreparedSignals:
         Per node, its normalized samples: (N,) for a one-column node, (N, c) for a group.
     n_samples : int
         Samples per signal (``N``).
+    steps : tuple of float
+        Per node, the precision its column is logged with, in the normalized unit
+        (:func:`~funcnet.network.direction.logged_step`; 0 for a group or without a grid).
     """
 
     names: tuple[str, ...]
@@ -144,9 +148,11 @@ class PreparedSignals:
     groups: tuple[tuple[int, ...], ...]
     signals: tuple[np.ndarray, ...]
     n_samples: int
+    steps: tuple[float, ...] = ()
 
 
-def prepared_signals(data: Any, names: Any, nodes: Any, normalize: str | None) -> PreparedSignals:
+def prepared_signals(data: Any, names: Any, nodes: Any, normalize: str | None,
+                     steps: Mapping[str, float] | None = None) -> PreparedSignals:
     """Columns named, grouped into nodes and normalized per column (every check named).
 
     Parameters
@@ -157,6 +163,9 @@ def prepared_signals(data: Any, names: Any, nodes: Any, normalize: str | None) -
     nodes : mapping or None
         Node name -> column name(s); default one node per column.
     normalize : {"minmax", "zscore"} or None
+    steps : mapping of str to float, optional
+        Column name -> the precision it is logged with, in its unit (a whole channel's, when
+        ``data`` is a window of it); a column not named: read from ``data``.
 
     Returns
     -------
@@ -186,9 +195,13 @@ def prepared_signals(data: Any, names: Any, nodes: Any, normalize: str | None) -
             f"a functional network needs at least two signals, got {len(node_names)}"
         )
     used = [i for group in groups for i in group]
-    values = float_columns(data, used, columns)
-    values = normalize_signals(values, normalize, names=[columns[i] for i in used])
+    raw = float_columns(data, used, columns)
+    values = normalize_signals(raw, normalize, names=[columns[i] for i in used])
     position = {i: k for k, i in enumerate(used)}
+    known = steps or {}
+    logged = normalized_steps([known[columns[i]] if columns[i] in known
+                               else logged_step(raw[:, k]) for k, i in enumerate(used)],
+                              raw, values)
     # A one-column node is a 1-D signal (bit for bit the numbers of a plain column); a group
     # is an (N, c) multichannel signal.
     signals = tuple(
@@ -198,4 +211,6 @@ def prepared_signals(data: Any, names: Any, nodes: Any, normalize: str | None) -
     )
     return PreparedSignals(tuple(node_names), tuple(columns),
                            tuple(tuple(group) for group in groups), signals,
-                           int(values.shape[0]))
+                           int(values.shape[0]),
+                           tuple(float(logged[position[group[0]]]) if len(group) == 1 else 0.0
+                                 for group in groups))

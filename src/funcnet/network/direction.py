@@ -24,13 +24,24 @@ The test (one pair, both ways)
 
 The reading (abstaining where the data cannot tell)
     ``x->y`` when X's past improves Y's prediction at ``alpha / 2`` and Y's does not improve
-    X's; ``y->x`` the reverse; ``none`` otherwise, with the reason: both ways (feedback, a
-    shared command, or a logging offset between the two channels), neither way, a window too
-    short for ``p`` lags, a signal constant or predicted by its own past to the rounding of the
-    arithmetic (a set-point that is a polynomial over the window: nothing left to explain), a
-    degenerate pair, a multichannel node. ``alpha / 2``: the two directions of a pair are two
-    tests (Bonferroni); pairs are not adjusted against each other (a pair's reading does not
-    depend on how many other signals the network has).
+    X's (or X is predicted within its logged step, below); ``y->x`` the reverse; ``none``
+    otherwise, with the reason: both ways (feedback, a shared command, or a logging offset
+    between the two channels), neither way, a window too short for ``p`` lags, a constant
+    signal, both predicted within their logged steps, a degenerate pair, a multichannel node.
+    ``alpha / 2``: the two directions of a pair are two tests (Bonferroni); pairs are not
+    adjusted against each other (a pair's reading does not depend on how many other signals
+    the network has).
+
+The log's precision
+    A signal its own past predicts to within the precision it is logged with (root mean square
+    error at most one step of its grid, :func:`logged_step`; at least the rounding of the
+    arithmetic) has nothing left that the log can show: whatever improves its prediction
+    further does so below one step, as a signal following its true value would by undoing the
+    rounding of its past, without acting on it. No improvement of it is shown: an arrow into
+    it is never drawn; its own past may still improve another's. This holds for any signal,
+    whatever its role. On the recordings it is what the stored precision makes of a planned
+    set-point: the KUKA files keep it in single precision, and every arrow into a set-point
+    there claimed an improvement of one its own past predicts to 0.3-0.9 of a step.
 
 The computation
     One QR factorization of the window's lag matrix serves every pair of the window: each
@@ -48,8 +59,9 @@ Why this test (measured, docs/guide/direction.md)
     A set-point computed ahead by a planner is predicted by its own past; a measured signal of
     the axis is not, and the set-point's past improves it. Over the SINUMERIK trace, both
     KUKA runs and five UR5 runs (every axis and phase, and the whole robot) the reading points
-    into a set-point for 0-7.8 % of the set-point pairs (<= 5 % on 12 of the 15 groups); on
-    the simulated plan (the 36 trials of the paper, moving phases) 1.6 % into and 57 % out.
+    into a set-point for 0-7.8 % of the set-point pairs (<= 5 % on 14 of the 15 groups, 0 on
+    the SINUMERIK and KUKA recordings); on the simulated plan (the 36 trials of the paper,
+    moving phases) 0 % into and 51 % out.
     Without the gap the UR5 axes read 5.3-9.5 % into (mostly ``RC -> RP``: RC's lag 1 carries
     the set-point's next sample). The time-reversal check (Haufe et al. 2013) removes nearly
     every arrow, those out of the set-point too (0.8 % out on the simulated plan). Timing is no
@@ -83,8 +95,8 @@ from threadpoolctl import ThreadpoolController
 from funcnet.errors import ParameterError
 from funcnet.parameters import NetworkParameters
 
-__all__ = ["DIRECTIONS", "DIRECTION_ALPHA", "DIRECTION_GAP", "direction_lags", "prediction_p",
-           "read_direction", "direction_columns"]
+__all__ = ["DIRECTIONS", "DIRECTION_ALPHA", "DIRECTION_GAP", "direction_lags", "logged_step",
+           "normalized_steps", "prediction_p", "read_direction", "direction_columns"]
 
 #: Values of the ``direction`` column.
 DIRECTIONS: tuple[str, ...] = ("x->y", "y->x", "none")
@@ -109,10 +121,14 @@ def direction_lags(parameters: NetworkParameters) -> int:
     return (parameters.dim - 1) * parameters.delay + 1
 
 
-def _p_matrix(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
+def _p_matrix(columns: np.ndarray, lags: int, gap: int,
+              steps: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """p-values of every ordered pair of columns: ``P[i, j]`` that column j's past (lags
     ``gap + 1 .. gap + p``) improves the prediction of column i beyond i's own past (lags
-    ``1 .. p``); NaN: too short, constant, or exact.
+    ``1 .. p``); NaN: too short, constant, or exact. With them ``W[i, j]``: column i's own past
+    predicts it to within its logged step (``steps[i]`` in the columns' unit; default
+    :func:`logged_step` of each column), ``RSS_r <= n q^2``, or to the rounding of the
+    arithmetic.
 
     One QR factorization of the window's lag matrix ``W = [1, v_k(t - l) for every column k
     and lag l = 0..p + gap]`` (rows ``t = p + gap..N-1``) serves every pair: a pair's design and
@@ -130,8 +146,10 @@ def _p_matrix(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
     arithmetic (``RSS_r <= (eps max(n, columns))^2 |y|^2``: a set-point that is a polynomial
     over the window) leaves nothing to explain: NaN, as a constant signal.
     """
+    if steps is None:
+        steps = np.array([logged_step(column) for column in columns.T])
     with _blas().limit(limits=1, user_api="blas"):
-        return _p_matrix_here(columns, lags, gap)
+        return _p_matrix_here(columns, lags, gap, np.asarray(steps, dtype=np.float64))
 
 
 @functools.cache
@@ -142,19 +160,23 @@ def _blas() -> ThreadpoolController:
     return ThreadpoolController()
 
 
-def _p_matrix_here(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
+def _p_matrix_here(columns: np.ndarray, lags: int, gap: int,
+                   steps: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_p_matrix`, in the calling thread's BLAS setting."""
     n_samples, k = columns.shape
     out = np.full((k, k), np.nan)
+    within = np.zeros((k, k), dtype=bool)
     p = lags
     span = p + gap
     if n_samples - 3 * p - 1 - gap < 1:  # too short for the full model's degrees of freedom
-        return out
+        return out, within
     chosen = np.flatnonzero(np.ptp(columns, axis=0) > 0)
     if chosen.size < 2:
-        return out
+        return out, within
     v = columns[:, chosen]
-    v = (v - v.mean(axis=0)) / v.std(axis=0)
+    spread = v.std(axis=0)
+    v = (v - v.mean(axis=0)) / spread
+    step = steps[chosen] / spread  # in the standardized unit
     kk, n = chosen.size, n_samples - span
     window = np.lib.stride_tricks.sliding_window_view(v, span + 1, axis=0)  # (n, kk, span+1)
     design = np.empty((n, 1 + kk * (span + 1)))
@@ -170,9 +192,10 @@ def _p_matrix_here(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
     c = 2 * p + 1
     dfd = n - c
     values = np.empty(target.size)
-    step = max(1, _CHUNK // (r_window.shape[0] * (c + 1)))
-    for first in range(0, target.size, step):
-        part = slice(first, first + step)
+    logged = np.empty(target.size, dtype=bool)
+    chunk = max(1, _CHUNK // (r_window.shape[0] * (c + 1)))
+    for first in range(0, target.size, chunk):
+        part = slice(first, first + chunk)
         r = _triangular(r_window[:, subset[part]].transpose(1, 0, 2))
         y = r[:, :, c]
         full = y[:, c] ** 2
@@ -191,8 +214,102 @@ def _p_matrix_here(columns: np.ndarray, lags: int, gap: int) -> np.ndarray:
         exact = own <= (_EPS * max(n, c)) ** 2 * (y**2).sum(axis=1)
         found[exact | ~(full > 0.0)] = np.nan
         values[part] = found
+        logged[part] = exact | (own <= n * step[target[part]] ** 2)
     out[chosen[target], chosen[source]] = values
-    return out
+    within[chosen[target], chosen[source]] = logged
+    return out, within
+
+
+def logged_step(values: Any) -> float:
+    """The precision a signal is logged with: the step of its grid (0 when it has none).
+
+    A log that writes a fixed number of decimals, or an encoder's counts, puts every sample on
+    a grid ``offset + k q``, and any affine scaling (a unit conversion, a normalization) keeps
+    it: ``q`` is the greatest common step of the differences between the distinct values
+    (Euclid's algorithm, each difference within 1 % of a step of a multiple, the step
+    sharpened on the small multiples first so that a large multiple does not magnify the
+    rounding a remainder carries). Values stored in single precision have its spacing, root
+    mean square over the values, where that is coarser. Read it on a whole channel: a window
+    that moves thousands of steps per sample may hide the grid (then 0).
+
+    Parameters
+    ----------
+    values : array_like
+        The samples as recorded (NaN ignored).
+
+    Returns
+    -------
+    float
+        ``q`` in the values' unit; 0 for fewer than two distinct values or no grid (values
+        computed in floating point).
+
+    Examples
+    --------
+    >>> logged_step(np.round(np.linspace(0.0, 1.0, 50) ** 2, 3))
+    0.001
+    >>> radians = np.round(np.sin(np.arange(40.0)), 6)  # six decimals, then in degrees
+    >>> float(logged_step(np.degrees(radians)) / np.degrees(1e-6))
+    1.0
+    >>> single = np.float32(np.random.default_rng(1).uniform(0.1, 1.9, 100)).astype(float)
+    >>> bool(2.0**-27 < logged_step(single) < 2.0**-23)  # float32's spacing there
+    True
+    >>> logged_step(np.random.default_rng(0).standard_normal(50))
+    0.0
+    """
+    finite = np.asarray(values, dtype=np.float64).ravel()
+    finite = finite[np.isfinite(finite)]
+    distinct = np.unique(finite)
+    if distinct.size < 2:
+        return 0.0
+    single = 0.0
+    if np.array_equal(distinct.astype(np.float32).astype(np.float64), distinct):
+        spacing = np.spacing(np.abs(finite).astype(np.float32)).astype(np.float64)
+        single = float(np.sqrt(np.mean(spacing**2)))
+    tolerance = 64 * _EPS * float(np.abs(distinct).max())  # the representation, not the log
+    steps = np.diff(distinct)
+    steps = steps[steps > tolerance]
+    q = float(steps.min()) if steps.size else 0.0
+    while q >= 1e3 * tolerance:  # a step within a thousand roundings of the values: none
+        q, remainder = _grid(steps, q, tolerance)
+        if remainder == 0.0:
+            return max(q, single)
+        q = remainder
+    return single
+
+
+def _grid(steps: np.ndarray, q: float, tolerance: float) -> tuple[float, float]:
+    """``(q, 0)`` sharpened on the differences when every one is a multiple of ``q`` (within
+    1 % of a step), else ``(q, r)`` with Euclid's next remainder ``r``."""
+    limit = 8.0 * float(steps.min())
+    while True:
+        use = steps <= limit
+        multiple = np.rint(steps[use] / q)
+        off = np.abs(steps[use] - multiple * q)
+        wrong = off > 0.01 * q + 16 * tolerance
+        if wrong.any():
+            return q, float(off[wrong].min())
+        q = float(steps[use].sum() / multiple.sum())
+        if use.all():
+            return q, 0.0
+        limit *= 8.0
+
+
+def normalized_steps(steps: Sequence[float], raw: np.ndarray,
+                     normalized: np.ndarray) -> np.ndarray:
+    """Logged steps (:func:`logged_step`) of the columns of ``raw``, in the unit of their
+    affine normalization ``normalized`` (min-max, z-score or none): each scaled as its column's
+    range is.
+
+    Examples
+    --------
+    >>> raw = np.array([[0.0, 5.0], [2.0, 5.5], [4.0, 6.0]])
+    >>> normalized_steps([1.0, 0.5], raw, raw / np.ptp(raw, axis=0)).tolist()
+    [0.25, 0.5]
+    """
+    spread = np.ptp(raw, axis=0)
+    scale = np.divide(np.ptp(normalized, axis=0), spread, out=np.zeros(spread.shape),
+                      where=spread > 0)
+    return np.asarray(steps, dtype=np.float64) * scale
 
 
 def _triangular(a: np.ndarray) -> np.ndarray:
@@ -263,7 +380,7 @@ def prediction_p(x: Any, y: Any, lags: int, *, gap: int = DIRECTION_GAP) -> floa
     ys = np.asarray(y, dtype=np.float64).ravel()
     if xs.size != ys.size:
         raise ParameterError.of("y", f"has {ys.size} samples, x has {xs.size}")
-    return float(_p_matrix(np.column_stack([xs, ys]), int(lags), _gap(gap))[1, 0])
+    return float(_p_matrix(np.column_stack([xs, ys]), int(lags), _gap(gap))[0][1, 0])
 
 
 def _g(value: float) -> str:
@@ -271,8 +388,8 @@ def _g(value: float) -> str:
 
 
 def read_direction(x: Any, y: Any, lags: int, *, gap: int = DIRECTION_GAP,
-                   alpha: float = DIRECTION_ALPHA,
-                   names: tuple[str, str] = ("X", "Y")) -> tuple[str, str]:
+                   alpha: float = DIRECTION_ALPHA, names: tuple[str, str] = ("X", "Y"),
+                   steps: tuple[float, float] | None = None) -> tuple[str, str]:
     """The direction of one pair and why (module notes).
 
     Parameters
@@ -286,11 +403,23 @@ def read_direction(x: Any, y: Any, lags: int, *, gap: int = DIRECTION_GAP,
         Level of the pair's two tests together; each is decided at ``alpha / 2``.
     names : (str, str)
         The signals' names, for the reason.
+    steps : (float, float), optional
+        The precision X and Y are logged with, in their units; default :func:`logged_step`
+        of each (0: none).
 
     Returns
     -------
     (str, str)
         One of :data:`DIRECTIONS` and one sentence saying why.
+
+    Raises
+    ------
+    ParameterError
+        ``alpha`` outside (0, 1), ``lags < 1``, ``gap < 0`` or signals of unequal length.
+
+    References
+    ----------
+    Granger (1969).
 
     Examples
     --------
@@ -309,8 +438,10 @@ def read_direction(x: Any, y: Any, lags: int, *, gap: int = DIRECTION_GAP,
         raise ParameterError.of("y", f"has {ys.size} samples, x has {xs.size}")
     if isinstance(lags, bool) or not isinstance(lags, (int, np.integer)) or lags < 1:
         raise ParameterError.of("lags", f"must be an integer >= 1, got {lags!r}")
-    found = _p_matrix(np.column_stack([xs, ys]), int(lags), _gap(gap))
-    return _reading(found[1, 0], found[0, 1], xs.size, int(lags), int(gap), alpha, names)
+    found, within = _p_matrix(np.column_stack([xs, ys]), int(lags), _gap(gap),
+                              None if steps is None else np.asarray(steps, dtype=np.float64))
+    return _reading((found[1, 0], found[0, 1]), (within[1, 0], within[0, 1]), xs.size,
+                    int(lags), int(gap), alpha, names)
 
 
 def _gap(gap: int) -> int:
@@ -319,33 +450,48 @@ def _gap(gap: int) -> int:
     return int(gap)
 
 
-def _reading(forward: float, backward: float, n: int, lags: int, gap: int, alpha: float,
-             names: tuple[str, str]) -> tuple[str, str]:
-    """:func:`read_direction` of a pair's two p-values (X's past for Y, Y's for X)."""
-    a, b = names
-    if np.isnan(forward) or np.isnan(backward):
-        if n < 3 * lags + 2 + gap:
-            return "none", (f"window too short: {n} samples for {lags} lags (needs at least "
-                            f"{3 * lags + 2 + gap})")
-        return "none", "a signal constant or predicted exactly by its own past: nothing to test"
+def _reading(p_values: tuple[float, float], within: tuple[bool, bool], n: int, lags: int,
+             gap: int, alpha: float, names: tuple[str, str]) -> tuple[str, str]:
+    """:func:`read_direction` of a pair's two p-values (X's past for Y, Y's for X) and whether
+    each target's own past predicts it to within its logged step (Y, then X)."""
+    (forward, backward), (a, b) = p_values, names
+    if n < 3 * lags + 2 + gap:
+        return "none", (f"window too short: {n} samples for {lags} lags (needs at least "
+                        f"{3 * lags + 2 + gap})")
+    if np.isnan(forward) and not within[0] or np.isnan(backward) and not within[1]:
+        return "none", "a constant signal: nothing to test"
+    if within[0] and within[1]:
+        return "none", ("each is predicted by its own past to within its logged step: no "
+                        "improvement of either can be shown")
     level = alpha / 2
-    fwd, bwd = forward <= level, backward <= level
+    fwd, bwd = not within[0] and forward <= level, not within[1] and backward <= level
+
+    def improves(source: str, target: str, p: float, found: bool, logged: bool) -> str:
+        if logged:
+            return (f"{target} is predicted by its own past to within its logged step, so no "
+                    f"improvement of it can be shown")
+        if found:
+            return f"{source}'s past improves {target}'s prediction (p {_g(p)})"
+        return f"{source}'s does not improve {target}'s (p {_g(p)})"
+
+    one = improves(a, b, forward, fwd, within[0])
+    other = improves(b, a, backward, bwd, within[1])
     if fwd and not bwd:
-        return "x->y", (f"{a}'s past improves {b}'s prediction (p {_g(forward)}), {b}'s does "
-                        f"not improve {a}'s (p {_g(backward)})")
+        return "x->y", f"{one}; {other}" if within[1] else f"{one}, {other}"
     if bwd and not fwd:
-        return "y->x", (f"{b}'s past improves {a}'s prediction (p {_g(backward)}), {a}'s does "
-                        f"not improve {b}'s (p {_g(forward)})")
+        return "y->x", f"{other}; {one}" if within[0] else f"{other}, {one}"
     if fwd and bwd:
         return "none", (f"each past improves the other's prediction (p {_g(forward)}, "
                         f"{_g(backward)}): feedback, a shared command or a logging offset")
+    if within[0] or within[1]:
+        return "none", f"{one}; {other}"
     return "none", (f"neither past improves the other's prediction (p {_g(forward)}, "
                     f"{_g(backward)})")
 
 
 def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
-                      parameters: NetworkParameters,
-                      alpha: float = DIRECTION_ALPHA) -> dict[str, list[str]]:
+                      parameters: NetworkParameters, alpha: float = DIRECTION_ALPHA, *,
+                      steps: Mapping[str, float] | None = None) -> dict[str, list[str]]:
     """``direction`` and ``direction_reason`` of every row of a pairs table.
 
     Parameters
@@ -358,6 +504,10 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
         Its ``dim`` and ``delay`` set the lags (:func:`direction_lags`).
     alpha : float
         As :func:`read_direction`.
+    steps : mapping of str to float, optional
+        The precision each node is logged with, in its signal's unit (a normalized signal's
+        step is its channel's scaled alike); a node not named: :func:`logged_step` of its
+        signal.
 
     Returns
     -------
@@ -389,8 +539,12 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
     column = {name: k for k, name in enumerate(single)}
     n = sizes.pop() if sizes else 0
     # every pair of the window at once
-    found = _p_matrix(np.column_stack([arrays[name].ravel() for name in single])
-                      if single else np.empty((0, 0)), lags, DIRECTION_GAP)
+    known = steps or {}
+    found, within = _p_matrix(
+        np.column_stack([arrays[name].ravel() for name in single]) if single
+        else np.empty((0, 0)), lags, DIRECTION_GAP,
+        np.array([known[name] if name in known else logged_step(arrays[name])
+                  for name in single]))
     for x, y, flagged in zip(pairs["x"], pairs["y"], tested, strict=True):
         if flagged:
             reading = ("none", "degenerate pair: too few distinct states")
@@ -398,8 +552,8 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
             reading = ("none", "a multichannel node: the test reads one channel per node")
         else:
             i, j = column[x], column[y]
-            reading = _reading(found[j, i], found[i, j], n, lags, DIRECTION_GAP, alpha,
-                               (str(x), str(y)))
+            reading = _reading((found[j, i], found[i, j]), (within[j, i], within[i, j]), n,
+                               lags, DIRECTION_GAP, alpha, (str(x), str(y)))
         out["direction"].append(reading[0])
         out["direction_reason"].append(reading[1])
     return out

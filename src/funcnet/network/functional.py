@@ -400,6 +400,7 @@ def functional_network(
     surrogate_method: str = "shift",
     edge_rule: str = "paper",
     intervals: str = "coupled",
+    steps: Mapping[str, float] | None = None,
     **overrides: Unpack[ParameterOverrides],
 ) -> FunctionalNetwork:
     """Functional network of simultaneously sampled signals (section 2.3-2.4, 3.4).
@@ -463,6 +464,11 @@ def functional_network(
         there is nothing to qualify); ``"testable"`` those whose test can reach ``alpha``
         (known from the window's size before anything is computed); ``"all"`` every pair's. Under
         ``edge_rule="interval"`` every pair's, whatever this says.
+    steps : mapping of str to float, optional
+        Column name -> the precision it is logged with, in its unit
+        (:func:`~funcnet.network.direction.logged_step` of the whole channel, when ``data`` is
+        a window of it); a column not named: read from ``data``. The direction shows no
+        improvement of a signal its own past predicts to within its step.
     **overrides
         Any parameter by name, applied to ``parameters`` (``delay=1``).
 
@@ -523,10 +529,11 @@ def functional_network(
     check_edge_rule(edge_rule, evidence)
     if evidence:
         check_evidence_arguments(surrogates, alpha, resamples, surrogate_method, intervals)
-    prepared = prepared_signals(data, names, nodes, p.normalize)
+    prepared = prepared_signals(data, names, nodes, p.normalize, steps)
     results = pairwise_cross_measures(list(prepared.signals), names=list(prepared.names),
                                       parameters=p, warn=warn)
-    pairs = _pairs_table(results, p, dict(zip(prepared.names, prepared.signals, strict=True)))
+    pairs = _pairs_table(results, p, dict(zip(prepared.names, prepared.signals, strict=True)),
+                         dict(zip(prepared.names, prepared.steps, strict=True)))
     settings = None
     if evidence:
         pairs, settings = evidence_columns(
@@ -551,9 +558,9 @@ def functional_network(
 
 
 def _pairs_table(results: Mapping[tuple[str, str], Any], parameters: NetworkParameters,
-                 signals: Mapping[str, Any]) -> pd.DataFrame:
+                 signals: Mapping[str, Any], steps: Mapping[str, float]) -> pd.DataFrame:
     """The pairs table of pairwise results (keyed by node names), the rule applied and the
-    direction read from the nodes' ``signals``."""
+    direction read from the nodes' ``signals`` (logged with ``steps``)."""
     measures = list(results.values())
     columns: dict[str, list[Any]] = {
         "x": [str(x) for x, _ in results],
@@ -565,6 +572,7 @@ def _pairs_table(results: Mapping[tuple[str, str], Any], parameters: NetworkPara
     columns.update(dict.fromkeys(RULE_COLUMNS, [""] * len(measures)))
     columns["weight"] = [0.0] * len(measures)  # set by the rule
     columns.update(direction_columns(pd.DataFrame(
-        {name: columns[name] for name in ("x", "y", "degenerate")}), signals, parameters))
+        {name: columns[name] for name in ("x", "y", "degenerate")}), signals, parameters,
+        steps=steps))
     return pair_kinds(pairs_frame(columns), parameters)
 
