@@ -304,3 +304,34 @@ def test_drawings_take_the_direction_and_keep_the_rule_one_option_away():
         "edge:AC->RP:directed", "edge:AP->AC:bidirectional", "edge:AP->RP:directed"]
     with pytest.raises(Exception, match="arrows"):
         plot_network(net, arrows="kind")
+
+
+@pytest.mark.parametrize("recording", ["sinumerik", "kuka-axis-2", "kuka-robot"])
+def test_direction_holds_on_real_recordings(recording):
+    """On the real SINUMERIK and KUKA recordings (every phase window of an axis; the whole
+    robot as one network) the reading points into a set-point for at most 5 % of the
+    set-point pairs, and the set-points it reads are the ones the single-precision KUKA files
+    and the decimal SINUMERIK trace log on a grid."""
+    from conftest import REAL_TRACE, REPO, SHARED
+    from funcnet.pipeline import window_networks
+    from funcnet.robot import complete_span, detect_phases, phase_windows, read_recording
+
+    kuka = SHARED / "data" / "kuka-kr300" / "kr300-run-A.mat"
+    channels = REPO / "examples" / "kuka-kr300-channels.toml"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        if recording == "sinumerik":
+            run = read_recording(REAL_TRACE)
+        else:
+            run = read_recording(kuka, channels=channels,
+                                 axis=2 if recording == "kuka-axis-2" else None)
+        windows = ([complete_span(run)] if run.axes
+                   else list(phase_windows(detect_phases(run))))
+        nets = list(window_networks(run, windows, constant="drop",
+                                    errors="collect").values())
+    check = setpoint_check(nets, column="direction")
+    assert check.pairs > 0
+    assert check.into <= 0.05 * check.pairs
+    assert check.out > 0
+    assert logged_step(run.data[[c for c in run.data.columns if node_role(c) == "RP"][0]]
+                       .to_numpy(np.float64)) > 0
