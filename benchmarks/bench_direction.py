@@ -111,8 +111,8 @@ def windows_of(recording: Any) -> list[Any]:
 def networks_and_cost(recording: Any) -> tuple[list[Any], float, float]:
     """The default networks of a recording, their time (s) and the direction reading's."""
     from funcnet.core.normalization import normalize
-    from funcnet.network.direction import direction_columns, logged_step, normalized_steps
-    from funcnet.pipeline import window_networks
+    from funcnet.network.direction import direction_columns, normalized_steps
+    from funcnet.pipeline import channel_steps, window_networks, window_steps
 
     windows = windows_of(recording)
     start = time.perf_counter()
@@ -120,15 +120,14 @@ def networks_and_cost(recording: Any) -> tuple[list[Any], float, float]:
     total = time.perf_counter() - start
     start = time.perf_counter()
     spans = {w.label: w for w in windows}
-    # as window_networks reads it: each channel's logged step once, scaled per window
-    logged = {name: logged_step(recording.data[name].to_numpy(np.float64))
-              for name in recording.data.columns}
+    channel = channel_steps(recording, list(recording.data.columns))  # as window_networks
     for label, net in nets.items():
         span = spans[label]
         part = recording.window(span.start, span.stop).data[list(net.nodes)]
         raw = part.to_numpy(np.float64)
         normalized = normalize(raw, net.parameters.normalize)
-        steps = normalized_steps([logged[name] for name in net.nodes], raw, normalized)
+        steps = normalized_steps(list(window_steps(raw, net.nodes, channel).values()), raw,
+                                 normalized)
         direction_columns(net.pairs, dict(zip(net.nodes, normalized.T, strict=True)),
                           net.parameters, steps=dict(zip(net.nodes, steps, strict=True)))
     return list(nets.values()), total, time.perf_counter() - start
@@ -209,21 +208,22 @@ def variant_counts(nets: list[Any], recording: Any,
         DIRECTION_ALPHA,
         _p_matrix,
         direction_lags,
-        logged_step,
         normalized_steps,
     )
     from funcnet.network.setpoint import node_role
+    from funcnet.pipeline import channel_steps, window_steps
 
     spans = {w.label: w for w in windows}
     out = {name: [0, 0, 0] for name in VARIANTS}
     level = DIRECTION_ALPHA / 2
+    channel = channel_steps(recording, list(recording.data.columns))
     for net in nets:
         span = spans[net.label]
         part = recording.window(span.start, span.stop).data[list(net.nodes)]
         raw = part.to_numpy(np.float64)
         signals = normalize(raw, net.parameters.normalize)
-        steps = normalized_steps([logged_step(recording.data[name].to_numpy(np.float64))
-                                  for name in net.nodes], raw, signals)
+        steps = normalized_steps(list(window_steps(raw, net.nodes, channel).values()), raw,
+                                 signals)
         column = {name: k for k, name in enumerate(net.nodes)}
         lags = direction_lags(net.parameters)
         for name, (gap, reverse) in VARIANTS.items():
@@ -286,16 +286,13 @@ def later_variant_counts(nets: list[Any], recording: Any,
     * target's axis conditioned (whole-robot networks): a signal of another axis is tested
       for what it adds to the target axis's other signals (conditional Granger, Geweke 1984).
     """
-    from funcnet.network.direction import (
-        DIRECTION_ALPHA,
-        DIRECTION_GAP,
-        direction_lags,
-        logged_step,
-    )
+    from funcnet.network.direction import DIRECTION_ALPHA, DIRECTION_GAP, direction_lags
     from funcnet.network.setpoint import node_role
+    from funcnet.pipeline import channel_steps, window_steps
 
     spans = {w.label: w for w in windows}
     out = {name: [0, 0, 0] for name in LATER_VARIANTS}
+    channel = channel_steps(recording, list(recording.data.columns))
     for net in nets:
         window = spans[net.label]
         part = recording.window(window.start, window.stop).data[list(net.nodes)]
@@ -303,10 +300,7 @@ def later_variant_counts(nets: list[Any], recording: Any,
         spread = raw.std(axis=0)
         scale = np.where(spread > 0, spread, 1.0)
         v = (raw - raw.mean(axis=0)) / scale  # the reading standardizes (any normalization)
-        # the precision of a channel is the log's, read on the whole channel (a window may
-        # move many steps per sample, which hides the grid)
-        steps = np.array([logged_step(recording.data[name].to_numpy(np.float64))
-                          for name in net.nodes]) / scale
+        steps = np.array(list(window_steps(raw, net.nodes, channel).values())) / scale
         p = direction_lags(net.parameters)
         short = len(v) - p - DIRECTION_GAP - 2 * p - 1 < 1
         test = _window_tests(v, steps, list(net.nodes), p, DIRECTION_GAP, DIRECTION_ALPHA / 2)
@@ -388,11 +382,13 @@ def contradicted_rows(nets: list[Any], recording: Any,
     """Every ``direction`` arrow into a set-point or between two (``--contradicted``): the
     window, the arrow, its reason's p-values, and the target's own-past root mean square
     prediction error (least squares, the reading's lags) in steps of its logged precision."""
-    from funcnet.network.direction import DIRECTION_GAP, direction_lags, logged_step
+    from funcnet.network.direction import DIRECTION_GAP, direction_lags
     from funcnet.network.setpoint import node_role
+    from funcnet.pipeline import channel_steps, window_steps
 
     spans = {w.label: w for w in windows}
     rows = []
+    channel = channel_steps(recording, list(recording.data.columns))
     for net in nets:
         pairs = net.pairs
         arrows = pairs[pairs["direction"] != "none"]
@@ -411,7 +407,7 @@ def contradicted_rows(nets: list[Any], recording: Any,
             design = np.column_stack([np.ones(len(values) - span),
                                       _lags(values[:, None], 0, 1, p, span)])
             rss = _fit(design, values[span:])[0]
-            step = logged_step(recording.data[target].to_numpy(np.float64))
+            step = window_steps(values[:, None], [target], channel)[target]
             error = np.sqrt(rss / design.shape[0])
             rows.append({"window": net.label, "arrow": f"{source} -> {target}",
                          "reason": reason,

@@ -166,7 +166,7 @@ def test_a_target_its_own_past_predicts_exactly_shows_no_improvement():
     assert np.isnan(prediction_p(other, ramp, 3))
     reading, reason = read_direction(other, ramp, 3, names=("AC", "RP"))
     assert reading == "none"
-    assert "RP is predicted by its own past to within its logged step" in reason
+    assert "RP is predicted by its own past exactly or to within its logged step" in reason
     assert not np.isnan(prediction_p(ramp, other, 3))
 
 
@@ -215,11 +215,22 @@ def test_no_improvement_shown_into_a_signal_predicted_within_its_logged_step():
     names = ("AP", "RP")
     assert read_direction(follower, logged, 5, names=names, steps=(0.0, 0.0))[0] == "x->y"
     reading, reason = read_direction(follower, logged, 5, names=names)
-    assert reading == "none" and reason.startswith("RP is predicted by its own past to within")
+    assert reading == "none" and reason.startswith("RP is predicted by its own past exactly or")
     driven = np.concatenate([[0.0] * 3, logged[:-3]]) + coarse * rng.standard_normal(2000)
     assert read_direction(logged, driven, 5)[0] == "x->y"
     fine = np.round(setpoint / error) * error
     assert "logged step" not in read_direction(follower, fine, 5)[1]
+
+
+def test_a_coarse_signal_its_own_past_does_not_predict_can_be_driven():
+    """A few levels of a driven signal: its own-past error is under a step (its whole spread
+    is about a step), but its own past does not predict it, so the rounding of its past hides
+    nothing and the drive reads."""
+    rng = np.random.default_rng(11)
+    x = rng.standard_normal(2000)
+    y = np.round(0.6 * np.concatenate([[0.0, 0.0], x[:-2]]))  # five levels, step 1
+    assert np.sqrt(_own_rss(y, 3, 1) / (2000 - 4)) <= 1.0
+    assert read_direction(x, y, 3)[0] == "x->y"
 
 
 def test_a_driver_beyond_the_rounding_still_reads():
@@ -335,3 +346,16 @@ def test_direction_holds_on_real_recordings(recording):
     assert check.out > 0
     assert logged_step(run.data[[c for c in run.data.columns if node_role(c) == "RP"][0]]
                        .to_numpy(np.float64)) > 0
+
+
+@pytest.mark.parametrize("steps", [{"Z": 1e-6}, {"A": -1.0}, {"A": float("nan")}])
+def test_bad_steps_are_named(steps):
+    from funcnet.errors import ParameterError
+
+    rng = np.random.default_rng(2)
+    data = pd.DataFrame({"A": rng.standard_normal(300), "B": rng.standard_normal(300)})
+    with pytest.raises(ParameterError, match="steps"):
+        functional_network(data, delay=1, steps=steps)
+    with pytest.raises(ParameterError, match="steps"):
+        read_direction(data["A"], data["B"], 3, names=("A", "B"),
+                       steps=(1.0,) if "Z" in steps else (steps["A"], 0.0))

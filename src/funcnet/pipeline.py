@@ -46,7 +46,12 @@ from funcnet.network import (
     functional_network,
     pair_kinds,
 )
-from funcnet.network.direction import direction_columns, logged_step, normalized_steps
+from funcnet.network.direction import (
+    direction_columns,
+    logged_step,
+    normalized_steps,
+    single_spacing,
+)
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.schema import DIRECTION_COLUMNS, RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
@@ -369,9 +374,7 @@ def window_networks(
     drop = constant == "drop" and p.normalize is not None
     networks = WindowNetworks()
     failures = []
-    # each channel's precision, read on the whole channel (a window moving many steps per
-    # sample may hide the grid): the direction reading shows no improvement below it
-    steps = {name: logged_step(recording.data[name].to_numpy(np.float64)) for name in signals}
+    steps = channel_steps(recording, signals)
     batched, found = _batched_networks(recording, windows, signals, p, steps)
     for done, window in enumerate(windows, start=1):
         if window.label in batched:
@@ -395,6 +398,48 @@ def window_networks(
         warnings.warn(warning, stacklevel=caller_stacklevel())
     networks.failures = tuple(failures)
     return networks
+
+
+def channel_steps(recording: Recording, signals: Sequence[str]) -> dict[str, float]:
+    """The precision each channel is logged with, read on the whole channel
+    (:func:`~funcnet.network.direction.logged_step`): a window that moves thousands of steps
+    per sample may hide a decimal grid.
+
+    Examples
+    --------
+    >>> from funcnet.robot import SignalInfo
+    >>> data = pd.DataFrame({"RP": [0.0, 0.001, 0.003]},
+    ...                     index=pd.Index([0.0, 0.1, 0.2], name="time"))
+    >>> run = Recording(data, {}, {"RP": SignalInfo("RP", None, None, 0.1)})
+    >>> channel_steps(run, ["RP"])
+    {'RP': 0.001}
+    """
+    return {str(name): logged_step(recording.data[name].to_numpy(np.float64))
+            for name in signals}
+
+
+def window_steps(values: np.ndarray, signals: Sequence[str],
+                 channel: Mapping[str, float]) -> dict[str, float]:
+    """Each column's precision in one window: its channel's (:func:`channel_steps`), or, for
+    values stored in single precision, the spacing at the window's own magnitudes where that
+    is finer (:func:`~funcnet.network.direction.single_spacing`). A window can only show a
+    multiple of a decimal grid, or hide it; single precision's spacing shrinks with the
+    magnitudes a window holds.
+
+    Examples
+    --------
+    >>> window_steps(np.array([[0.1], [0.3], [0.5]]), ["RP"], {"RP": 0.1})  # decimals
+    {'RP': 0.1}
+    >>> near_zero = np.float32([[0.001], [0.002]]).astype(float)
+    >>> window_steps(near_zero, ["RP"], {"RP": 2.0**-20})["RP"] < 2.0**-20
+    True
+    """
+    found = {}
+    for k, name in enumerate(signals):
+        read = [step for step in (single_spacing(values[:, k]), float(channel[name]))
+                if step > 0]
+        found[str(name)] = min(read, default=0.0)
+    return found
 
 
 def _window_network(recording: Recording, window: Window, signals: Sequence[str],
@@ -422,7 +467,8 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
     try:
         network = functional_network(
             part.drop(columns=list(dropped)), parameters=p, label=window.label, warn=False,
-            steps=steps)
+            steps={name: step for name, step in window_steps(
+                values, list(signals), steps).items() if name not in dropped})
     except FuncnetError as error:
         _locate(error, where, window)
         raise
@@ -484,7 +530,8 @@ def _batched_networks(
             # normalized as functional_network's nodes are: the same bits, the same reading
             dict(zip(result.names, normalized.T, strict=True)), p,
             steps=dict(zip(result.names, normalized_steps(
-                [steps[name] for name in result.names], parts[w], normalized), strict=True)))
+                list(window_steps(parts[w], result.names, steps).values()), parts[w],
+                normalized), strict=True)))
         for name in DIRECTION_COLUMNS:
             readings[name] += read[name]
     columns.update(readings)

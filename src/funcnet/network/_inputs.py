@@ -15,7 +15,7 @@ import pandas as pd
 
 from funcnet.core.normalization import normalize as normalize_signals
 from funcnet.errors import ParameterError, SignalError
-from funcnet.network.direction import logged_step, normalized_steps
+from funcnet.network.direction import checked_steps, logged_step, normalized_steps
 
 __all__ = ["column_names", "float_columns", "node_groups", "PreparedSignals", "prepared_signals"]
 
@@ -174,7 +174,7 @@ def prepared_signals(data: Any, names: Any, nodes: Any, normalize: str | None,
     Raises
     ------
     ParameterError
-        Bad ``names`` or ``nodes``.
+        Bad ``names``, ``nodes`` or ``steps``.
     SignalError
         Fewer than two nodes; a column not numeric, with NaN/inf, or constant under a
         normalization.
@@ -198,10 +198,10 @@ def prepared_signals(data: Any, names: Any, nodes: Any, normalize: str | None,
     raw = float_columns(data, used, columns)
     values = normalize_signals(raw, normalize, names=[columns[i] for i in used])
     position = {i: k for k, i in enumerate(used)}
-    known = steps or {}
-    logged = normalized_steps([known[columns[i]] if columns[i] in known
-                               else logged_step(raw[:, k]) for k, i in enumerate(used)],
-                              raw, values)
+    known = checked_steps(steps, columns)
+    node_steps = normalized_steps([known[columns[i]] if columns[i] in known
+                                   else logged_step(raw[:, k]) for k, i in enumerate(used)],
+                                  raw, values)
     # A one-column node is a 1-D signal (bit for bit the numbers of a plain column); a group
     # is an (N, c) multichannel signal.
     signals = tuple(
@@ -212,5 +212,5 @@ def prepared_signals(data: Any, names: Any, nodes: Any, normalize: str | None,
     return PreparedSignals(tuple(node_names), tuple(columns),
                            tuple(tuple(group) for group in groups), signals,
                            int(values.shape[0]),
-                           tuple(float(logged[position[group[0]]]) if len(group) == 1 else 0.0
-                                 for group in groups))
+                           tuple(float(node_steps[position[group[0]]]) if len(group) == 1
+                                 else 0.0 for group in groups))

@@ -33,15 +33,18 @@ The reading (abstaining where the data cannot tell)
     the network has).
 
 The log's precision
-    A signal its own past predicts to within the precision it is logged with (root mean square
-    error at most one step of its grid, :func:`logged_step`; at least the rounding of the
-    arithmetic) has nothing left that the log can show: whatever improves its prediction
-    further does so below one step, as a signal following its true value would by undoing the
-    rounding of its past, without acting on it. No improvement of it is shown: an arrow into
-    it is never drawn; its own past may still improve another's. This holds for any signal,
-    whatever its role. On the recordings it is what the stored precision makes of a planned
-    set-point: the KUKA files keep it in single precision, and every arrow into a set-point
-    there claimed an improvement of one its own past predicts to 0.3-0.9 of a step.
+    A signal its own past predicts to within the precision it is logged with -- root mean
+    square error at most one step of its grid (:func:`logged_step`), its own past explaining
+    all but 1 % of its variance over the window -- has nothing left that the log can show:
+    whatever improves its prediction further does so below one step, as a signal following
+    its true value would by undoing the rounding of the past the prediction rests on, without
+    acting on it. No improvement of it is shown: an arrow into it is never read; its own past
+    may still improve another's. The same holds for a signal its own past predicts exactly (to
+    the rounding of the arithmetic). This holds for any signal, whatever its role. A coarse
+    signal its own past does not predict (a few levels of noise) stays testable: a drive of it
+    below one step still reads. On the recordings it is what the stored precision makes of a
+    planned set-point: the KUKA files keep it in single precision, and every arrow into a
+    set-point there claimed an improvement of one its own past predicts to 0.2-0.9 of a step.
 
 The computation
     One QR factorization of the window's lag matrix serves every pair of the window: each
@@ -62,9 +65,10 @@ Why this test (measured, docs/guide/direction.md)
     into a set-point for 0-7.8 % of the set-point pairs (<= 5 % on 14 of the 15 groups, 0 on
     the SINUMERIK and KUKA recordings); on the simulated plan (the 36 trials of the paper,
     moving phases) 0 % into and 51 % out.
-    Without the gap the UR5 axes read 5.3-9.5 % into (mostly ``RC -> RP``: RC's lag 1 carries
-    the set-point's next sample). The time-reversal check (Haufe et al. 2013) removes nearly
-    every arrow, those out of the set-point too (0.8 % out on the simulated plan). Timing is no
+    Before the precision rule: without the gap the UR5 axes read 5.3-9.5 % into (mostly
+    ``RC -> RP``: RC's lag 1 carries the set-point's next sample), and the time-reversal check
+    (Haufe et al. 2013) removed nearly every arrow, those out of the set-point too (0.8 % out
+    on the simulated plan). Timing is no
     shortcut: the lead of one signal's cross-map skill over the other's points from the
     current into the position (an acceleration leads the position it produces), and the
     conditional-recurrence index and convergent cross mapping need surrogates a smooth window
@@ -96,7 +100,9 @@ from funcnet.errors import ParameterError
 from funcnet.parameters import NetworkParameters
 
 __all__ = ["DIRECTIONS", "DIRECTION_ALPHA", "DIRECTION_GAP", "direction_lags", "logged_step",
-           "normalized_steps", "prediction_p", "read_direction", "direction_columns"]
+           "single_spacing", "checked_steps", "normalized_steps", "prediction_p",
+           "read_direction",
+           "direction_columns"]
 
 #: Values of the ``direction`` column.
 DIRECTIONS: tuple[str, ...] = ("x->y", "y->x", "none")
@@ -174,9 +180,9 @@ def _p_matrix_here(columns: np.ndarray, lags: int, gap: int,
     if chosen.size < 2:
         return out, within
     v = columns[:, chosen]
-    spread = v.std(axis=0)
-    v = (v - v.mean(axis=0)) / spread
-    step = steps[chosen] / spread  # in the standardized unit
+    v_spread = v.std(axis=0)
+    v = (v - v.mean(axis=0)) / v_spread
+    step = steps[chosen] / v_spread  # in the standardized unit
     kk, n = chosen.size, n_samples - span
     window = np.lib.stride_tricks.sliding_window_view(v, span + 1, axis=0)  # (n, kk, span+1)
     design = np.empty((n, 1 + kk * (span + 1)))
@@ -192,7 +198,9 @@ def _p_matrix_here(columns: np.ndarray, lags: int, gap: int,
     c = 2 * p + 1
     dfd = n - c
     values = np.empty(target.size)
-    logged = np.empty(target.size, dtype=bool)
+    within_pairs = np.empty(target.size, dtype=bool)
+    # the part of each column its own past has to explain (the rows the models predict)
+    spread = ((v[span:] - v[span:].mean(axis=0)) ** 2).sum(axis=0)
     chunk = max(1, _CHUNK // (r_window.shape[0] * (c + 1)))
     for first in range(0, target.size, chunk):
         part = slice(first, first + chunk)
@@ -214,9 +222,13 @@ def _p_matrix_here(columns: np.ndarray, lags: int, gap: int,
         exact = own <= (_EPS * max(n, c)) ** 2 * (y**2).sum(axis=1)
         found[exact | ~(full > 0.0)] = np.nan
         values[part] = found
-        logged[part] = exact | (own <= n * step[target[part]] ** 2)
+        # within a step of its log, and its own past is what predicts it (rounding its past
+        # is what a follower could undo): nothing left that the log can show
+        ahead = target[part]
+        within_pairs[part] = exact | ((own <= n * step[ahead] ** 2)
+                                      & (own <= _EXPLAINED * spread[ahead]))
     out[chosen[target], chosen[source]] = values
-    within[chosen[target], chosen[source]] = logged
+    within[chosen[target], chosen[source]] = within_pairs
     return out, within
 
 
@@ -261,12 +273,12 @@ def logged_step(values: Any) -> float:
     distinct = np.unique(finite)
     if distinct.size < 2:
         return 0.0
-    single = 0.0
-    if np.array_equal(distinct.astype(np.float32).astype(np.float64), distinct):
-        spacing = np.spacing(np.abs(finite).astype(np.float32)).astype(np.float64)
-        single = float(np.sqrt(np.mean(spacing**2)))
+    single = single_spacing(finite)
     tolerance = 64 * _EPS * float(np.abs(distinct).max())  # the representation, not the log
-    steps = np.diff(distinct)
+    with np.errstate(over="ignore"):
+        steps = np.diff(distinct)
+    if not np.isfinite(steps).all():  # values spanning beyond float64's range: no grid read
+        return single
     steps = steps[steps > tolerance]
     q = float(steps.min()) if steps.size else 0.0
     while q >= 1e3 * tolerance:  # a step within a thousand roundings of the values: none
@@ -275,6 +287,26 @@ def logged_step(values: Any) -> float:
             return max(q, single)
         q = remainder
     return single
+
+
+def single_spacing(values: Any) -> float:
+    """Single precision's spacing at the values, root mean square, when every value is one a
+    float32 holds (a file that stores floats); else 0.
+
+    Examples
+    --------
+    >>> single_spacing(np.float32([1.0, 1.5, 1.75]).astype(float)) == 2.0**-23
+    True
+    >>> single_spacing([0.1, 0.2])
+    0.0
+    """
+    finite = np.asarray(values, dtype=np.float64).ravel()
+    finite = finite[np.isfinite(finite)]
+    if finite.size == 0 or not np.array_equal(finite.astype(np.float32).astype(np.float64),
+                                               finite):
+        return 0.0
+    spacing = np.spacing(np.abs(finite).astype(np.float32)).astype(np.float64)
+    return float(np.sqrt(np.mean(spacing**2)))
 
 
 def _grid(steps: np.ndarray, q: float, tolerance: float) -> tuple[float, float]:
@@ -294,11 +326,47 @@ def _grid(steps: np.ndarray, q: float, tolerance: float) -> tuple[float, float]:
         limit *= 8.0
 
 
+def checked_steps(steps: Mapping[str, float] | None, names: Sequence[str]) -> dict[str, float]:
+    """``steps`` as a dict, each a finite step >= 0 of one of ``names``.
+
+    Raises
+    ------
+    ParameterError
+        A step of a name not among ``names``, negative, NaN or infinite.
+
+    Examples
+    --------
+    >>> checked_steps({"RP": 1e-6}, ["RP", "AC"])
+    {'RP': 1e-06}
+    """
+    found = {str(name): float(step) for name, step in (steps or {}).items()}
+    unknown = sorted(set(found) - {str(name) for name in names})
+    if unknown:
+        raise ParameterError.of("steps", f"names {unknown}, not among the signals "
+                                         f"{[str(name) for name in names]}")
+    bad = {name: step for name, step in found.items() if not (np.isfinite(step) and step >= 0)}
+    if bad:
+        raise ParameterError.of("steps", f"must be finite and >= 0, got {bad}")
+    return found
+
+
 def normalized_steps(steps: Sequence[float], raw: np.ndarray,
                      normalized: np.ndarray) -> np.ndarray:
     """Logged steps (:func:`logged_step`) of the columns of ``raw``, in the unit of their
     affine normalization ``normalized`` (min-max, z-score or none): each scaled as its column's
     range is.
+
+    Parameters
+    ----------
+    steps : sequence of float
+        One step per column of ``raw``, in its unit.
+    raw, normalized : ndarray, shape (N, k)
+        The columns before and after the normalization.
+
+    Returns
+    -------
+    ndarray, shape (k,)
+        The steps in the normalized unit (0 for a constant column).
 
     Examples
     --------
@@ -333,6 +401,10 @@ _EPS = float(np.finfo(np.float64).eps)
 #: below ``eps max(n, columns)`` (1e-14 to 1e-12 here), four orders under the screen. Over every
 #: window of the recordings, screens from 1e-6 to 1e-12 gave the same p-values.
 _SCREEN = 1e-8
+#: The precision rule needs the own past to explain all but this share of a signal's variance:
+#: rounding the past matters only where the past carries the prediction (a coarse signal that
+#: its own past does not predict, a few levels of noise, stays testable).
+_EXPLAINED = 0.01
 #: Elements of one batch of triangular factors (bounds the memory of a long window).
 _CHUNK = 2_000_000
 
@@ -380,7 +452,7 @@ def prediction_p(x: Any, y: Any, lags: int, *, gap: int = DIRECTION_GAP) -> floa
     ys = np.asarray(y, dtype=np.float64).ravel()
     if xs.size != ys.size:
         raise ParameterError.of("y", f"has {ys.size} samples, x has {xs.size}")
-    return float(_p_matrix(np.column_stack([xs, ys]), int(lags), _gap(gap))[0][1, 0])
+    return float(_p_matrix(np.column_stack([xs, ys]), int(lags), _gap(gap), np.zeros(2))[0][1, 0])
 
 
 def _g(value: float) -> str:
@@ -438,6 +510,9 @@ def read_direction(x: Any, y: Any, lags: int, *, gap: int = DIRECTION_GAP,
         raise ParameterError.of("y", f"has {ys.size} samples, x has {xs.size}")
     if isinstance(lags, bool) or not isinstance(lags, (int, np.integer)) or lags < 1:
         raise ParameterError.of("lags", f"must be an integer >= 1, got {lags!r}")
+    if steps is not None:
+        checked_steps(dict(zip(names, steps, strict=True)) if len(steps) == 2 else {"": -1.0},
+                      names)
     found, within = _p_matrix(np.column_stack([xs, ys]), int(lags), _gap(gap),
                               None if steps is None else np.asarray(steps, dtype=np.float64))
     return _reading((found[1, 0], found[0, 1]), (within[1, 0], within[0, 1]), xs.size,
@@ -459,17 +534,18 @@ def _reading(p_values: tuple[float, float], within: tuple[bool, bool], n: int, l
         return "none", (f"window too short: {n} samples for {lags} lags (needs at least "
                         f"{3 * lags + 2 + gap})")
     if np.isnan(forward) and not within[0] or np.isnan(backward) and not within[1]:
-        return "none", "a constant signal: nothing to test"
+        return "none", ("a constant signal, or one the other's past predicts exactly: nothing "
+                        "to test")
     if within[0] and within[1]:
-        return "none", ("each is predicted by its own past to within its logged step: no "
-                        "improvement of either can be shown")
+        return "none", ("each is predicted by its own past exactly or to within its logged "
+                        "step: no improvement of either can be shown")
     level = alpha / 2
     fwd, bwd = not within[0] and forward <= level, not within[1] and backward <= level
 
     def improves(source: str, target: str, p: float, found: bool, logged: bool) -> str:
         if logged:
-            return (f"{target} is predicted by its own past to within its logged step, so no "
-                    f"improvement of it can be shown")
+            return (f"{target} is predicted by its own past exactly or to within its logged "
+                    f"step, so no improvement of it can be shown")
         if found:
             return f"{source}'s past improves {target}'s prediction (p {_g(p)})"
         return f"{source}'s does not improve {target}'s (p {_g(p)})"
@@ -539,7 +615,7 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
     column = {name: k for k, name in enumerate(single)}
     n = sizes.pop() if sizes else 0
     # every pair of the window at once
-    known = steps or {}
+    known = checked_steps(steps, list(signals))
     found, within = _p_matrix(
         np.column_stack([arrays[name].ravel() for name in single]) if single
         else np.empty((0, 0)), lags, DIRECTION_GAP,
