@@ -223,15 +223,22 @@ def _tested_pairs(trial: TrialAnalysis, key: Any, *, alpha: float, seed: int,
     """The window's pairs table with the coupling test, or None (no network, or it failed)."""
     from funcnet.errors import FuncnetError
     from funcnet.network import functional_network
+    from funcnet.network.direction import logged_step
+    from funcnet.pipeline import window_steps
 
     net = trial.networks.get(key)
     if net is None or key not in trial.windows:
         return None
     part = trial.window_data(key)[list(net.nodes)]
+    # the direction read as window_networks reads it: each channel's logged precision
+    steps = window_steps(part.to_numpy(np.float64), list(net.nodes),
+                         {name: logged_step(trial.data[name].to_numpy(np.float64))
+                          for name in net.nodes})
     try:
         full = functional_network(part, parameters=net.parameters, label=net.label, warn=False,
                                   evidence=True, resamples=0, alpha=alpha, seed=seed,
-                                  surrogates=surrogates, surrogate_method=surrogate_method)
+                                  surrogates=surrogates, surrogate_method=surrogate_method,
+                                  steps=steps)
     except FuncnetError:
         return None
     # The same network: only the evidence columns are new (a guard against a data mismatch).
