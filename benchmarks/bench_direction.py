@@ -28,7 +28,7 @@ another axis tested given the target axis's signals.
 
 ``--contradicted`` lists every arrow of ``direction`` that the recording contradicts (into a
 set-point or between two), with the target's own-past prediction error in steps of the
-precision it is logged with (:func:`funcnet.network.direction.logged_step`).
+precision it is logged with (:func:`funcnet.network.precision.logged_step`).
 
 ``--candidates`` adds the methods the direction was first chosen among (without the gap), over
 the same set-point pairs: the prediction test at 3 and 10 lags beside the embedding span, and
@@ -111,7 +111,8 @@ def windows_of(recording: Any) -> list[Any]:
 def networks_and_cost(recording: Any) -> tuple[list[Any], float, float]:
     """The default networks of a recording, their time (s) and the direction reading's."""
     from funcnet.core.normalization import normalize
-    from funcnet.network.direction import direction_columns, normalized_steps
+    from funcnet.network.direction import direction_columns
+    from funcnet.network.precision import normalized_steps
     from funcnet.pipeline import channel_steps, window_networks, window_steps
 
     windows = windows_of(recording)
@@ -204,12 +205,8 @@ def variant_counts(nets: list[Any], recording: Any,
     reversal (Haufe et al. 2013; Winkler et al. 2016): a reading is kept only where the
     time-reversed signals read the opposite way."""
     from funcnet.core.normalization import normalize
-    from funcnet.network.direction import (
-        DIRECTION_ALPHA,
-        _p_matrix,
-        direction_lags,
-        normalized_steps,
-    )
+    from funcnet.network.direction import DIRECTION_ALPHA, _p_matrix, direction_lags
+    from funcnet.network.precision import normalized_steps
     from funcnet.network.setpoint import node_role
     from funcnet.pipeline import channel_steps, window_steps
 

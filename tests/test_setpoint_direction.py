@@ -12,7 +12,8 @@ import pytest
 from hypothesis import assume, given, settings, strategies as st
 
 from funcnet.network import FunctionalNetwork, functional_network
-from funcnet.network.direction import logged_step, prediction_p, read_direction
+from funcnet.network.direction import prediction_p, read_direction
+from funcnet.network.precision import logged_step
 from funcnet.network.setpoint import node_role, setpoint_check
 
 

@@ -46,13 +46,9 @@ from funcnet.network import (
     functional_network,
     pair_kinds,
 )
-from funcnet.network.direction import (
-    direction_columns,
-    logged_step,
-    normalized_steps,
-    single_spacing,
-)
+from funcnet.network.direction import direction_columns
 from funcnet.network.edge_evidence import check_evidence_settings
+from funcnet.network.precision import logged_step, normalized_steps, single_spacing
 from funcnet.network.schema import DIRECTION_COLUMNS, RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.preprocess import staircase_warning
@@ -402,7 +398,7 @@ def window_networks(
 
 def channel_steps(recording: Recording, signals: Sequence[str]) -> dict[str, float]:
     """The precision each channel is logged with, read on the whole channel
-    (:func:`~funcnet.network.direction.logged_step`): a window that moves thousands of steps
+    (:func:`~funcnet.network.precision.logged_step`): a window that moves thousands of steps
     per sample may hide a decimal grid.
 
     Examples
@@ -422,7 +418,7 @@ def window_steps(values: np.ndarray, signals: Sequence[str],
                  channel: Mapping[str, float]) -> dict[str, float]:
     """Each column's precision in one window: its channel's (:func:`channel_steps`), or, for
     values stored in single precision, the spacing at the window's own magnitudes where that
-    is finer (:func:`~funcnet.network.direction.single_spacing`). A window can only show a
+    is finer (:func:`~funcnet.network.precision.single_spacing`). A window can only show a
     multiple of a decimal grid, or hide it; single precision's spacing shrinks with the
     magnitudes a window holds.
 

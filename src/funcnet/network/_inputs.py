@@ -15,7 +15,7 @@ import pandas as pd
 
 from funcnet.core.normalization import normalize as normalize_signals
 from funcnet.errors import ParameterError, SignalError
-from funcnet.network.direction import checked_steps, logged_step, normalized_steps
+from funcnet.network.precision import checked_steps, logged_step, normalized_steps
 
 __all__ = ["column_names", "float_columns", "node_groups", "PreparedSignals", "prepared_signals"]
 
@@ -140,7 +140,7 @@ class PreparedSignals:
         Samples per signal (``N``).
     steps : tuple of float
         Per node, the precision its column is logged with, in the normalized unit
-        (:func:`~funcnet.network.direction.logged_step`; 0 for a group or without a grid).
+        (:func:`~funcnet.network.precision.logged_step`; 0 for a group or without a grid).
     """
 
     names: tuple[str, ...]

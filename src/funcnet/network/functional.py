@@ -466,7 +466,7 @@ def functional_network(
         ``edge_rule="interval"`` every pair's, whatever this says.
     steps : mapping of str to float, optional
         Column name -> the precision it is logged with, in its unit
-        (:func:`~funcnet.network.direction.logged_step` of the whole channel, when ``data`` is
+        (:func:`~funcnet.network.precision.logged_step` of the whole channel, when ``data`` is
         a window of it); a column not named: read from ``data``. The direction shows no
         improvement of a signal its own past predicts to within its step.
     **overrides

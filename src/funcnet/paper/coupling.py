@@ -223,7 +223,7 @@ def _tested_pairs(trial: TrialAnalysis, key: Any, *, alpha: float, seed: int,
     """The window's pairs table with the coupling test, or None (no network, or it failed)."""
     from funcnet.errors import FuncnetError
     from funcnet.network import functional_network
-    from funcnet.network.direction import logged_step
+    from funcnet.network.precision import logged_step
     from funcnet.pipeline import window_steps
 
     net = trial.networks.get(key)
