@@ -339,7 +339,8 @@ def read_direction(x: Any, y: Any, lags: int, *, gap: int = DIRECTION_GAP,
     Raises
     ------
     ParameterError
-        ``alpha`` outside (0, 1), ``lags < 1``, ``gap < 0`` or signals of unequal length.
+        ``alpha`` outside (0, 1), ``lags < 1``, ``gap < 0``, signals of unequal length, or
+        ``steps`` not two finite steps >= 0.
 
     References
     ----------
@@ -363,8 +364,9 @@ def read_direction(x: Any, y: Any, lags: int, *, gap: int = DIRECTION_GAP,
     if isinstance(lags, bool) or not isinstance(lags, (int, np.integer)) or lags < 1:
         raise ParameterError.of("lags", f"must be an integer >= 1, got {lags!r}")
     if steps is not None:
-        checked_steps(dict(zip(names, steps, strict=True)) if len(steps) == 2 else {"": -1.0},
-                      names)
+        if len(steps) != 2:
+            raise ParameterError.of("steps", f"must hold the steps of X and Y, got {steps!r}")
+        checked_steps(dict(zip(names, steps, strict=True)), names)
     found, within = _p_matrix(np.column_stack([xs, ys]), int(lags), _gap(gap),
                               None if steps is None else np.asarray(steps, dtype=np.float64))
     return _reading((found[1, 0], found[0, 1]), (within[1, 0], within[0, 1]), xs.size,
