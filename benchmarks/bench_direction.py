@@ -15,8 +15,9 @@ paper's rule (``kind``) and for ``direction`` (:func:`funcnet.network.setpoint_c
 
 The cost: each window's network is timed (``window_networks``, which reads the direction too)
 and the direction reading alone on the same windows (``direction_columns``); the rule alone is
-their difference, and the ratio (rule + direction) / rule is printed per recording (target:
-at most 2). The SINUMERIK trace is computed once untimed first (compilation, caches).
+their difference, and the ratio (rule + direction) / rule is printed per recording, of wall and
+of the process's CPU time (target: at most 2). The SINUMERIK trace is computed once untimed
+first (compilation, caches).
 
 ``--variants`` adds, per recording, the set-point shares of the reading's variants: the gap
 before the other signal's lags (0, 1 = the default, 2) and the time-reversal check (a reading
@@ -108,18 +109,19 @@ def windows_of(recording: Any) -> list[Any]:
     return list(phase_windows(detect_phases(recording)))
 
 
-def networks_and_cost(recording: Any) -> tuple[list[Any], float, float]:
-    """The default networks of a recording, their time (s) and the direction reading's."""
+def networks_and_cost(recording: Any) -> tuple[list[Any], np.ndarray, np.ndarray]:
+    """The default networks of a recording, their time and the direction reading's (s, wall
+    and CPU of the process: the rule's kernels run on every core, the reading on one)."""
     from funcnet.core.normalization import normalize
     from funcnet.network.direction import direction_columns
     from funcnet.network.precision import normalized_steps
     from funcnet.pipeline import channel_steps, window_networks, window_steps
 
     windows = windows_of(recording)
-    start = time.perf_counter()
+    start = _clocks()
     nets = window_networks(recording, windows, constant="drop", errors="collect")
-    total = time.perf_counter() - start
-    start = time.perf_counter()
+    total = _clocks() - start
+    start = _clocks()
     spans = {w.label: w for w in windows}
     channel = channel_steps(recording, list(recording.data.columns))  # as window_networks
     for label, net in nets.items():
@@ -131,7 +133,11 @@ def networks_and_cost(recording: Any) -> tuple[list[Any], float, float]:
                                  normalized)
         direction_columns(net.pairs, dict(zip(net.nodes, normalized.T, strict=True)),
                           net.parameters, steps=dict(zip(net.nodes, steps, strict=True)))
-    return list(nets.values()), total, time.perf_counter() - start
+    return list(nets.values()), total, _clocks() - start
+
+
+def _clocks() -> np.ndarray:
+    return np.array([time.perf_counter(), time.process_time()])
 
 
 def warm_up() -> None:
@@ -491,11 +497,11 @@ def main(argv: list[str] | None = None) -> None:
             if args.only and not any(word in group for word in args.only):
                 continue
             nets, total, direction = networks_and_cost(recording)
-            print(f"{group}, {name}: {len(nets)} networks, {total:.1f} s", file=sys.stderr,
+            print(f"{group}, {name}: {len(nets)} networks, {total[0]:.1f} s", file=sys.stderr,
                   flush=True)
             scope = "robot" if name == "robot" else "axes"
-            entry = groups.setdefault(f"{group} ({scope})", {"nets": [], "total": 0.0,
-                                                              "direction": 0.0})
+            entry = groups.setdefault(f"{group} ({scope})", {"nets": [], "total": np.zeros(2),
+                                                              "direction": np.zeros(2)})
             entry["nets"] += nets
             entry["total"] += total
             entry["direction"] += direction
@@ -515,7 +521,7 @@ def main(argv: list[str] | None = None) -> None:
                                        else "real", **row})
     print("\n| recording | networks | set-point pairs | rule: into / out | direction: into / "
           "out | rule: into by pair type | direction: into / out by pair type | cost "
-          "(rule + direction) / rule |")
+          "(rule + direction) / rule, wall (CPU) |")
     print("|---|---|---|---|---|---|---|---|")
     for label, entry in groups.items():
         nets = entry["nets"]
@@ -526,11 +532,12 @@ def main(argv: list[str] | None = None) -> None:
         by_type_rule = ", ".join(f"{k} {v[0]}/{v[1]}" for k, v in rule.items())
         by_type_dir = ", ".join(f"{k} {v[0]}/{v[1]}" for k, v in direction.items())
         rule_only = entry["total"] - entry["direction"]
-        ratio = entry["total"] / rule_only if rule_only > 0 else float("nan")
+        ratio = np.divide(entry["total"], rule_only, out=np.full(2, np.nan),
+                          where=rule_only > 0)
         print(f"| {label} | {len(nets)} | {pairs} | {_cell(rule_in, rule_out, pairs)} | "
               f"{_cell(dir_in, dir_out, pairs)} ({dir_in / max(pairs, 1):.1%} into, "
               f"{dir_out / max(pairs, 1):.1%} out) | {by_type_rule} | {by_type_dir} | "
-              f"{ratio:.3f} ({entry['total']:.1f} s) |")
+              f"{ratio[0]:.3f} ({ratio[1]:.3f}) ({entry['total'][0]:.1f} s) |")
     if args.variants:
         print("\nVariants over the set-point pairs (into / out share of the pairs; time "
               "reversal keeps a reading only where the reversed signals read the opposite "
