@@ -101,16 +101,22 @@ def single_spacing(values: Any) -> float:
 
 def _grid(steps: np.ndarray, q: float, tolerance: float) -> tuple[float, float]:
     """``(q, 0)`` sharpened on the differences when every one is a multiple of ``q`` (within
-    1 % of a step), else ``(q, r)`` with Euclid's next remainder ``r``."""
+    1 % of a step), else ``(q, r)`` with Euclid's next remainder ``r``. The small multiples
+    come first: each pass reads the multiples with the step as it stands and sharpens the step
+    on them before checking (a step found as a remainder carries the values' rounding, which
+    the larger multiples would magnify past the 1 %)."""
     limit = 8.0 * float(steps.min())
     while True:
         use = steps <= limit
         multiple = np.rint(steps[use] / q)
-        off = np.abs(steps[use] - multiple * q)
-        wrong = off > 0.01 * q + 16 * tolerance
+        sharp = float(steps[use].sum() / multiple.sum())
+        off = np.abs(steps[use] - multiple * sharp)
+        wrong = off > 0.01 * sharp + 16 * tolerance
         if wrong.any():
-            return q, float(off[wrong].min())
-        q = float(steps[use].sum() / multiple.sum())
+            rest = np.abs(steps[use] - multiple * q)  # Euclid's remainders of the candidate
+            rest = rest[rest > 0.01 * q + 16 * tolerance]
+            return q, float(rest.min() if rest.size else off[wrong].min())
+        q = sharp
         if use.all():
             return q, 0.0
         limit *= 8.0
