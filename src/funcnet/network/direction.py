@@ -210,12 +210,13 @@ def _p_matrix_here(columns: np.ndarray, lags: int, gap: int,
         gain = (y[:, p + 1 : c] ** 2).sum(axis=1)
         own = gain + full
         diagonal = np.abs(np.diagonal(r[:, :c, :c], axis1=1, axis2=2))
-        for m in np.flatnonzero(diagonal.min(axis=1) <= _SCREEN * diagonal.max(axis=1)):
-            dropped_full = _dropped(r[m, :c, :c], y[m, :c], n)
-            dropped_own = _dropped(r[m, : p + 1, : p + 1], y[m, : p + 1], n)
-            full[m] += dropped_full
-            own[m] += dropped_own
-            gain[m] = max(gain[m] + dropped_own - dropped_full, 0.0)
+        flagged = np.flatnonzero(diagonal.min(axis=1) <= _SCREEN * diagonal.max(axis=1))
+        if flagged.size:
+            dropped_full = _dropped(r[flagged, :c, :c], y[flagged, :c], n)
+            dropped_own = _dropped(r[flagged, : p + 1, : p + 1], y[flagged, : p + 1], n)
+            full[flagged] += dropped_full
+            own[flagged] += dropped_own
+            gain[flagged] = np.maximum(gain[flagged] + dropped_own - dropped_full, 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             found = special.fdtrc(p, dfd, gain / p / (full / dfd))  # F's upper tail (f.sf)
         # predicted by its own past to the rounding of the arithmetic: nothing left to explain
@@ -238,13 +239,14 @@ def _triangular(a: np.ndarray) -> np.ndarray:
     return np.asarray(factor(a, mode="r"))
 
 
-def _dropped(r: np.ndarray, y: np.ndarray, n: int) -> float:
-    """The target's part that least squares leaves unexplained beyond ``r``'s own residual:
-    along the singular directions of ``r`` at most ``eps max(n, columns) s_max``, which
-    :func:`numpy.linalg.lstsq` treats as zero."""
+def _dropped(r: np.ndarray, y: np.ndarray, n: int) -> np.ndarray:
+    """Per matrix of the stack ``r`` (and its target ``y``), the target's part that least
+    squares leaves unexplained beyond ``r``'s own residual: along the singular directions of
+    ``r`` at most ``eps max(n, columns) s_max``, which :func:`numpy.linalg.lstsq` treats as
+    zero."""
     u, s, _ = np.linalg.svd(r)
-    along = (u.T @ y) ** 2
-    return float(along[s <= _EPS * max(n, r.shape[1]) * s[0]].sum())
+    along = np.einsum("mij,mi->mj", u, y) ** 2
+    return np.where(s <= _EPS * max(n, r.shape[-1]) * s[:, :1], along, 0.0).sum(axis=1)
 
 
 _EPS = float(np.finfo(np.float64).eps)
@@ -457,8 +459,9 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
     if not 0.0 < alpha < 1.0:
         raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha!r}")
     out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
-    tested = [bool(flagged) for flagged in pairs["degenerate"]]
-    names = list(dict.fromkeys(name for x, y, flagged in zip(pairs["x"], pairs["y"], tested,
+    tested = [bool(flagged) for flagged in pairs["degenerate"].tolist()]
+    first, second = pairs["x"].tolist(), pairs["y"].tolist()  # plain lists: fast to walk
+    names = list(dict.fromkeys(name for x, y, flagged in zip(first, second, tested,
                                                              strict=True)
                                if not flagged for name in (x, y)))
     arrays = {name: np.asarray(signals[name], dtype=np.float64) for name in names}
@@ -475,7 +478,7 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
         else np.empty((0, 0)), lags, DIRECTION_GAP,
         np.array([known[name] if name in known else logged_step(arrays[name])
                   for name in single]))
-    for x, y, flagged in zip(pairs["x"], pairs["y"], tested, strict=True):
+    for x, y, flagged in zip(first, second, tested, strict=True):
         if flagged:
             reading = ("none", "degenerate pair: too few distinct states")
         elif x not in column or y not in column:
