@@ -123,7 +123,7 @@ def networks_and_cost(recording: Any) -> tuple[list[Any], np.ndarray, np.ndarray
     total = _clocks() - start
     start = _clocks()
     spans = {w.label: w for w in windows}
-    channel = channel_steps(recording, list(recording.data.columns))  # as window_networks
+    channel = channel_steps(recording.data, list(recording.data.columns))  # as window_networks
     for label, net in nets.items():
         span = spans[label]
         part = recording.window(span.start, span.stop).data[list(net.nodes)]
@@ -206,7 +206,7 @@ def _decide(found: tuple[np.ndarray, np.ndarray], i: int, j: int, level: float) 
 
 
 def variant_counts(nets: list[Any], recording: Any,
-                   windows: list[Any]) -> dict[str, list[int]]:
+                   windows: list[Any], channel: dict[str, float]) -> dict[str, list[int]]:
     """Per variant, [into, out, pairs] over the set-point pairs (``--variants``). Time
     reversal (Haufe et al. 2013; Winkler et al. 2016): a reading is kept only where the
     time-reversed signals read the opposite way."""
@@ -214,12 +214,11 @@ def variant_counts(nets: list[Any], recording: Any,
     from funcnet.network.direction import DIRECTION_ALPHA, _p_matrix, direction_lags
     from funcnet.network.precision import normalized_steps
     from funcnet.network.setpoint import node_role
-    from funcnet.pipeline import channel_steps, window_steps
+    from funcnet.pipeline import window_steps
 
     spans = {w.label: w for w in windows}
     out = {name: [0, 0, 0] for name in VARIANTS}
     level = DIRECTION_ALPHA / 2
-    channel = channel_steps(recording, list(recording.data.columns))
     for net in nets:
         span = spans[net.label]
         part = recording.window(span.start, span.stop).data[list(net.nodes)]
@@ -273,7 +272,7 @@ def _axis(name: str) -> str | None:
 
 
 def later_variant_counts(nets: list[Any], recording: Any,
-                         windows: list[Any]) -> dict[str, list[int]]:
+                         windows: list[Any], channel: dict[str, float]) -> dict[str, list[int]]:
     """[into, out, pairs] over the set-point pairs for :data:`LATER_VARIANTS`, each test by
     least squares (gap 1), each reading without the precision rule of the default but for its
     own change:
@@ -291,11 +290,10 @@ def later_variant_counts(nets: list[Any], recording: Any,
     """
     from funcnet.network.direction import DIRECTION_ALPHA, DIRECTION_GAP, direction_lags
     from funcnet.network.setpoint import node_role
-    from funcnet.pipeline import channel_steps, window_steps
+    from funcnet.pipeline import window_steps
 
     spans = {w.label: w for w in windows}
     out = {name: [0, 0, 0] for name in LATER_VARIANTS}
-    channel = channel_steps(recording, list(recording.data.columns))
     for net in nets:
         window = spans[net.label]
         part = recording.window(window.start, window.stop).data[list(net.nodes)]
@@ -381,17 +379,16 @@ def _window_tests(v: np.ndarray, steps: np.ndarray, nodes: list[str], p: int, ga
 
 
 def contradicted_rows(nets: list[Any], recording: Any,
-                      windows: list[Any]) -> list[dict[str, Any]]:
+                      windows: list[Any], channel: dict[str, float]) -> list[dict[str, Any]]:
     """Every ``direction`` arrow into a set-point or between two (``--contradicted``): the
     window, the arrow, its reason's p-values, and the target's own-past root mean square
     prediction error (least squares, the reading's lags) in steps of its logged precision."""
     from funcnet.network.direction import DIRECTION_GAP, direction_lags
     from funcnet.network.setpoint import node_role
-    from funcnet.pipeline import channel_steps, window_steps
+    from funcnet.pipeline import window_steps
 
     spans = {w.label: w for w in windows}
     rows = []
-    channel = channel_steps(recording, list(recording.data.columns))
     for net in nets:
         pairs = net.pairs
         arrows = pairs[pairs["direction"] != "none"]
@@ -482,6 +479,7 @@ def main(argv: list[str] | None = None) -> None:
                         help="only the recordings whose group names one of these words "
                         "(SINUMERIK, KUKA, UR5, simulated)")
     args = parser.parse_args(argv)
+    from funcnet.pipeline import channel_steps
     from funcnet.sim import paper_plan, write_plan
 
     run = Run()
@@ -497,6 +495,8 @@ def main(argv: list[str] | None = None) -> None:
             if args.only and not any(word in group for word in args.only):
                 continue
             nets, total, direction = networks_and_cost(recording)
+            windows = windows_of(recording)  # once: the phases are detected again otherwise
+            channel = channel_steps(recording.data, list(recording.data.columns))
             print(f"{group}, {name}: {len(nets)} networks, {total[0]:.1f} s", file=sys.stderr,
                   flush=True)
             scope = "robot" if name == "robot" else "axes"
@@ -506,17 +506,17 @@ def main(argv: list[str] | None = None) -> None:
             entry["total"] += total
             entry["direction"] += direction
             if args.variants:
-                found = variant_counts(nets, recording, windows_of(recording))
-                found |= later_variant_counts(nets, recording, windows_of(recording))
+                found = variant_counts(nets, recording, windows, channel)
+                found |= later_variant_counts(nets, recording, windows, channel)
                 for variant, numbers in found.items():
                     kept = entry.setdefault("variants", {}).setdefault(variant, [0, 0, 0])
                     for k in range(3):
                         kept[k] += numbers[k]
             if args.contradicted:
-                for row in contradicted_rows(nets, recording, windows_of(recording)):
+                for row in contradicted_rows(nets, recording, windows, channel):
                     contradicted.append({"recording": f"{group}, {name}", **row})
             if args.candidates and scope == "axes":
-                for row in candidate_rows(nets, recording, windows_of(recording)):
+                for row in candidate_rows(nets, recording, windows):
                     candidates.append({"group": "simulated" if group == "simulated plan"
                                        else "real", **row})
     print("\n| recording | networks | set-point pairs | rule: into / out | direction: into / "

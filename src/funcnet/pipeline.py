@@ -370,7 +370,7 @@ def window_networks(
     drop = constant == "drop" and p.normalize is not None
     networks = WindowNetworks()
     failures = []
-    steps = channel_steps(recording, signals)
+    steps = channel_steps(recording.data, signals)
     batched, found = _batched_networks(recording, windows, signals, p, steps)
     for done, window in enumerate(windows, start=1):
         if window.label in batched:
@@ -396,22 +396,17 @@ def window_networks(
     return networks
 
 
-def channel_steps(recording: Recording, signals: Sequence[str]) -> dict[str, float]:
-    """The precision each channel is logged with, read on the whole channel
-    (:func:`~funcnet.network.precision.logged_step`): a window that moves thousands of steps
-    per sample may hide a decimal grid.
+def channel_steps(data: pd.DataFrame, signals: Sequence[str]) -> dict[str, float]:
+    """The precision each channel of ``data`` (a recording's, a trial's: whole channels) is
+    logged with (:func:`~funcnet.network.precision.logged_step`): a window that moves
+    thousands of steps per sample may hide a decimal grid.
 
     Examples
     --------
-    >>> from funcnet.robot import SignalInfo
-    >>> data = pd.DataFrame({"RP": [0.0, 0.001, 0.003]},
-    ...                     index=pd.Index([0.0, 0.1, 0.2], name="time"))
-    >>> run = Recording(data, {}, {"RP": SignalInfo("RP", None, None, 0.1)})
-    >>> channel_steps(run, ["RP"])
+    >>> channel_steps(pd.DataFrame({"RP": [0.0, 0.001, 0.003]}), ["RP"])
     {'RP': 0.001}
     """
-    return {str(name): logged_step(recording.data[name].to_numpy(np.float64))
-            for name in signals}
+    return {str(name): logged_step(data[name].to_numpy(np.float64)) for name in signals}
 
 
 def window_steps(values: np.ndarray, signals: Sequence[str],

@@ -223,8 +223,7 @@ def _tested_pairs(trial: TrialAnalysis, key: Any, *, alpha: float, seed: int,
     """The window's pairs table with the coupling test, or None (no network, or it failed)."""
     from funcnet.errors import FuncnetError
     from funcnet.network import functional_network
-    from funcnet.network.precision import logged_step
-    from funcnet.pipeline import window_steps
+    from funcnet.pipeline import channel_steps, window_steps
 
     net = trial.networks.get(key)
     if net is None or key not in trial.windows:
@@ -232,8 +231,7 @@ def _tested_pairs(trial: TrialAnalysis, key: Any, *, alpha: float, seed: int,
     part = trial.window_data(key)[list(net.nodes)]
     # the direction read as window_networks reads it: each channel's logged precision
     steps = window_steps(part.to_numpy(np.float64), list(net.nodes),
-                         {name: logged_step(trial.data[name].to_numpy(np.float64))
-                          for name in net.nodes})
+                         channel_steps(trial.data, list(net.nodes)))
     try:
         full = functional_network(part, parameters=net.parameters, label=net.label, warn=False,
                                   evidence=True, resamples=0, alpha=alpha, seed=seed,
