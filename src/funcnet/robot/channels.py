@@ -35,6 +35,7 @@ from types import MappingProxyType
 
 from funcnet.errors import ChannelError, ParameterError
 from funcnet.robot.layout import SignalFile, signal_files
+from funcnet.robot.topics import BagLayout, bag_layout
 
 __all__ = [
     "ROLES",
@@ -162,6 +163,9 @@ class ChannelMap:
         a recording made of files, one per signal.
     axis_names : tuple of str, optional
         The axes' names, axis 1 first (``("base", "shoulder", ...)``), for pages.
+    bag : BagLayout, optional
+        Signal name -> the topic and message field it is read from (:mod:`funcnet.robot.topics`):
+        a ROS bag.
 
     Examples
     --------
@@ -179,6 +183,7 @@ class ChannelMap:
     units: Mapping[str, str] = field(default_factory=dict)
     files: Mapping[str, SignalFile] = field(default_factory=dict)
     axis_names: tuple[str, ...] = ()
+    bag: BagLayout | None = None
 
     def __post_init__(self) -> None:
         clean: dict[str, str] = {}
@@ -236,7 +241,7 @@ class ChannelMap:
         kept = {key: role for key, role in self.roles.items() if role not in new_roles}
         return ChannelMap(
             {**kept, **new.roles}, origin=origin or self.origin, units={**self.units, **new.units},
-            files=self.files, axis_names=self.axis_names,
+            files=self.files, axis_names=self.axis_names, bag=self.bag,
         )
 
 
@@ -336,7 +341,8 @@ def _map_file(name: str, mtime_ns: int, size: int) -> ChannelMap:
     files = document.get("signals", {})
     layout = document.get("layout", {})
     axis_names = document.get("axis_names", [])
-    unknown = set(document) - {"channels", "defaults", "units", "signals", "layout", "axis_names"}
+    unknown = set(document) - {"channels", "defaults", "units", "signals", "layout", "axis_names",
+                               "bag"}
     if (
         not isinstance(table, dict)
         or not isinstance(units, dict)
@@ -352,7 +358,8 @@ def _map_file(name: str, mtime_ns: int, size: int) -> ChannelMap:
             path,
             "a channel map is a [channels] table of 'signal name = \"ROLE\"' pairs, an "
             "optional [units] table of 'signal name = \"unit\"' pairs, optional [signals] and "
-            "[layout] tables naming a file per signal, an optional 'axis_names = [...]' and an "
+            "[layout] tables naming a file per signal, an optional [bag] table naming a topic "
+            "per signal, an optional 'axis_names = [...]' and an "
             "optional top-level 'defaults = true|false'"
             + (f"; unknown keys {sorted(unknown)}" if unknown else ""),
         )
@@ -361,6 +368,8 @@ def _map_file(name: str, mtime_ns: int, size: int) -> ChannelMap:
         updated = start.updated(table, origin=str(path), units=units)
     except ParameterError as exc:
         raise ChannelError(path, str(exc)) from exc
+    if "bag" in document:
+        updated = replace(updated, bag=bag_layout(document["bag"], path))
     if not files and not axis_names:
         return updated
     return replace(updated, files=signal_files(files, layout, path), axis_names=tuple(axis_names))

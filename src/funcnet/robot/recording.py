@@ -42,6 +42,7 @@ from funcnet.robot.channels import (
     parse_signal_name,
 )
 from funcnet.robot.files import read_signal_files
+from funcnet.robot.rosbag import is_bag, read_bag
 from funcnet.robot.grid import (
     OFF_GRID,
     GridSignals,
@@ -453,7 +454,9 @@ def read_trace(
         (:mod:`funcnet.robot.tables`). ``.parquet``/``.pq``: a file written by
         :meth:`Recording.to_parquet` (returned as written), or a table like the CSV.
         ``.mat`` (MAT 5 or MAT 7.3), ``.h5``/``.hdf5``: signals as named arrays beside a time
-        array (:mod:`funcnet.robot.arrays`).
+        array (:mod:`funcnet.robot.arrays`). A ROS bag (its folder, or a ``.mcap``, ``.db3``
+        or ``.bag`` file) through a channel map with a ``[bag]`` table
+        (:mod:`funcnet.robot.rosbag`).
     channels : ChannelMap, dict, TOML path or None
         Signal name -> role (see :func:`funcnet.robot.channels.channel_map`); None uses the
         SINUMERIK defaults. Columns are named by role, other signals by their base name.
@@ -521,6 +524,8 @@ def read_trace(
     if off_grid not in OFF_GRID:
         raise ParameterError.of("off_grid", f"must be one of {', '.join(OFF_GRID)}; "
                                 f"got {off_grid!r}")
+    if cmap.bag is not None or is_bag(path):
+        return _assemble(path, read_bag(path, cmap, axis, off_grid=off_grid), cmap, keep_setpoint)
     if cmap.files and path.exists():
         grid = read_signal_files(path, cmap, axis, off_grid=off_grid)
         return _assemble(path, grid, cmap, keep_setpoint)
