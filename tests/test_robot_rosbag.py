@@ -16,7 +16,7 @@ import pytest
 from typer.testing import CliRunner
 
 from funcnet.cli import app
-from funcnet.errors import ChannelError, RecordingWarning, TraceError, TraceFormatError
+from funcnet.errors import ChannelError, TraceError, TraceFormatError
 from funcnet.robot import read_trace
 from funcnet.robot.channels import channel_map
 
@@ -351,13 +351,13 @@ def test_a_map_for_a_bag_is_checked(tmp_path):
         read_trace(tmp_path / "bag", channels=UR5_MAP)
 
 
-def _ur5_bag(path: Path, storage: str, run: Path):
-    """A bag of a UR5 log folder: /joint_states (q_actual, qd_actual, i_actual) and the
-    controller's state (q_target, q_actual), stamped with the folder's own time."""
+def _ur5_bag(path: Path, storage: str, run: Path, seconds: float | None = None):
+    """A bag of a UR5 log folder (its first ``seconds``): /joint_states (q_actual, qd_actual,
+    i_actual) and the controller's state (q_target, q_actual), stamped with the folder's time."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the folder's cut lines and trimmed ends
         folder = read_trace(run, channels=UR5_MAP)
-    data = folder.data
+    data = folder.data if seconds is None else folder.data.loc[: seconds]
     bag = _Bag(path, storage)
 
     def joints(name: str, k: int) -> np.ndarray:
@@ -386,7 +386,7 @@ def test_a_bag_of_a_ur5_run_gives_the_run_folders_values(tmp_path, storage):
 
 def test_inspect_writes_the_robots_page_and_the_shoulders(tmp_path):
     run = ur5_data() / "Movement_No8_Singularity_Free_1"
-    _ur5_bag(tmp_path / "bag", "mcap", run)
+    _ur5_bag(tmp_path / "bag", "mcap", run, seconds=4.0)  # the first move of every joint
     out = tmp_path / "robot"
     result = runner.invoke(app, ["inspect", str(tmp_path / "bag"), "--channels", str(ROS2_MAP),
                                  "--no-evidence", "-q", "-o", str(out)])

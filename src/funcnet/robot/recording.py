@@ -42,7 +42,6 @@ from funcnet.robot.channels import (
     parse_signal_name,
 )
 from funcnet.robot.files import read_signal_files
-from funcnet.robot.rosbag import is_bag, read_bag
 from funcnet.robot.grid import (
     OFF_GRID,
     GridSignals,
@@ -51,6 +50,7 @@ from funcnet.robot.grid import (
     segments_between,
     segments_phrase,
 )
+from funcnet.robot.rosbag import is_bag, read_bag
 from funcnet.robot.sinumerik import read_sinumerik
 from funcnet.robot.tables import read_csv_table, table_signals
 

@@ -13,7 +13,7 @@ carries (``name`` of a ``sensor_msgs/msg/JointState``, ``joint_names`` of a
     [bag.signals]
     joint_velocity = { topic = "/joint_states", field = "velocity" }
     # several fields: the first one the message has (a newer and an older message version)
-    reference = { topic = "/controller_state", field = ["reference.positions", "desired.positions"] }
+    reference = { topic = "/state", field = ["reference.positions", "desired.positions"] }
 
 An entry may give its own ``time``. The name of an entry is the signal's name: ``[channels]``
 gives it a role and ``[units]`` its unit, as for any other signal
@@ -32,7 +32,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Any
+from typing import Any, TypeGuard
 
 from funcnet.errors import ChannelError
 
@@ -83,7 +83,7 @@ class BagLayout:
         object.__setattr__(self, "signals", MappingProxyType(dict(self.signals)))
 
 
-def _texts(value: Any) -> bool:
+def _texts(value: Any) -> TypeGuard[list[str]]:
     return isinstance(value, list) and bool(value) and all(
         isinstance(v, str) and v.strip() for v in value)
 
@@ -147,7 +147,7 @@ def bag_layout(table: Any, origin: object) -> BagLayout:
     >>> bag_layout({"joints": ["a"], "signals": {}}, "m.toml")
     Traceback (most recent call last):
     ...
-    funcnet.errors.ChannelError: m.toml: [bag]: signals must name at least one signal ...
+    funcnet.errors.ChannelError: m.toml: [bag]: signals must name at least one signal: ...
     """
     if not isinstance(table, Mapping):
         raise ChannelError(origin, "[bag] must be a table of time, joints and signals")
