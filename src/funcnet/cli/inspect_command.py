@@ -33,7 +33,7 @@ __all__ = ["inspect"]
 def inspect(
     traces: Annotated[
         list[Path], typer.Argument(metavar="TRACE", help="Trace files: SINUMERIK XML, CSV, "
-                                   "Parquet, MATLAB (.mat) or HDF5 (.h5).")
+                                   "Parquet, MATLAB (.mat), HDF5 (.h5), a ROS bag.")
     ],
     out: Annotated[
         Path, typer.Option("--out", "-o", help="Report folder (one sub-folder per trace when "

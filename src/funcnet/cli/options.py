@@ -146,7 +146,7 @@ def network_options(command: Command) -> Command:
 # options shared by the commands (one definition, one help text)
 
 Trace = Annotated[Path, typer.Argument(
-    help="Trace file: SINUMERIK XML, CSV, Parquet, MATLAB (.mat) or HDF5 (.h5).")]
+    help="Trace file: SINUMERIK XML, CSV, Parquet, MATLAB (.mat), HDF5 (.h5), a ROS bag.")]
 Channels = Annotated[
     Path | None,
     typer.Option("--channels", help="Channel map TOML: a [channels] table of 'signal name = "

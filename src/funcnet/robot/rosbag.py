@@ -167,14 +167,15 @@ def _joint_index(
     return np.array([names.index(j) for j in joints])
 
 
-def _stamp(path: Path, topic: str, message: Any) -> int:
+def _stamp(path: Path, topic: str, message: Any) -> Any:
+    """The message's ``header.stamp``; a message without one is an error saying what to do."""
     ok, stamp = _get(message, "header.stamp")
     if not ok:
         raise ChannelError(
             path, f"{topic} ({getattr(message, '__msgtype__', '?')}) has no header.stamp; read "
             "it at the time the bag logged it (time = \"log\")"
         )
-    return int(stamp.sec) * 1_000_000_000 + int(stamp.nanosec)
+    return stamp
 
 
 def _names(message: Any) -> tuple[str, ...] | None:
@@ -206,8 +207,9 @@ def _read_topic(
             chosen = [_field(path, topic, e, message) for e in entries]
             getters = [attrgetter(dotted) for dotted, _ in chosen]
         logged.append(log_ns)
-        if header:
-            headers.append(_stamp(path, topic, message))
+        if header:  # checked on the first message; the type is the same on every one
+            stamp = message.header.stamp if headers else _stamp(path, topic, message)
+            headers.append(int(stamp.sec) * 1_000_000_000 + int(stamp.nanosec))
         names = None
         if any(per_joint for _, per_joint in chosen):
             names = _names(message)
