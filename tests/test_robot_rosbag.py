@@ -310,6 +310,7 @@ def _corrupt(tmp_path: Path) -> Path:
     ("corrupt", TraceFormatError, r"cut.mcap: not a readable ROS bag: File end magic is "
      "invalid"),
     ("missing", TraceError, "nothing.mcap: no such file"),
+    ("folder", TraceFormatError, "a folder without metadata.yaml: not a ROS 2 bag's folder"),
 ])
 def test_bad_input_raises_an_error_naming_it_and_the_cli_says_it_in_one_line(
         tmp_path, case, error, message):
@@ -323,8 +324,10 @@ def test_bad_input_raises_an_error_naming_it_and_the_cli_says_it_in_one_line(
         text = text.replace('field = "velocity"', 'field = "velocities"')
     elif case == "corrupt":
         path = _corrupt(tmp_path)
-    else:
+    elif case == "missing":
         path = tmp_path / "nothing.mcap"
+    else:
+        (tmp_path / "bag" / "metadata.yaml").unlink()  # the .mcap alone, in a folder
     channels = _map(tmp_path, text)
     with pytest.raises(error, match=message):
         read_trace(path, channels=channels)

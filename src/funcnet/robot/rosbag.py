@@ -454,8 +454,9 @@ def read_bag(
     TraceError
         No such file or folder.
     TraceFormatError
-        Not a readable bag; a topic of fewer than two messages; stamps that do not increase; a
-        field of another length than the message's joint names; no span every topic covers.
+        Not a readable bag (a folder without ``metadata.yaml``); a topic of fewer than two
+        messages; stamps that do not increase; a field of another length than the message's
+        joint names; no span every topic covers.
     ChannelError
         The map has no ``[bag]`` table; a topic, field or joint the map names that the bag
         lacks; a field that is empty or not numbers; ``axis`` not one of the joints; a
@@ -471,6 +472,8 @@ def read_bag(
     del off_grid  # a bag is always put on its grid as the module says
     if not path.exists():
         raise TraceError(path, "no such file")
+    if path.is_dir() and not (path / "metadata.yaml").is_file():
+        raise TraceFormatError(path, "a folder without metadata.yaml: not a ROS 2 bag's folder")
     layout = _layout(path, cmap)
     if axis is not None and not 1 <= axis <= len(layout.joints):
         raise ChannelError(path, f"axis {axis} is not in the recording; [bag] joints lists "
