@@ -26,6 +26,7 @@ UR5_MAP = ROOT / "examples" / "ur5-channels.toml"
 JOINTS = ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_1_joint",
           "wrist_2_joint", "wrist_3_joint"]
 STATE = "/scaled_joint_trajectory_controller/controller_state"
+STATE_TYPE = "control_msgs/msg/JointTrajectoryControllerState"
 START = 1_764_000_000_000_000_000  # ns since the epoch: 2025-11-24T16:00:00 UTC
 runner = CliRunner()
 
@@ -62,7 +63,7 @@ class _Bag:
 
         self.ros1 = storage == "ros1"
         self.store = get_typestore(Stores.ROS1_NOETIC if self.ros1 else Stores.ROS2_HUMBLE)
-        self.state_type = "control_msgs/msg/JointTrajectoryControllerState"
+        self.state_type = STATE_TYPE
         self.store.register(get_types_from_msg(OLD_STATE if old or self.ros1 else NEW_STATE,
                                                self.state_type))
         self.old = old or self.ros1
@@ -163,6 +164,10 @@ def _map(tmp_path: Path, text: str) -> Path:
 
 @pytest.mark.parametrize("storage", ["mcap", "sqlite3"])
 def test_a_bag_folder_and_its_file_read_as_written(tmp_path, storage):
+    from rosbags.typesys import Stores, get_typestore
+
+    # control_msgs is not built in: the controller's state is read from the bag's definition
+    assert STATE_TYPE not in get_typestore(Stores.ROS2_HUMBLE).fielddefs
     bag = tmp_path / "bag"
     values = _write(bag, storage)
     storage_file = next(p for p in bag.iterdir() if p.suffix in (".mcap", ".db3"))
@@ -349,6 +354,10 @@ def test_a_map_for_a_bag_is_checked(tmp_path):
     with pytest.raises(ChannelError, match="entry 'q_target' = 'RP' names no signal of"):
         read_trace(tmp_path / "bag", channels=_map(
             tmp_path, ROS2_MAP.read_text().replace('reference = "RP"', 'q_target = "RP"')))
+    # a map that keeps the SINUMERIK defaults (no "defaults = false") reads the same
+    kept, _ = _read(tmp_path / "bag", channels=_map(
+        tmp_path, ROS2_MAP.read_text().replace("defaults = false", "defaults = true")))
+    assert kept.data.shape == (120, 24)
     with pytest.raises(ChannelError, match=r"a ROS bag is read through a channel map with a "
                        r"\[bag\] table"):
         read_trace(tmp_path / "bag", channels=UR5_MAP)

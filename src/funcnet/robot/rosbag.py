@@ -45,7 +45,7 @@ import numpy as np
 
 from funcnet.errors import ChannelError, RecordingWarning, TraceError, TraceFormatError
 from funcnet.robot.axes import qualified, split_qualified
-from funcnet.robot.channels import ChannelMap, SignalInfo
+from funcnet.robot.channels import DEFAULT_CHANNEL_MAP, ChannelMap, SignalInfo
 from funcnet.robot.grid import GRID_TOLERANCE, GridSignals, time_grid
 from funcnet.robot.topics import BagLayout, TopicField
 
@@ -102,7 +102,8 @@ def _layout(path: Path, cmap: ChannelMap) -> BagLayout:
             raise ChannelError(path, f"{origin}: unit of {key!r} given, but no signal of [bag] "
                                f"is called so; its signals are {names}")
     for key, role in cmap.roles.items():
-        if key not in cmap.bag.signals:
+        # the SINUMERIK defaults of a map without "defaults = false" name no signal of a bag
+        if key not in cmap.bag.signals and DEFAULT_CHANNEL_MAP.roles.get(key) != role:
             raise ChannelError(path, f"{origin}: entry {key!r} = {role!r} names no signal of "
                                f"[bag]; its signals are {names}")
     return cmap.bag
