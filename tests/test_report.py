@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import html
+import html.parser
 import io
 import json
-import html.parser
 import re
 import shutil
 import subprocess
