@@ -52,8 +52,6 @@ def figure_robot_matrix(network: FunctionalNetwork, title: str = "", *,
     from matplotlib import colormaps
     from matplotlib.colors import Normalize
     from matplotlib.figure import Figure
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
 
     nodes = list(network.nodes)
     axes = [split_qualified(name)[0] for name in nodes]
@@ -122,6 +120,15 @@ def figure_robot_matrix(network: FunctionalNetwork, title: str = "", *,
                   + _TEXT_WIDTH * 11 * max(len(m) for m in names) + 6)
     if title:
         ax.set_title(title, fontsize=10)
+    _legend(fig, arrows, top)
+    return fig
+
+def _legend(fig: Any, arrows: str, top: float) -> None:
+    """The matrix's legend below it: the cell colours, the dot, the weight's scale."""
+    from matplotlib import colormaps
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
     directed = ("X → Y: X's past improves Y's prediction (row → column); undecided: empty"
                 if arrows == "direction" else "X → Y: directed (row → column)")
     handles = [Patch(facecolor=colormaps[_DIRECTED](0.8), label=directed),
@@ -136,4 +143,3 @@ def figure_robot_matrix(network: FunctionalNetwork, title: str = "", *,
                ncol=2 if 2 * widest <= 72 * fig.get_figwidth() else 1, fontsize=9,
                frameon=False, title=f"darker: heavier (weight up to {top:.2g}, Eq. 13)",
                title_fontsize=9)
-    return fig
