@@ -20,10 +20,15 @@ def _robot(axes: int, roles: tuple[str, ...] = ("RP", "AP")) -> FunctionalNetwor
     return FunctionalNetwork.from_pairs(pairs)
 
 
-@pytest.mark.parametrize(("axes", "arrows"), [(4, "direction"), (4, "rule"), (2, "direction"),
-                                              (6, "direction")])
-def test_legend_and_labels_stay_inside_and_apart(axes, arrows):
-    fig = figure_robot_matrix(_robot(axes), "whole recording", arrows=arrows)
+@pytest.mark.parametrize(("axes", "roles", "arrows"), [
+    (4, ("RP", "AP"), "direction"),                # the MCS500: 4 axes, 8 nodes
+    (4, ("RP", "AP"), "rule"),
+    (2, ("RP", "AP"), "direction"),
+    (6, ("RP", "AP"), "direction"),
+    (6, ("RP", "AP", "MP", "TORSION"), "rule"),    # a large robot, a long role name
+])
+def test_legend_and_labels_stay_inside_and_apart(axes, roles, arrows):
+    fig = figure_robot_matrix(_robot(axes, roles), "whole recording", arrows=arrows)
     canvas = FigureCanvasAgg(fig)
     canvas.draw()
     renderer = canvas.get_renderer()
