@@ -6,7 +6,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 OUT    ?= out
 
-.PHONY: demo test lint docs bench clean chromium
+.PHONY: demo test lint docs bench bench-all clean chromium
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -51,10 +51,19 @@ lint: $(VENV)/.installed-test
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/mypy
 
+# `make bench`: the quick set (a few minutes); `make bench BENCH="bench_long bench_windows"`: the
+# named ones; `make bench-all`: every benchmarks/bench_*.py (an hour or more). Figures and the
+# command behind each: benchmarks/RESULTS.md.
+BENCH_QUICK := bench_core bench_reader bench_simulate bench_short_pair
+BENCH_ALL   := $(sort $(basename $(notdir $(wildcard benchmarks/bench_*.py))))
+BENCH       ?= $(BENCH_QUICK)
+
 bench: $(VENV)/.installed-test
-	$(BIN)/python -m benchmarks.bench_core
-	$(BIN)/python -m benchmarks.bench_reader
-	$(BIN)/python -m benchmarks.bench_simulate
+	@set -e; for name in $(BENCH); do \
+	  echo "== benchmarks.$$name"; $(BIN)/python -m benchmarks.$$name; done
+
+bench-all: $(VENV)/.installed-test
+	@$(MAKE) --no-print-directory bench BENCH="$(BENCH_ALL)"
 
 clean:
 	rm -rf $(VENV) out .pytest_cache docs/_build

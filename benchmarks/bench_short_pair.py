@@ -4,7 +4,7 @@ Run from the repository root::
 
     python -m benchmarks.bench_short_pair [--against DIR] [--repeats N] [--skip-timeline]
 
-1. One pair at 150 samples, as the README calls it:
+1. One pair at 150 samples, as the method guide (docs/guide/method.md) calls it:
    ``funcnet.cross_measures(x, y, dim=3, delay=10, metric="supremum", rule="pyunicorn")``
    (warnings on, as by default; this process ignores them), and pyunicorn 1.0.0's
    ``InterSystemRecurrenceNetwork`` with its four measures on the same embedded signals, in

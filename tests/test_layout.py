@@ -622,14 +622,13 @@ def test_the_checks_themselves() -> None:
 
 
 # --------------------------------------------------------------------------------------------
-# the README's picture of it
+# the maintainer's picture of it (docs/develop.md)
 
 
-def _readme_layout() -> list[str]:
-    """The module paths of the README's Layout block (relative to src/funcnet)."""
-    readme = (SRC.parent / "README.md").read_text(encoding="utf-8")
-    section = readme.split("\n## Layout", 1)[1].split("\n## ", 1)[0]
-    block = section.split("```", 2)[1]
+def _develop_layout() -> list[str]:
+    """The module paths of the layout block of docs/develop.md (relative to src/funcnet)."""
+    text = (SRC.parent / "docs" / "develop.md").read_text(encoding="utf-8")
+    block = text.split("```\nsrc/funcnet/\n", 1)[1].split("```", 1)[0]
     paths, folders = [], []  # folders: the open folder at each indentation
     for line in block.splitlines():
         entry = line.split()[0] if line.strip() else ""
@@ -646,15 +645,15 @@ def _readme_layout() -> list[str]:
     return paths
 
 
-def test_readme_layout_matches_the_tree() -> None:
-    listed = _readme_layout()
+def test_develop_layout_matches_the_tree() -> None:
+    listed = _develop_layout()
     present = sorted(
         path.relative_to(PACKAGE).as_posix() for path in PACKAGE.rglob("*.py")
         if path.name != "__init__.py" or path.parent == PACKAGE
     )
     assert len(listed) == len(set(listed)), "a module is listed twice"
     assert sorted(listed) == present, (
-        f"missing from README: {sorted(set(present) - set(listed))}; "
+        f"missing from docs/develop.md: {sorted(set(present) - set(listed))}; "
         f"not in the tree: {sorted(set(listed) - set(present))}"
     )
 

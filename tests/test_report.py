@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import html
 import html.parser
+import io
+import json
 import re
 import shutil
 import subprocess
@@ -236,6 +238,24 @@ def test_study_report_networks_timeline_and_chromium(tiny_study, tmp_path):
     times = {0: "0 times", 1: "once"}
     assert (f"arrows point into the set-point {times.get(into, f'{into} times')} and out of "
             f"it {times.get(out, f'{out} times')}") in text.replace("&#x27;", "'")
+
+
+def test_study_report_shows_the_run_record_and_the_provenance_once(tiny_study, tmp_path):
+    page = write_report(tiny_study, tmp_path / "report")
+    document = json.loads((tiny_study / "study.json").read_text())
+    study = page.read_text(encoding="utf-8").split('<section id="study">', 1)[1]
+    tables = pd.read_html(io.StringIO(study), keep_default_na=False)
+    # the study's own run record under "run": its counts as study.json has them
+    run = next(t for t in tables if list(t.columns) == ["run", "value"])
+    record = dict(zip(run["run"], run["value"].astype(str), strict=True))
+    assert record == {k: str(v) for k, v in document["run"].items()
+                      if k not in ("failures", "warnings")}
+    # the provenance once, under "item", with the study's command and the report's
+    items = [t for t in tables if list(t.columns) == ["item", "value"]]
+    assert len(items) == 1
+    names = set(items[0]["item"])
+    assert {"report date (UTC)", "report command", "study command"} <= names
+    assert not names & set(record)
 
 
 @pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")

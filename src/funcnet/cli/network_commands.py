@@ -158,7 +158,7 @@ def network(
     Every pair of signals gets cross-clustering and cross-transitivity in both directions
     (Eq. 6-9), their differences (Eq. 10) and an edge by the mu rule with the weight of Eq. 13.
     A negative difference reads as X -> Y (kind x->y); it may reflect how differently the two
-    signals fill their phase space rather than coupling (README, "Direction"). Without -o the
+    signals fill their phase space rather than coupling (docs/guide/direction.md). Without -o the
     pairs table is printed: the main columns as a table on a terminal, every column as plain
     text when piped. First comes the set-point check: how often the rule's arrows and the
     direction reading point into the position set-point RP (which nothing drives) and out of

@@ -221,67 +221,15 @@ def compare_runs(
     ([(4.5, 4.8, ('CR',))], 1.0)
     """
     refs = list(references)
-    if not refs:
-        raise ParameterError.of("references", "holds no recording: compare with at least one")
-    unknown = [s for s in signals if s not in RESIDUALS]
-    if unknown:
-        raise ParameterError.of("signals", f"{unknown} are not residuals "
-                                f"({', '.join(RESIDUALS)})")
-    bad = [r for r in readings if r not in READINGS]
-    if bad or not readings:
-        raise ParameterError.of("readings", f"must be among {', '.join(READINGS)}, got "
-                                f"{list(readings)}")
-    if "networks" in readings and not networks:
-        raise ParameterError.of("readings", "networks carry the intervals: compute them")
-    period = run.sample_period
-    for ref in refs:
-        if abs(ref.sample_period - period) > 1e-9 * period:
-            raise ParameterError.of("references", f"{ref.source}: sample period "
-                                    f"{ref.sample_period:g} s, RUN's is {period:g} s")
+    _check_arguments(run, refs, signals, readings, networks)
     axes = _axes(run)
-    for ref in refs:
-        if _axes(ref) != axes:
-            raise SignalError(f"{ref.source}: axes {list(_axes(ref))}, RUN ({run.source}) has "
-                              f"{list(axes)}: not runs of one program")
+    period = run.sample_period
     run_rp = _setpoints(run, axes)
-    alignments: list[Alignment] = []
-    coverage = []
-    for ref in refs:
-        alignment = align_on_setpoints(run_rp, _setpoints(ref, axes), period=period,
-                                       tolerance=tolerance)
-        share = float(alignment.covered.mean())
-        if share < MATCHED:
-            finite = alignment.distance[np.isfinite(alignment.distance)]
-            closest = float(np.median(finite)) if finite.size else float("nan")
-            rp = _column(run, axes[0], "RP")
-            unit = run.signals[rp].unit if rp is not None else None
-            raise SignalError(
-                f"{ref.source}: its set-points do not match those of {run.source}: "
-                f"{share:.0%} of the run matched (at least {MATCHED:.0%} needed), typical "
-                f"set-point difference {closest:.3g} {unit or '(unit unknown)'} (tolerance "
-                f"{tolerance:g}): not a run of the same program")
-        alignments.append(alignment)
-        coverage.append(share)
+    alignments, coverage = _alignments(run, refs, axes, run_rp, tolerance)
     covered = np.any([a.covered for a in alignments], axis=0)
     times = run.data.index.to_numpy(dtype=np.float64)
-    bands: dict[tuple[str, int], Band] = {}
-    units: dict[str, str | None] = {}
     notes: list[str] = []
-    for name in signals:
-        for axis in axes:
-            own = _residual(run, axis, name)
-            theirs = [_residual(ref, axis, name) for ref in refs]
-            if own is None or any(t is None for t in theirs):
-                notes.append(f"{RESIDUAL_NAMES[name]} of axis {axis}: a signal is missing in "
-                             "RUN or a reference; not compared")
-                continue
-            units[name] = own[1]
-            bands[(name, axis)] = reference_band(
-                own[0], [t[0] for t in theirs if t is not None], alignments, period=period,
-                smooth=smooth)
-    if not bands:
-        raise SignalError(f"{run.source}: no residual ({', '.join(signals)}) in RUN and every "
-                          "reference: nothing to compare")
+    bands, units = _bands(run, refs, axes, signals, alignments, smooth, notes)
     within = len(refs) == 1
     if within:
         notes.append("one reference: the band's spread is that of the reference's cycles, "
@@ -321,6 +269,83 @@ def compare_runs(
         threshold=threshold, within_run=within,
         phases=tuple(program_phases(run_rp, period, t0=float(times[0]) if times.size else 0.0)),
         notes=tuple(notes))
+
+
+def _check_arguments(run: Recording, refs: Sequence[Recording], signals: Sequence[str],
+                     readings: Sequence[str], networks: bool) -> None:
+    """Refuse what :func:`compare_runs` cannot compare, in one line naming the argument."""
+    if not refs:
+        raise ParameterError.of("references", "holds no recording: compare with at least one")
+    unknown = [s for s in signals if s not in RESIDUALS]
+    if unknown:
+        raise ParameterError.of("signals", f"{unknown} are not residuals "
+                                f"({', '.join(RESIDUALS)})")
+    bad = [r for r in readings if r not in READINGS]
+    if bad or not readings:
+        raise ParameterError.of("readings", f"must be among {', '.join(READINGS)}, got "
+                                f"{list(readings)}")
+    if "networks" in readings and not networks:
+        raise ParameterError.of("readings", "networks carry the intervals: compute them")
+    period = run.sample_period
+    for ref in refs:
+        if abs(ref.sample_period - period) > 1e-9 * period:
+            raise ParameterError.of("references", f"{ref.source}: sample period "
+                                    f"{ref.sample_period:g} s, RUN's is {period:g} s")
+    axes = _axes(run)
+    for ref in refs:
+        if _axes(ref) != axes:
+            raise SignalError(f"{ref.source}: axes {list(_axes(ref))}, RUN ({run.source}) has "
+                              f"{list(axes)}: not runs of one program")
+
+
+def _alignments(run: Recording, refs: Sequence[Recording], axes: tuple[int, ...],
+                run_rp: np.ndarray, tolerance: float) -> tuple[list[Alignment], list[float]]:
+    """Each reference aligned on RUN's set-points, and the share of RUN it covers; a reference
+    of another program refused."""
+    alignments: list[Alignment] = []
+    coverage = []
+    for ref in refs:
+        alignment = align_on_setpoints(run_rp, _setpoints(ref, axes), period=run.sample_period,
+                                       tolerance=tolerance)
+        share = float(alignment.covered.mean())
+        if share < MATCHED:
+            finite = alignment.distance[np.isfinite(alignment.distance)]
+            closest = float(np.median(finite)) if finite.size else float("nan")
+            rp = _column(run, axes[0], "RP")
+            unit = run.signals[rp].unit if rp is not None else None
+            raise SignalError(
+                f"{ref.source}: its set-points do not match those of {run.source}: "
+                f"{share:.0%} of the run matched (at least {MATCHED:.0%} needed), typical "
+                f"set-point difference {closest:.3g} {unit or '(unit unknown)'} (tolerance "
+                f"{tolerance:g}): not a run of the same program")
+        alignments.append(alignment)
+        coverage.append(share)
+    return alignments, coverage
+
+
+def _bands(run: Recording, refs: Sequence[Recording], axes: tuple[int, ...],
+           signals: Sequence[str], alignments: Sequence[Alignment], smooth: float,
+           notes: list[str]) -> tuple[dict[tuple[str, int], Band], dict[str, str | None]]:
+    """The references' band of each residual and axis, and the residuals' units; a residual
+    missing somewhere is said in ``notes``."""
+    bands: dict[tuple[str, int], Band] = {}
+    units: dict[str, str | None] = {}
+    for name in signals:
+        for axis in axes:
+            own = _residual(run, axis, name)
+            theirs = [_residual(ref, axis, name) for ref in refs]
+            if own is None or any(t is None for t in theirs):
+                notes.append(f"{RESIDUAL_NAMES[name]} of axis {axis}: a signal is missing in "
+                             "RUN or a reference; not compared")
+                continue
+            units[name] = own[1]
+            bands[(name, axis)] = reference_band(
+                own[0], [t[0] for t in theirs if t is not None], alignments,
+                period=run.sample_period, smooth=smooth)
+    if not bands:
+        raise SignalError(f"{run.source}: no residual ({', '.join(signals)}) in RUN and every "
+                          "reference: nothing to compare")
+    return bands, units
 
 
 def _union(intervals: Sequence[Interval], merge: float) -> tuple[Interval, ...]:

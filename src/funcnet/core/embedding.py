@@ -192,7 +192,7 @@ def signal_states(
 
     References
     ----------
-    Eq. 1 (section 2.1); README "pyunicorn compatibility" for the cast.
+    Eq. 1 (section 2.1); docs/guide/method.md, "pyunicorn compatibility", for the cast.
 
     Examples
     --------

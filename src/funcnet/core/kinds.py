@@ -35,7 +35,7 @@ def edge_kind(diff: float, mu: float) -> str:
 
     References
     ----------
-    Eq. 10 and section 2.4 of the paper; the README's "Direction" section for the sign.
+    Eq. 10 and section 2.4 of the paper; docs/guide/direction.md for the sign.
 
     Examples
     --------

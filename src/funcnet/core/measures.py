@@ -11,7 +11,7 @@ For an ISRN with blocks ``A_X``, ``A_Y``, ``CR_XY`` (Eq. 4) and a node ``v`` of 
 * ``C^YX``, ``T^YX``: the same with the roles of X and Y swapped (``CR_XY^T`` and ``A_X``);
 * ``C_diff = C^XY - C^YX``, ``T_diff = T^XY - T^YX`` (Eq. 10).
 
-Direction convention (README "Direction", as in the code the paper used): a **negative**
+Direction convention (docs/guide/direction.md, as in the code the paper used): a **negative**
 difference reads as X -> Y, a positive one as Y -> X. It holds for systems of similar character
 only: the asymmetry also follows the relative complexity of the two signals (a smooth response of
 a rough driver can look like the driver), and near-zero differences mean "bidirectional or
@@ -538,7 +538,7 @@ def cross_measures(
 
     References
     ----------
-    Eq. 1-10 (section 2); README "The method, exactly", steps 4-7.
+    Eq. 1-10 (section 2); docs/guide/method.md, steps 4-7.
 
     Examples
     --------

@@ -19,7 +19,7 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from importlib import resources
 from typing import Any
@@ -39,12 +39,13 @@ from funcnet.diagnosis.reversal_error import (
 from funcnet.diagnosis.reversals import MAX_DWELL, DirectionChange, motor_side_recording
 from funcnet.diagnosis.segments import (
     LeftOut,
+    SegmentedChanges,
     segment_changes,
     segment_first_start,
     segment_part,
     segments_note,
 )
-from funcnet.diagnosis.two_encoder import lost_motion
+from funcnet.diagnosis.two_encoder import ArmStart, lost_motion
 from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import encoder_step, velocity
@@ -325,6 +326,78 @@ def _spread(score: float, reading: Mapping[str, Any], calibration: Mapping[str, 
     return float(np.mean(bands)) if bands else math.nan
 
 
+def _read_change(
+    rec: Recording, change: DirectionChange, has_ap: bool, indicator: str,
+    table: Mapping[str, Any], arm_start: ArmStart | None, gear: GearFit | None, quantum: float,
+) -> tuple[ReversalResult, tuple[float, float, float, tuple[str, ...]] | None]:
+    """One direction change read: its result, and its lost motion with the bounds and their
+    terms when it has them."""
+    part = segment_part(rec, change)  # the recording itself without gaps
+    speed = _move_speed(part, change)
+    traversed = torque_traversed(rec, change)
+    low = high = None
+    terms: tuple[str, ...] = ()
+    if change.kind == "reversal":
+        values = reversal_indicators(part, change, networks=False, arm_start=arm_start)
+        if not has_ap:
+            row = pd.DataFrame([{**values, "peak_speed": speed}])
+            contact = with_contact_score(row, table["reference"])["motor_contact"]
+            values["motor_contact"] = float(contact.iloc[0])
+        score = _none(values[indicator])
+        lost = _none(values["lost_motion"]) if has_ap else None
+        shown = {k: _none(v) for k, v in values.items() if k != "signature"}
+    elif change.kind == "continuous":
+        # the motor-side score is calibrated on reversals where the arm rests at the turn
+        score = None
+        shown = {}
+        lost = None
+        if has_ap:
+            error = reversal_error(rec, change, gear, traversed=traversed)
+            lost, low, high = (_none(error.lost_motion), _none(error.low),
+                               _none(error.high))  # fmt: skip
+            terms = error.terms
+    else:
+        score = None
+        lost = _none(lost_motion(part, change)) if has_ap else None
+        shown = {}
+    if lost is not None and change.kind != "continuous":
+        # the sweep's validated accuracy: 5 % or two arm-encoder steps (section 3.1)
+        width = max(0.05 * abs(lost), 2 * quantum)
+        low, high = lost - width, lost + width
+        terms = ("sweep accuracy",)
+    estimate = ((lost, low, high, terms)
+                if lost is not None and low is not None and high is not None else None)
+    shown_lost = resolved_lost_motion(lost, low, high)
+    return ReversalResult(change, speed, score, shown_lost[0], shown, traversed,
+                          shown_lost[1], shown_lost[2], shown_lost[3], terms), estimate
+
+
+def _message(changes: Sequence[DirectionChange], results: Sequence[ReversalResult],
+             segmented: SegmentedChanges, max_dwell: float, measured: bool,
+             reading: Mapping[str, Any] | None, reason: str | None) -> str:
+    """The diagnosis in one line: the reversals found and the reading, or why there is none."""
+    n_rev = sum(r.change.kind == "reversal" for r in results)
+    n_cont = sum(r.change.kind == "continuous" for r in results)
+    if not changes:
+        message = ("no direction change: the axis moves one way only; no backlash indicator"
+                   if not segmented.left_out else "no direction change read; no backlash indicator")
+    elif n_rev == 0:
+        rest = len(changes) - n_cont
+        found = (f"{n_cont} in continuous motion (the arm never rests)"
+                 + (f", {rest} after a standstill" if rest else "") if n_cont
+                 else f"{len(changes)} direction change(s) after a standstill")  # fmt: skip
+        message = (
+            f"no reversal (a direction change within {max_dwell:g} s): {found}; the motor-side "
+            "score is calibrated on reversals only"
+            + ("; two-encoder lost motion measured there" if measured else "")
+        )
+    else:
+        message = f"{n_rev} reversal(s); " + (
+            reading["text"] if reading else f"no reading ({reason})" if reason else "no score"
+        )
+    return message
+
+
 def diagnose_recording(
     recording: Recording,
     path: str | None = None,
@@ -374,44 +447,11 @@ def diagnose_recording(
     results = []
     estimates: list[tuple[float, float, float, tuple[str, ...]]] = []  # lost, low, high, terms
     for change in changes:
-        part = segment_part(rec, change)  # the recording itself without gaps
-        speed = _move_speed(part, change)
-        traversed = torque_traversed(rec, change)
-        low = high = None
-        terms: tuple[str, ...] = ()
-        if change.kind == "reversal":
-            values = reversal_indicators(part, change, networks=False, arm_start=arm_start)
-            if not has_ap:
-                row = pd.DataFrame([{**values, "peak_speed": speed}])
-                contact = with_contact_score(row, table["reference"])["motor_contact"]
-                values["motor_contact"] = float(contact.iloc[0])
-            score = _none(values[indicator])
-            lost = _none(values["lost_motion"]) if has_ap else None
-            shown = {k: _none(v) for k, v in values.items() if k != "signature"}
-        elif change.kind == "continuous":
-            # the motor-side score is calibrated on reversals where the arm rests at the turn
-            score = None
-            shown = {}
-            lost = None
-            if has_ap:
-                error = reversal_error(rec, change, gear, traversed=traversed)
-                lost, low, high = (_none(error.lost_motion), _none(error.low),
-                                   _none(error.high))  # fmt: skip
-                terms = error.terms
-        else:
-            score = None
-            lost = _none(lost_motion(part, change)) if has_ap else None
-            shown = {}
-        if lost is not None and change.kind != "continuous":
-            # the sweep's validated accuracy: 5 % or two arm-encoder steps (section 3.1)
-            width = max(0.05 * abs(lost), 2 * quantum)
-            low, high = lost - width, lost + width
-            terms = ("sweep accuracy",)
-        if lost is not None and low is not None and high is not None:
-            estimates.append((lost, low, high, terms))
-        shown_lost = resolved_lost_motion(lost, low, high)
-        results.append(ReversalResult(change, speed, score, shown_lost[0], shown, traversed,
-                                      shown_lost[1], shown_lost[2], shown_lost[3], terms))
+        result, estimate = _read_change(rec, change, has_ap, indicator, table, arm_start, gear,
+                                        quantum)
+        results.append(result)
+        if estimate is not None:
+            estimates.append(estimate)
     scores = [r.backlash_score for r in results if r.backlash_score is not None]
     losses = [lost for lost, *_ in estimates]
     axis_lost = resolved_lost_motion(
@@ -432,25 +472,7 @@ def diagnose_recording(
         reason = "no reversal with a rest at the turn: the calibration holds such reversals only"
     else:
         reason = "no direction change"
-    n_rev = sum(r.change.kind == "reversal" for r in results)
-    n_cont = sum(r.change.kind == "continuous" for r in results)
-    if not changes:
-        message = ("no direction change: the axis moves one way only; no backlash indicator"
-                   if not segmented.left_out else "no direction change read; no backlash indicator")
-    elif n_rev == 0:
-        rest = len(changes) - n_cont
-        found = (f"{n_cont} in continuous motion (the arm never rests)"
-                 + (f", {rest} after a standstill" if rest else "") if n_cont
-                 else f"{len(changes)} direction change(s) after a standstill")  # fmt: skip
-        message = (
-            f"no reversal (a direction change within {max_dwell:g} s): {found}; the motor-side "
-            "score is calibrated on reversals only"
-            + ("; two-encoder lost motion measured there" if losses else "")
-        )
-    else:
-        message = f"{n_rev} reversal(s); " + (
-            reading["text"] if reading else f"no reading ({reason})" if reason else "no score"
-        )
+    message = _message(changes, results, segmented, max_dwell, bool(losses), reading, reason)
     message = "; ".join(m for m in (message, segments_note(segmented)) if m)
     lost_reason = (axis_lost[3] if losses else "no AP" if not has_ap else "no direction change"
                    if not changes else "the arm does not restart")  # fmt: skip

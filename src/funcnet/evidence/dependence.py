@@ -487,6 +487,8 @@ def default_surrogates(n_pairs: int, alpha: float = 0.05) -> int:
 def benjamini_hochberg(p_values: Any) -> np.ndarray:
     """Benjamini-Hochberg adjusted p-values (step-up; reject where adjusted <= alpha).
 
+    :func:`scipy.stats.false_discovery_control` on the p-values that are not NaN.
+
     Parameters
     ----------
     p_values : array_like of float
@@ -506,14 +508,11 @@ def benjamini_hochberg(p_values: Any) -> np.ndarray:
     >>> benjamini_hochberg([0.01, 0.04, 0.03, 0.5]).round(3).tolist()
     [0.04, 0.053, 0.053, 0.5]
     """
+    from scipy.stats import false_discovery_control
+
     p = np.asarray(p_values, dtype=np.float64)
     out = np.full(p.shape, np.nan)
-    valid = np.flatnonzero(~np.isnan(p))
-    m = valid.size
-    if m == 0:
-        return out
-    order = valid[np.argsort(p[valid], kind="stable")]
-    ranked = p[order] * m / np.arange(1, m + 1)
-    adjusted = np.minimum.accumulate(ranked[::-1])[::-1]
-    out[order] = np.minimum(adjusted, 1.0)
+    valid = ~np.isnan(p)
+    if valid.any():
+        out[valid] = false_discovery_control(p[valid], method="bh")
     return out

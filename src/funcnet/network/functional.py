@@ -519,8 +519,8 @@ def functional_network(
     2      z      y  0.433247       directed       False
 
     ``z -> y`` has no coupling behind it: the rougher signal looks like the driver (the
-    README's "Direction" section). At rr = cr = 0.05, ``eps_xy`` is rarely below ``eps_x`` and
-    ``eps_y`` for signals this different; the pairs table flags it:
+    direction guide, docs/guide/direction.md). At rr = cr = 0.05, ``eps_xy`` is rarely below
+    ``eps_x`` and ``eps_y`` for signals this different; the pairs table flags it:
 
     >>> bool(network.pairs["eps_ordered"].all())
     False

@@ -21,8 +21,7 @@ the measure.
 **Direction convention.** A *negative* difference reads as X -> Y. Section 2.4 of the paper
 states both signs; the convention here is that of the code the paper ran, checked by
 ``tests/test_direction.py`` on systems whose coupling direction is known. The asymmetry follows
-the relative roughness of the two signals as much as the coupling (the README's "Direction"
-section).
+the relative roughness of the two signals as much as the coupling (docs/guide/direction.md).
 
 **Degenerate pairs** (too few distinct states; ``degenerate`` in the pairs table) get a kind like
 any pair, but :func:`edges_from_pairs` leaves them out unless asked to keep them, flagged.

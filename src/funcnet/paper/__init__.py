@@ -1,4 +1,4 @@
-"""The paper's analyses: its claims as data, their evaluation on networks, its figures.
+"""The paper's analyses [1]_: its claims as data, their evaluation on networks, its figures.
 
 ===============  ============================================================================
 module           what it holds

@@ -34,6 +34,9 @@ from funcnet.paper.evaluate import (
 from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.windows import PAPER_NODES
 
+#: Cuts a trial's windows from its recording and phases, keyed as the findings look them up.
+Keyed = Callable[[Any, pd.DataFrame], dict[Any, Any]]
+
 __all__ = [
     "PAPER_PARAMETERS",
     "PAPER_SIGNALS",
@@ -307,6 +310,85 @@ def _analyse(name: str, path: Any, recording: Any,
     return TrialAnalysis(name, str(path), data, phases, windows, networks, errors, dropped)
 
 
+def _read_manifest(plan: Path) -> tuple[pd.DataFrame, dict[str, str]]:
+    """A plan's trials, and the manifest's hash as the first of the inputs."""
+    from funcnet._io import file_sha256
+
+    manifest = plan / "manifest.csv"
+    if not manifest.is_file():
+        raise TraceError(manifest, "no manifest.csv: not a plan written by funcnet simulate")
+    return pd.read_csv(manifest), {"manifest.csv": file_sha256(manifest)}
+
+
+def _keyed_windows(fixed_lengths: Mapping[str, float] | None, max_phase_length: float,
+                   reversal_width: float | None) -> tuple[Keyed, Keyed, Keyed]:
+    """How a trial's windows are cut and keyed: fixed lengths by label, the baseline's phases
+    by label (each cut to ``max_phase_length``), reversal shifts by milliseconds."""
+    from funcnet.robot import fixed_windows, phase_windows, reversal_windows
+
+    def fixed(recording: Any, phases: pd.DataFrame) -> dict[Any, Any]:
+        return {w.label: w for w in fixed_windows(phases, fixed_lengths)}
+
+    def by_phase(recording: Any, phases: pd.DataFrame) -> dict[Any, Any]:
+        windows = {}
+        for w in phase_windows(phases, include=BASELINE_PHASES):
+            stop = min(w.stop, w.start + max_phase_length)
+            windows[w.label] = dataclasses.replace(w, stop=stop)
+        return windows
+
+    def reversal(recording: Any, phases: pd.DataFrame) -> dict[Any, Any]:
+        return {int(round(w.offset * 1000)): w
+                for w in reversal_windows(phases, width=reversal_width)}
+
+    return fixed, by_phase, reversal
+
+
+def _findings(baseline: TrialAnalysis | None, velocity: Mapping[str, TrialAnalysis],
+              reversal_analyses: Mapping[str, TrialAnalysis],
+              main_analyses: Mapping[str, TrialAnalysis], main: pd.DataFrame) -> list[Finding]:
+    """Every finding of section 4 measured on the analyses, then the design's effects."""
+    findings = [
+        *baseline_findings(baseline.networks if baseline is not None else {},
+                           left_out=baseline.dropped if baseline is not None else {}),
+        *velocity_findings({(label, phase): analysis.networks.get(phase)
+                            for label, analysis in velocity.items()
+                            for phase in VELOCITY_PHASES},
+                           left_out={(label, phase): analysis.dropped.get(phase, ())
+                                     for label, analysis in velocity.items()
+                                     for phase in VELOCITY_PHASES}),
+        *reversal_findings({name: a.networks for name, a in reversal_analyses.items()},
+                           left_out={name: a.dropped for name, a in reversal_analyses.items()}),
+    ]
+    design_networks = {(name, phase): net for name, a in main_analyses.items()
+                       for phase, net in a.networks.items()}
+    design_trials = main[["name", "speed", "tcp", "step"]]
+    findings.append(design_effect(design_networks, design_trials, "tcp",
+                                  label=lambda v: f"{v:g} m"))
+    findings.append(design_effect(design_networks, design_trials, "step",
+                                  label=lambda v: f"{v:g}°"))
+    return findings
+
+
+def _settings(signals: Sequence[str], max_phase_length: float,
+              fixed_lengths: Mapping[str, float] | None, reversal_width: float | None,
+              timeline_width: float, timeline_step: float) -> dict[str, str]:
+    """The analyses' settings, said in words for the report."""
+    return {
+        "signals": ", ".join(signals),
+        "dim, delay (choice)": ("the paper states neither for the robot data; its section 2.1 "
+                                "illustration's m = 3, τ = 10 samples (20 ms at 500 Hz) are "
+                                "used"),
+        "phases": "detected from RP (funcnet.robot.detect_phases), main motion only",
+        "baseline phase windows": f"detected phases, each cut to at most {max_phase_length:g} s",
+        "fixed windows [s]": ", ".join(f"{k} {v:g}" for k, v in (
+            fixed_lengths or {"spin-up": 0.28, "cruise": 0.6, "braking": 0.6}).items()),
+        "reversal windows": ("shifts -40, -20, 0, +20, +40 ms; width "
+                             + ("the detected reversal phase's span" if reversal_width is None
+                                else f"{reversal_width:g} s")),
+        "timeline windows": f"sliding, {timeline_width:g} s every {timeline_step:g} s",
+    }
+
+
 class AnalysisOptions(ParameterOverrides, total=False):
     """The keywords of :func:`run_paper_analyses` besides the plan and the progress callback,
     for functions that pass them on (:func:`funcnet.paper.demo.build_demo_report`)."""
@@ -413,22 +495,12 @@ def run_paper_analyses(
     Paper sections 3.3-3.4 and 4 (Fig. 9, 10, 11); section 3.1 (Table 1).
     """
     from funcnet._io import file_sha256
-    from funcnet.robot import (
-        fixed_windows,
-        phase_windows,
-        read_recording,
-        reversal_windows,
-        sliding_windows,
-    )
+    from funcnet.robot import read_recording, sliding_windows
 
     started = time.perf_counter()
     network = resolve(PAPER_PARAMETERS if parameters is None else parameters, overrides)
     plan = Path(plan_dir)
-    manifest = plan / "manifest.csv"
-    if not manifest.is_file():
-        raise TraceError(manifest, "no manifest.csv: not a plan written by funcnet simulate")
-    trials = pd.read_csv(manifest)
-    inputs = {"manifest.csv": file_sha256(manifest)}
+    trials, inputs = _read_manifest(plan)
     warned: dict[str, int] = {}
     loaded: dict[str, tuple[Path, Any]] = {}
 
@@ -440,23 +512,10 @@ def run_paper_analyses(
             loaded[row["name"]] = (path, read_recording(path, signals=signals))
         return loaded[row["name"]]
 
-    def analyse(row: Any, keyed: Callable[[Any, pd.DataFrame], dict[Any, Any]]
-                ) -> TrialAnalysis:
+    def analyse(row: Any, keyed: Keyed) -> TrialAnalysis:
         return _analyse(row["name"], *load(row), keyed, signals, network, warned)
 
-    def fixed(recording: Any, phases: pd.DataFrame) -> dict[Any, Any]:
-        return {w.label: w for w in fixed_windows(phases, fixed_lengths)}
-
-    def by_phase(recording: Any, phases: pd.DataFrame) -> dict[Any, Any]:
-        windows = {}
-        for w in phase_windows(phases, include=BASELINE_PHASES):
-            stop = min(w.stop, w.start + max_phase_length)
-            windows[w.label] = dataclasses.replace(w, stop=stop)
-        return windows
-
-    def reversal(recording: Any, phases: pd.DataFrame) -> dict[Any, Any]:
-        return {int(round(w.offset * 1000)): w
-                for w in reversal_windows(phases, width=reversal_width)}
+    fixed, by_phase, reversal = _keyed_windows(fixed_lengths, max_phase_length, reversal_width)
 
     main = _select(trials, group="main")
     baseline_rows = _select(main, speed=35, step=3, tcp=1.6)
@@ -505,41 +564,11 @@ def run_paper_analyses(
         reversal_analyses[row["name"]] = analyse(row, reversal)
     velocity = {k: velocity[k] for k in VELOCITIES if k in velocity}
 
-    findings = [
-        *baseline_findings(baseline.networks if baseline is not None else {},
-                           left_out=baseline.dropped if baseline is not None else {}),
-        *velocity_findings({(label, phase): analysis.networks.get(phase)
-                            for label, analysis in velocity.items()
-                            for phase in VELOCITY_PHASES},
-                           left_out={(label, phase): analysis.dropped.get(phase, ())
-                                     for label, analysis in velocity.items()
-                                     for phase in VELOCITY_PHASES}),
-        *reversal_findings({name: a.networks for name, a in reversal_analyses.items()},
-                           left_out={name: a.dropped for name, a in reversal_analyses.items()}),
-    ]
-    design_networks = {(name, phase): net for name, a in main_analyses.items()
-                       for phase, net in a.networks.items()}
-    design_trials = main[["name", "speed", "tcp", "step"]]
-    findings.append(design_effect(design_networks, design_trials, "tcp",
-                                  label=lambda v: f"{v:g} m"))
-    findings.append(design_effect(design_networks, design_trials, "step",
-                                  label=lambda v: f"{v:g}°"))
+    findings = _findings(baseline, velocity, reversal_analyses, main_analyses, main)
     if progress is not None:
         progress(total, total, "analyses done")
-    settings = {
-        "signals": ", ".join(signals),
-        "dim, delay (choice)": ("the paper states neither for the robot data; its section 2.1 "
-                                "illustration's m = 3, τ = 10 samples (20 ms at 500 Hz) are "
-                                "used"),
-        "phases": "detected from RP (funcnet.robot.detect_phases), main motion only",
-        "baseline phase windows": f"detected phases, each cut to at most {max_phase_length:g} s",
-        "fixed windows [s]": ", ".join(f"{k} {v:g}" for k, v in (
-            fixed_lengths or {"spin-up": 0.28, "cruise": 0.6, "braking": 0.6}).items()),
-        "reversal windows": ("shifts -40, -20, 0, +20, +40 ms; width "
-                             + ("the detected reversal phase's span" if reversal_width is None
-                                else f"{reversal_width:g} s")),
-        "timeline windows": f"sliding, {timeline_width:g} s every {timeline_step:g} s",
-    }
+    settings = _settings(signals, max_phase_length, fixed_lengths, reversal_width,
+                         timeline_width, timeline_step)
     return PaperAnalyses(str(plan), network, settings, trials, baseline, velocity,
                          reversal_analyses, main_analyses, timeline, tuple(findings), inputs,
                          warned, time.perf_counter() - started)

@@ -213,7 +213,7 @@ def _demo_figures(analyses: PaperAnalyses, out_dir: Path, progress: Progress) ->
         + (f"The arrow points y → x although x drives y (y = sin 1.5t + 0.3x): C_diff = "
            f"{float(pair.pairs['c_diff'].iloc[0]):+.3f} puts it there by the rule of section "
            "2.4. The more complex signal looks like the driver — an arrow is an asymmetry of "
-           "recurrence structure, not a cause (README, 'Direction')."
+           "recurrence structure, not a cause (docs/guide/direction.md)."
            if str(pair.pairs['kind'].iloc[0]) == "y->x" else ""), {"Fig. 5": pair})
     base = analyses.baseline
     if base is not None and base.networks:
@@ -256,6 +256,31 @@ def _demo_figures(analyses: PaperAnalyses, out_dir: Path, progress: Progress) ->
     step(progress, steps, steps, "figures done")
     return parts
 
+
+#: How each finding is decided, and what the coupling evidence adds, as the page says it.
+_RULE_HTML = (
+    "<p class=\"verdict\"><b>How each finding is decided</b> (fixed before any result, "
+    "the same for every finding): a claimed relation is <i>not evaluable</i> when its "
+    "network is missing or lacks one of its signals (a signal constant in a window is left "
+    "out of that window's network), or when the pair of its signals has a degenerate "
+    "recurrence structure (a signal barely moves in the window, so the arrow is "
+    "meaningless). <i>yes</i> — every claimed relation was evaluated and holds; "
+    "<i>partly</i> — not <i>yes</i>, but at least one network (or trial) shows all its "
+    "claimed relations, or at least half of the evaluated relations hold (this includes "
+    "findings whose evaluated relations all hold while others could not be evaluated: the "
+    "evidence then says how many of the claims could not be evaluated); <i>no</i> — "
+    "relations were evaluated and neither holds; <i>not evaluable</i> — no claimed relation "
+    "could be evaluated, so nothing was measured; <i>n/a</i> — not reported by the paper, "
+    "measured here. Bidirectional edges (|diff| &lt; μ) mean mutual coupling <i>or no "
+    "coupling</i> (paper section 2.4).</p>"
+    "<p class=\"note\"><b>Coupling evidence</b> (beyond the paper, funcnet.evidence): for "
+    "each claimed relation, the joint-recurrence dependence test on its window (time-shift "
+    "surrogates, Benjamini–Hochberg over the window's pairs, α = 0.05) says whether the "
+    "two signals are coupled at all, which the paper's arrows cannot. <i>Untestable</i> "
+    "is not <i>uncoupled</i>: a shift must exceed the signals' decorrelation time, so the "
+    "paper's short robot windows (140–300 samples, 100 around a reversal) hold only a few "
+    "surrogates, and with K surrogates no p-value is below 1/(K+1) — above α, the test "
+    "cannot reject whatever the data (docs/guide/evidence.md).</p>")
 
 def build_demo_report(
     plan_dir: str | os.PathLike[str],
@@ -301,29 +326,6 @@ def build_demo_report(
         "plan folder (from the report)": os.path.relpath(Path(plan_dir).resolve(), out.resolve()),
         "analysis time [s]": f"{analyses.elapsed:.1f}",
     }, date=started)
-    rule = (
-        "<p class=\"verdict\"><b>How each finding is decided</b> (fixed before any result, "
-        "the same for every finding): a claimed relation is <i>not evaluable</i> when its "
-        "network is missing or lacks one of its signals (a signal constant in a window is left "
-        "out of that window's network), or when the pair of its signals has a degenerate "
-        "recurrence structure (a signal barely moves in the window, so the arrow is "
-        "meaningless). <i>yes</i> — every claimed relation was evaluated and holds; "
-        "<i>partly</i> — not <i>yes</i>, but at least one network (or trial) shows all its "
-        "claimed relations, or at least half of the evaluated relations hold (this includes "
-        "findings whose evaluated relations all hold while others could not be evaluated: the "
-        "evidence then says how many of the claims could not be evaluated); <i>no</i> — "
-        "relations were evaluated and neither holds; <i>not evaluable</i> — no claimed relation "
-        "could be evaluated, so nothing was measured; <i>n/a</i> — not reported by the paper, "
-        "measured here. Bidirectional edges (|diff| &lt; μ) mean mutual coupling <i>or no "
-        "coupling</i> (paper section 2.4).</p>"
-        "<p class=\"note\"><b>Coupling evidence</b> (beyond the paper, funcnet.evidence): for "
-        "each claimed relation, the joint-recurrence dependence test on its window (time-shift "
-        "surrogates, Benjamini–Hochberg over the window's pairs, α = 0.05) says whether the "
-        "two signals are coupled at all, which the paper's arrows cannot. <i>Untestable</i> "
-        "is not <i>uncoupled</i>: a shift must exceed the signals' decorrelation time, so the "
-        "paper's short robot windows (140–300 samples, 100 around a reversal) hold only a few "
-        "surrogates, and with K surrogates no p-value is below 1/(K+1) — above α, the test "
-        "cannot reject whatever the data (docs/guide/evidence.md).</p>")
     toc = [("findings", "Findings: summary and rule"), ("figures", "Figures"),
            ("findings-table", "Findings, one by one"), ("problems", "Problems flagged"),
            ("parameters", "Parameters"), ("trials", "Trials"),
@@ -332,14 +334,14 @@ def build_demo_report(
     body = [
         "<h1>funcnet — the paper's analyses on the simulated axis</h1>",
         "<section id=\"findings\"><h2>Findings of the paper's section 4: summary</h2>",
-        summary, rule,
+        summary, _RULE_HTML,
         "<p class=\"note\">All data here are simulated (funcnet's two-mass axis model, the "
         "paper's Table 1 plan), not the paper's robot recordings. Every verdict is measured on "
         "the networks computed from these traces with the parameters listed; nothing was tuned "
         "towards the paper's results. Read an arrow with care: the asymmetry of "
         "cross-clustering and cross-transitivity follows the relative complexity of two "
         "signals as well as their coupling, and the positions here are smooth while the "
-        "currents are noisy (paper section 2.4; funcnet README, 'Direction').</p></section>",
+        "currents are noisy (paper section 2.4; docs/guide/direction.md).</p></section>",
         contents(toc),
         "<h2 id=\"figures\">Figures</h2>", *figures,
         "<section id=\"findings-table\"><h2>Findings, one by one</h2>", details, "</section>",

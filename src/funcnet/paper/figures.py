@@ -204,9 +204,9 @@ def pair_network(
 
     Computed by :func:`funcnet.network.functional_network` with ``measure="clustering"`` on the
     min-max normalized signals (the package's default, section 3.3) at the default rates (RR =
-    CR = 0.05): ``C_diff = +0.111``, the value the README quotes. The rule of section 2.4 puts
-    the arrow from ``y`` to ``x`` although ``x`` drives ``y``: the more complex signal looks
-    like the driver (README, "Direction").
+    CR = 0.05): ``C_diff = +0.111``, the value docs/validation/direction.md quotes. The rule of
+    section 2.4 puts the arrow from ``y`` to ``x`` although ``x`` drives ``y``: the more complex
+    signal looks like the driver (docs/guide/direction.md).
 
     Parameters
     ----------

@@ -17,10 +17,11 @@ module                 what it holds
 ``stability_heatmap``  each pair's stability over a settings grid, as a heatmap
 =====================  ====================================================================
 
-Drawing conventions (README method step 8, paper section 3.4 [1]_): nodes on a circle, one per
-signal, every node drawn even without edges; directed edges black with an arrow head at the target,
-bidirectional edges red; line width proportional to the weight of Eq. 13 on an absolute scale, so
-that widths compare across panels (the paper reads "edges thinning as speed grows" from them).
+Drawing conventions (docs/guide/method.md step 8, paper section 3.4 [1]_): nodes on a circle,
+one per signal, every node drawn even without edges; directed edges black with an arrow head at
+the target, bidirectional edges red; line width proportional to the weight of Eq. 13 on an
+absolute scale, so that widths compare across panels (the paper reads "edges thinning as speed
+grows" from them).
 Edges of degenerate pairs (too few distinct states: their arrow means nothing) are present only
 when a network keeps them (``degenerate="keep"``); they are drawn dashed and grey.
 

@@ -252,6 +252,67 @@ def edge_evidence(net: FunctionalNetwork, edges: pd.DataFrame) -> list[str] | No
             for a, b in zip(edges["source"], edges["target"], strict=True)]
 
 
+def _draw_edge(ax: Axes, edge: Any, reading: str, position: Mapping[Any, tuple[float, float]],
+               radius: Mapping[Any, float], width_scale: float, min_width: float,
+               fontsize: float) -> None:
+    """One edge of :func:`plot_network`: an arrow styled by its kind, degeneracy and coupling
+    evidence, or a pale line when the direction is undecided."""
+    bidirectional = edge.kind == "bidirectional"
+    width = max(min_width, width_scale * edge.weight)
+    color = BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR
+    style = "-"
+    if edge.kind == "none":  # undecided: a line, no head, no weight to read
+        # arc3's curve built once in data units (equal aspect: the same arc), not an arrow
+        # patch laid out at every draw; a gap of about 2 pt at the rims
+        line = PathPatch(_arc(*_trim(position[edge.source], position[edge.target],
+                                     radius[edge.source] + _UNDECIDED_GAP,
+                                     radius[edge.target] + _UNDECIDED_GAP), 0.08),
+                         fill=False, linewidth=min_width, edgecolor=UNDECIDED_COLOR,
+                         capstyle="round", joinstyle="round", zorder=1)
+        line.set_gid(f"edge:{edge.source}->{edge.target}:none")
+        ax.add_artist(line)
+        return
+    if reading in NO_COUPLING_EVIDENCE:
+        color = UNCOUPLED_BIDIRECTIONAL_COLOR if bidirectional else UNCOUPLED_COLOR
+        style = UNCOUPLED_STYLE
+    elif reading == UNTESTABLE:
+        color = UNTESTABLE_BIDIRECTIONAL_COLOR if bidirectional else UNTESTABLE_COLOR
+        style = UNTESTABLE_STYLE
+    if edge.degenerate:
+        color, style = DEGENERATE_COLOR, "--"
+    arrow = FancyArrowPatch(
+        position[edge.source], position[edge.target],
+        arrowstyle="<|-|>" if bidirectional else "-|>",
+        # The head grows with the line so that a thick edge does not hide it.
+        mutation_scale=fontsize + 1 + 2.0 * width, shrinkA=0, shrinkB=0,
+        patchA=None, patchB=None, joinstyle="miter", capstyle="butt",
+        linewidth=width, color=color, linestyle=style,
+        # Curved slightly so that the arrows of a cycle do not overlap the node labels.
+        connectionstyle="arc3,rad=0.08", zorder=2,
+    )
+    # Stop the arrow at the node's rim rather than its centre.
+    arrow.set_positions(*_trim(position[edge.source], position[edge.target],
+                               radius[edge.source], radius[edge.target]))
+    suffix = (":degenerate" if edge.degenerate else "") + (f":{reading}" if reading else "")
+    arrow.set_gid(f"edge:{edge.source}->{edge.target}:{edge.kind}{suffix}")
+    ax.add_artist(arrow)  # as the nodes: the limits are fixed below
+
+
+def _draw_nodes(ax: Axes, nodes: Sequence[Any], present: Sequence[Any],
+                label: Mapping[Any, str], position: Mapping[Any, tuple[float, float]],
+                radius: Mapping[Any, float], node_color: str, fontsize: float) -> None:
+    """The nodes of :func:`plot_network`: a circle and a name each, dashed when absent."""
+    for name in nodes:
+        circle = Circle(position[name], radius[name], facecolor=node_color, edgecolor="0.2",
+                        linewidth=0.8, zorder=3,
+                        linestyle="-" if name in present else "--")
+        circle.set_gid(f"node:{name}")
+        ax.add_artist(circle)  # not add_patch, names not in the layout: inside fixed limits
+        text = label.get(name, str(name))
+        ax.text(*position[name], text, ha="center", va="center", zorder=4,
+                fontsize=fontsize * min(1.0, 4.0 / max(len(text), 1)) ** 0.5, in_layout=False)
+
+
 def plot_network(
     net: FunctionalNetwork,
     ax: Axes | None = None,
@@ -358,15 +419,7 @@ def plot_network(
              for k, name in enumerate(slots) if name is not None}
     position = {name: (np.cos(angle[name]), np.sin(angle[name])) for name in nodes}
     radius = {name: _node_radius(label.get(name, str(name)), node_size) for name in nodes}
-    for name in nodes:
-        circle = Circle(position[name], radius[name], facecolor=node_color, edgecolor="0.2",
-                        linewidth=0.8, zorder=3,
-                        linestyle="-" if name in present else "--")
-        circle.set_gid(f"node:{name}")
-        ax.add_artist(circle)  # not add_patch, names not in the layout: inside fixed limits
-        text = label.get(name, str(name))
-        ax.text(*position[name], text, ha="center", va="center", zorder=4,
-                fontsize=fontsize * min(1.0, 4.0 / max(len(text), 1)) ** 0.5, in_layout=False)
+    _draw_nodes(ax, nodes, present, label, position, radius, node_color, fontsize)
     for group, members in (groups or {}).items():
         placed = [angle[m] for m in members if m in angle]
         if placed:
@@ -378,46 +431,8 @@ def plot_network(
     edges = network_edges(net) if arrows == "rule" else direction_edges(net)
     readings = edge_evidence(net, edges)
     for k, edge in enumerate(edges.itertuples(index=False)):
-        bidirectional = edge.kind == "bidirectional"
-        width = max(min_width, width_scale * edge.weight)
-        color = BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR
-        style = "-"
-        if edge.kind == "none":  # undecided: a line, no head, no weight to read
-            # arc3's curve built once in data units (equal aspect: the same arc), not an arrow
-            # patch laid out at every draw; a gap of about 2 pt at the rims
-            line = PathPatch(_arc(*_trim(position[edge.source], position[edge.target],
-                                         radius[edge.source] + _UNDECIDED_GAP,
-                                         radius[edge.target] + _UNDECIDED_GAP), 0.08),
-                             fill=False, linewidth=min_width, edgecolor=UNDECIDED_COLOR,
-                             capstyle="round", joinstyle="round", zorder=1)
-            line.set_gid(f"edge:{edge.source}->{edge.target}:none")
-            ax.add_artist(line)
-            continue
-        reading = "" if readings is None else readings[k]
-        if reading in NO_COUPLING_EVIDENCE:
-            color = UNCOUPLED_BIDIRECTIONAL_COLOR if bidirectional else UNCOUPLED_COLOR
-            style = UNCOUPLED_STYLE
-        elif reading == UNTESTABLE:
-            color = UNTESTABLE_BIDIRECTIONAL_COLOR if bidirectional else UNTESTABLE_COLOR
-            style = UNTESTABLE_STYLE
-        if edge.degenerate:
-            color, style = DEGENERATE_COLOR, "--"
-        arrow = FancyArrowPatch(
-            position[edge.source], position[edge.target],
-            arrowstyle="<|-|>" if bidirectional else "-|>",
-            # The head grows with the line so that a thick edge does not hide it.
-            mutation_scale=fontsize + 1 + 2.0 * width, shrinkA=0, shrinkB=0,
-            patchA=None, patchB=None, joinstyle="miter", capstyle="butt",
-            linewidth=width, color=color, linestyle=style,
-            # Curved slightly so that the arrows of a cycle do not overlap the node labels.
-            connectionstyle="arc3,rad=0.08", zorder=2,
-        )
-        # Stop the arrow at the node's rim rather than its centre.
-        arrow.set_positions(*_trim(position[edge.source], position[edge.target],
-                                   radius[edge.source], radius[edge.target]))
-        suffix = (":degenerate" if edge.degenerate else "") + (f":{reading}" if reading else "")
-        arrow.set_gid(f"edge:{edge.source}->{edge.target}:{edge.kind}{suffix}")
-        ax.add_artist(arrow)  # as the nodes: the limits are fixed below
+        _draw_edge(ax, edge, "" if readings is None else readings[k], position, radius,
+                   width_scale, min_width, fontsize)
     ax.set_xlim(-1.3, 1.3)
     ax.set_ylim(-1.3, 1.3)
     ax.set_aspect("equal")

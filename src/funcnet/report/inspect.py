@@ -78,7 +78,7 @@ from funcnet.robot.grid import format_spans
 
 __all__ = ["inspect_trace", "write_inspection", "write_robot_inspection", "READING_AN_ARROW"]
 
-#: What the report says about reading an arrow (paper section 2.4; README "Direction").
+#: What the report says about reading an arrow (paper section 2.4; docs/guide/direction.md).
 READING_AN_ARROW = (
     "An arrow X → Y says that the recurrences of X are more often shared by Y than the other "
     "way round (C_diff, T_diff of Eq. 10 at or above μ). It follows the relative complexity of "

@@ -23,6 +23,10 @@ _BIDIRECTIONAL = "Reds"
 _COUPLED = ("coupled", "coupled-directed")
 
 
+#: Width of a character in units of the font size, a generous estimate for DejaVu Sans.
+_TEXT_WIDTH = 0.62
+
+
 def figure_robot_matrix(network: FunctionalNetwork, title: str = "", *,
                         arrows: str = "rule") -> Any:
     """The robot network as an adjacency matrix: rows the source X, columns the target Y.
@@ -48,8 +52,6 @@ def figure_robot_matrix(network: FunctionalNetwork, title: str = "", *,
     from matplotlib import colormaps
     from matplotlib.colors import Normalize
     from matplotlib.figure import Figure
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
 
     nodes = list(network.nodes)
     axes = [split_qualified(name)[0] for name in nodes]
@@ -99,17 +101,34 @@ def figure_robot_matrix(network: FunctionalNetwork, title: str = "", *,
         ax.spines[side].set_visible(False)
     starts = [0, *bounds]
     ends = [*bounds, n]
-    for a, b in zip(starts, ends, strict=True):
-        name = "common" if axes[a] is None else f"A{axes[a]}"
+    names = ["common" if axes[a] is None else f"A{axes[a]}" for a in starts]
+    # Beside the rows the axis names stand a fixed distance in points left of the role labels,
+    # and "source X" beyond them: in cell units the distance shrank with a small matrix's few,
+    # large cells until the names ran into the label.
+    beside = _TEXT_WIDTH * 9 * max(len(r) for r in roles) + 10
+    for name, a, b in zip(names, starts, ends, strict=True):
         middle = (a + b - 1) / 2
         ax.text(middle, n - 0.3, name, ha="center", va="top", fontsize=10, fontweight="bold")
-        ax.text(-1.6, middle, name, ha="right", va="center", fontsize=10, fontweight="bold")
+        ax.annotate(name, (0, middle), xycoords=("axes fraction", "data"), xytext=(-beside, 0),
+                    textcoords="offset points", ha="right", va="center", fontsize=10,
+                    fontweight="bold")
     ax.set_xlim(-0.5, n - 0.5)
     ax.set_ylim(n + 0.6, -0.5)
     ax.set_xlabel("target Y", fontsize=9)
-    ax.set_ylabel("source X", fontsize=9, labelpad=28)
+    ax.set_ylabel("source X", fontsize=9,
+                  labelpad=beside - _TEXT_WIDTH * 9 * max(len(r) for r in roles)
+                  + _TEXT_WIDTH * 11 * max(len(m) for m in names) + 6)
     if title:
         ax.set_title(title, fontsize=10)
+    _legend(fig, arrows, top)
+    return fig
+
+def _legend(fig: Any, arrows: str, top: float) -> None:
+    """The matrix's legend below it: the cell colours, the dot, the weight's scale."""
+    from matplotlib import colormaps
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
     directed = ("X → Y: X's past improves Y's prediction (row → column); undecided: empty"
                 if arrows == "direction" else "X → Y: directed (row → column)")
     handles = [Patch(facecolor=colormaps[_DIRECTED](0.8), label=directed),
@@ -118,7 +137,9 @@ def figure_robot_matrix(network: FunctionalNetwork, title: str = "", *,
                Patch(facecolor="white", edgecolor="0.6", label="no edge (conflict, degenerate)"),
                Line2D([], [], linestyle="", marker="o", markersize=4, color="black",
                       label="coupled (the test rejects independence)")]
-    fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=9,
+    # two columns where they fit the figure's width, else one: a small robot's legend was cut
+    widest = _TEXT_WIDTH * 9 * max(len(str(h.get_label())) for h in handles) + 40
+    fig.legend(handles=handles, loc="outside lower center",
+               ncol=2 if 2 * widest <= 72 * fig.get_figwidth() else 1, fontsize=9,
                frameon=False, title=f"darker: heavier (weight up to {top:.2g}, Eq. 13)",
                title_fontsize=9)
-    return fig

@@ -324,6 +324,162 @@ def _failures_html(failures: Sequence[Mapping[str, Any]]) -> str:
     return table(pd.DataFrame(rows))
 
 
+def _parameter_section(out: Path, k: int, setting: dict[str, Any], group: pd.DataFrame,
+                       alpha: float, steps: int, progress: Progress) -> str:
+    """One parameter set's part of the figures: consensus, example networks, timeline, evidence."""
+    from funcnet import plot
+
+    label = ", ".join(f"{n} = {v}" for n, v in setting.items()) or "one parameter set"
+    slug = _slug(f"set{k + 1}-" + "-".join(f"{n}{v}" for n, v in setting.items()))
+    step(progress, 3 * k, steps, f"report: {label}")
+    table_ = consensus(group)
+    parts = [f'<h3 id="{slug}">Parameter set {k + 1}: {escape(label)}</h3>',
+             figure_html(out, f"{slug}-consensus", _consensus_figure(table_),
+                         f"Consensus over {group['name'].nunique()} recordings ({label}): "
+                         "for each pair (rows) and window label (columns), the edge kind "
+                         "most recordings show and in how many of them (→ X → Y, ← Y → X, "
+                         "↔ bidirectional, × conflict = no edge, ? degenerate). A kind "
+                         "shown by about half the recordings is not a property of the "
+                         "plan.")]
+    first = group["name"].iloc[0]
+    mine = group[group["name"] == first]
+    windows = sorted(mine.groupby(_WINDOW_KEYS[1:], sort=False),
+                     key=lambda item: (item[0][1], item[0][2]))
+    step(progress, 3 * k + 1, steps, f"report: {label}: example networks")
+    parts.append(figure_html(out, f"{slug}-networks-0",
+                             _network_grid(windows, f"{first} ({label})"),
+                             f"Example: the networks of recording {first} ({label}), "
+                             f"{min(len(windows), _GRID)} of its {len(windows)} windows. "
+                             "Black arrow: the direction reading (the source's past "
+                             "improves the target's prediction); pale line: undecided "
+                             "(rows without a direction column: the rule's arrows, red "
+                             "bidirectional); width ∝ weight (Eq. 13)."
+                             + (" Dotted, pale: the coupling test does not show the pair "
+                                "coupled (asymmetry-only or not-coupled); dash-dotted, "
+                                "paler: untestable (the test could not have rejected)."
+                                if has_evidence(mine) else "")))
+    if len(windows) >= 3:
+        step(progress, 3 * k + 2, steps, f"report: {label}: timeline")
+        # keyed by window: each network placed at its window's centre
+        timeline = plot.plot_edge_timeline(
+            {key: network_from_rows(part)
+             for key, part in mine.groupby(_WINDOW_KEYS[1:], sort=False)})
+        parts.append(figure_html(out, f"{slug}-timeline", timeline.figure,
+                                 f"Example: edge kind and weight per window centre, "
+                                 f"recording {first} ({label})."))
+    if has_evidence(group):
+        parts += ["<h4>Coupling evidence</h4>",
+                  "<p>Per window label, over the recordings: pairs the joint-recurrence "
+                  f"test shows coupled (α = {alpha:g}, Benjamini–Hochberg over each "
+                  "network's pairs), tested arrows without coupling evidence "
+                  "(asymmetry-only), tested pairs without an arrow (not-coupled), and pairs "
+                  "the test could not have shown coupled whatever the data (untestable: "
+                  "with K surrogates no p-value is below 1/(K+1), and the adjustment over "
+                  "the network's pairs never lowers it; short windows hold few). "
+                  "Untestable is not uncoupled. The pairs tables below have every "
+                  "evidence column.</p>", table(evidence_counts(group, alpha))]
+    return "".join(parts)
+
+
+def _summary_html(results: Path, rows: pd.DataFrame, run: Mapping[str, Any], n_networks: int,
+                  n_settings: int, varying: list[str]) -> list[str]:
+    """The page's head: the counts, the run's tasks, how to read it, the failures by cause."""
+    recordings = list(dict.fromkeys(rows["name"]))
+    failures = run.get("failures") or []
+    kinds = rows["kind"].astype(str).where(~rows["degenerate"].astype(bool), "degenerate")
+    kind_text = ", ".join(f"{n} {k}" for k, n in kinds.value_counts().items())
+    summary = [
+        f"<h1>funcnet study report — {escape(results.resolve().name)}</h1>",
+        setpoint_html([part for _, part in rows.groupby(_WINDOW_KEYS, sort=False)]),
+        '<section id="summary"><h2>Summary</h2>',
+        f"<p>{len(recordings)} recording(s), {n_networks} networks ({len(rows)} pairs: "
+        f"{escape(kind_text)}) over {n_settings} parameter set(s)"
+        + (f" varying {escape(', '.join(varying))}" if varying else "") + "."
+        + (f" {run.get('tasks', 0)} tasks: {run.get('computed', 0)} computed, "
+           f"{run.get('cached', 0)} reused from an earlier run, {len(failures)} failed."
+           if run else "") + "</p>",
+        '<p class="verdict">How to read it: a study says what is <i>common</i> to its '
+        "recordings. For each pair and window label, the consensus figure gives the edge "
+        "kind most recordings show and in how many (→ 30/36). Read an arrow shared by most "
+        "recordings as a property of the plan and its parameters; one shared by about half "
+        "as no finding. An arrow follows the relative complexity of two signals as well as "
+        "their coupling (paper section 2.4): it is not a cause. Pairs flagged degenerate "
+        "have no edge.</p>",
+    ]
+    if failures:
+        summary += ["<h3>Failed tasks, by cause</h3>", _failures_html(failures)]
+    summary.append("</section>")
+    return summary
+
+
+def _problems_html(rows: pd.DataFrame, run: Mapping[str, Any], parameters: list[str]) -> list[str]:
+    """The problems the pairs tables flag, then those the run counted beyond them."""
+    problems = problem_counts(rows, [*_WINDOW_KEYS, *parameters])
+    body = ['<section id="problems"><h2>Problems flagged</h2>',
+            "<p>Each problem once: the networks whose pairs table flags it (trial · window; "
+            "the flags are columns of the rows).</p>" + table(problems)
+            if len(problems) else "<p>None in the pairs tables.</p>"]
+    # what the run flagged beyond the pairs tables (windows, staircases), counted by the run
+    others = {k: v for k, v in (run.get("warnings") or {}).items() if k not in PROBLEMS}
+    if others:
+        body += ["<p>Flagged by the run (counted over the networks it computed):</p>",
+                 table(pd.DataFrame([{"problem": k, "networks": v.get("tasks"),
+                                      "example": v.get("example", "")}
+                                     for k, v in others.items()]))]
+    body.append("</section>")
+    return body
+
+
+def _tables_html(rows: pd.DataFrame, parameters: list[str], varying: list[str]) -> list[str]:
+    """Every window's pairs table (collapsed, per recording and parameter set), the recordings."""
+    details = []
+    for (name, *rest), group in rows.groupby(["name", *parameters], sort=False, dropna=False):
+        values_shown = ", ".join(f"{n}={v}" for n, v in zip(parameters, rest, strict=True)
+                                 if n in varying)
+        inner = "".join(
+            f"<details><summary>{escape(w)} ({t0:.3f}–{t1:.3f} s)</summary>"
+            f"{pairs_table(pairs)}</details>"
+            for (w, t0, t1), pairs in group.groupby(["window", "start", "stop"], sort=False))
+        details.append(f"<details><summary><b>{escape(name)}</b>"
+                       f"{' — ' + escape(values_shown) if values_shown else ''}</summary>{inner}"
+                       "</details>")
+    index_rows = (rows.groupby("name", sort=False)
+                  .agg(file=("recording", lambda s: Path(str(s.iloc[0])).name),
+                       windows=("window", "nunique"),
+                       sha256=("source_sha256", "first") if "source_sha256" in rows
+                       else ("recording", "size"))
+                  .reset_index().rename(columns={"name": "recording"}))
+    return ['<section id="networks"><h2>Pairs tables</h2>', *details, "</section>",
+            '<section id="recordings"><h2>Recordings</h2>',
+            f"<details><summary>{len(index_rows)} recordings</summary>{table(index_rows)}"
+            "</details></section>"]
+
+
+def _provenance_html(rows: pd.DataFrame, document: Mapping[str, Any]) -> list[str]:
+    """The study's run record, the study as read, the provenance and the inputs' hashes."""
+    run = document.get("run", {})
+    study_provenance = document.get("provenance", {})
+    report_provenance = provenance({
+        "study command": " ".join(study_provenance.get("command", [])),
+        **{f"version of {k} (study)": v
+           for k, v in study_provenance.get("versions", {}).items()},
+    }, qualifier="report")
+    inputs = study_provenance.get("inputs") or dict(
+        zip(rows["recording"], rows.get("source_sha256", ""), strict=False))
+    inputs = {Path(str(k)).name: v for k, v in inputs.items()}
+    body = ['<section id="study"><h2>Study and provenance</h2>']
+    if run:
+        body.append(mapping_table({k: v for k, v in run.items()
+                                   if k not in ("failures", "warnings")}, "run"))
+    if document.get("study"):
+        body.append("<details><summary>the study as read</summary><pre>"
+                    f"{escape(json.dumps(document['study'], indent=2, default=str))}</pre>"
+                    "</details>")
+    return [*body, mapping_table(report_provenance, "item"),
+            "<details><summary>inputs (SHA-256)</summary>"
+            f"{mapping_table(inputs, 'file', 'sha256')}</details></section>"]
+
+
 def write_report(
     results_dir: str | os.PathLike[str],
     out_dir: str | os.PathLike[str] | None = None,
@@ -359,8 +515,6 @@ def write_report(
     funcnet.errors.StudyError
         When the folder holds no results.
     """
-    from funcnet import plot
-
     results = Path(results_dir)
     out = Path(out_dir) if out_dir is not None else results / "report"
     rows = load_results(results)
@@ -374,145 +528,20 @@ def write_report(
     varying = [c for c in parameters if rows[c].astype(str).nunique() > 1]
     settings = list(rows.groupby(varying, sort=False, dropna=False)) if varying else [((), rows)]
     n_networks = rows.groupby([*_WINDOW_KEYS, *parameters], dropna=False).ngroups
-    recordings = list(dict.fromkeys(rows["name"]))
-    failures = run.get("failures") or []
     steps = 3 * len(settings) + 2
-    sections: list[str] = []
+    sections = []
     for k, (key, group) in enumerate(settings):
         values = key if isinstance(key, tuple) else (key,)
         setting = dict(zip(varying, values, strict=True))
-        label = ", ".join(f"{n} = {v}" for n, v in setting.items()) or "one parameter set"
-        slug = _slug(f"set{k + 1}-" + "-".join(f"{n}{v}" for n, v in setting.items()))
-        step(progress, 3 * k, steps, f"report: {label}")
-        table_ = consensus(group)
-        parts = [f'<h3 id="{slug}">Parameter set {k + 1}: {escape(label)}</h3>',
-                 figure_html(out, f"{slug}-consensus", _consensus_figure(table_),
-                             f"Consensus over {group['name'].nunique()} recordings ({label}): "
-                             "for each pair (rows) and window label (columns), the edge kind "
-                             "most recordings show and in how many of them (→ X → Y, ← Y → X, "
-                             "↔ bidirectional, × conflict = no edge, ? degenerate). A kind "
-                             "shown by about half the recordings is not a property of the "
-                             "plan.")]
-        first = group["name"].iloc[0]
-        mine = group[group["name"] == first]
-        windows = sorted(mine.groupby(_WINDOW_KEYS[1:], sort=False),
-                         key=lambda item: (item[0][1], item[0][2]))
-        step(progress, 3 * k + 1, steps, f"report: {label}: example networks")
-        parts.append(figure_html(out, f"{slug}-networks-0",
-                                 _network_grid(windows, f"{first} ({label})"),
-                                 f"Example: the networks of recording {first} ({label}), "
-                                 f"{min(len(windows), _GRID)} of its {len(windows)} windows. "
-                                 "Black arrow: the direction reading (the source's past "
-                                 "improves the target's prediction); pale line: undecided "
-                                 "(rows without a direction column: the rule's arrows, red "
-                                 "bidirectional); width ∝ weight (Eq. 13)."
-                                 + (" Dotted, pale: the coupling test does not show the pair "
-                                    "coupled (asymmetry-only or not-coupled); dash-dotted, "
-                                    "paler: untestable (the test could not have rejected)."
-                                    if has_evidence(mine) else "")))
-        if len(windows) >= 3:
-            step(progress, 3 * k + 2, steps, f"report: {label}: timeline")
-            # keyed by window: each network placed at its window's centre
-            timeline = plot.plot_edge_timeline(
-                {key: network_from_rows(part)
-                 for key, part in mine.groupby(_WINDOW_KEYS[1:], sort=False)})
-            parts.append(figure_html(out, f"{slug}-timeline", timeline.figure,
-                                     f"Example: edge kind and weight per window centre, "
-                                     f"recording {first} ({label})."))
-        if has_evidence(group):
-            parts += ["<h4>Coupling evidence</h4>",
-                      "<p>Per window label, over the recordings: pairs the joint-recurrence "
-                      f"test shows coupled (α = {alpha:g}, Benjamini–Hochberg over each "
-                      "network's pairs), tested arrows without coupling evidence "
-                      "(asymmetry-only), tested pairs without an arrow (not-coupled), and pairs "
-                      "the test could not have shown coupled whatever the data (untestable: "
-                      "with K surrogates no p-value is below 1/(K+1), and the adjustment over "
-                      "the network's pairs never lowers it; short windows hold few). "
-                      "Untestable is not uncoupled. The pairs tables below have every "
-                      "evidence column.</p>", table(evidence_counts(group, alpha))]
-        sections.append("".join(parts))
-    problems = problem_counts(rows, [*_WINDOW_KEYS, *parameters])
-    kinds = rows["kind"].astype(str).where(~rows["degenerate"].astype(bool), "degenerate")
-    kind_text = ", ".join(f"{n} {k}" for k, n in kinds.value_counts().items())
-    summary = [
-        f"<h1>funcnet study report — {escape(results.resolve().name)}</h1>",
-        setpoint_html([part for _, part in rows.groupby(_WINDOW_KEYS, sort=False)]),
-        '<section id="summary"><h2>Summary</h2>',
-        f"<p>{len(recordings)} recording(s), {n_networks} networks ({len(rows)} pairs: "
-        f"{escape(kind_text)}) over {len(settings)} parameter set(s)"
-        + (f" varying {escape(', '.join(varying))}" if varying else "") + "."
-        + (f" {run.get('tasks', 0)} tasks: {run.get('computed', 0)} computed, "
-           f"{run.get('cached', 0)} reused from an earlier run, {len(failures)} failed."
-           if run else "") + "</p>",
-        '<p class="verdict">How to read it: a study says what is <i>common</i> to its '
-        "recordings. For each pair and window label, the consensus figure gives the edge "
-        "kind most recordings show and in how many (→ 30/36). Read an arrow shared by most "
-        "recordings as a property of the plan and its parameters; one shared by about half "
-        "as no finding. An arrow follows the relative complexity of two signals as well as "
-        "their coupling (paper section 2.4): it is not a cause. Pairs flagged degenerate "
-        "have no edge.</p>",
-    ]
-    if failures:
-        summary += ["<h3>Failed tasks, by cause</h3>", _failures_html(failures)]
-    summary.append("</section>")
+        sections.append(_parameter_section(out, k, setting, group, alpha, steps, progress))
     toc = [("summary", "Summary"), ("figures", "Figures"), ("problems", "Problems flagged"),
            ("networks", "Pairs tables"), ("recordings", "Recordings"),
            ("study", "Study and provenance")]
-    body = [*summary, contents(toc), '<h2 id="figures">Figures</h2>', *sections]
+    body = [*_summary_html(results, rows, run, n_networks, len(settings), varying),
+            contents(toc), '<h2 id="figures">Figures</h2>', *sections]
     step(progress, steps - 2, steps, "report: tables")
-    body += ['<section id="problems"><h2>Problems flagged</h2>',
-             "<p>Each problem once: the networks whose pairs table flags it (trial · window; "
-             "the flags are columns of the rows).</p>" + table(problems)
-             if len(problems) else "<p>None in the pairs tables.</p>"]
-    # what the run flagged beyond the pairs tables (windows, staircases), counted by the run
-    others = {k: v for k, v in (run.get("warnings") or {}).items() if k not in PROBLEMS}
-    if others:
-        body += ["<p>Flagged by the run (counted over the networks it computed):</p>",
-                 table(pd.DataFrame([{"problem": k, "networks": v.get("tasks"),
-                                      "example": v.get("example", "")}
-                                     for k, v in others.items()]))]
-    body.append("</section>")
-    details = []
-    for (name, *rest), group in rows.groupby(["name", *parameters], sort=False, dropna=False):
-        values_shown = ", ".join(f"{n}={v}" for n, v in zip(parameters, rest, strict=True)
-                                 if n in varying)
-        inner = "".join(
-            f"<details><summary>{escape(w)} ({t0:.3f}–{t1:.3f} s)</summary>"
-            f"{pairs_table(pairs)}</details>"
-            for (w, t0, t1), pairs in group.groupby(["window", "start", "stop"], sort=False))
-        details.append(f"<details><summary><b>{escape(name)}</b>"
-                       f"{' — ' + escape(values_shown) if values_shown else ''}</summary>{inner}"
-                       "</details>")
-    body += ['<section id="networks"><h2>Pairs tables</h2>', *details, "</section>"]
-    index_rows = (rows.groupby("name", sort=False)
-                  .agg(file=("recording", lambda s: Path(str(s.iloc[0])).name),
-                       windows=("window", "nunique"),
-                       sha256=("source_sha256", "first") if "source_sha256" in rows
-                       else ("recording", "size"))
-                  .reset_index().rename(columns={"name": "recording"}))
-    body += ['<section id="recordings"><h2>Recordings</h2>',
-             f"<details><summary>{len(index_rows)} recordings</summary>{table(index_rows)}"
-             "</details></section>"]
-    study_provenance = document.get("provenance", {})
-    run = provenance({
-        "study command": " ".join(study_provenance.get("command", [])),
-        **{f"version of {k} (study)": v
-           for k, v in study_provenance.get("versions", {}).items()},
-    }, qualifier="report")
-    inputs = study_provenance.get("inputs") or dict(
-        zip(rows["recording"], rows.get("source_sha256", ""), strict=False))
-    inputs = {Path(str(k)).name: v for k, v in inputs.items()}
-    body += ['<section id="study"><h2>Study and provenance</h2>']
-    if run:
-        body.append(mapping_table({k: v for k, v in run.items()
-                                   if k not in ("failures", "warnings")}, "run"))
-    if document.get("study"):
-        body.append("<details><summary>the study as read</summary><pre>"
-                    f"{escape(json.dumps(document['study'], indent=2, default=str))}</pre>"
-                    "</details>")
-    body += [mapping_table(run, "item"),
-             "<details><summary>inputs (SHA-256)</summary>"
-             f"{mapping_table(inputs, 'file', 'sha256')}</details></section>"]
+    body += [*_problems_html(rows, run, parameters), *_tables_html(rows, parameters, varying),
+             *_provenance_html(rows, document)]
     index = write_text_atomic(out / "index.html", page("funcnet study report", body))
     step(progress, steps, steps, "report written")
     return index

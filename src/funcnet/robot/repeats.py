@@ -34,6 +34,7 @@ and moves come in (ties: the group of the earliest move).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -141,6 +142,85 @@ def _lag(reference: np.ndarray, other: np.ndarray, max_lag: int) -> int:
     return best
 
 
+def _checked_signals(items: Sequence[Recording], signals: Sequence[str] | None,
+                     tolerance: float, max_lag: float) -> list[str]:
+    """The windows' columns, after the recordings and the parameters are checked."""
+    if not items:
+        raise ParameterError.of("recordings", "holds no recording")
+    periods = {round(item.sample_period, 12) for item in items}
+    if len(periods) != 1:
+        raise ParameterError.of("recordings", f"must share one sample period, got "
+                                f"{sorted(periods)} s (resample them first)")
+    if not 0 < tolerance < 1:
+        raise ParameterError.of("tolerance", f"must be in (0, 1), got {tolerance!r}")
+    if not max_lag >= 0:
+        raise ParameterError.of("max_lag", f"must be >= 0 seconds, got {max_lag!r}")
+    if signals is None:
+        signals = [c for c in items[0].data.columns if all(c in i.data.columns for i in items)]
+    for r, item in enumerate(items):
+        missing = [s for s in signals if s not in item.data.columns]
+        if missing:
+            raise SignalError(f"recording {r} ({item.source}) has no signal(s) "
+                              f"{', '.join(map(str, missing))}")
+    return list(signals)
+
+
+def _match(a: _Move, b: _Move, *, setpoints: Sequence[np.ndarray], period: float, mirror: bool,
+           tolerance: float, lag_samples: int) -> tuple[bool, bool, int, str]:
+    """(same profile, mirrored, lag of ``b`` behind ``a`` in samples, why not)."""
+    n_a, n_b = a.displacement.size, b.displacement.size
+    mirrored = a.direction != b.direction
+    if mirrored and not mirror:
+        return False, False, 0, "it moves the other way (mirrored moves are not counted)"
+    if abs(n_a - n_b) > tolerance * max(n_a, n_b) + 2 * lag_samples:
+        return False, False, 0, (f"{n_b} samples long against {n_a} (more than "
+                                 f"{tolerance:.0%} and {2 * lag_samples} samples apart)")
+    sign = -1.0 if mirrored else 1.0
+    lag = _lag(velocity(a.displacement, period),
+               velocity(sign * b.displacement, period), lag_samples)
+    rp = setpoints[b.recording]
+    start = b.first + lag
+    n = min(n_a, rp.size - start) if start >= 0 else 0
+    if n < 2:
+        return False, False, 0, "aligned, it leaves its recording"
+    other = sign * (rp[start:start + n] - rp[start])
+    travel = max(np.abs(a.displacement).max(), 1e-300)
+    apart = float(np.abs(a.displacement[:n] - other).max())
+    same = apart <= tolerance * travel
+    why = "" if same else (f"its set-point departs from the first's by {apart / travel:.1%} "
+                           f"of the travel once aligned (more than {tolerance:.0%})")
+    return bool(same), mirrored, lag, why
+
+
+def _cut_windows(items: Sequence[Recording], group: Sequence[tuple[_Move, bool, int]],
+                 starts: Sequence[int], relative: pd.DataFrame, signals: Sequence[str],
+                 reference: str) -> dict[str, list[pd.DataFrame]]:
+    """Each phase's window of every repetition, positions from the move's start, a mirrored
+    repetition negated, on the time from the phase's start in the first repetition."""
+    period = items[0].sample_period
+    labels = _numbered(list(relative.phase))
+    windows: dict[str, list[pd.DataFrame]] = {label: [] for label in labels}
+    for (move, mirrored, _), start in zip(group, starts, strict=True):
+        data = items[move.recording].data
+        origin = float(data[reference].iloc[move.first])
+        sign = -1.0 if mirrored else 1.0
+        for label, phase in zip(labels, relative.itertuples(index=False), strict=True):
+            a = start + int(round(phase.start / period))
+            b = start + int(round(phase.stop / period))
+            if a < 0 or b > len(data):
+                raise SignalError(f"recording {move.recording}: move {move.number} aligned "
+                                  f"by {(start - move.first) * period:g} s leaves the recording")
+            window = data[list(signals)].iloc[a:b].copy()
+            for column in window.columns:
+                if column in POSITION_ROLES:
+                    window[column] = window[column] - origin
+            window = window * sign
+            window.index = pd.Index(np.round(np.arange(b - a) * period + phase.start, 9),
+                                    name="time")
+            windows[label].append(window)
+    return windows
+
+
 def find_repetitions(
     recordings: Recording | Sequence[Recording],
     *,
@@ -201,24 +281,8 @@ def find_repetitions(
     1     2         -1      True
     """
     items = [recordings] if isinstance(recordings, Recording) else list(recordings)
-    if not items:
-        raise ParameterError.of("recordings", "holds no recording")
-    periods = {round(item.sample_period, 12) for item in items}
-    if len(periods) != 1:
-        raise ParameterError.of("recordings", f"must share one sample period, got "
-                                f"{sorted(periods)} s (resample them first)")
-    if not 0 < tolerance < 1:
-        raise ParameterError.of("tolerance", f"must be in (0, 1), got {tolerance!r}")
-    if not max_lag >= 0:
-        raise ParameterError.of("max_lag", f"must be >= 0 seconds, got {max_lag!r}")
+    signals = _checked_signals(items, signals, tolerance, max_lag)
     period = items[0].sample_period
-    if signals is None:
-        signals = [c for c in items[0].data.columns if all(c in i.data.columns for i in items)]
-    for r, item in enumerate(items):
-        missing = [s for s in signals if s not in item.data.columns]
-        if missing:
-            raise SignalError(f"recording {r} ({item.source}) has no signal(s) "
-                              f"{', '.join(map(str, missing))}")
     tables = [detect_phases(item, reference=reference) for item in items]
     moves = _moves(items, tables, reference)
     if not moves:
@@ -227,30 +291,8 @@ def find_repetitions(
 
     setpoints = [item.data[reference].to_numpy(dtype=np.float64) for item in items]
 
-    def matches(a: _Move, b: _Move) -> tuple[bool, bool, int, str]:
-        """(same profile, mirrored, lag of ``b`` behind ``a`` in samples, why not)."""
-        n_a, n_b = a.displacement.size, b.displacement.size
-        mirrored = a.direction != b.direction
-        if mirrored and not mirror:
-            return False, False, 0, "it moves the other way (mirrored moves are not counted)"
-        if abs(n_a - n_b) > tolerance * max(n_a, n_b) + 2 * lag_samples:
-            return False, False, 0, (f"{n_b} samples long against {n_a} (more than "
-                                     f"{tolerance:.0%} and {2 * lag_samples} samples apart)")
-        sign = -1.0 if mirrored else 1.0
-        lag = _lag(velocity(a.displacement, period),
-                   velocity(sign * b.displacement, period), lag_samples)
-        rp = setpoints[b.recording]
-        start = b.first + lag
-        n = min(n_a, rp.size - start) if start >= 0 else 0
-        if n < 2:
-            return False, False, 0, "aligned, it leaves its recording"
-        other = sign * (rp[start:start + n] - rp[start])
-        travel = max(np.abs(a.displacement).max(), 1e-300)
-        apart = float(np.abs(a.displacement[:n] - other).max())
-        same = apart <= tolerance * travel
-        why = "" if same else (f"its set-point departs from the first's by {apart / travel:.1%} "
-                               f"of the travel once aligned (more than {tolerance:.0%})")
-        return bool(same), mirrored, lag, why
+    matches = functools.partial(_match, setpoints=setpoints, period=period, mirror=mirror,
+                                tolerance=tolerance, lag_samples=lag_samples)
 
     groups: list[list[tuple[_Move, bool, int]]] = []
     for move in moves:
@@ -285,25 +327,6 @@ def find_repetitions(
     relative["start"] = np.maximum(relative.start - t0, 0.0).round(9)
     relative["stop"] = np.minimum(relative.stop - t0, length * period).round(9)
     relative = relative[relative.phase != "standstill"].reset_index(drop=True)
-    labels = _numbered(list(relative.phase))
-    windows: dict[str, list[pd.DataFrame]] = {label: [] for label in labels}
-    for (move, mirrored, _), start in zip(group, starts, strict=True):
-        data = items[move.recording].data
-        origin = float(data[reference].iloc[move.first])
-        sign = -1.0 if mirrored else 1.0
-        for label, phase in zip(labels, relative.itertuples(index=False), strict=True):
-            a = start + int(round(phase.start / period))
-            b = start + int(round(phase.stop / period))
-            if a < 0 or b > len(data):
-                raise SignalError(f"recording {move.recording}: move {move.number} aligned "
-                                  f"by {(start - move.first) * period:g} s leaves the recording")
-            window = data[list(signals)].iloc[a:b].copy()
-            for column in window.columns:
-                if column in POSITION_ROLES:
-                    window[column] = window[column] - origin
-            window = window * sign
-            window.index = pd.Index(np.round(np.arange(b - a) * period + phase.start, 9),
-                                    name="time")
-            windows[label].append(window)
+    windows = _cut_windows(items, group, starts, relative, signals, reference)
     return Repetitions(moves=pd.DataFrame(rows), phases=relative, windows=windows,
                        others=len(moves) - len(group), left_out=left_out)

@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from funcnet.errors import ChannelError, RecordingWarning, TraceFormatError
+from funcnet.errors import ChannelError, RecordingWarning, TraceFormatError, caller_stacklevel
 from funcnet.robot.channels import ROLES, ChannelMap, SignalInfo, select_axis
 from funcnet.robot.grid import GridSignals, place_on_grid, time_grid
 
@@ -63,7 +63,7 @@ def _without_duplicates(path: Path, names: list[str], cmap: ChannelMap) -> list[
                 f"{path}: column names given more than once, each left out: {listed}",
                 problem="duplicate", signals=tuple(twice),
             ),
-            stacklevel=4,
+            stacklevel=caller_stacklevel(),
         )
     return [p for p, name in enumerate(names) if name not in twice]
 

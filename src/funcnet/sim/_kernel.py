@@ -37,6 +37,8 @@ def _friction_step(
     return new
 
 
+# One compiled loop on purpose: split into calls, Numba would no longer keep the whole step
+# in registers, and the step is the simulator's cost.
 @numba.njit(cache=True)
 def axis_kernel(
     sp_pos: np.ndarray,

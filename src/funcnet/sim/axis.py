@@ -756,6 +756,50 @@ def reversal_error_truth(
     return errors
 
 
+def _kernel_groups(p: AxisParameters, trial: Trial) -> tuple[tuple[float, ...], ...]:
+    """The kernel's parameter groups in SI units: mechanics, friction, control, sensors, extra."""
+    rad = math.pi / 180.0
+    fs, ks = p.friction_scale, p.stiffness_scale
+    omega_i = 2 * math.pi * p.current_bandwidth
+    elastic = p.arm_model == "elastic"
+    tip = p.arm_tcp_mass * trial.tcp**2
+    hub = p.arm_inertia_base if elastic else p.arm_inertia(trial.tcp)
+    mechanics = (p.gear_ratio, p.motor_inertia, hub,
+                 p.gear_stiffness * ks, p.gear_damping, p.backlash * rad / 2,
+                 p.torque_constant, p.winding_resistance, p.winding_inductance)  # fmt: skip
+    friction = (p.motor_coulomb * fs, p.motor_static * fs, p.motor_viscous * fs,
+                p.motor_stribeck_velocity, p.arm_coulomb * fs, p.arm_static * fs,
+                p.arm_viscous * fs, p.arm_stribeck_velocity)  # fmt: skip
+    control = (p.current_limit, p.winding_inductance * omega_i, p.winding_resistance * omega_i,
+               p.speed_gain, p.speed_gain / p.speed_integral_time, p.position_gain,
+               p.velocity_feedforward)  # fmt: skip
+    sensors = (2 * math.pi / p.motor_encoder_counts, 2 * math.pi / p.arm_encoder_counts,
+               p.current_resolution)  # fmt: skip
+    extra = (tip, p.link_stiffness if elastic else 0.0, p.link_damping,
+             1.0 if p.position_feedback == "motor" else 0.0, p.cogging_torque * p.noise_scale,
+             p.cogging_periods, p.arm_load)  # fmt: skip
+    return tuple(tuple(map(float, g)) for g in (mechanics, friction, control, sensors, extra))
+
+
+def _logged(log: np.ndarray, states: np.ndarray, n_log: int,
+            p: AxisParameters) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """The kernel's log as the trace's signals (degrees, IPO positions held) and its states."""
+    log = log[:n_log]
+    hold = round(p.position_log_period / p.log_period)
+    if hold > 1:  # IPO logging: AP and MP are sampled every `hold` ticks and held in between
+        held = (np.arange(n_log) // hold) * hold
+        log[:, 1:3] = log[held, 1:3]
+    index = pd.Index(np.arange(n_log) * p.log_period, name="time")
+    deg = 180.0 / math.pi
+    data = pd.DataFrame({"RP": log[:, 0] * deg, "AP": log[:, 1] * deg, "MP": log[:, 2] * deg,
+                         "RC": log[:, 3], "AC": log[:, 4]}, index=index)
+    hidden = pd.DataFrame({"gear_torque": states[:n_log, 0], "torsion": states[:n_log, 1] * deg,
+                           "arm_velocity": states[:n_log, 2] * deg,
+                           "motor_velocity": states[:n_log, 3] * deg,
+                           "tip_velocity": states[:n_log, 4] * deg}, index=index)
+    return data, hidden
+
+
 def simulate_trial(
     trial: Trial, params: AxisParameters | None = None, *, seed: int = 0
 ) -> SimulatedTrial:
@@ -823,59 +867,12 @@ def simulate_trial(
                         p.current_drift_frequency, 1.0 / p.current_loop_rate)  # fmt: skip
 
     dt = 1.0 / p.current_loop_rate
-    rad = math.pi / 180.0
-    fs, ks = p.friction_scale, p.stiffness_scale
-    omega_i = 2 * math.pi * p.current_bandwidth
     n_reverse = round(timing["forward_end"] / dt) if trial.reverse and profile == "step" else -1
     steps = (per_speed, per_log, round(timing["motion_start"] / dt), n_reverse)
-    elastic = p.arm_model == "elastic"
-    tip = p.arm_tcp_mass * trial.tcp**2
-    hub = p.arm_inertia_base if elastic else p.arm_inertia(trial.tcp)
-    mechanics = (p.gear_ratio, p.motor_inertia, hub,
-                 p.gear_stiffness * ks, p.gear_damping, p.backlash * rad / 2,
-                 p.torque_constant, p.winding_resistance, p.winding_inductance)  # fmt: skip
-    friction = (p.motor_coulomb * fs, p.motor_static * fs, p.motor_viscous * fs,
-                p.motor_stribeck_velocity, p.arm_coulomb * fs, p.arm_static * fs,
-                p.arm_viscous * fs, p.arm_stribeck_velocity)  # fmt: skip
-    control = (p.current_limit, p.winding_inductance * omega_i, p.winding_resistance * omega_i,
-               p.speed_gain, p.speed_gain / p.speed_integral_time, p.position_gain,
-               p.velocity_feedforward)  # fmt: skip
-    sensors = (2 * math.pi / p.motor_encoder_counts, 2 * math.pi / p.arm_encoder_counts,
-               p.current_resolution)  # fmt: skip
-    extra = (tip, p.link_stiffness if elastic else 0.0, p.link_damping,
-             1.0 if p.position_feedback == "motor" else 0.0, p.cogging_torque * p.noise_scale,
-             p.cogging_periods, p.arm_load)  # fmt: skip
-    log, states, events = axis_kernel(
-        sp_pos * rad, sp_vel * rad, noise, dt, steps,
-        *(tuple(map(float, group)) for group in (mechanics, friction, control, sensors, extra)),
-    )  # fmt: skip
-    log = log[:n_log]
-    hold = round(p.position_log_period / p.log_period)
-    if hold > 1:  # IPO logging: AP and MP are sampled every `hold` ticks and held in between
-        held = (np.arange(n_log) // hold) * hold
-        log[:, 1:3] = log[held, 1:3]
-    index = pd.Index(np.arange(n_log) * p.log_period, name="time")
-    deg = 180.0 / math.pi
-    data = pd.DataFrame(
-        {
-            "RP": log[:, 0] * deg,
-            "AP": log[:, 1] * deg,
-            "MP": log[:, 2] * deg,
-            "RC": log[:, 3],
-            "AC": log[:, 4],
-        },
-        index=index,
-    )
-    hidden = pd.DataFrame(
-        {
-            "gear_torque": states[:n_log, 0],
-            "torsion": states[:n_log, 1] * deg,
-            "arm_velocity": states[:n_log, 2] * deg,
-            "motor_velocity": states[:n_log, 3] * deg,
-            "tip_velocity": states[:n_log, 4] * deg,
-        },
-        index=index,
-    )
+    rad, deg = math.pi / 180.0, 180.0 / math.pi
+    log, states, events = axis_kernel(sp_pos * rad, sp_vel * rad, noise, dt, steps,
+                                      *_kernel_groups(p, trial))
+    data, hidden = _logged(log, states, n_log, p)
     truth = {
         "backlash": p.backlash,
         "breakaway_time": float(events[0]),
@@ -889,7 +886,7 @@ def simulate_trial(
     }
     if profile == "smooth":  # the reversal error at each continuous turn, its mean the truth
         errors = reversal_error_truth(hidden, sp_vel[:: per_log // per_speed][:n_log] * 60.0,
-                                      p.gear_stiffness * ks * rad)  # fmt: skip
+                                      p.gear_stiffness * p.stiffness_scale * rad)  # fmt: skip
         truth["lost_motion"] = float(np.mean(errors)) if errors else math.nan
     return SimulatedTrial(
         trial=trial, params=p, seed=int(seed), data=data, states=hidden, truth=truth

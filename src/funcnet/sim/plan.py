@@ -351,6 +351,72 @@ _GROUP_KEYS = {"name", "speeds", "tcps", "steps", "direction", "seeds", *FAULT_K
 _DIRECTIONS = {"forward": False, "forward+reverse": True}
 
 
+def _group_trials(group: Any, where: str) -> list[Trial]:
+    """The trials of one ``[[group]]`` of a plan, each checked; ``where`` names the group."""
+    if not isinstance(group, dict):
+        raise StudyError(f"{where}: must be a table")
+    unknown = set(group) - _GROUP_KEYS
+    if unknown:
+        raise StudyError(f"{where}: unknown key(s) {sorted(unknown)}")
+    name = group.get("name")
+    if not isinstance(name, str) or not NAME_PATTERN.fullmatch(name):
+        raise StudyError(f"{where}: 'name' must be a file-name-safe string")
+    lists = {}
+    for key in ("speeds", "tcps", "steps", *FAULT_KNOBS):
+        if key not in group:
+            if key in ("speeds", "tcps", "steps"):
+                raise StudyError(f"{where} ({name}): missing key '{key}'")
+            continue
+        value = group[key]
+        values = value if isinstance(value, list) else [value]
+        if not values or not all(
+            isinstance(v, int | float) and not isinstance(v, bool) for v in values
+        ):
+            raise StudyError(
+                f"{where} ({name}): '{key}' must be a number or a list of "
+                f"numbers, got {value!r}"
+            )
+        lists[key] = [float(v) for v in values]
+    direction = group.get("direction", "forward")
+    if direction not in _DIRECTIONS:
+        raise StudyError(
+            f"{where} ({name}): 'direction' must be one of "
+            f"{sorted(_DIRECTIONS)}, got {direction!r}"
+        )
+    knobs: dict[str, list[float]] = {k: lists[k] for k in FAULT_KNOBS if k in lists}
+    seeds: list[int | None] = [None]
+    if "seeds" in group:
+        raw = group["seeds"]
+        raw = raw if isinstance(raw, list) else [raw]
+        if not raw or not all(
+            isinstance(v, int) and not isinstance(v, bool) and v >= 0 for v in raw
+        ):
+            raise StudyError(
+                f"{where} ({name}): 'seeds' must be a non-negative integer or a list of "
+                f"them, got {group['seeds']!r}"
+            )
+        seeds = list(raw)
+    options = {}
+    for option, words in OPTIONS.items():
+        if option in group:
+            if group[option] not in words:
+                raise StudyError(
+                    f"{where} ({name}): '{option}' must be one of {list(words)}, "
+                    f"got {group[option]!r}"
+                )
+            options[option] = group[option]
+    try:
+        expanded = _expand(
+            name, lists["speeds"], lists["tcps"], lists["steps"], _DIRECTIONS[direction],
+            knobs, seeds, options,
+        )  # fmt: skip
+        for trial in expanded:
+            trial_duration(trial)
+    except ParameterError as exc:
+        raise ParameterError(f"{where} ({name}): {exc}") from None
+    return expanded
+
+
 def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
     """Read a plan of experiments from a TOML file (format in the module's docstring).
 
@@ -401,69 +467,7 @@ def read_plan(path: str | os.PathLike[str]) -> list[Trial]:
         )
     trials: list[Trial] = []
     for number, group in enumerate(groups, start=1):
-        where = f"{path}: group {number}"
-        if not isinstance(group, dict):
-            raise StudyError(f"{where}: must be a table")
-        unknown = set(group) - _GROUP_KEYS
-        if unknown:
-            raise StudyError(f"{where}: unknown key(s) {sorted(unknown)}")
-        name = group.get("name")
-        if not isinstance(name, str) or not NAME_PATTERN.fullmatch(name):
-            raise StudyError(f"{where}: 'name' must be a file-name-safe string")
-        lists = {}
-        for key in ("speeds", "tcps", "steps", *FAULT_KNOBS):
-            if key not in group:
-                if key in ("speeds", "tcps", "steps"):
-                    raise StudyError(f"{where} ({name}): missing key '{key}'")
-                continue
-            value = group[key]
-            values = value if isinstance(value, list) else [value]
-            if not values or not all(
-                isinstance(v, int | float) and not isinstance(v, bool) for v in values
-            ):
-                raise StudyError(
-                    f"{where} ({name}): '{key}' must be a number or a list of "
-                    f"numbers, got {value!r}"
-                )
-            lists[key] = [float(v) for v in values]
-        direction = group.get("direction", "forward")
-        if direction not in _DIRECTIONS:
-            raise StudyError(
-                f"{where} ({name}): 'direction' must be one of "
-                f"{sorted(_DIRECTIONS)}, got {direction!r}"
-            )
-        knobs: dict[str, list[float]] = {k: lists[k] for k in FAULT_KNOBS if k in lists}
-        seeds: list[int | None] = [None]
-        if "seeds" in group:
-            raw = group["seeds"]
-            raw = raw if isinstance(raw, list) else [raw]
-            if not raw or not all(
-                isinstance(v, int) and not isinstance(v, bool) and v >= 0 for v in raw
-            ):
-                raise StudyError(
-                    f"{where} ({name}): 'seeds' must be a non-negative integer or a list of "
-                    f"them, got {group['seeds']!r}"
-                )
-            seeds = list(raw)
-        options = {}
-        for option, words in OPTIONS.items():
-            if option in group:
-                if group[option] not in words:
-                    raise StudyError(
-                        f"{where} ({name}): '{option}' must be one of {list(words)}, "
-                        f"got {group[option]!r}"
-                    )
-                options[option] = group[option]
-        try:
-            expanded = _expand(
-                name, lists["speeds"], lists["tcps"], lists["steps"], _DIRECTIONS[direction],
-                knobs, seeds, options,
-            )  # fmt: skip
-            for trial in expanded:
-                trial_duration(trial)
-        except ParameterError as exc:
-            raise ParameterError(f"{where} ({name}): {exc}") from None
-        trials += expanded
+        trials += _group_trials(group, f"{path}: group {number}")
     names = [t.name for t in trials]
     duplicates = sorted({n for n in names if names.count(n) > 1})
     if duplicates:

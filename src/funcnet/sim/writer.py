@@ -17,7 +17,7 @@ The display settings (``traceDisplaySetup``) are optional in the format and not 
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
@@ -70,6 +70,42 @@ def _formatted(values: np.ndarray) -> list[str]:
     """Six-decimal strings; ``-0.000000`` is written as ``0.000000``."""
     rounded = np.round(values.astype(np.float64), _DECIMALS) + 0.0  # + 0.0 turns -0.0 into 0.0
     return [f"{v:.6f}" for v in rounded.tolist()]
+
+
+def _strides(data: pd.DataFrame, intervals: Mapping[str, float] | None,
+             interval: float) -> dict[str, int]:
+    """Each signal's own logging interval in ticks of the grid, checked."""
+    strides = {}
+    for name, own_interval in dict(intervals or {}).items():
+        stride = own_interval / interval
+        if name not in data.columns or not (stride >= 1 and abs(stride - round(stride)) < 1e-6):
+            raise ParameterError(
+                f"write_trace: intervals[{name!r}] must be a multiple of the grid's step "
+                f"{interval:g} s for a column of data, got {own_interval!r}"
+            )
+        strides[name] = round(stride)
+    return strides
+
+
+def _records(times: Sequence[str], columns: Sequence[Sequence[str]],
+             column_strides: Sequence[int]) -> list[str]:
+    """The ``<rec>`` lines: a value only where it changed on its own grid, all at the end."""
+    ids = [f" f{number}=" for number in range(1, len(columns) + 1)]
+    last = len(times) - 1
+    previous: list[str | None] = [None] * len(columns)
+    lines = []
+    for row, stamp in enumerate(times):
+        fields = []
+        for k, column in enumerate(columns):
+            if row % column_strides[k] and row != last:
+                continue  # not a tick of this signal's own grid
+            value = column[row]
+            if value != previous[k] or row == last:
+                fields.append(f'{ids[k]}"{value}"')
+                previous[k] = value
+        if fields:
+            lines.append(f'  <rec time="{stamp}"{"".join(fields)}/>')
+    return lines
 
 
 def write_trace(
@@ -145,16 +181,7 @@ def write_trace(
     if time.size < 2 or steps[0] <= 0 or not np.allclose(steps, steps[0], rtol=0, atol=1e-9):
         raise ParameterError("write_trace: the index must be a uniform, increasing time grid (s)")
     interval = float(steps[0])
-    own = dict(intervals or {})
-    strides = {}
-    for name, own_interval in own.items():
-        stride = own_interval / interval
-        if name not in data.columns or not (stride >= 1 and abs(stride - round(stride)) < 1e-6):
-            raise ParameterError(
-                f"write_trace: intervals[{name!r}] must be a multiple of the grid's step "
-                f"{interval:g} s for a column of data, got {own_interval!r}"
-            )
-        strides[name] = round(stride)
+    strides = _strides(data, intervals, interval)
     columns = []
     for name in data.columns:
         values = data[name].to_numpy(dtype=np.float64)
@@ -203,21 +230,7 @@ def write_trace(
             f' eventChannel="1" datapointCount="{(time.size + stride - 1) // stride}"'
             f' key="s{number}" name={quoteattr(full)} unitsType="{units}" dataType="{dtype}"/>'
         )
-    ids = [f" f{number}=" for number in range(1, len(columns) + 1)]
-    column_strides = [attrs[5] for attrs in signal_attrs]
-    last = len(times) - 1
-    previous: list[str | None] = [None] * len(columns)
-    for row, stamp in enumerate(times):
-        fields = []
-        for k, column in enumerate(columns):
-            if row % column_strides[k] and row != last:
-                continue  # not a tick of this signal's own grid
-            value = column[row]
-            if value != previous[k] or row == last:
-                fields.append(f'{ids[k]}"{value}"')
-                previous[k] = value
-        if fields:
-            lines.append(f'  <rec time="{stamp}"{"".join(fields)}/>')
+    lines += _records(times, columns, [attrs[5] for attrs in signal_attrs])
     lines += [" </dataFrame>", "</traceData>", "</traceSession>", ""]
 
     target = Path(path)

@@ -25,7 +25,6 @@ types of :mod:`funcnet.network.schema` (with a study's ``[evidence]``, its evide
 from __future__ import annotations
 
 import contextlib
-import fcntl
 import json
 import math
 import os
@@ -201,13 +200,44 @@ def exclusive(out: Path) -> Iterator[None]:
     StudyError
         Another process (or this one) holds the lock.
     """
-    # An advisory lock: the kernel drops it when the holder dies, even by SIGKILL.
+    # The operating system drops the lock when its holder dies, even by SIGKILL.
     with open(out / ".lock", "a") as fh:
         try:
-            fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            unlock = _lock(fh)
         except BlockingIOError:
             raise StudyError(f"{out}: another study run is using this folder") from None
-        yield
+        try:
+            yield
+        finally:
+            unlock()
+
+
+def _lock(fh: Any) -> Any:
+    """Lock the open file ``fh`` without waiting; return the function that unlocks it.
+
+    POSIX: an advisory ``flock``. Windows (no :mod:`fcntl`): ``msvcrt.locking`` of the file's
+    first byte. Raises :class:`BlockingIOError` when another holds the lock.
+    """
+    try:
+        import fcntl
+    except ImportError:
+        fcntl = None  # type: ignore[assignment]
+    if fcntl is not None:
+        fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        return lambda: fcntl.flock(fh, fcntl.LOCK_UN)
+    import msvcrt
+
+    fh.seek(0)
+    try:
+        msvcrt.locking(fh.fileno(), msvcrt.LK_NBLCK, 1)  # type: ignore[attr-defined]
+    except OSError as exc:  # Windows reports a held lock as a permission error
+        raise BlockingIOError(str(exc)) from None
+
+    def unlock() -> None:
+        fh.seek(0)
+        msvcrt.locking(fh.fileno(), msvcrt.LK_UNLCK, 1)  # type: ignore[attr-defined]
+
+    return unlock
 
 
 def done(dirs: Mapping[str, Path], key: str) -> bool:
