@@ -6,7 +6,8 @@ is read with :func:`scipy.io.loadmat`; MAT 7.3 is HDF5 underneath and read with 
 ``.h5``/``.hdf5`` files. How the variables become signals:
 
 - **Time** is the variable the channel map gives the role ``time`` (``"rec.time_cont" =
-  "time"``), else the one variable called ``time`` (in any case, on any path); seconds,
+  "time"``), else the one variable called ``time`` (in any case, on any path); seconds (or
+  the unit ``[units]`` states for it: :mod:`funcnet.robot.clock`), read from the first stamp,
   increasing, on a uniform grid of any period (:func:`funcnet.robot.grid.time_grid`).
 - **Signals** are the numeric variables beside the time (in the same struct or group), and any
   variable the channel map names, anywhere in the file, that have one sample per time stamp. A
@@ -37,6 +38,7 @@ import numpy as np
 from funcnet.errors import ChannelError, TraceFormatError
 from funcnet.robot.axes import qualified, split_qualified
 from funcnet.robot.channels import TIME_ROLE, ChannelMap, SignalInfo, field_keys, resolve_fields
+from funcnet.robot.clock import clock_seconds
 from funcnet.robot.grid import GridSignals, place_on_grid, time_grid
 
 __all__ = ["ARRAY_SUFFIXES", "read_array_file", "StoredArray"]
@@ -230,6 +232,13 @@ def read_array_file(
     def where(sample: int) -> str:
         return f"{time_array.name} sample {sample + 1}"
 
+    stated = units.get(time_array.name)
+    clock = clock_seconds(
+        path, time, stated if isinstance(stated, str) else cmap.time_unit(), time_array.name,
+        where,
+    )
+    time = clock.seconds
+
     period, ticks = time_grid(path, time, where, off_grid=off_grid)
     signals: list[tuple[StoredArray, np.ndarray]] = []
     misfits: list[StoredArray] = []
@@ -291,7 +300,7 @@ def read_array_file(
             columns.append(column)
             values.append(row)
             infos.append(SignalInfo(name, None, str(array.values.dtype), period,
-                                    array.unit or units.get(array.name)))
+                                    array.unit or _axis_unit(units.get(array.name), number)))
             if role:
                 role_of[column] = name
     # Grouped per axis (signals common to all first), in the file's order within an axis.
@@ -307,4 +316,16 @@ def read_array_file(
         axis=axis,
         columns=tuple(columns[j] for j in order),
         roles=role_of,
+        start_time=clock.start_time,
+        time_origin=clock.origin,
+        time_unit=None if clock.unit == "s" else clock.unit,
     )
+
+
+def _axis_unit(unit: str | tuple[str, ...] | None, axis: int | None) -> str | None:
+    """A unit the map states, of ``axis`` where it lists one per axis."""
+    if isinstance(unit, tuple):
+        if axis is not None and 1 <= axis <= len(unit):
+            return unit[axis - 1]
+        return unit[0] if len(unit) == 1 else None
+    return unit
