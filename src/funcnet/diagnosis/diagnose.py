@@ -49,7 +49,7 @@ from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import encoder_step, velocity
 from funcnet.robot.recording import Recording, read_trace
-from funcnet.robot.units import Units, in_degrees, unit_of
+from funcnet.robot.units import Units, in_axis_units, unit_of
 
 __all__ = [
     "SCORE",
@@ -124,20 +124,29 @@ class ReversalResult:
     lost_motion_reason: str | None = None
     lost_motion_terms: tuple[str, ...] = ()
 
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready."""
+    def to_dict(self, length: float = 1.0) -> dict[str, Any]:
+        """JSON-ready; ``length`` scales the lost motion and the following error (1000: a
+        linear axis's mm to um)."""
+        indicators = dict(self.indicators)
+        if indicators.get("following_error_peak") is not None:
+            indicators["following_error_peak"] = _scaled(indicators["following_error_peak"],
+                                                         length)
         return {
             **self.change.to_dict(),
             "speed": self.speed,
             "backlash_score": self.backlash_score,
-            "lost_motion": self.lost_motion,
-            "lost_motion_low": self.lost_motion_low,
-            "lost_motion_high": self.lost_motion_high,
+            "lost_motion": _scaled(self.lost_motion, length),
+            "lost_motion_low": _scaled(self.lost_motion_low, length),
+            "lost_motion_high": _scaled(self.lost_motion_high, length),
             "lost_motion_reason": self.lost_motion_reason,
             "lost_motion_terms": list(self.lost_motion_terms),
             "traversed": self.traversed,
-            "indicators": dict(self.indicators),
+            "indicators": indicators,
         }
+
+
+def _scaled(value: float | None, factor: float) -> float | None:
+    return None if value is None else value * factor
 
 
 @dataclass(frozen=True)
@@ -194,9 +203,13 @@ class BacklashResult:
     left_out : tuple of LeftOut
         The direction changes left out: a gap within what is read around them.
     units : str or None
-        What was done to the units (positions converted from rad to deg, or of unknown unit
-        and computed as degrees); None when the trace's positions are in degrees. The JSON
-        then has the key ``units``.
+        What was done to the units (positions converted from rad to deg or from m to mm, or of
+        unknown unit and computed as degrees); None when the trace's positions are in degrees
+        or mm. The JSON then has the key ``units``.
+    position_unit : str
+        ``"deg"`` (a rotary axis), ``"mm"`` (a linear one: its lost motion and following
+        error are computed in mm, and the JSON states them in um, ``length_unit``; the
+        calibration, made on rotary axes, is not read), or ``"unknown"``.
     lost_motion_low, lost_motion_high : float or None
         deg, the axis's lost motion's interval: the means of its direction changes' interval
         ends (the mean's error terms, added up as if they agreed: its bias does not average
@@ -225,28 +238,41 @@ class BacklashResult:
     lost_motion_low: float | None = None
     lost_motion_high: float | None = None
     lost_motion_terms: tuple[str, ...] = ()
+    position_unit: str = "deg"
 
     @property
     def score_unit(self) -> str:
-        """``"deg"`` for ``motor_hysteresis``; ``"1"`` (a sum of robust z-scores) otherwise."""
+        """``"deg"`` (``"mm"`` on a linear axis) for ``motor_hysteresis``; ``"1"`` (a sum of
+        robust z-scores) otherwise."""
         if self.score_indicator == "none":  # one encoder: no score
             return "none"
-        return "deg" if self.score_indicator == SCORE else "1"
+        return ("mm" if self.position_unit == "mm" else "deg") if self.score_indicator == SCORE \
+            else "1"
+
+    @property
+    def length_unit(self) -> str:
+        """The unit of the lost motion and the following error in the JSON: ``"um"`` on a
+        linear axis, else ``"deg"``."""
+        return "um" if self.position_unit == "mm" else "deg"
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready (the names other tools read: path, backlash_score, lost_motion, ...)."""
+        """JSON-ready (the names other tools read: path, backlash_score, lost_motion, ...);
+        the lost motion and the following error in :attr:`length_unit`."""
+        k = 1000.0 if self.position_unit == "mm" else 1.0
         return {
             "path": self.path, "axis": self.axis,
+            "position_unit": self.position_unit,
+            "length_unit": self.length_unit,
             "backlash_score": self.backlash_score,
             "score_indicator": self.score_indicator,
             "score_unit": self.score_unit,
             "score_spread": self.score_spread,
-            "lost_motion": self.lost_motion,
-            "lost_motion_low": self.lost_motion_low,
-            "lost_motion_high": self.lost_motion_high,
+            "lost_motion": _scaled(self.lost_motion, k),
+            "lost_motion_low": _scaled(self.lost_motion_low, k),
+            "lost_motion_high": _scaled(self.lost_motion_high, k),
             "lost_motion_terms": list(self.lost_motion_terms),
-            "lost_motion_spread": self.lost_motion_spread,
-            "reversals": [r.to_dict() for r in self.reversals],
+            "lost_motion_spread": _scaled(self.lost_motion_spread, k),
+            "reversals": [r.to_dict(k) for r in self.reversals],
             "reading": self.reading,
             "reading_reason": self.reading_reason,
             "lost_motion_reason": self.lost_motion_reason,
@@ -356,9 +382,11 @@ def diagnose_recording(
     where = path if path is not None else (recording.source or "<recording>")
     # The calibration, the thresholds and arcmin are in degrees: angles stated in rad are
     # converted (said); a unit that is no angle where a position belongs is an error.
-    recording, units = in_degrees(recording)
+    recording, units = in_axis_units(recording)
     if "MP" not in recording.data.columns and "RP" in recording.data.columns:
         return _one_encoder(recording, str(where), units, max_dwell)
+    linear = units.position == "mm"
+    fine = (1000.0, "um") if linear else (60.0, "arcmin")
     rec = motor_side_recording(recording)
     segmented = segment_changes(rec, max_dwell=max_dwell)
     changes = list(segmented.changes)
@@ -409,7 +437,7 @@ def diagnose_recording(
             terms = ("sweep accuracy",)
         if lost is not None and low is not None and high is not None:
             estimates.append((lost, low, high, terms))
-        shown_lost = resolved_lost_motion(lost, low, high)
+        shown_lost = resolved_lost_motion(lost, low, high, *fine)
         results.append(ReversalResult(change, speed, score, shown_lost[0], shown, traversed,
                                       shown_lost[1], shown_lost[2], shown_lost[3], terms))
     scores = [r.backlash_score for r in results if r.backlash_score is not None]
@@ -417,12 +445,15 @@ def diagnose_recording(
     axis_lost = resolved_lost_motion(
         float(np.mean(losses)) if losses else None,
         float(np.mean([e[1] for e in estimates])) if estimates else None,
-        float(np.mean([e[2] for e in estimates])) if estimates else None)
+        float(np.mean([e[2] for e in estimates])) if estimates else None, *fine)
     score = float(np.mean(scores)) if scores else None
     reading = None
     spread = None
     reason = None
-    if score is not None:
+    if score is not None and linear:
+        reason = ("a linear axis (mm): the calibration was made on rotary axes (deg, deg/min) "
+                  "and is not read on it")
+    elif score is not None:
         speed = float(np.mean([r.speed for r in results if r.backlash_score is not None]))
         reason = _outside(speed, rec, table, has_ap)
         if reason is None:
@@ -456,6 +487,7 @@ def diagnose_recording(
                    if not changes else "the arm does not restart")  # fmt: skip
     return BacklashResult(
         units=units.note or None,
+        position_unit=units.position,
         path=str(where),
         score_indicator=indicator,
         backlash_score=score,
@@ -532,9 +564,10 @@ def _one_encoder(
         peaks = [r.indicators.get("following_error_peak") for r in results]
         peaks_ = [p for p in peaks if p is not None]
         if peaks_:
-            label = "arcmin" if units.position == "deg" else "x 60, unit unknown"
+            k, label = {"deg": (60.0, "arcmin"), "mm": (1000.0, "um")}.get(
+                units.position, (60.0, "x 60, unit unknown"))
             found += (f"; following error |RP - AP| there "
-                      f"{_span(60 * min(peaks_), 60 * max(peaks_))} {label}")
+                      f"{_span(k * min(peaks_), k * max(peaks_))} {label}")
         steps = [r.indicators.get("current_step") for r in results]
         steps_ = [abs(v) for v in steps if v is not None]
         if steps_ and current is not None:
@@ -549,10 +582,12 @@ def _one_encoder(
         lost_motion=None, lost_motion_spread=None, reversals=tuple(results), reading=None,
         message=message, reading_reason=need, lost_motion_reason="one encoder per joint, no MP",
         segments=segmented.segments, left_out=segmented.left_out, units=units.note or None,
+        position_unit=units.position,
     )
 
 
 def resolved_lost_motion(lost: float | None, low: float | None, high: float | None,
+                         scale: float = 60.0, unit: str = "arcmin",
                          ) -> tuple[float | None, float | None, float | None, str | None]:
     """A lost motion as it may be said: the estimate where its interval lies above 0, else
     none, with 0 and the bound as its interval and the reason.
@@ -564,7 +599,9 @@ def resolved_lost_motion(lost: float | None, low: float | None, high: float | No
     Parameters
     ----------
     lost, low, high : float or None
-        deg, the estimate and its interval.
+        deg (mm on a linear axis), the estimate and its interval.
+    scale, unit : float, str
+        How the reason states the bound: arcmin (60) from deg, um (1000) from mm.
 
     Returns
     -------
@@ -585,8 +622,8 @@ def resolved_lost_motion(lost: float | None, low: float | None, high: float | No
     if low > 0:
         return lost, low, high, None
     bound = high if high > 0 else high - low
-    return None, 0.0, bound, (f"below what this estimate resolves: <= {bound * 60:.2g} "
-                              "arcmin")
+    return None, 0.0, bound, (f"below what this estimate resolves: <= {bound * scale:.2g} "
+                              f"{unit}")
 
 
 def _outside(speed: float, rec: Recording, table: Mapping[str, Any], has_ap: bool) -> str | None:

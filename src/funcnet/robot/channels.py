@@ -85,7 +85,7 @@ class SignalInfo:
         a torque standing in the role of the current AC shows its unit here.
     converted_from : str or None
         The unit the file holds, when the values were converted to ``unit``
-        (:func:`funcnet.robot.units.in_degrees`: rad to deg).
+        (:func:`funcnet.robot.units.in_axis_units`: rad to deg, m to mm).
     """
 
     name: str
