@@ -183,6 +183,14 @@ def _network_tables(ins: TraceInspection) -> str:
     return "".join(parts)
 
 
+def _moves_shown(ins: TraceInspection) -> pd.DataFrame:
+    """The moves table as the page shows it: a linear axis's following error in um."""
+    if not scale_of(ins).linear:
+        return ins.moves
+    fe = [c for c in ("peak |FE|", "final |FE|") if c in ins.moves]
+    return ins.moves.assign(**{c: ins.moves[c] * 1e3 for c in fe})
+
+
 def _move_units(ins: TraceInspection) -> dict[str, str]:
     """The moves table's columns with the unit each holds (positions in degrees or mm, or of
     unknown unit; the current's as the recording states it)."""
@@ -195,8 +203,9 @@ def _move_units(ins: TraceInspection) -> dict[str, str]:
     ac = signals.get("AC")
     current = unit_of(ac) if ac is not None else UNKNOWN
     units = {"start": "s", "stop": "s", "duration": "s", "distance": position,
-             "peak speed": speed, "peak V": speed, "peak |FE|": position,
-             "final |FE|": position,
+             "peak speed": speed, "peak V": speed,
+             "peak |FE|": "um" if scale.linear else position,
+             "final |FE|": "um" if scale.linear else position,
              "peak |AC|": "unit unknown" if current == UNKNOWN else current}
     return {column: f"{column} [{unit}]" for column, unit in units.items()}
 
@@ -331,7 +340,7 @@ def write_inspection(
         f"<section id=\"backlash\"><h2>Backlash and lost motion</h2>{_backlash_html(ins)}"
         "</section>",
         "<section id=\"phases\"><h2>Moves and phases</h2>",
-        table(ins.moves.round(4).rename(columns=_move_units(ins))) if len(ins.moves)
+        table(_moves_shown(ins).round(4).rename(columns=_move_units(ins))) if len(ins.moves)
         else "<p>No move.</p>",
         "<details><summary>every phase</summary>",
         table(ins.phases[["phase", "move", "start", "stop", "duration"]].rename(

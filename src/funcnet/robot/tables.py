@@ -126,7 +126,8 @@ def table_signals(
     columns = [_numbers(path, table.iloc[:, p], names[p], where) for p in signal_at]
     values = place_on_grid(time, np.column_stack(columns), period, ticks)
     return GridSignals(
-        signals=tuple(SignalInfo(names[p], None, None, period) for p in signal_at),
+        signals=tuple(SignalInfo(names[p], None, None, period, cmap.unit(names[p]))
+                      for p in signal_at),
         values=values,
         sample_period=period,
         t0=float(np.round(time[0], 9)),
