@@ -450,7 +450,7 @@ def diagnose_recording(
     reading = None
     spread = None
     reason = None
-    if score is not None and linear:
+    if changes and linear:
         reason = ("a linear axis (mm): the calibration was made on rotary axes (deg, deg/min) "
                   "and is not read on it")
     elif score is not None:
