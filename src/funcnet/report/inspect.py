@@ -63,14 +63,16 @@ from funcnet.report.inspect_figures import (
     figure_timeline,
 )
 from funcnet.report.inspect_text import (
+    clock_items,
     converted_sentence,
-    scale_of,
-    time_sentence,
     failed_windows,
     gaps_sentence,
     lost_motion_cell,
+    moves_shown,
     partial_evidence,
+    scale_of,
     summary_html,
+    time_sentence,
 )
 from funcnet.report.repetitions_page import write_repetitions
 from funcnet.report.robot_figures import figure_robot_matrix
@@ -183,33 +185,6 @@ def _network_tables(ins: TraceInspection) -> str:
     return "".join(parts)
 
 
-def _moves_shown(ins: TraceInspection) -> pd.DataFrame:
-    """The moves table as the page shows it: a linear axis's following error in um."""
-    if not scale_of(ins).linear:
-        return ins.moves
-    fe = [c for c in ("peak |FE|", "final |FE|") if c in ins.moves]
-    return ins.moves.assign(**{c: ins.moves[c] * 1e3 for c in fe})
-
-
-def _move_units(ins: TraceInspection) -> dict[str, str]:
-    """The moves table's columns with the unit each holds (positions in degrees or mm, or of
-    unknown unit; the current's as the recording states it)."""
-    from funcnet.robot.units import UNKNOWN, unit_of
-
-    signals = ins.recording.signals
-    scale = scale_of(ins)
-    position, speed = {"deg": ("°", "°/s"), "mm": ("mm", "mm/s")}.get(
-        scale.position, ("unit unknown", "unit unknown per s"))
-    ac = signals.get("AC")
-    current = unit_of(ac) if ac is not None else UNKNOWN
-    units = {"start": "s", "stop": "s", "duration": "s", "distance": position,
-             "peak speed": speed, "peak V": speed,
-             "peak |FE|": "um" if scale.linear else position,
-             "final |FE|": "um" if scale.linear else position,
-             "peak |AC|": "unit unknown" if current == UNKNOWN else current}
-    return {column: f"{column} [{unit}]" for column, unit in units.items()}
-
-
 def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list[str]:
     """The body of one trace's page (figures written to ``out/figures``)."""
     steps = 6
@@ -268,14 +243,7 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
 
 
 def _provenance(ins: TraceInspection | RobotInspection, **items: str) -> dict[str, Any]:
-    rec = ins.recording
-    clock = {}
-    if rec.time_unit or rec.time_origin:  # the file's own clock, where the time was read from
-        clock["time read in"] = rec.time_unit or "s"
-    if rec.time_origin:
-        clock["file's clock at time 0 [s]"] = f"{rec.time_origin:.9g}"
-    if rec.start_time:
-        clock["start time"] = rec.start_time
+    clock = clock_items(ins.recording)
     return {"trace": Path(ins.source).name,
             **provenance({**clock, "computation time [s]": f"{ins.elapsed:.1f}", **items})}
 
@@ -340,7 +308,7 @@ def write_inspection(
         f"<section id=\"backlash\"><h2>Backlash and lost motion</h2>{_backlash_html(ins)}"
         "</section>",
         "<section id=\"phases\"><h2>Moves and phases</h2>",
-        table(_moves_shown(ins).round(4).rename(columns=_move_units(ins))) if len(ins.moves)
+        table(moves_shown(ins)) if len(ins.moves)
         else "<p>No move.</p>",
         "<details><summary>every phase</summary>",
         table(ins.phases[["phase", "move", "start", "stop", "duration"]].rename(

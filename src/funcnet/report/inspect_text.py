@@ -20,7 +20,8 @@ from funcnet.report.html import escape
 from funcnet.robot.grid import format_spans
 
 __all__ = ["summary_html", "gaps_sentence", "converted_sentence", "failed_windows",
-           "partial_evidence", "lost_motion_cell", "time_sentence", "scale_of"]
+           "partial_evidence", "lost_motion_cell", "time_sentence", "scale_of", "moves_shown",
+           "clock_items"]
 
 
 def scale_of(ins: TraceInspection) -> Any:
@@ -328,6 +329,51 @@ def _evidence_count(ins: TraceInspection) -> str:
             "whatever the data" + ("; their asymmetry intervals are not drawn" if undrawn
                                    else "") if span else "")
     return f" (pairs over the windows: {text}{note})"
+
+
+def _moves_scaled(ins: TraceInspection) -> pd.DataFrame:
+    """The moves table as the page shows it: a linear axis's following error in um."""
+    if not scale_of(ins).linear:
+        return ins.moves
+    fe = [c for c in ("peak |FE|", "final |FE|") if c in ins.moves]
+    return ins.moves.assign(**{c: ins.moves[c] * 1e3 for c in fe})
+
+
+def _move_units(ins: TraceInspection) -> dict[str, str]:
+    """The moves table's columns with the unit each holds (positions in degrees or mm, or of
+    unknown unit; the current's as the recording states it)."""
+    from funcnet.robot.units import UNKNOWN, unit_of
+
+    signals = ins.recording.signals
+    scale = scale_of(ins)
+    position, speed = {"deg": ("°", "°/s"), "mm": ("mm", "mm/s")}.get(
+        scale.position, ("unit unknown", "unit unknown per s"))
+    ac = signals.get("AC")
+    current = unit_of(ac) if ac is not None else UNKNOWN
+    units = {"start": "s", "stop": "s", "duration": "s", "distance": position,
+             "peak speed": speed, "peak V": speed,
+             "peak |FE|": "um" if scale.linear else position,
+             "final |FE|": "um" if scale.linear else position,
+             "peak |AC|": "unit unknown" if current == UNKNOWN else current}
+    return {column: f"{column} [{unit}]" for column, unit in units.items()}
+
+
+def moves_shown(ins: TraceInspection) -> pd.DataFrame:
+    """The moves table as the page shows it: rounded, each column's unit in its name, a linear
+    axis's following error in um."""
+    return _moves_scaled(ins).round(4).rename(columns=_move_units(ins))
+
+
+def clock_items(recording: Any) -> dict[str, str]:
+    """The file's own clock for the provenance table, where the time was read from it."""
+    items = {}
+    if recording.time_unit or recording.time_origin:
+        items["time read in"] = recording.time_unit or "s"
+    if recording.time_origin:
+        items["file's clock at time 0 [s]"] = f"{recording.time_origin:.9g}"
+    if recording.start_time:
+        items["start time"] = recording.start_time
+    return items
 
 
 def failed_windows(ins: TraceInspection, part: str) -> dict[str, str]:

@@ -241,8 +241,6 @@ class ChannelMap:
 
         Examples
         --------
-        >>> ChannelMap(units={"timestamp": "us"}).time_unit("timestamp")
-        'us'
         >>> ChannelMap(units={"time": "ms"}).time_unit("stamp"), ChannelMap().time_unit()
         ('ms', None)
         """

@@ -38,7 +38,8 @@ import pandas as pd
 
 from funcnet.errors import ChannelError, TraceFormatError
 
-__all__ = ["TIME_UNITS", "PLAUSIBLE_STEP", "ABSOLUTE_CLOCK", "Clock", "clock_seconds", "time_unit_factor"]
+__all__ = ["TIME_UNITS", "PLAUSIBLE_STEP", "ABSOLUTE_CLOCK", "Clock", "clock_seconds",
+           "time_unit_factor"]
 
 #: The units a time column may be stated in, and their factor to seconds.
 TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "ns": 1e-9}

@@ -360,8 +360,8 @@ def _summary(recording: Recording, converted: list[str], unknown: list[str],
         units_from = sorted({c.split("(")[-1].rstrip(")") for c in converted})
         lengths = any(kind == "length" for kind, _ in kinds.values())
         angles = any(kind == "angle" for kind, _ in kinds.values())
-        target = " and ".join(
-            ([ "deg (deg/s)"] if angles or not lengths else []) + (["mm (mm/s)"] if lengths else []))
+        target = " and ".join((["deg (deg/s)"] if angles or not lengths else [])
+                              + (["mm (mm/s)"] if lengths else []))
         parts.append(f"converted from {', '.join(units_from)} to {target}: "
                      f"{', '.join(converted)}")
     if unknown:
