@@ -455,6 +455,7 @@ def _joined(
                 if role:
                     roles[name] = source
     order = sorted(range(len(columns)), key=lambda j: split_qualified(columns[j])[0] or 0)
+    clock = _first_clock(tables)
     return GridSignals(
         signals=tuple(infos[j] for j in order),
         values=np.column_stack([values[j] for j in order]),
@@ -463,16 +464,13 @@ def _joined(
         axis=axis,
         columns=tuple(columns[j] for j in order),
         roles=roles,
-        **_clock_fields(tables),
+        start_time=clock.start_time if clock else None,
+        time_origin=clock.origin if clock else 0.0,
+        time_unit=None if clock is None or clock.unit == "s" else clock.unit,
     )
 
 
-def _clock_fields(tables: dict[Path, FileTable]) -> dict[str, object]:
-    """The recording's ``time_origin``, ``time_unit`` and ``start_time`` from its files'
-    clocks (those of the earliest file)."""
+def _first_clock(tables: dict[Path, FileTable]) -> Clock | None:
+    """The clock the recording's time is read from: the earliest absolute one, else any."""
     clocks = [t.clock for t in tables.values() if t.clock is not None]
-    if not clocks:
-        return {}
-    first = min(clocks, key=lambda c: (c.origin == 0.0, c.origin))
-    return {"time_origin": first.origin, "start_time": first.start_time,
-            "time_unit": None if first.unit == "s" else first.unit}
+    return min(clocks, key=lambda c: (c.origin == 0.0, c.origin)) if clocks else None
