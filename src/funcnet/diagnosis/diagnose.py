@@ -351,6 +351,105 @@ def _spread(score: float, reading: Mapping[str, Any], calibration: Mapping[str, 
     return float(np.mean(bands)) if bands else math.nan
 
 
+@dataclass(frozen=True)
+class _Axis:
+    """What every direction change of one axis is read with (:func:`_change_result`)."""
+
+    has_ap: bool
+    indicator: str
+    table: Mapping[str, Any]
+    arm_start: Any
+    gear: GearFit | None
+    quantum: float
+    fine: tuple[float, str]  # how a bound is said: arcmin from deg, um from mm
+
+
+def _change_result(
+    rec: Recording, change: DirectionChange, axis: _Axis
+) -> tuple[ReversalResult, tuple[float, float, float, tuple[str, ...]] | None]:
+    """One direction change measured, and its lost motion's estimate (lost, low, high, terms)
+    where it has one."""
+    part = segment_part(rec, change)  # the recording itself without gaps
+    speed = _move_speed(part, change)
+    traversed = torque_traversed(rec, change)
+    low = high = None
+    terms: tuple[str, ...] = ()
+    score = lost = None
+    shown: dict[str, float | None] = {}
+    if change.kind == "reversal":
+        values = reversal_indicators(part, change, networks=False, arm_start=axis.arm_start)
+        if not axis.has_ap:
+            row = pd.DataFrame([{**values, "peak_speed": speed}])
+            contact = with_contact_score(row, axis.table["reference"])["motor_contact"]
+            values["motor_contact"] = float(contact.iloc[0])
+        score = _none(values[axis.indicator])
+        lost = _none(values["lost_motion"]) if axis.has_ap else None
+        shown = {k: _none(v) for k, v in values.items() if k != "signature"}
+    elif change.kind == "continuous":
+        # the motor-side score is calibrated on reversals where the arm rests at the turn
+        if axis.has_ap:
+            error = reversal_error(rec, change, axis.gear, traversed=traversed)
+            lost, low, high = _none(error.lost_motion), _none(error.low), _none(error.high)
+            terms = error.terms
+    else:
+        lost = _none(lost_motion(part, change)) if axis.has_ap else None
+    if lost is not None and change.kind != "continuous":
+        # the sweep's validated accuracy: 5 % or two arm-encoder steps (section 3.1)
+        width = max(0.05 * abs(lost), 2 * axis.quantum)
+        low, high = lost - width, lost + width
+        terms = ("sweep accuracy",)
+    estimate = ((lost, low, high, terms) if lost is not None and low is not None
+                and high is not None else None)
+    shown_lost = resolved_lost_motion(lost, low, high, *axis.fine)
+    return (ReversalResult(change, speed, score, shown_lost[0], shown, traversed, shown_lost[1],
+                           shown_lost[2], shown_lost[3], terms), estimate)
+
+
+def _score_reading(
+    score: float | None, results: list[ReversalResult], changes: list[DirectionChange],
+    linear: bool, rec: Recording, table: Mapping[str, Any], has_ap: bool,
+) -> tuple[dict[str, Any] | None, float | None, str | None]:
+    """The calibration's reading of the score, its spread, and why there is none."""
+    if changes and linear:
+        return None, None, ("a linear axis (mm): the calibration was made on rotary axes (deg, "
+                            "deg/min) and is not read on it")
+    if score is not None:
+        speed = float(np.mean([r.speed for r in results if r.backlash_score is not None]))
+        reason = _outside(speed, rec, table, has_ap)
+        if reason is not None:
+            return None, None, reason
+        reading = _reading(score, speed, table)
+        return reading, _none(_spread(score, reading, table)), None
+    if changes:
+        return None, None, ("no reversal with a rest at the turn: the calibration holds such "
+                            "reversals only")
+    return None, None, "no direction change"
+
+
+def _two_encoder_message(results: list[ReversalResult], reading: dict[str, Any] | None,
+                         reason: str | None, max_dwell: float, measured: bool,
+                         left_out: bool) -> str:
+    """The one line saying what was found at the direction changes (before the gaps' note)."""
+    n_rev = sum(r.change.kind == "reversal" for r in results)
+    n_cont = sum(r.change.kind == "continuous" for r in results)
+    if not results:
+        return ("no direction change: the axis moves one way only; no backlash indicator"
+                if not left_out else "no direction change read; no backlash indicator")
+    if n_rev == 0:
+        rest = len(results) - n_cont
+        found = (f"{n_cont} in continuous motion (the arm never rests)"
+                 + (f", {rest} after a standstill" if rest else "") if n_cont
+                 else f"{len(results)} direction change(s) after a standstill")  # fmt: skip
+        return (
+            f"no reversal (a direction change within {max_dwell:g} s): {found}; the motor-side "
+            "score is calibrated on reversals only"
+            + ("; two-encoder lost motion measured there" if measured else "")
+        )
+    return f"{n_rev} reversal(s); " + (
+        reading["text"] if reading else f"no reading ({reason})" if reason else "no score"
+    )
+
+
 def diagnose_recording(
     recording: Recording,
     path: str | None = None,
@@ -401,45 +500,12 @@ def diagnose_recording(
     quantum = encoder_step(rec.data["AP"].to_numpy(dtype=np.float64)) if has_ap else math.nan
     results = []
     estimates: list[tuple[float, float, float, tuple[str, ...]]] = []  # lost, low, high, terms
+    axis = _Axis(has_ap, indicator, table, arm_start, gear, quantum, fine)
     for change in changes:
-        part = segment_part(rec, change)  # the recording itself without gaps
-        speed = _move_speed(part, change)
-        traversed = torque_traversed(rec, change)
-        low = high = None
-        terms: tuple[str, ...] = ()
-        if change.kind == "reversal":
-            values = reversal_indicators(part, change, networks=False, arm_start=arm_start)
-            if not has_ap:
-                row = pd.DataFrame([{**values, "peak_speed": speed}])
-                contact = with_contact_score(row, table["reference"])["motor_contact"]
-                values["motor_contact"] = float(contact.iloc[0])
-            score = _none(values[indicator])
-            lost = _none(values["lost_motion"]) if has_ap else None
-            shown = {k: _none(v) for k, v in values.items() if k != "signature"}
-        elif change.kind == "continuous":
-            # the motor-side score is calibrated on reversals where the arm rests at the turn
-            score = None
-            shown = {}
-            lost = None
-            if has_ap:
-                error = reversal_error(rec, change, gear, traversed=traversed)
-                lost, low, high = (_none(error.lost_motion), _none(error.low),
-                                   _none(error.high))  # fmt: skip
-                terms = error.terms
-        else:
-            score = None
-            lost = _none(lost_motion(part, change)) if has_ap else None
-            shown = {}
-        if lost is not None and change.kind != "continuous":
-            # the sweep's validated accuracy: 5 % or two arm-encoder steps (section 3.1)
-            width = max(0.05 * abs(lost), 2 * quantum)
-            low, high = lost - width, lost + width
-            terms = ("sweep accuracy",)
-        if lost is not None and low is not None and high is not None:
-            estimates.append((lost, low, high, terms))
-        shown_lost = resolved_lost_motion(lost, low, high, *fine)
-        results.append(ReversalResult(change, speed, score, shown_lost[0], shown, traversed,
-                                      shown_lost[1], shown_lost[2], shown_lost[3], terms))
+        result, estimate = _change_result(rec, change, axis)
+        results.append(result)
+        if estimate is not None:
+            estimates.append(estimate)
     scores = [r.backlash_score for r in results if r.backlash_score is not None]
     losses = [lost for lost, *_ in estimates]
     axis_lost = resolved_lost_motion(
@@ -447,41 +513,9 @@ def diagnose_recording(
         float(np.mean([e[1] for e in estimates])) if estimates else None,
         float(np.mean([e[2] for e in estimates])) if estimates else None, *fine)
     score = float(np.mean(scores)) if scores else None
-    reading = None
-    spread = None
-    reason = None
-    if changes and linear:
-        reason = ("a linear axis (mm): the calibration was made on rotary axes (deg, deg/min) "
-                  "and is not read on it")
-    elif score is not None:
-        speed = float(np.mean([r.speed for r in results if r.backlash_score is not None]))
-        reason = _outside(speed, rec, table, has_ap)
-        if reason is None:
-            reading = _reading(score, speed, table)
-            spread = _none(_spread(score, reading, table))
-    elif changes:
-        reason = "no reversal with a rest at the turn: the calibration holds such reversals only"
-    else:
-        reason = "no direction change"
-    n_rev = sum(r.change.kind == "reversal" for r in results)
-    n_cont = sum(r.change.kind == "continuous" for r in results)
-    if not changes:
-        message = ("no direction change: the axis moves one way only; no backlash indicator"
-                   if not segmented.left_out else "no direction change read; no backlash indicator")
-    elif n_rev == 0:
-        rest = len(changes) - n_cont
-        found = (f"{n_cont} in continuous motion (the arm never rests)"
-                 + (f", {rest} after a standstill" if rest else "") if n_cont
-                 else f"{len(changes)} direction change(s) after a standstill")  # fmt: skip
-        message = (
-            f"no reversal (a direction change within {max_dwell:g} s): {found}; the motor-side "
-            "score is calibrated on reversals only"
-            + ("; two-encoder lost motion measured there" if losses else "")
-        )
-    else:
-        message = f"{n_rev} reversal(s); " + (
-            reading["text"] if reading else f"no reading ({reason})" if reason else "no score"
-        )
+    reading, spread, reason = _score_reading(score, results, changes, linear, rec, table, has_ap)
+    message = _two_encoder_message(results, reading, reason, max_dwell, bool(losses),
+                                   bool(segmented.left_out))
     message = "; ".join(m for m in (message, segments_note(segmented)) if m)
     lost_reason = (axis_lost[3] if losses else "no AP" if not has_ap else "no direction change"
                    if not changes else "the arm does not restart")  # fmt: skip
