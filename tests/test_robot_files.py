@@ -124,7 +124,10 @@ def test_rtde_sample_read_by_its_header_names():
     last = [float(v) for v in lines[-1].split()]
     assert header[0] == "timestamp" and header[-1] == "actual_current_5"
     assert len(rec.data) == len(lines) - 1
-    assert rec.data.index[0] == pytest.approx(first[0])
+    # the controller's uptime is read from the recording's start, its reading there kept
+    assert rec.data.index[0] == 0.0 and rec.time_origin == pytest.approx(first[0])
+    second = float(lines[2].split()[0])
+    assert rec.data.index[1] == pytest.approx(second - first[0])
     assert rec.data["RP"].iloc[0] == first[header.index("target_q_0")]
     assert rec.data["AC"].iloc[-1] == last[header.index("actual_current_0")]
     assert rec.data["target_moment"].iloc[-1] == last[header.index("target_moment_0")]

@@ -81,29 +81,33 @@ def backlash(
 
 
 def _backlash_numbers(result: Any) -> str:
-    """Score and lost motion of one trace's diagnosis, on one line."""
+    """Score and lost motion of one trace's diagnosis, on one line (arcmin on a rotary axis,
+    um on a linear one)."""
     if result.score_indicator == "none":  # one encoder: neither can be computed
         return "backlash_score none; lost_motion none (one encoder per joint)"
     if result.backlash_score is None:
         score = f"backlash_score none ({result.score_indicator})"
     else:
         spread = "" if result.score_spread is None else f" ± {result.score_spread:.3g}"
-        score = f"backlash_score {result.backlash_score:.4g}{spread} deg ({result.score_indicator})"
+        score = (f"backlash_score {result.backlash_score:.4g}{spread} {result.score_unit} "
+                 f"({result.score_indicator})")
+    k, unit = (1000.0, "um") if result.position_unit == "mm" else (60.0, "arcmin")
     if result.lost_motion is None:
         line = f"{score}; lost_motion none ({result.lost_motion_reason or 'no AP'})"
         if result.lost_motion_high is None:  # nothing measured: no gear either
             return line
     else:
-        # Backlash is read in arcmin (1/60 deg); the JSON keeps degrees, as the manifest does.
+        # Backlash is read in arcmin (1/60 deg) or um; the JSON keeps degrees, as the manifest
+        # does, or um
         spread = ("" if result.lost_motion_spread is None
-                  else f" ± {60 * result.lost_motion_spread:.2f}")
-        line = f"{score}; lost_motion {60 * result.lost_motion:.2f}{spread} arcmin"
+                  else f" ± {k * result.lost_motion_spread:.2f}")
+        line = f"{score}; lost_motion {k * result.lost_motion:.2f}{spread} {unit}"
     parts = result.gear_parts
     if parts is not None and parts.dead_zone is not None:
         line += (f" (over the run, where the torque changes sign: dead zone "
-                 f"{60 * parts.dead_zone:.2f} [{60 * parts.dead_zone_low:.2f}, "
-                 f"{60 * parts.dead_zone_high:.2f}], friction {60 * parts.friction:.2f} "
-                 f"[{60 * parts.friction_low:.2f}, {60 * parts.friction_high:.2f}] arcmin)")
+                 f"{k * parts.dead_zone:.2f} [{k * parts.dead_zone_low:.2f}, "
+                 f"{k * parts.dead_zone_high:.2f}], friction {k * parts.friction:.2f} "
+                 f"[{k * parts.friction_low:.2f}, {k * parts.friction_high:.2f}] {unit})")
     return line
 
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from importlib import resources
 from typing import Any
@@ -39,18 +39,17 @@ from funcnet.diagnosis.reversal_error import (
 from funcnet.diagnosis.reversals import MAX_DWELL, DirectionChange, motor_side_recording
 from funcnet.diagnosis.segments import (
     LeftOut,
-    SegmentedChanges,
     segment_changes,
     segment_first_start,
     segment_part,
     segments_note,
 )
-from funcnet.diagnosis.two_encoder import ArmStart, lost_motion
+from funcnet.diagnosis.two_encoder import lost_motion
 from funcnet.errors import ParameterError
 from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import encoder_step, velocity
 from funcnet.robot.recording import Recording, read_trace
-from funcnet.robot.units import Units, in_degrees, unit_of
+from funcnet.robot.units import Units, in_axis_units, unit_of
 
 __all__ = [
     "SCORE",
@@ -125,20 +124,29 @@ class ReversalResult:
     lost_motion_reason: str | None = None
     lost_motion_terms: tuple[str, ...] = ()
 
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready."""
+    def to_dict(self, length: float = 1.0) -> dict[str, Any]:
+        """JSON-ready; ``length`` scales the lost motion and the following error (1000: a
+        linear axis's mm to um)."""
+        indicators = dict(self.indicators)
+        if indicators.get("following_error_peak") is not None:
+            indicators["following_error_peak"] = _scaled(indicators["following_error_peak"],
+                                                         length)
         return {
             **self.change.to_dict(),
             "speed": self.speed,
             "backlash_score": self.backlash_score,
-            "lost_motion": self.lost_motion,
-            "lost_motion_low": self.lost_motion_low,
-            "lost_motion_high": self.lost_motion_high,
+            "lost_motion": _scaled(self.lost_motion, length),
+            "lost_motion_low": _scaled(self.lost_motion_low, length),
+            "lost_motion_high": _scaled(self.lost_motion_high, length),
             "lost_motion_reason": self.lost_motion_reason,
             "lost_motion_terms": list(self.lost_motion_terms),
             "traversed": self.traversed,
-            "indicators": dict(self.indicators),
+            "indicators": indicators,
         }
+
+
+def _scaled(value: float | None, factor: float) -> float | None:
+    return None if value is None else value * factor
 
 
 @dataclass(frozen=True)
@@ -195,9 +203,13 @@ class BacklashResult:
     left_out : tuple of LeftOut
         The direction changes left out: a gap within what is read around them.
     units : str or None
-        What was done to the units (positions converted from rad to deg, or of unknown unit
-        and computed as degrees); None when the trace's positions are in degrees. The JSON
-        then has the key ``units``.
+        What was done to the units (positions converted from rad to deg or from m to mm, or of
+        unknown unit and computed as degrees); None when the trace's positions are in degrees
+        or mm. The JSON then has the key ``units``.
+    position_unit : str
+        ``"deg"`` (a rotary axis), ``"mm"`` (a linear one: its lost motion and following
+        error are computed in mm, and the JSON states them in um, ``length_unit``; the
+        calibration, made on rotary axes, is not read), or ``"unknown"``.
     lost_motion_low, lost_motion_high : float or None
         deg, the axis's lost motion's interval: the means of its direction changes' interval
         ends (the mean's error terms, added up as if they agreed: its bias does not average
@@ -226,28 +238,41 @@ class BacklashResult:
     lost_motion_low: float | None = None
     lost_motion_high: float | None = None
     lost_motion_terms: tuple[str, ...] = ()
+    position_unit: str = "deg"
 
     @property
     def score_unit(self) -> str:
-        """``"deg"`` for ``motor_hysteresis``; ``"1"`` (a sum of robust z-scores) otherwise."""
+        """``"deg"`` (``"mm"`` on a linear axis) for ``motor_hysteresis``; ``"1"`` (a sum of
+        robust z-scores) otherwise."""
         if self.score_indicator == "none":  # one encoder: no score
             return "none"
-        return "deg" if self.score_indicator == SCORE else "1"
+        return ("mm" if self.position_unit == "mm" else "deg") if self.score_indicator == SCORE \
+            else "1"
+
+    @property
+    def length_unit(self) -> str:
+        """The unit of the lost motion and the following error in the JSON: ``"um"`` on a
+        linear axis, else ``"deg"``."""
+        return "um" if self.position_unit == "mm" else "deg"
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready (the names other tools read: path, backlash_score, lost_motion, ...)."""
+        """JSON-ready (the names other tools read: path, backlash_score, lost_motion, ...);
+        the lost motion and the following error in :attr:`length_unit`."""
+        k = 1000.0 if self.position_unit == "mm" else 1.0
         return {
             "path": self.path, "axis": self.axis,
+            "position_unit": self.position_unit,
+            "length_unit": self.length_unit,
             "backlash_score": self.backlash_score,
             "score_indicator": self.score_indicator,
             "score_unit": self.score_unit,
             "score_spread": self.score_spread,
-            "lost_motion": self.lost_motion,
-            "lost_motion_low": self.lost_motion_low,
-            "lost_motion_high": self.lost_motion_high,
+            "lost_motion": _scaled(self.lost_motion, k),
+            "lost_motion_low": _scaled(self.lost_motion_low, k),
+            "lost_motion_high": _scaled(self.lost_motion_high, k),
             "lost_motion_terms": list(self.lost_motion_terms),
-            "lost_motion_spread": self.lost_motion_spread,
-            "reversals": [r.to_dict() for r in self.reversals],
+            "lost_motion_spread": _scaled(self.lost_motion_spread, k),
+            "reversals": [r.to_dict(k) for r in self.reversals],
             "reading": self.reading,
             "reading_reason": self.reading_reason,
             "lost_motion_reason": self.lost_motion_reason,
@@ -326,76 +351,103 @@ def _spread(score: float, reading: Mapping[str, Any], calibration: Mapping[str, 
     return float(np.mean(bands)) if bands else math.nan
 
 
-def _read_change(
-    rec: Recording, change: DirectionChange, has_ap: bool, indicator: str,
-    table: Mapping[str, Any], arm_start: ArmStart | None, gear: GearFit | None, quantum: float,
+@dataclass(frozen=True)
+class _Axis:
+    """What every direction change of one axis is read with (:func:`_change_result`)."""
+
+    has_ap: bool
+    indicator: str
+    table: Mapping[str, Any]
+    arm_start: Any
+    gear: GearFit | None
+    quantum: float
+    fine: tuple[float, str]  # how a bound is said: arcmin from deg, um from mm
+
+
+def _change_result(
+    rec: Recording, change: DirectionChange, axis: _Axis
 ) -> tuple[ReversalResult, tuple[float, float, float, tuple[str, ...]] | None]:
-    """One direction change read: its result, and its lost motion with the bounds and their
-    terms when it has them."""
+    """One direction change measured, and its lost motion's estimate (lost, low, high, terms)
+    where it has one."""
     part = segment_part(rec, change)  # the recording itself without gaps
     speed = _move_speed(part, change)
     traversed = torque_traversed(rec, change)
     low = high = None
     terms: tuple[str, ...] = ()
+    score = lost = None
+    shown: dict[str, float | None] = {}
     if change.kind == "reversal":
-        values = reversal_indicators(part, change, networks=False, arm_start=arm_start)
-        if not has_ap:
+        values = reversal_indicators(part, change, networks=False, arm_start=axis.arm_start)
+        if not axis.has_ap:
             row = pd.DataFrame([{**values, "peak_speed": speed}])
-            contact = with_contact_score(row, table["reference"])["motor_contact"]
+            contact = with_contact_score(row, axis.table["reference"])["motor_contact"]
             values["motor_contact"] = float(contact.iloc[0])
-        score = _none(values[indicator])
-        lost = _none(values["lost_motion"]) if has_ap else None
+        score = _none(values[axis.indicator])
+        lost = _none(values["lost_motion"]) if axis.has_ap else None
         shown = {k: _none(v) for k, v in values.items() if k != "signature"}
     elif change.kind == "continuous":
         # the motor-side score is calibrated on reversals where the arm rests at the turn
-        score = None
-        shown = {}
-        lost = None
-        if has_ap:
-            error = reversal_error(rec, change, gear, traversed=traversed)
-            lost, low, high = (_none(error.lost_motion), _none(error.low),
-                               _none(error.high))  # fmt: skip
+        if axis.has_ap:
+            error = reversal_error(rec, change, axis.gear, traversed=traversed)
+            lost, low, high = _none(error.lost_motion), _none(error.low), _none(error.high)
             terms = error.terms
     else:
-        score = None
-        lost = _none(lost_motion(part, change)) if has_ap else None
-        shown = {}
+        lost = _none(lost_motion(part, change)) if axis.has_ap else None
     if lost is not None and change.kind != "continuous":
         # the sweep's validated accuracy: 5 % or two arm-encoder steps (section 3.1)
-        width = max(0.05 * abs(lost), 2 * quantum)
+        width = max(0.05 * abs(lost), 2 * axis.quantum)
         low, high = lost - width, lost + width
         terms = ("sweep accuracy",)
-    estimate = ((lost, low, high, terms)
-                if lost is not None and low is not None and high is not None else None)
-    shown_lost = resolved_lost_motion(lost, low, high)
-    return ReversalResult(change, speed, score, shown_lost[0], shown, traversed,
-                          shown_lost[1], shown_lost[2], shown_lost[3], terms), estimate
+    estimate = ((lost, low, high, terms) if lost is not None and low is not None
+                and high is not None else None)
+    shown_lost = resolved_lost_motion(lost, low, high, *axis.fine)
+    return (ReversalResult(change, speed, score, shown_lost[0], shown, traversed, shown_lost[1],
+                           shown_lost[2], shown_lost[3], terms), estimate)
 
 
-def _message(changes: Sequence[DirectionChange], results: Sequence[ReversalResult],
-             segmented: SegmentedChanges, max_dwell: float, measured: bool,
-             reading: Mapping[str, Any] | None, reason: str | None) -> str:
-    """The diagnosis in one line: the reversals found and the reading, or why there is none."""
+def _score_reading(
+    score: float | None, results: list[ReversalResult], changes: list[DirectionChange],
+    linear: bool, rec: Recording, table: Mapping[str, Any], has_ap: bool,
+) -> tuple[dict[str, Any] | None, float | None, str | None]:
+    """The calibration's reading of the score, its spread, and why there is none."""
+    if changes and linear:
+        return None, None, ("a linear axis (mm): the calibration was made on rotary axes (deg, "
+                            "deg/min) and is not read on it")
+    if score is not None:
+        speed = float(np.mean([r.speed for r in results if r.backlash_score is not None]))
+        reason = _outside(speed, rec, table, has_ap)
+        if reason is not None:
+            return None, None, reason
+        reading = _reading(score, speed, table)
+        return reading, _none(_spread(score, reading, table)), None
+    if changes:
+        return None, None, ("no reversal with a rest at the turn: the calibration holds such "
+                            "reversals only")
+    return None, None, "no direction change"
+
+
+def _two_encoder_message(results: list[ReversalResult], reading: dict[str, Any] | None,
+                         reason: str | None, max_dwell: float, measured: bool,
+                         left_out: bool) -> str:
+    """The one line saying what was found at the direction changes (before the gaps' note)."""
     n_rev = sum(r.change.kind == "reversal" for r in results)
     n_cont = sum(r.change.kind == "continuous" for r in results)
-    if not changes:
-        message = ("no direction change: the axis moves one way only; no backlash indicator"
-                   if not segmented.left_out else "no direction change read; no backlash indicator")
-    elif n_rev == 0:
-        rest = len(changes) - n_cont
+    if not results:
+        return ("no direction change: the axis moves one way only; no backlash indicator"
+                if not left_out else "no direction change read; no backlash indicator")
+    if n_rev == 0:
+        rest = len(results) - n_cont
         found = (f"{n_cont} in continuous motion (the arm never rests)"
                  + (f", {rest} after a standstill" if rest else "") if n_cont
-                 else f"{len(changes)} direction change(s) after a standstill")  # fmt: skip
-        message = (
+                 else f"{len(results)} direction change(s) after a standstill")  # fmt: skip
+        return (
             f"no reversal (a direction change within {max_dwell:g} s): {found}; the motor-side "
             "score is calibrated on reversals only"
             + ("; two-encoder lost motion measured there" if measured else "")
         )
-    else:
-        message = f"{n_rev} reversal(s); " + (
-            reading["text"] if reading else f"no reading ({reason})" if reason else "no score"
-        )
-    return message
+    return f"{n_rev} reversal(s); " + (
+        reading["text"] if reading else f"no reading ({reason})" if reason else "no score"
+    )
 
 
 def diagnose_recording(
@@ -429,9 +481,11 @@ def diagnose_recording(
     where = path if path is not None else (recording.source or "<recording>")
     # The calibration, the thresholds and arcmin are in degrees: angles stated in rad are
     # converted (said); a unit that is no angle where a position belongs is an error.
-    recording, units = in_degrees(recording)
+    recording, units = in_axis_units(recording)
     if "MP" not in recording.data.columns and "RP" in recording.data.columns:
         return _one_encoder(recording, str(where), units, max_dwell)
+    linear = units.position == "mm"
+    fine = (1000.0, "um") if linear else (60.0, "arcmin")
     rec = motor_side_recording(recording)
     segmented = segment_changes(rec, max_dwell=max_dwell)
     changes = list(segmented.changes)
@@ -446,9 +500,9 @@ def diagnose_recording(
     quantum = encoder_step(rec.data["AP"].to_numpy(dtype=np.float64)) if has_ap else math.nan
     results = []
     estimates: list[tuple[float, float, float, tuple[str, ...]]] = []  # lost, low, high, terms
+    axis = _Axis(has_ap, indicator, table, arm_start, gear, quantum, fine)
     for change in changes:
-        result, estimate = _read_change(rec, change, has_ap, indicator, table, arm_start, gear,
-                                        quantum)
+        result, estimate = _change_result(rec, change, axis)
         results.append(result)
         if estimate is not None:
             estimates.append(estimate)
@@ -457,27 +511,17 @@ def diagnose_recording(
     axis_lost = resolved_lost_motion(
         float(np.mean(losses)) if losses else None,
         float(np.mean([e[1] for e in estimates])) if estimates else None,
-        float(np.mean([e[2] for e in estimates])) if estimates else None)
+        float(np.mean([e[2] for e in estimates])) if estimates else None, *fine)
     score = float(np.mean(scores)) if scores else None
-    reading = None
-    spread = None
-    reason = None
-    if score is not None:
-        speed = float(np.mean([r.speed for r in results if r.backlash_score is not None]))
-        reason = _outside(speed, rec, table, has_ap)
-        if reason is None:
-            reading = _reading(score, speed, table)
-            spread = _none(_spread(score, reading, table))
-    elif changes:
-        reason = "no reversal with a rest at the turn: the calibration holds such reversals only"
-    else:
-        reason = "no direction change"
-    message = _message(changes, results, segmented, max_dwell, bool(losses), reading, reason)
+    reading, spread, reason = _score_reading(score, results, changes, linear, rec, table, has_ap)
+    message = _two_encoder_message(results, reading, reason, max_dwell, bool(losses),
+                                   bool(segmented.left_out))
     message = "; ".join(m for m in (message, segments_note(segmented)) if m)
     lost_reason = (axis_lost[3] if losses else "no AP" if not has_ap else "no direction change"
                    if not changes else "the arm does not restart")  # fmt: skip
     return BacklashResult(
         units=units.note or None,
+        position_unit=units.position,
         path=str(where),
         score_indicator=indicator,
         backlash_score=score,
@@ -554,9 +598,10 @@ def _one_encoder(
         peaks = [r.indicators.get("following_error_peak") for r in results]
         peaks_ = [p for p in peaks if p is not None]
         if peaks_:
-            label = "arcmin" if units.position == "deg" else "x 60, unit unknown"
+            k, label = {"deg": (60.0, "arcmin"), "mm": (1000.0, "um")}.get(
+                units.position, (60.0, "x 60, unit unknown"))
             found += (f"; following error |RP - AP| there "
-                      f"{_span(60 * min(peaks_), 60 * max(peaks_))} {label}")
+                      f"{_span(k * min(peaks_), k * max(peaks_))} {label}")
         steps = [r.indicators.get("current_step") for r in results]
         steps_ = [abs(v) for v in steps if v is not None]
         if steps_ and current is not None:
@@ -571,10 +616,12 @@ def _one_encoder(
         lost_motion=None, lost_motion_spread=None, reversals=tuple(results), reading=None,
         message=message, reading_reason=need, lost_motion_reason="one encoder per joint, no MP",
         segments=segmented.segments, left_out=segmented.left_out, units=units.note or None,
+        position_unit=units.position,
     )
 
 
 def resolved_lost_motion(lost: float | None, low: float | None, high: float | None,
+                         scale: float = 60.0, unit: str = "arcmin",
                          ) -> tuple[float | None, float | None, float | None, str | None]:
     """A lost motion as it may be said: the estimate where its interval lies above 0, else
     none, with 0 and the bound as its interval and the reason.
@@ -586,7 +633,9 @@ def resolved_lost_motion(lost: float | None, low: float | None, high: float | No
     Parameters
     ----------
     lost, low, high : float or None
-        deg, the estimate and its interval.
+        deg (mm on a linear axis), the estimate and its interval.
+    scale, unit : float, str
+        How the reason states the bound: arcmin (60) from deg, um (1000) from mm.
 
     Returns
     -------
@@ -607,8 +656,8 @@ def resolved_lost_motion(lost: float | None, low: float | None, high: float | No
     if low > 0:
         return lost, low, high, None
     bound = high if high > 0 else high - low
-    return None, 0.0, bound, (f"below what this estimate resolves: <= {bound * 60:.2g} "
-                              "arcmin")
+    return None, 0.0, bound, (f"below what this estimate resolves: <= {bound * scale:.2g} "
+                              f"{unit}")
 
 
 def _outside(speed: float, rec: Recording, table: Mapping[str, Any], has_ap: bool) -> str | None:

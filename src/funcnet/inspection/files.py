@@ -16,7 +16,7 @@ from funcnet.inspection.robot import RobotInspection, inspect_robot
 from funcnet.inspection.trace import TraceInspection, inspect_recording
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides
 from funcnet.robot import read_trace
-from funcnet.robot.units import in_degrees
+from funcnet.robot.units import in_axis_units
 
 __all__ = ["inspect_file"]
 
@@ -66,7 +66,7 @@ def inspect_file(
     """
     # Thresholds, arcmin and arcsec are in degrees: angles in rad converted (said); a
     # set-point that never moves is kept, for the page of an axis at rest.
-    recording, _ = in_degrees(read_trace(path, channels=channels, axis=axis,
+    recording, _ = in_axis_units(read_trace(path, channels=channels, axis=axis,
                                          keep_setpoint=True))
     if recording.axes:
         return inspect_robot(recording, signals=signals, parameters=parameters,

@@ -63,12 +63,16 @@ from funcnet.report.inspect_figures import (
     figure_timeline,
 )
 from funcnet.report.inspect_text import (
+    clock_items,
     converted_sentence,
     failed_windows,
     gaps_sentence,
     lost_motion_cell,
+    moves_shown,
     partial_evidence,
+    scale_of,
     summary_html,
+    time_sentence,
 )
 from funcnet.report.repetitions_page import write_repetitions
 from funcnet.report.robot_figures import figure_robot_matrix
@@ -114,10 +118,11 @@ def _backlash_html(ins: TraceInspection) -> str:
         return f"<p>No diagnosis: {escape(ins.backlash_error or 'not asked for')}.</p>"
     from funcnet.diagnosis.diagnose import MODEL_NOTE
 
+    scale = scale_of(ins)
     rows = [{"change": r.change.kind, "stop [s]": r.change.stop, "start [s]": r.change.start,
              "dwell [s]": r.change.dwell, "direction": "+" if r.change.direction > 0 else "−",
-             "lost motion [arcsec]": lost_motion_cell(r.lost_motion, r.lost_motion_high,
-                                                      3600),
+             f"lost motion [{scale.fine}]": lost_motion_cell(r.lost_motion, r.lost_motion_high,
+                                                             scale.fine_factor),
              "backlash score": _fmt(r.backlash_score)} for r in result.reversals]
     reading = result.reading.get("text", "") if result.reading else ""
     return (f"<p>{escape(result.message)}.{' ' + escape(reading) if reading else ''}</p>"
@@ -180,24 +185,6 @@ def _network_tables(ins: TraceInspection) -> str:
     return "".join(parts)
 
 
-def _move_units(ins: TraceInspection) -> dict[str, str]:
-    """The moves table's columns with the unit each holds (positions in degrees, or of
-    unknown unit; the current's as the recording states it)."""
-    from funcnet.robot.units import UNKNOWN, unit_of
-
-    signals = ins.recording.signals
-    rp = signals.get("RP")
-    deg = rp is None or unit_of(rp) != UNKNOWN
-    position, speed = ("°", "°/s") if deg else ("unit unknown", "unit unknown per s")
-    ac = signals.get("AC")
-    current = unit_of(ac) if ac is not None else UNKNOWN
-    units = {"start": "s", "stop": "s", "duration": "s", "distance": position,
-             "peak speed": speed, "peak V": speed, "peak |FE|": position,
-             "final |FE|": position,
-             "peak |AC|": "unit unknown" if current == UNKNOWN else current}
-    return {column: f"{column} [{unit}]" for column, unit in units.items()}
-
-
 def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list[str]:
     """The body of one trace's page (figures written to ``out/figures``)."""
     steps = 6
@@ -242,7 +229,8 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
                       "not a finding." if ins.evidence
                       else " (evidence not computed: coloured by kind)."))
     add(4, "lost-motion", figure_lost_motion,
-        "Figure 5 — motor minus arm position (MP − AP, arcsec) around the start of the move "
+        f"Figure 5 — motor minus arm position (MP − AP, {scale_of(ins).fine}) around the start "
+        "of the move "
         "after each direction change; the dotted line is where the set-point starts it. The "
         "jump in MP − AP while the motor turns and the arm waits is the lost motion (backlash "
         "plus elastic windup) the table below lists. At a direction change in continuous motion "
@@ -255,8 +243,9 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
 
 
 def _provenance(ins: TraceInspection | RobotInspection, **items: str) -> dict[str, Any]:
+    clock = clock_items(ins.recording)
     return {"trace": Path(ins.source).name,
-            **provenance({"computation time [s]": f"{ins.elapsed:.1f}", **items})}
+            **provenance({**clock, "computation time [s]": f"{ins.elapsed:.1f}", **items})}
 
 
 def write_inspection(
@@ -319,7 +308,7 @@ def write_inspection(
         f"<section id=\"backlash\"><h2>Backlash and lost motion</h2>{_backlash_html(ins)}"
         "</section>",
         "<section id=\"phases\"><h2>Moves and phases</h2>",
-        table(ins.moves.round(4).rename(columns=_move_units(ins))) if len(ins.moves)
+        table(moves_shown(ins)) if len(ins.moves)
         else "<p>No move.</p>",
         "<details><summary>every phase</summary>",
         table(ins.phases[["phase", "move", "start", "stop", "duration"]].rename(
@@ -459,8 +448,8 @@ def write_robot_inspection(
         f"<h1>What the robot does — {escape(name)}</h1>",
         setpoint_html(ins.networks),
         f"<section id=\"axes\"><h2>Each axis</h2><p>{len(ins.recording.axes)} axes, "
-        f"{ins.recording.duration:.1f} s sampled every {ins.recording.sample_period * 1000:g} "
-        f"ms. {escape(gaps + ' ' if gaps else '')}{escape(units + ' ' if units else '')}"
+        f"{escape(time_sentence(ins.recording))}. "
+        f"{escape(gaps + ' ' if gaps else '')}{escape(units + ' ' if units else '')}"
         "An axis's number opens its own report "
         "(moves, a network per phase, evidence, backlash). Peaks are over the moves; the lost "
         "motion is the mean over the direction changes, ≤ a bound where the data do not "

@@ -36,6 +36,14 @@ _MAX_NETWORK_COLUMNS = 6  # networks per row where a move holds several cycles
 
 
 
+def _fine_scale(inspection: Any) -> tuple[float, str]:
+    """The factor and unit of a small position difference: arcsec, or um on a linear axis."""
+    from funcnet.robot.units import axis_scale, position_unit
+
+    scale = axis_scale(position_unit(inspection.recording.signals))
+    return scale.fine_factor, scale.fine
+
+
 def _shown_unit(signals: dict, column: str, default: str) -> str:
     """A column's unit for an axis label: deg as °, any other stated unit as stated,
     "unit unknown" where nothing states it; ``default`` for a column the recording lacks."""
@@ -93,8 +101,8 @@ def figure_motion(inspection: TraceInspection) -> Any:
         panels.append((f"V [{deg}/s]" if deg != "unit unknown" else "V [unit unknown]", ["V"]))
     if "AC" in data:
         panels.append((f"AC [{_shown_unit(signals, 'AC', 'A')}]", ["AC"]))
-    if "AP" in data:
-        panels.append((f"RP − AP [{deg}]", ["FE"]))
+    if "AP" in data:  # a linear axis's following error in um, as the page states it
+        panels.append(("RP − AP [um]" if deg == "mm" else f"RP − AP [{deg}]", ["FE"]))
     cols = max(len(moves), 1)
     fig = Figure(figsize=(11.0, 2.2 + 1.9 * len(panels)), layout="constrained")
     grid = fig.add_gridspec(1 + len(panels), cols, height_ratios=[1.0] + [1.0] * len(panels))
@@ -109,7 +117,7 @@ def figure_motion(inspection: TraceInspection) -> Any:
     for move in moves.itertuples():
         top.annotate(f"move {move.move}", ((move.start + move.stop) / 2, 1.0),
                      xycoords=top.get_xaxis_transform(), ha="center", va="bottom", fontsize=9)
-    fe = (data["RP"] - data["AP"]) if "AP" in data else None
+    fe = (data["RP"] - data["AP"]) * (1e3 if deg == "mm" else 1.0) if "AP" in data else None
     # each move zoomed; an axis that never moves: the whole trace, what it measured at rest
     spans = [(f"(b) move {move.move}: {move.start:.2f}–{move.stop:.2f} s",
               move.start - 0.15 * (move.stop - move.start),
@@ -368,6 +376,7 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
         return None
     changes = result.reversals[:_MAX_MOVE_COLUMNS]
     rest = inspection.reversal_residual
+    scale = _fine_scale(inspection)
     fig = Figure(figsize=(max(6.0, 3.6 * len(changes)), 3.6), layout="constrained")
     t_all = data.index.to_numpy(dtype=float)
     for k, reversal in enumerate(changes):
@@ -381,7 +390,7 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
         ax = fig.add_subplot(1, len(changes), k + 1)
         plot.shade_spans(ax, inspection.phases, alpha=0.8, within=(lo, hi))
         if continuous:
-            y = np.asarray(rest, dtype=float) * 3600
+            y = np.asarray(rest, dtype=float) * scale[0]
             ax.plot(t_all[inside], y[inside], color=plot.signal_color("TORSION"), linewidth=1)
             stretches = ((change.stop - WINDOW, change.stop), (change.start, change.start + WINDOW))
             for a, b in stretches:
@@ -389,18 +398,19 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
                 ax.hlines(float(np.mean(y[part])), a, b, color="black", linewidth=1.5)
             where = change.turn if change.turn is not None else change.start
         else:
-            ax.plot(t_all[inside], (data["MP"] - data["AP"]).to_numpy(dtype=float)[inside] * 3600,
+            ax.plot(t_all[inside],
+                    (data["MP"] - data["AP"]).to_numpy(dtype=float)[inside] * scale[0],
                     color=plot.signal_color("TORSION"), linewidth=1)  # fmt: skip
             where = change.start
         ax.axvline(where, color="0.3", linewidth=0.8, linestyle=":")
         lost, bound = reversal.lost_motion, reversal.lost_motion_high
-        text = (f"lost motion {lost * 3600:.3g} arcsec" if lost is not None
-                else f"lost motion ≤ {bound * 3600:.2g} arcsec (not resolved)"
+        text = (f"lost motion {lost * scale[0]:.3g} {scale[1]}" if lost is not None
+                else f"lost motion ≤ {bound * scale[0]:.2g} {scale[1]} (not resolved)"
                 if bound is not None else "no lost motion measured")
         ax.set_title(f"{change.kind} at {where:.2f} s\n{text}", fontsize=9)
         ax.set_xlabel("time [s]", fontsize=9)
         ax.tick_params(labelsize=9)
         if k == 0:
-            ax.set_ylabel("MP − AP" + (" unexplained" if continuous else "") + " [arcsec]",
+            ax.set_ylabel("MP − AP" + (" unexplained" if continuous else "") + f" [{scale[1]}]",
                           fontsize=9)  # fmt: skip
     return fig

@@ -20,7 +20,38 @@ from funcnet.report.html import escape
 from funcnet.robot.grid import format_spans
 
 __all__ = ["summary_html", "gaps_sentence", "converted_sentence", "failed_windows",
-           "partial_evidence", "lost_motion_cell"]
+           "partial_evidence", "lost_motion_cell", "time_sentence", "scale_of", "moves_shown",
+           "clock_items"]
+
+
+def scale_of(ins: TraceInspection) -> Any:
+    """The :class:`~funcnet.robot.units.AxisScale` of the inspected axis (deg or mm)."""
+    from funcnet.robot.units import axis_scale, position_unit
+
+    return axis_scale(position_unit(ins.recording.signals))
+
+
+def time_sentence(recording: Any) -> str:
+    """How long a recording is and how often it samples, with the file's clock where its time
+    was read from the recording's start.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as S
+    >>> import pandas as pd
+    >>> rec = S(data=pd.DataFrame(index=[0.0, 0.001, 0.002]), sample_period=0.001,
+    ...         time_origin=107742.743, time_unit="us", start_time=None)
+    >>> time_sentence(rec)
+    '0.002 s sampled every 1 ms (time from the log's start; its clock, in us, read 107742.743 s there)'
+    """  # noqa: E501
+    index = recording.data.index
+    span = float(index[-1] - index[0]) if len(index) else 0.0
+    text = f"{span:.4g} s sampled every {recording.sample_period * 1e3:g} ms"
+    if recording.time_origin:
+        unit = f", in {recording.time_unit}," if recording.time_unit else ""
+        at = recording.start_time or f"{recording.time_origin:.9g} s"
+        text += f" (time from the log's start; its clock{unit} read {at} there)"
+    return text
 
 
 def gaps_sentence(gaps: Sequence[tuple[float, float]], segments: Sequence[tuple[float, float]],
@@ -88,11 +119,8 @@ def _turns_sentence(ins: TraceInspection) -> str:
 
 
 def _position_unit(ins: TraceInspection) -> str:
-    """``"deg"``, or ``"unknown"`` where no unit of the set-point is stated."""
-    from funcnet.robot.units import UNKNOWN, unit_of
-
-    info = ins.recording.signals.get("RP")
-    return "deg" if info is None or unit_of(info) != UNKNOWN else UNKNOWN
+    """``"deg"``, ``"mm"`` (a linear axis), or ``"unknown"`` where no unit is stated."""
+    return str(scale_of(ins).position)
 
 
 def _units_facts(ins: TraceInspection) -> list[str]:
@@ -104,7 +132,7 @@ def _units_facts(ins: TraceInspection) -> list[str]:
     unknown = [c for c in ("RP", "AP", "MP") if c in signals and unit_of(signals[c]) == UNKNOWN]
     facts = []
     if converted:
-        facts.append("converted to degrees (deg/s) from the unit the file holds: "
+        facts.append(f"converted to {_targets(signals)} from the unit the file holds: "
                      + ", ".join(converted))
     if unknown:
         facts.append(f"no unit stated for {', '.join(unknown)}: computed as if degrees "
@@ -155,12 +183,23 @@ def converted_sentence(signals: Mapping[str, Any]) -> str:
         return f" on axis {numbered[0]}" if len(numbered) == 1 else (
             f" on axes {', '.join(numbered)}")
 
+    target = _targets(signals)
     if len(every) == 1:  # the same on every axis: the list once, then the axes
         listed = ", ".join(f"{role} ({unit})" for role, unit in axes_of)
-        return ("Converted to degrees (deg/s) from the unit the file holds: "
+        return (f"Converted to {target} from the unit the file holds: "
                 f"{listed}{where(next(iter(axes_of.values())))}.")
     listed = "; ".join(f"{role} ({unit}){where(axes)}" for (role, unit), axes in axes_of.items())
-    return f"Converted to degrees (deg/s) from the unit the file holds: {listed}."
+    return f"Converted to {target} from the unit the file holds: {listed}."
+
+
+def _targets(signals: Mapping[str, Any]) -> str:
+    """``"degrees (deg/s)"``, ``"mm (mm/s)"`` or both: the units converted signals now hold."""
+    units = {str(getattr(i, "unit", None) or "deg") for i in signals.values()
+             if getattr(i, "converted_from", None)}
+    lengths = any(u.startswith("mm") for u in units)
+    angles = any(not u.startswith("mm") for u in units)
+    return " and ".join((["degrees (deg/s)"] if angles else []) + (["mm (mm/s)"] if lengths
+                                                                    else []))
 
 
 def _rest_facts(ins: TraceInspection) -> list[str]:
@@ -168,15 +207,17 @@ def _rest_facts(ins: TraceInspection) -> list[str]:
     from funcnet.robot.units import UNKNOWN, unit_of
 
     data, signals = ins.recording.data, ins.recording.signals
-    deg = _position_unit(ins) == "deg"
+    scale = scale_of(ins)
     facts = ["the set-point never moves: the axis rests over the whole recording, so it has no "
              "phase, network or direction change to read; what it measured at rest:"]
     if "AP" in data and "RP" in data:
         error = (data["RP"] - data["AP"]).abs()
         spread = float(data["AP"].max() - data["AP"].min())
+        k, unit = scale.fine_factor, scale.fine
         facts.append(
-            f"|RP − AP| {error.mean() * 3600:.3g} arcsec on average, at most "
-            f"{error.max() * 3600:.3g} arcsec; AP spans {spread * 3600:.3g} arcsec" if deg
+            f"|RP − AP| {error.mean() * k:.3g} {unit} on average, at most "
+            f"{error.max() * k:.3g} {unit}; AP spans {spread * k:.3g} {unit}"
+            if scale.position != UNKNOWN
             else f"|RP − AP| {error.mean():.3g} on average, at most {error.max():.3g}; AP "
             f"spans {spread:.3g} (the position's unit is unknown)")
     for column in ("RC", "AC"):
@@ -205,8 +246,8 @@ def summary_html(ins: TraceInspection) -> str:
     missing = sum(b - a for a, b in ins.gaps)
     gaps = gaps_sentence(ins.gaps, ins.segments, "no phase, move or window")
     kinds = ins.phases[ins.phases["move"] > 0]["phase"].value_counts()
-    lines = [f"<p><b>{escape(Path(ins.source).name)}</b>: {ins.duration:.1f} s sampled every "
-             f"{ins.sample_period * 1e3:g} ms; signals used as nodes: "
+    lines = [f"<p><b>{escape(Path(ins.source).name)}</b>: "
+             f"{escape(time_sentence(ins.recording))}; signals used as nodes: "
              f"{escape(', '.join(ins.signals))}. {escape(gaps + ' ' if gaps else '')}The axis "
              f"moves {len(moves)} time(s), {moving:.1f} s in all, and stands still the other "
              f"{max(ins.duration - moving - missing, 0.0):.1f} s. "
@@ -219,6 +260,9 @@ def summary_html(ins: TraceInspection) -> str:
         if position == "deg":
             facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} °/s "
                          f"({moves['peak speed'].max() * 60:.4g} °/min)")
+        elif position == "mm":
+            facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} mm/s "
+                         f"({moves['peak speed'].max() * 60:.4g} mm/min)")
         else:
             facts.append(f"peak set-point speed {moves['peak speed'].max():.4g} per s "
                          "(the position's unit is unknown)")
@@ -230,10 +274,13 @@ def summary_html(ins: TraceInspection) -> str:
             if unit == UNKNOWN:
                 facts.append(f"peak |AC| {moves['peak |AC|'].max():.3g} (no unit stated)")
             else:
-                what = ("current" if unit.endswith("A") else "torque" if "N" in unit
-                        else "value")
+                what = ("current" if unit.endswith("A") else "force" if unit.strip() == "N"
+                        else "torque" if "N" in unit else "value")
                 facts.append(f"peak {what} |AC| {moves['peak |AC|'].max():.3g} {unit}")
-        if "peak |FE|" in moves and position != "deg":
+        if "peak |FE|" in moves and position == "mm":
+            facts.append(f"peak following error |RP − AP| {moves['peak |FE|'].max() * 1e3:.3g} "
+                         f"um, {moves['final |FE|'].max() * 1e3:.3g} um at the end of a move")
+        elif "peak |FE|" in moves and position != "deg":
             facts.append(f"peak following error |RP − AP| {moves['peak |FE|'].max():.3g} "
                          "(the position's unit is unknown)")
         elif "peak |FE|" in moves:
@@ -284,6 +331,51 @@ def _evidence_count(ins: TraceInspection) -> str:
     return f" (pairs over the windows: {text}{note})"
 
 
+def _moves_scaled(ins: TraceInspection) -> pd.DataFrame:
+    """The moves table as the page shows it: a linear axis's following error in um."""
+    if not scale_of(ins).linear:
+        return ins.moves
+    fe = [c for c in ("peak |FE|", "final |FE|") if c in ins.moves]
+    return ins.moves.assign(**{c: ins.moves[c] * 1e3 for c in fe})
+
+
+def _move_units(ins: TraceInspection) -> dict[str, str]:
+    """The moves table's columns with the unit each holds (positions in degrees or mm, or of
+    unknown unit; the current's as the recording states it)."""
+    from funcnet.robot.units import UNKNOWN, unit_of
+
+    signals = ins.recording.signals
+    scale = scale_of(ins)
+    position, speed = {"deg": ("°", "°/s"), "mm": ("mm", "mm/s")}.get(
+        scale.position, ("unit unknown", "unit unknown per s"))
+    ac = signals.get("AC")
+    current = unit_of(ac) if ac is not None else UNKNOWN
+    units = {"start": "s", "stop": "s", "duration": "s", "distance": position,
+             "peak speed": speed, "peak V": speed,
+             "peak |FE|": "um" if scale.linear else position,
+             "final |FE|": "um" if scale.linear else position,
+             "peak |AC|": "unit unknown" if current == UNKNOWN else current}
+    return {column: f"{column} [{unit}]" for column, unit in units.items()}
+
+
+def moves_shown(ins: TraceInspection) -> pd.DataFrame:
+    """The moves table as the page shows it: rounded, each column's unit in its name, a linear
+    axis's following error in um."""
+    return _moves_scaled(ins).round(4).rename(columns=_move_units(ins))
+
+
+def clock_items(recording: Any) -> dict[str, str]:
+    """The file's own clock for the provenance table, where the time was read from it."""
+    items = {}
+    if recording.time_unit or recording.time_origin:
+        items["time read in"] = recording.time_unit or "s"
+    if recording.time_origin:
+        items["file's clock at time 0 [s]"] = f"{recording.time_origin:.9g}"
+    if recording.start_time:
+        items["start time"] = recording.start_time
+    return items
+
+
 def failed_windows(ins: TraceInspection, part: str) -> dict[str, str]:
     """Window label -> why it lacks ``part``, the trace's file left out of the message."""
     return {label: message.removeprefix(f"{ins.source}: ")
@@ -322,13 +414,15 @@ def _lost_motion_item(ins: TraceInspection) -> str:
                 if r.lost_motion is not None or r.lost_motion_high is not None]
     if not measured:
         return f"<li>backlash: {escape(result.message)}</li>"
-    listed = ", ".join(lost_motion_cell(r.lost_motion, r.lost_motion_high, 3600)
+    scale = scale_of(ins)
+    k, unit = scale.fine_factor, scale.fine
+    listed = ", ".join(lost_motion_cell(r.lost_motion, r.lost_motion_high, k)
                        for r in measured)
-    whole = (f"mean {result.lost_motion * 3600:.3g} arcsec" if result.lost_motion is not None
+    whole = (f"mean {result.lost_motion * k:.3g} {unit}" if result.lost_motion is not None
              else f"as a whole {result.lost_motion_reason}")
     unresolved = ("; ≤: below what the estimate resolves (its noise and the motor friction's "
                   "bias)" if any(r.lost_motion is None for r in measured) else "")
     return (f"<li>lost motion at the {len(measured)} direction change(s), from both encoders: "
-            f"{escape(listed)} arcsec ({escape(whole)}{escape(unresolved)})</li>")
+            f"{escape(listed)} {escape(unit)} ({escape(whole)}{escape(unresolved)})</li>")
 
 

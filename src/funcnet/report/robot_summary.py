@@ -83,7 +83,7 @@ def _torque_cell(one: TraceInspection) -> str:
     return f"{_peak(one.moves, 'peak |AC|')} {unit}"
 
 
-def _gear_cell(result: Any, cite: Any) -> str:
+def _gear_cell(result: Any, cite: Any, scale: float = 60.0) -> str:
     parts = None if result is None else result.gear_parts
     if parts is None:
         return "—"
@@ -91,18 +91,39 @@ def _gear_cell(result: Any, cite: Any) -> str:
         if parts.reason:
             cite(f"gear parts not told apart: {parts.reason}")
         return "—"
-    return (f"dead zone {_part(parts.dead_zone, parts.dead_zone_low, parts.dead_zone_high)}, "
-            f"friction {_part(parts.friction, parts.friction_low, parts.friction_high)}")
+    return (f"dead zone {_part(parts.dead_zone, parts.dead_zone_low, parts.dead_zone_high, scale)}"
+            f", friction {_part(parts.friction, parts.friction_low, parts.friction_high, scale)}")
 
 
-def _part(value: float | None, low: float | None, high: float | None) -> str:
-    """A gear part in arcmin: its value, or ``≤`` its bound where the interval reaches 0 (a
-    part of a lost motion is never negative)."""
+#: The robot table's columns of lengths: (column without unit, its unit on a rotary axis).
+_UNIT_COLUMNS = {"peak speed": "°/s", "peak following error": "arcmin", "lost motion": "arcmin",
+                 "gear dead zone, friction": "arcmin"}
+
+
+def _with_units(rows: list[dict[str, str]], linear: dict[str, bool]) -> pd.DataFrame:
+    """The rows as a table: the units in the headers where every axis turns; else each cell
+    with its axis's unit (a linear axis's in mm/s and um) and the headers without one."""
+    if not any(linear.values()):
+        return pd.DataFrame([{(f"{k} [{_UNIT_COLUMNS[k]}]" if k in _UNIT_COLUMNS else k): v
+                              for k, v in row.items()} for row in rows])
+    shown = []
+    for row in rows:
+        units = ({"peak speed": "mm/s"} | dict.fromkeys(list(_UNIT_COLUMNS)[1:], "um")
+                 if linear.get(row["axis"]) else _UNIT_COLUMNS)
+        shown.append({k: (f"{v} {units[k]}" if k in units and v != "—" else v)
+                      for k, v in row.items()})
+    return pd.DataFrame(shown)
+
+
+def _part(value: float | None, low: float | None, high: float | None,
+          scale: float = 60.0) -> str:
+    """A gear part in arcmin (``scale`` 60; um: 1000 on a linear axis): its value, or ``≤`` its
+    bound where the interval reaches 0 (a part of a lost motion is never negative)."""
     if value is None:
         return "—"
     if low is not None and high is not None and low <= 0:
-        return f"≤ {60 * max(high, 0.0):.2g}"
-    return f"{60 * value:.2g}"
+        return f"≤ {scale * max(high, 0.0):.2g}"
+    return f"{scale * value:.2g}"
 
 
 def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
@@ -126,10 +147,15 @@ def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
         Columns: ``axis``, ``moves``, ``direction changes``, ``peak speed [°/s]``,
         ``peak torque or current``, ``peak following error [arcmin]``,
         ``lost motion [arcmin]`` (a value, ``≤`` a bound where not resolved, or —),
-        ``gear dead zone, friction [arcmin]``, ``notes``.
+        ``gear dead zone, friction [arcmin]``, ``notes``. A robot with a linear axis (positions
+        in mm) has these columns without a unit, and each cell states its axis's: a rotary
+        axis's as above, a linear one's in mm/s and um.
     """
+    from funcnet.robot.units import axis_scale, position_unit
+
     notes: dict[str, list[int]] = {}
     rows = []
+    linear: dict[str, bool] = {}
     for axis in order:
         cited: list[int] = []
 
@@ -146,17 +172,20 @@ def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
         if one is None:
             cite(f"not inspected: {errors.get(axis, 'no reason given')}")
             rows.append({"axis": str(axis), "moves": "—", "direction changes": "—",
-                         "peak speed [°/s]": "—", "peak torque or current": "—",
-                         "peak following error [arcmin]": "—", "lost motion [arcmin]": "—",
-                         "gear dead zone, friction [arcmin]": "—",
+                         "peak speed": "—", "peak torque or current": "—",
+                         "peak following error": "—", "lost motion": "—",
+                         "gear dead zone, friction": "—",
                          "notes": ", ".join(map(str, sorted(cited)))})
             continue
+        scale = axis_scale(position_unit(one.recording.signals))
+        linear[str(axis)] = scale.linear
         result = one.backlash
         if result is None:
             cite(f"no backlash diagnosis: {one.backlash_error or 'not asked for'}")
             lost = "—"
         else:
-            lost = lost_motion_cell(result.lost_motion, result.lost_motion_high, 60)
+            lost = lost_motion_cell(result.lost_motion, result.lost_motion_high,
+                                    scale.coarse_factor)
             if result.lost_motion is None and result.lost_motion_high is not None:
                 terms = " and ".join(result.lost_motion_terms) or "error"
                 cite(f"lost motion ≤ a bound: below what the estimate resolves (its "
@@ -165,7 +194,7 @@ def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
                 cite(f"no lost motion: {result.lost_motion_reason or 'not measured'}")
             if result.backlash_score is None:
                 cite(_general(result.message))
-        gear = _gear_cell(result, cite)
+        gear = _gear_cell(result, cite, scale.coarse_factor)
         networks = len(one.networks)
         if networks < len(one.windows):
             cite(f"{len(one.windows) - networks} of {len(one.windows)} phase windows without "
@@ -175,12 +204,12 @@ def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
         rows.append({
             "axis": str(axis), "moves": str(len(one.moves)),
             "direction changes": str(len(one.turns) + len(one.turns_across_gaps)),
-            "peak speed [°/s]": _peak(one.moves, "peak speed"),
+            "peak speed": _peak(one.moves, "peak speed"),
             "peak torque or current": _torque_cell(one),
-            "peak following error [arcmin]": _peak(one.moves, "peak |FE|", 60.0),
-            "lost motion [arcmin]": lost,
-            "gear dead zone, friction [arcmin]": gear,
+            "peak following error": _peak(one.moves, "peak |FE|", scale.coarse_factor),
+            "lost motion": lost,
+            "gear dead zone, friction": gear,
             "notes": ", ".join(map(str, sorted(cited))),
         })
-    return AxisFindings(table=pd.DataFrame(rows),
+    return AxisFindings(table=_with_units(rows, linear),
                         notes=tuple((text, tuple(axes_)) for text, axes_ in notes.items()))

@@ -6,7 +6,8 @@ is read with :func:`scipy.io.loadmat`; MAT 7.3 is HDF5 underneath and read with 
 ``.h5``/``.hdf5`` files. How the variables become signals:
 
 - **Time** is the variable the channel map gives the role ``time`` (``"rec.time_cont" =
-  "time"``), else the one variable called ``time`` (in any case, on any path); seconds,
+  "time"``), else the one variable called ``time`` (in any case, on any path); seconds (or
+  the unit ``[units]`` states for it: :mod:`funcnet.robot.clock`), read from the first stamp,
   increasing, on a uniform grid of any period (:func:`funcnet.robot.grid.time_grid`).
 - **Signals** are the numeric variables beside the time (in the same struct or group), and any
   variable the channel map names, anywhere in the file, that have one sample per time stamp. A
@@ -27,7 +28,7 @@ is read with :func:`scipy.io.loadmat`; MAT 7.3 is HDF5 underneath and read with 
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -37,6 +38,7 @@ import numpy as np
 from funcnet.errors import ChannelError, TraceFormatError
 from funcnet.robot.axes import qualified, split_qualified
 from funcnet.robot.channels import TIME_ROLE, ChannelMap, SignalInfo, field_keys, resolve_fields
+from funcnet.robot.clock import Clock, clock_seconds
 from funcnet.robot.grid import GridSignals, place_on_grid, time_grid
 
 __all__ = ["ARRAY_SUFFIXES", "read_array_file", "StoredArray"]
@@ -187,6 +189,55 @@ def _rows(array: StoredArray, n_samples: int) -> np.ndarray | None:
     return None
 
 
+def _time_seconds(
+    path: Path, time_array: StoredArray, units: Mapping[str, Any], cmap: ChannelMap
+) -> tuple[Clock, Callable[[int], str]]:
+    """The time variable in seconds (:mod:`funcnet.robot.clock`), and where a sample is."""
+    time = np.squeeze(time_array.values).astype(np.float64)
+    if time.ndim != 1:
+        raise TraceFormatError(
+            path, f"time {time_array.name!r} has shape {time_array.values.shape}; it must be a "
+            "vector of time stamps in seconds"
+        )
+
+    def where(sample: int) -> str:
+        return f"{time_array.name} sample {sample + 1}"
+
+    stated = units.get(time_array.name)
+    clock = clock_seconds(path, time, stated if isinstance(stated, str) else cmap.time_unit(),
+                          time_array.name, where)
+    return clock, where
+
+
+def _signal_rows(
+    path: Path, arrays: list[StoredArray], time_array: StoredArray, roles: Mapping[str, str],
+    n_samples: int,
+) -> list[tuple[StoredArray, np.ndarray]]:
+    """The signals beside the time (or named by the map), each as rows of samples."""
+    signals: list[tuple[StoredArray, np.ndarray]] = []
+    misfits: list[StoredArray] = []
+    for array in arrays:
+        if array is time_array or (array.parent != time_array.parent and array.name not in roles):
+            continue
+        rows = _rows(array, n_samples)
+        if rows is None:
+            if array.name in roles:
+                misfits.append(array)
+            continue
+        signals.append((array, rows))
+    read_roles = {roles.get(a.name) for a, _ in signals}
+    for array in misfits:  # an entry that names several variables needs one of them to fit
+        if roles[array.name] not in read_roles:
+            raise ChannelError(
+                path, f"{array.name!r} (role {roles[array.name]}) has shape "
+                f"{array.values.shape}, not one row of {n_samples} samples per axis as its "
+                f"time {time_array.name!r}"
+            )
+    if not signals:
+        raise TraceFormatError(path, f"has a time {time_array.name!r} but no signal beside it")
+    return signals
+
+
 def read_array_file(
     path: Path, cmap: ChannelMap, axis: int | None, *, off_grid: str = "error"
 ) -> GridSignals:
@@ -220,38 +271,10 @@ def read_array_file(
     arrays, separator = _stored_arrays(path)
     roles, units = resolve_fields(cmap, [a.name for a in arrays], separator, path)
     time_array = _time_array(path, arrays, roles, separator)
-    time = np.squeeze(time_array.values).astype(np.float64)
-    if time.ndim != 1:
-        raise TraceFormatError(
-            path, f"time {time_array.name!r} has shape {time_array.values.shape}; it must be a "
-            "vector of time stamps in seconds"
-        )
-
-    def where(sample: int) -> str:
-        return f"{time_array.name} sample {sample + 1}"
-
+    clock, where = _time_seconds(path, time_array, units, cmap)
+    time = clock.seconds
     period, ticks = time_grid(path, time, where, off_grid=off_grid)
-    signals: list[tuple[StoredArray, np.ndarray]] = []
-    misfits: list[StoredArray] = []
-    for array in arrays:
-        if array is time_array or (array.parent != time_array.parent and array.name not in roles):
-            continue
-        rows = _rows(array, len(time))
-        if rows is None:
-            if array.name in roles:
-                misfits.append(array)
-            continue
-        signals.append((array, rows))
-    read_roles = {roles.get(a.name) for a, _ in signals}
-    for array in misfits:  # an entry that names several variables needs one of them to fit
-        if roles[array.name] not in read_roles:
-            raise ChannelError(
-                path, f"{array.name!r} (role {roles[array.name]}) has shape "
-                f"{array.values.shape}, not one row of {len(time)} samples per axis as its "
-                f"time {time_array.name!r}"
-            )
-    if not signals:
-        raise TraceFormatError(path, f"has a time {time_array.name!r} but no signal beside it")
+    signals = _signal_rows(path, arrays, time_array, roles, len(time))
     n_axes = max(rows.shape[0] for _, rows in signals)
     if axis is not None and not (n_axes > 1 and 1 <= axis <= n_axes):
         held = f"axes 1-{n_axes}" if n_axes > 1 else "one axis (its signals have one row each)"
@@ -291,7 +314,7 @@ def read_array_file(
             columns.append(column)
             values.append(row)
             infos.append(SignalInfo(name, None, str(array.values.dtype), period,
-                                    array.unit or units.get(array.name)))
+                                    array.unit or _axis_unit(units.get(array.name), number)))
             if role:
                 role_of[column] = name
     # Grouped per axis (signals common to all first), in the file's order within an axis.
@@ -307,4 +330,16 @@ def read_array_file(
         axis=axis,
         columns=tuple(columns[j] for j in order),
         roles=role_of,
+        start_time=clock.start_time,
+        time_origin=clock.origin,
+        time_unit=None if clock.unit == "s" else clock.unit,
     )
+
+
+def _axis_unit(unit: str | tuple[str, ...] | None, axis: int | None) -> str | None:
+    """A unit the map states, of ``axis`` where it lists one per axis."""
+    if isinstance(unit, tuple):
+        if axis is not None and 1 <= axis <= len(unit):
+            return unit[axis - 1]
+        return unit[0] if len(unit) == 1 else None
+    return unit

@@ -32,6 +32,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from types import MappingProxyType
+from typing import Any
 
 from funcnet.errors import ChannelError, ParameterError
 from funcnet.robot.layout import SignalFile, signal_files
@@ -85,7 +86,7 @@ class SignalInfo:
         a torque standing in the role of the current AC shows its unit here.
     converted_from : str or None
         The unit the file holds, when the values were converted to ``unit``
-        (:func:`funcnet.robot.units.in_degrees`: rad to deg).
+        (:func:`funcnet.robot.units.in_axis_units`: rad to deg, m to mm).
     """
 
     name: str
@@ -156,8 +157,11 @@ class ChannelMap:
         (stored as ``"time"``) marks a file's time signal.
     origin : str, optional
         The TOML file the map was read from, named in errors.
-    units : Mapping[str, str], optional
-        Signal name -> its unit, for files that do not state it.
+    units : Mapping[str, str or sequence of str], optional
+        Signal name -> its unit, for files that do not state it; a list gives a signal of
+        one column per axis a unit per axis (axis 1 first: ``["deg", "deg", "mm", "deg"]``).
+        The time column's unit (``s``, ``ms``, ``us``, ``ns``) is given under its name or
+        under ``time`` (:mod:`funcnet.robot.clock`).
     files : Mapping[str, SignalFile], optional
         Signal name -> the text file and columns it is read from (:mod:`funcnet.robot.layout`):
         a recording made of files, one per signal.
@@ -180,7 +184,7 @@ class ChannelMap:
 
     roles: Mapping[str, str] = field(default_factory=dict)
     origin: str | None = None
-    units: Mapping[str, str] = field(default_factory=dict)
+    units: Mapping[str, str | tuple[str, ...]] = field(default_factory=dict)
     files: Mapping[str, SignalFile] = field(default_factory=dict)
     axis_names: tuple[str, ...] = ()
     bag: BagLayout | None = None
@@ -198,12 +202,17 @@ class ChannelMap:
             elif role.lower() == TIME_ROLE:
                 role = TIME_ROLE
             clean[parts.path + parts.base] = role
-        units: dict[str, str] = {}
+        units: dict[str, str | tuple[str, ...]] = {}
         for key, unit in dict(self.units).items():
-            if not isinstance(key, str) or not isinstance(unit, str) or not unit.strip():
-                raise ParameterError(f"units: {key!r} -> {unit!r}; a unit is a text such as 'N m'")
+            if not isinstance(key, str) or not _unit_given(unit):
+                raise ParameterError(
+                    f"units: {key!r} -> {unit!r}; a unit is a text such as 'N m', or a list of "
+                    "one per axis such as [\"deg\", \"deg\", \"mm\"]"
+                )
             parts = parse_signal_name(key)
-            units[parts.path + parts.base] = unit.strip()
+            units[parts.path + parts.base] = (
+                unit.strip() if isinstance(unit, str) else tuple(u.strip() for u in unit)
+            )
         object.__setattr__(self, "roles", MappingProxyType(clean))
         object.__setattr__(self, "units", MappingProxyType(units))
         object.__setattr__(self, "files", MappingProxyType(dict(self.files)))
@@ -214,6 +223,37 @@ class ChannelMap:
         if 1 <= axis <= len(self.axis_names):
             return f"axis {axis} ({self.axis_names[axis - 1]})"
         return f"axis {axis}"
+
+    def unit(self, name: str, axis: int | None = None) -> str | None:
+        """The unit the map states for signal ``name`` (of ``axis``, for a list), or None.
+
+        Examples
+        --------
+        >>> cmap = ChannelMap(units={"q": ["deg", "mm"], "i": "A"})
+        >>> cmap.unit("q", 2), cmap.unit("i", 2), cmap.unit("q"), cmap.unit("v")
+        ('mm', 'A', None, None)
+        """
+        parts = parse_signal_name(name)
+        unit = self.units.get(parts.path + parts.base, self.units.get(parts.base))
+        if isinstance(unit, tuple):
+            if axis is not None and 1 <= axis <= len(unit):
+                return unit[axis - 1]
+            return unit[0] if len(unit) == 1 else None
+        return unit
+
+    def time_unit(self, name: str | None = None) -> str | None:
+        """The unit of the time column ``name``: given under its name, else under ``time``.
+
+        Examples
+        --------
+        >>> ChannelMap(units={"time": "ms"}).time_unit("stamp"), ChannelMap().time_unit()
+        ('ms', None)
+        """
+        for key in ([] if name is None else [name]) + [TIME_ROLE]:
+            unit = self.units.get(key)
+            if unit is not None:
+                return unit if isinstance(unit, str) else ", ".join(unit)
+        return None
 
     def role_of(self, name: str) -> str | None:
         """Return the role of the signal ``name`` (full controller name), or None."""
@@ -232,7 +272,7 @@ class ChannelMap:
         roles: Mapping[str, str],
         *,
         origin: str | None = None,
-        units: Mapping[str, str] | None = None,
+        units: Mapping[str, str | tuple[str, ...]] | None = None,
     ) -> ChannelMap:
         """Return this map with ``roles`` (and ``units``) added; a role given in ``roles``
         replaces its old keys."""
@@ -409,12 +449,21 @@ def check_entries(cmap: ChannelMap, names: Iterable[str], path: object) -> None:
     _refuse_unmatched(cmap, present, sorted({p.base for p in parts}), path)
 
 
+def _unit_given(unit: object) -> bool:
+    """A unit as a map may give it: a text, or a non-empty list of texts (one per axis)."""
+    if isinstance(unit, str):
+        return bool(unit.strip())
+    return (isinstance(unit, (list, tuple)) and bool(unit)
+            and all(isinstance(u, str) and u.strip() for u in unit))
+
+
 def _refuse_unmatched(
     cmap: ChannelMap, present: set[str], signals: list[str], path: object
 ) -> None:
-    """The check of :func:`check_entries`, given the keys that match a signal."""
+    """The check of :func:`check_entries`, given the keys that match a signal (the time
+    column's unit, under ``time``, matches the time whatever the file calls it)."""
     for key in cmap.units:
-        if key not in present:
+        if key not in present and key != TIME_ROLE:
             where = "channel map " + cmap.origin if cmap.origin else "units"
             raise ChannelError(
                 path, f"{where}: unit of {key!r} given, but no signal is called so; its signals "
@@ -465,7 +514,7 @@ def field_keys(name: str, separator: str) -> list[str]:
 
 def resolve_fields(
     cmap: ChannelMap, names: Iterable[str], separator: str, path: object
-) -> tuple[dict[str, str], dict[str, str]]:
+) -> tuple[dict[str, str], dict[str, Any]]:
     """Roles and units of signals named by their path in a file of arrays.
 
     Parameters
@@ -483,7 +532,8 @@ def resolve_fields(
     roles : dict
         Signal path -> role, for the signals an entry names (the most specific entry wins).
     units : dict
-        Signal path -> unit, for the signals the ``[units]`` table names.
+        Signal path -> unit (a tuple of one per axis where the map lists them), for the
+        signals the ``[units]`` table names.
 
     Raises
     ------
@@ -499,7 +549,7 @@ def resolve_fields(
     names = list(names)
     keys = {name: field_keys(name, separator) for name in names}
 
-    def lookup(table: Mapping[str, str]) -> dict[str, str]:
+    def lookup(table: Mapping[str, str | tuple[str, ...]]) -> dict[str, Any]:
         found = {}
         for name in names:
             for key in keys[name]:

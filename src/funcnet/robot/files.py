@@ -8,8 +8,10 @@ stamps. How:
 - A file's **last line without a line end** was cut while it was written (a logger stopped in the
   middle of a line: ``21.``): it is dropped. Every file with such a line is named in one
   :class:`~funcnet.RecordingWarning` (``problem="cut_line"``).
-- Time (seconds) must increase on a uniform grid (:func:`funcnet.robot.grid.time_grid`), the
-  same period in every file. The signals are joined on their time stamps: where the files cover
+- Time (seconds, or the unit ``[units]`` states for the time column, or ISO 8601 date-times;
+  an absolute clock read from the earliest file's first stamp: :mod:`funcnet.robot.clock`)
+  must increase on a uniform grid (:func:`funcnet.robot.grid.time_grid`), the same period in
+  every file. The signals are joined on their time stamps: where the files cover
   different spans (each cut at its own end), the recording is their **common span**, and every
   file that reached beyond it is named, with its own end, in one warning
   (``problem="trimmed"``).
@@ -20,7 +22,8 @@ stamps. How:
   from 1) named by its role (``RP``), else by its entry's name (``m_target``); without ``axis``
   every axis, the columns qualified by it (``A1.RP``, ``A2.RP``, ...; :mod:`funcnet.robot.axes`).
   An entry of one column is common to every axis and keeps its bare name.
-- **Units** are the map's ``[units]``; a text file states none.
+- **Units** are the map's ``[units]``; a text file states none. A list of units gives an entry
+  of one column per axis a unit per axis (``target = ["deg", "deg", "mm", "deg"]``).
 """
 
 from __future__ import annotations
@@ -28,7 +31,7 @@ from __future__ import annotations
 import io
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -36,7 +39,8 @@ import pandas as pd
 
 from funcnet.errors import ChannelError, RecordingWarning, TraceError, TraceFormatError
 from funcnet.robot.axes import qualified, split_qualified
-from funcnet.robot.channels import DEFAULT_CHANNEL_MAP, ChannelMap, SignalInfo
+from funcnet.robot.channels import DEFAULT_CHANNEL_MAP, TIME_ROLE, ChannelMap, SignalInfo
+from funcnet.robot.clock import Clock, clock_seconds
 from funcnet.robot.grid import GRID_TOLERANCE, GridSignals, time_grid
 from funcnet.robot.layout import SignalFile
 
@@ -51,17 +55,21 @@ class FileTable:
     ----------
     path : Path
     time : ndarray, shape (N,)
-        Seconds, as written.
+        Seconds (an absolute clock's from the earliest file's first stamp:
+        :mod:`funcnet.robot.clock`).
     columns : dict
         The column (position or header name) -> its values, float64 (NaN where a cell is empty).
     cut_line : str or None
         The last line, dropped because it has no line end; None when the file ends whole.
+    clock : Clock or None
+        The time column as read: its unit, and the file's clock at its first stamp.
     """
 
     path: Path
     time: np.ndarray
     columns: dict[int | str, np.ndarray]
     cut_line: str | None
+    clock: Clock | None = None
 
 
 def _separator(layout: SignalFile) -> dict[str, object]:
@@ -145,7 +153,8 @@ def _parse_together(raws: dict[Path, bytes], layout: SignalFile) -> list[dict] |
 
 
 def _file_table(
-    path: Path, table: pd.DataFrame | dict, layouts: Sequence[SignalFile], cut_line: str | None
+    path: Path, table: pd.DataFrame | dict, layouts: Sequence[SignalFile], cut_line: str | None,
+    cmap: ChannelMap,
 ) -> FileTable:
     """One file's time and the columns ``layouts`` need, as numbers (``table``: a parsed
     table, or its columns as arrays)."""
@@ -163,8 +172,14 @@ def _file_table(
             f"{held}"
         )
     line_offset = 2 if first.header else 1
+    name = first.time if isinstance(first.time, str) else f"column {first.time}"
+    clock = clock_seconds(
+        path, table[first.time], cmap.time_unit(first.time if isinstance(first.time, str)
+                                                else None), name,
+        lambda row: f"line {row + line_offset}",
+    )
     values: dict[int | str, np.ndarray] = {}
-    for column in wanted:
+    for column in wanted[1:]:
         cells = table[column]
         if isinstance(cells, np.ndarray) or cells.dtype.kind in "fi":
             values[column] = np.asarray(cells, dtype=np.float64)
@@ -180,11 +195,13 @@ def _file_table(
                 "not a number"
             )
         values[column] = numbers
-    return FileTable(path, values.pop(first.time), values, cut_line)
+    return FileTable(path, clock.seconds, values, cut_line, clock)
 
 
-def _read_tables(by_file: dict[Path, list[SignalFile]]) -> dict[Path, FileTable]:
-    """Every file the map names, read."""
+def _read_tables(
+    by_file: dict[Path, list[SignalFile]], cmap: ChannelMap
+) -> dict[Path, FileTable]:
+    """Every file the map names, read; their times from the earliest file's first stamp."""
     raws = {file: _raw(file, layouts) for file, layouts in by_file.items()}
     layouts_ = [layouts[0] for layouts in by_file.values()]
     same = all((one.header, one.separator) == (layouts_[0].header, layouts_[0].separator)
@@ -192,8 +209,13 @@ def _read_tables(by_file: dict[Path, list[SignalFile]]) -> dict[Path, FileTable]
     parts = _parse_together({f: r for f, (r, _) in raws.items()}, layouts_[0]) if same else None
     if parts is None:
         parts = [_parse(file, raws[file][0], by_file[file][0]) for file in by_file]
-    return {file: _file_table(file, part, by_file[file], raws[file][1])
-            for file, part in zip(by_file, parts, strict=True)}
+    tables = {file: _file_table(file, part, by_file[file], raws[file][1], cmap)
+              for file, part in zip(by_file, parts, strict=True)}
+    # files on one absolute clock share the earliest file's origin (0 for a relative one)
+    origins = [t.clock.origin for t in tables.values() if t.clock is not None and t.clock.origin]
+    origin = min(origins, default=0.0)
+    return {file: replace(t, time=t.time + (t.clock.origin - origin))
+            if t.clock and t.clock.origin else t for file, t in tables.items()}
 
 
 def _shown(text: str, limit: int = 24) -> str:
@@ -266,7 +288,7 @@ def read_signal_files(
     for entry in entries:
         by_file.setdefault(path / entry.file if entry.file else path, []).append(entry)
     _check_names(cmap, path)
-    tables = _read_tables(by_file)
+    tables = _read_tables(by_file, cmap)
 
     def name(file: Path) -> str:
         return file.name if folder else str(file)
@@ -333,10 +355,24 @@ def _which_ends(beyond: Sequence[str]) -> str:
 
 
 def _check_names(cmap: ChannelMap, path: Path) -> None:
-    """Every ``[channels]`` and ``[units]`` entry names a signal of ``[signals]``."""
+    """Every ``[channels]`` and ``[units]`` entry names a signal of ``[signals]`` (or the time
+    column), and a list of units gives one per column."""
     signals = sorted(cmap.files)
-    for key in cmap.units:
-        if key not in cmap.files:
+    times = {TIME_ROLE} | {e.time for e in cmap.files.values() if isinstance(e.time, str)}
+    for key, unit in cmap.units.items():
+        if key in times and not isinstance(unit, str):
+            raise ChannelError(
+                path, f"channel map {cmap.origin or ''}: the time column {key!r} has one unit, "
+                f"not a list: got {list(unit)}"
+            )
+        entry = cmap.files.get(key)
+        if entry is not None and isinstance(unit, tuple) and len(unit) != len(entry.columns):
+            raise ChannelError(
+                path, f"channel map {cmap.origin or ''}: [units] {key!r} lists {len(unit)} "
+                f"units for its {len(entry.columns)} columns; give one per column (axis 1 "
+                "first), or one unit for all"
+            )
+        if key not in cmap.files and key not in times:
             raise ChannelError(
                 path, f"channel map {cmap.origin or ''}: unit of {key!r} given, but no signal "
                 f"is called so; its signals are {signals}"
@@ -414,10 +450,12 @@ def _joined(
                     on[ticks[inside]] = raw[inside]
                 columns.append(name)
                 values.append(on)
-                infos.append(SignalInfo(source, None, None, period, cmap.units.get(layout.signal)))
+                infos.append(SignalInfo(source, None, None, period,
+                                        cmap.unit(layout.signal, number)))
                 if role:
                     roles[name] = source
     order = sorted(range(len(columns)), key=lambda j: split_qualified(columns[j])[0] or 0)
+    clock = _first_clock(tables)
     return GridSignals(
         signals=tuple(infos[j] for j in order),
         values=np.column_stack([values[j] for j in order]),
@@ -426,4 +464,13 @@ def _joined(
         axis=axis,
         columns=tuple(columns[j] for j in order),
         roles=roles,
+        start_time=clock.start_time if clock else None,
+        time_origin=clock.origin if clock else 0.0,
+        time_unit=None if clock is None or clock.unit == "s" else clock.unit,
     )
+
+
+def _first_clock(tables: dict[Path, FileTable]) -> Clock | None:
+    """The clock the recording's time is read from: the earliest absolute one, else any."""
+    clocks = [t.clock for t in tables.values() if t.clock is not None]
+    return min(clocks, key=lambda c: (c.origin == 0.0, c.origin)) if clocks else None

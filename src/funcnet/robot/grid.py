@@ -66,6 +66,12 @@ class GridSignals:
         channel map name them.
     roles : dict or None
         Column -> controller name for the columns with a role, with ``columns``.
+    time_origin : float
+        The file's clock at time 0 (seconds: controller uptime, Unix time), when the reader
+        read its time from the recording's start (:mod:`funcnet.robot.clock`).
+    time_unit : str or None
+        The unit the time column was read in (``"us"``, ``"ISO 8601"``); None: seconds, or a
+        format whose time is its own (SINUMERIK).
     """
 
     signals: tuple[SignalInfo, ...]
@@ -76,6 +82,8 @@ class GridSignals:
     axis: int | None = None
     columns: tuple[str, ...] | None = None
     roles: dict[str, str] | None = None
+    time_origin: float = 0.0
+    time_unit: str | None = None
 
 
 def time_grid(

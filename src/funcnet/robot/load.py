@@ -19,7 +19,7 @@ from funcnet.robot.axes import qualified, split_qualified
 from funcnet.robot.channels import ChannelMap
 from funcnet.robot.preprocess import DERIVED_SIGNALS, add_derived_signals, resample as resampled
 from funcnet.robot.recording import Recording, read_trace
-from funcnet.robot.units import in_degrees
+from funcnet.robot.units import in_axis_units
 
 __all__ = ["read_recording", "prepare_recording", "derived_signals_needed", "RESAMPLE_METHODS"]
 
@@ -91,7 +91,7 @@ def read_recording(
     Returns
     -------
     Recording
-        Angles stated in rad converted to degrees (:func:`funcnet.robot.units.in_degrees`,
+        Angles stated in rad converted to degrees (:func:`funcnet.robot.units.in_axis_units`,
         said in one warning). With the derived signals as its last columns. In a recording of
         several axes (columns
         ``A1.RP``, ...) a derived signal is named with its axis (``A1.V``) and computed from
@@ -127,7 +127,7 @@ def read_recording(
     recording = read_trace(path, channels=channels, axis=axis, off_grid=off_grid,
                            keep_setpoint=True)
     # Phases and thresholds are in degrees: angles in rad converted, each said.
-    recording, _ = in_degrees(recording)
+    recording, _ = in_axis_units(recording)
     return prepare_recording(recording, signals=signals, resample=resample)
 
 

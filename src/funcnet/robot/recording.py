@@ -100,6 +100,13 @@ class Recording:
         The spans ``[start, stop)`` in seconds where a signal has no value after its first one
         (missing values in the file): they split the recording into :attr:`segments`, and no
         window spans one.
+    time_origin : float
+        Where the file's own clock stood at the recording's time 0, in seconds (controller
+        uptime, Unix time; 0.0 for a log that starts at 0): the file's time is read from the
+        recording's start (:mod:`funcnet.robot.clock`).
+    time_unit : str or None
+        The unit the file's time column was read in (``"us"``, ``"ISO 8601"``); None for
+        seconds.
 
     Examples
     --------
@@ -124,6 +131,8 @@ class Recording:
     sample_period: float = 0.002
     axis: int | None = None
     gaps: tuple[tuple[float, float], ...] = ()
+    time_origin: float = 0.0
+    time_unit: str | None = None
 
     def __post_init__(self) -> None:
         index = self.data.index
@@ -285,6 +294,8 @@ class Recording:
             "sample_period": self.sample_period,
             "axis": self.axis,
             "gaps": [list(gap) for gap in self.gaps],
+            "time_origin": self.time_origin,
+            "time_unit": self.time_unit,
         }
         schema_metadata = {**(table.schema.metadata or {}), _PARQUET_KEY: json.dumps(metadata)}
         table = table.replace_schema_metadata(schema_metadata)
@@ -320,6 +331,8 @@ class Recording:
                 sample_period=float(meta["sample_period"]),
                 axis=meta["axis"],
                 gaps=tuple((float(a), float(b)) for a, b in meta.get("gaps", [])),
+                time_origin=float(meta.get("time_origin", 0.0)),
+                time_unit=meta.get("time_unit"),
             )
         except (ValueError, KeyError, TypeError) as exc:
             raise TraceFormatError(path, f"recording metadata is unusable: {exc}") from exc
@@ -413,6 +426,8 @@ def _assemble(
         sample_period=grid.sample_period,
         axis=grid.axis,
         gaps=gaps,
+        time_origin=grid.time_origin,
+        time_unit=grid.time_unit,
     )
     if gaps:
         where = [

@@ -1,6 +1,7 @@
 """Recordings stored as tables: CSV, and Parquet files not written by funcnet.
 
-A table has a header row, a ``time`` column in seconds and one column per signal (a SINUMERIK
+A table has a header row, a ``time`` column (seconds, or the unit the channel map states, or ISO
+8601 date-times: :mod:`funcnet.robot.clock`) and one column per signal (a SINUMERIK
 name with its ``[u1, N]`` suffix, a role, or any name). How its cells are read:
 
 - A cell that is empty or says ``NaN``/``NA``/``null`` is a missing value: NaN. Before a
@@ -28,6 +29,7 @@ import pandas as pd
 
 from funcnet.errors import ChannelError, RecordingWarning, TraceFormatError, caller_stacklevel
 from funcnet.robot.channels import ROLES, ChannelMap, SignalInfo, select_axis
+from funcnet.robot.clock import clock_seconds
 from funcnet.robot.grid import GridSignals, place_on_grid, time_grid
 
 __all__ = ["read_csv_table", "table_signals", "MISSING_CELLS"]
@@ -112,7 +114,9 @@ def table_signals(
     if len(table) == 0:
         raise TraceFormatError(path, "has no rows")
     time_at = time_columns[0]
-    time = _numbers(path, table.iloc[:, time_at], names[time_at], where)
+    clock = clock_seconds(path, table.iloc[:, time_at], cmap.time_unit(names[time_at]),
+                          names[time_at], where)
+    time = clock.seconds
     period, ticks = time_grid(path, time, where, off_grid=off_grid)
     signal_at = [p for p in kept if p != time_at]
     keep, axis = select_axis([names[p] for p in signal_at], axis, path)
@@ -122,11 +126,15 @@ def table_signals(
     columns = [_numbers(path, table.iloc[:, p], names[p], where) for p in signal_at]
     values = place_on_grid(time, np.column_stack(columns), period, ticks)
     return GridSignals(
-        signals=tuple(SignalInfo(names[p], None, None, period) for p in signal_at),
+        signals=tuple(SignalInfo(names[p], None, None, period, cmap.unit(names[p]))
+                      for p in signal_at),
         values=values,
         sample_period=period,
         t0=float(np.round(time[0], 9)),
         axis=axis,
+        start_time=clock.start_time,
+        time_origin=clock.origin,
+        time_unit=None if clock.unit == "s" else clock.unit,
     )
 
 
