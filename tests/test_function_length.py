@@ -25,7 +25,6 @@ EXEMPT = {
 # fails the test, so the list cannot go stale.
 PENDING = {
     "evidence/pairs.py::pairwise_evidence",
-    "robot/arrays.py::read_array_file",
 }
 
 

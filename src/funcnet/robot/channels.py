@@ -20,6 +20,9 @@ field ``rec.ref_pos_deg``, a dataset ``/rec/ref_pos``. An entry names it by the 
 any tail of it (``ref_pos_deg``, ``"rec.ref_pos_deg"``; :func:`resolve_fields`). The role
 ``time`` marks the file's time signal; a ``[units]`` table gives units to signals whose file does
 not state them (``act_torque_abs_nm = "N m"``).
+
+Length: one parser checks every table of a map ([signals], [layout], [units], [bag]) against
+the others, so they stay in one module.
 """
 
 from __future__ import annotations
