@@ -1,0 +1,97 @@
+"""A robot's history read back: every figure's series per program and axis, judged.
+
+:func:`robot_trends` reads a robot's runs and figures from the store and runs the detector
+(:func:`funcnet.track.detect.detect`) on each figure of each axis, within each program, in time
+order. Its :class:`Trends` hold one row per run, axis and figure (value, the healthy history's
+centre and spread, size in spreads, CUSUM, alarm) and the alarms as plain records.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from funcnet.track import store as kept
+from funcnet.track.detect import LEVEL, detect
+from funcnet.track.figures import FIGURES
+
+__all__ = ["Trends", "robot_trends", "run_records"]
+
+
+@dataclass(frozen=True)
+class Trends:
+    """A robot's (or every robot's) runs, figures and alarms.
+
+    Attributes
+    ----------
+    runs : DataFrame
+        Every run kept: id, robot, time, time_from, program, source, checksum, page.
+    points : DataFrame
+        One row per run, axis and figure read: run, robot, program, axis, figure, time,
+        value, centre, spread, size, cusum, alarm.
+    alarms : tuple of dict
+        ``robot, axis, figure, time, run, size, why``, in time order.
+    """
+
+    runs: pd.DataFrame = field(repr=False)
+    points: pd.DataFrame = field(repr=False)
+    alarms: tuple[dict[str, object], ...]
+
+
+def _why(row: pd.Series, cusum: float) -> str:
+    label, unit = FIGURES.get(str(row["figure"]), (str(row["figure"]), ""))
+    side = "above" if row["value"] > row["centre"] else "below"
+    return (f"{label} {row['value']:.4g} {unit}, {abs(row['size']):.1f} spreads {side} the "
+            f"healthy mean {row['centre']:.4g} (spread {row['spread']:.3g}; CUSUM "
+            f"{cusum:.1f} > {LEVEL:g})")
+
+
+def _judge(points: pd.DataFrame) -> pd.DataFrame:
+    """The detector over every series of ``points`` (sorted by time within a series)."""
+    parts = []
+    for _, series in points.groupby(["robot", "program", "axis", "figure"], sort=False):
+        series = series.sort_values(["time", "run"])
+        found = detect(series["value"].to_numpy(dtype=np.float64))
+        parts.append(series.assign(centre=found.centre, spread=found.spread, size=found.size,
+                                   cusum=found.cusum, alarm=found.alarm))
+    if not parts:
+        return points.assign(centre=[], spread=[], size=[], cusum=[], alarm=[])
+    return pd.concat(parts, ignore_index=True)
+
+
+def robot_trends(store: str | os.PathLike[str], robot: str | None = None) -> Trends:
+    """The history of ``robot`` (every robot: None), judged (module notes).
+
+    Raises
+    ------
+    ParameterError
+        No such store, or no run of ``robot`` in it.
+    """
+    from funcnet.errors import ParameterError
+
+    runs = kept.read_runs(store, robot)
+    if robot is not None and runs.empty:
+        raise ParameterError.of("robot", f"{robot!r}: no run of it in {os.fspath(store)}")
+    figures = kept.read_figures(store, robot)
+    columns = ["id", "robot", "program", "time", "source"]
+    points = figures.merge(runs[columns], left_on="run", right_on="id").drop(columns="id")
+    points = _judge(points.dropna(subset=["value"]))
+    alarms = []
+    for _, row in points[points["alarm"]].sort_values(["time", "axis"]).iterrows():
+        alarms.append({"robot": str(row["robot"]), "axis": int(row["axis"]),
+                       "figure": str(row["figure"]), "time": str(row["time"]),
+                       "run": str(row["source"]), "size": round(float(row["size"]), 2),
+                       "why": _why(row, float(row["cusum"]))})
+    return Trends(runs, points, tuple(alarms))
+
+
+def run_records(runs: pd.DataFrame) -> list[dict[str, object]]:
+    """``runs.json``'s records: robot, time, program, source, checksum (and how the time was
+    found)."""
+    return [{"robot": str(r.robot), "time": str(r.time), "time_from": str(r.time_from),
+             "program": str(r.program), "source": str(r.source), "checksum": str(r.checksum)}
+            for r in runs.itertuples()]
+
