@@ -28,8 +28,8 @@ from typing import Any
 from funcnet._io import file_sha256
 from funcnet.errors import FuncnetWarning, ParameterError
 from funcnet.track import store as kept
-from funcnet.track.figures import as_recording, axis_figures, departures, run_axes, \
-    trace_columns
+from funcnet.track.figures import as_recording, axis_figures, departures, recorded_units, \
+    run_axes, trace_columns
 from funcnet.track.program import program_name, program_signature, same_program
 
 __all__ = ["REFERENCES", "RunTask", "ReadRun", "Added", "iso_time", "read_run", "add_runs"]
@@ -65,6 +65,7 @@ class ReadRun:
     figures: dict[tuple[int, str], float]
     trace: bytes
     notes: tuple[str, ...]
+    units: dict[str, str]
 
 
 @dataclass(frozen=True)
@@ -139,7 +140,7 @@ def read_run(task: RunTask) -> ReadRun:
                    time_from=time_from, signature=program_signature(recording),
                    figures=figures,
                    trace=kept.pack_trace(trace_columns(recording), recording.sample_period),
-                   notes=tuple(notes))
+                   notes=tuple(notes), units=recorded_units(recording))
 
 
 def _program(store: str, robot: str, signature: list[list[float]]) -> str:
@@ -168,7 +169,8 @@ def _keep(store: str, robot: str, run: ReadRun) -> Added:
     figures = dict(run.figures)
     for axis in {a for a, _ in figures}:
         figures[(axis, "departure")] = found.get(axis, math.nan)
-    row = kept.RunRow(robot, run.time, run.time_from, program, run.source, run.checksum)
+    row = kept.RunRow(robot, run.time, run.time_from, program, run.source, run.checksum,
+                      units=json.dumps(run.units))
     with kept.open_store(store) as db:
         added = kept.add_run(db, row, figures, trace=run.trace,
                              signature=json.dumps(run.signature))

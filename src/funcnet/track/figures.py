@@ -44,7 +44,7 @@ from funcnet.robot.channels import SignalInfo
 from funcnet.robot.recording import Recording
 
 __all__ = ["FIGURES", "AxisFigures", "axis_figures", "run_axes", "trace_columns",
-           "as_recording", "departures"]
+           "as_recording", "departures", "recorded_units"]
 
 #: figure -> (label, unit), in the order pages show them.
 FIGURES: dict[str, tuple[str, str]] = {
@@ -129,6 +129,13 @@ def axis_figures(recording: Recording, axis: int) -> AxisFigures:
         except FuncnetError as error:
             notes.append(f"axis {axis}: no moves read: {error}")
     return AxisFigures(axis, values, tuple(notes))
+
+
+def recorded_units(recording: Recording) -> dict[str, str]:
+    """The units of the figures whose unit is the recording's: the current step's."""
+    columns = [c for c in recording.data.columns if c == "AC" or c.endswith(".AC")]
+    unit = recording.signals[columns[0]].unit if columns else None
+    return {"current_at_turns": unit} if unit else {}
 
 
 def trace_columns(recording: Recording) -> pd.DataFrame:

@@ -59,6 +59,7 @@ CREATE TABLE IF NOT EXISTS runs (
     source TEXT NOT NULL,
     checksum TEXT NOT NULL,
     page TEXT,
+    units TEXT,
     UNIQUE (robot, checksum)
 );
 CREATE INDEX IF NOT EXISTS runs_by_robot ON runs (robot, time);
@@ -102,6 +103,8 @@ class RunRow:
         SHA-256 of its content.
     page : str or None
         A page of the run (its ``inspect`` report), when known.
+    units : str or None
+        JSON: figure -> unit, for the figures whose unit is the recording's (the current's).
     """
 
     robot: str
@@ -111,6 +114,7 @@ class RunRow:
     source: str
     checksum: str
     page: str | None = None
+    units: str | None = None
 
 
 @contextlib.contextmanager
@@ -125,8 +129,13 @@ def open_store(path: str | os.PathLike[str], *, create: bool = True
     """
     if not create and not os.path.isfile(path):
         raise ParameterError.of("store", f"{os.fspath(path)}: no such store")
-    # isolation_level None: transactions are begun explicitly (BEGIN IMMEDIATE).
-    db = sqlite3.connect(os.fspath(path), timeout=BUSY_TIMEOUT, isolation_level=None)
+    if create:
+        os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    try:
+        # isolation_level None: transactions are begun explicitly (BEGIN IMMEDIATE).
+        db = sqlite3.connect(os.fspath(path), timeout=BUSY_TIMEOUT, isolation_level=None)
+    except sqlite3.Error as error:
+        raise ParameterError.of("store", f"{os.fspath(path)}: cannot open ({error})") from None
     try:
         try:
             db.execute("PRAGMA journal_mode=WAL")
@@ -171,10 +180,10 @@ def add_run(db: sqlite3.Connection, row: RunRow,
     db.execute("BEGIN IMMEDIATE")
     try:
         cursor = db.execute(
-            "INSERT OR IGNORE INTO runs (robot, time, time_from, program, source, checksum, page)"
-            " VALUES (?, ?, ?, ?, ?, ?, ?)",
+            "INSERT OR IGNORE INTO runs (robot, time, time_from, program, source, checksum, page,"
+            " units) VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
             (row.robot, row.time, row.time_from, row.program, row.source, row.checksum,
-             row.page))
+             row.page, row.units))
         if cursor.rowcount == 0:
             db.execute("ROLLBACK")
             return False
@@ -207,7 +216,7 @@ def _read(path: str | os.PathLike[str], query: str, args: tuple[object, ...]) ->
 
 def read_runs(path: str | os.PathLike[str], robot: str | None = None) -> pd.DataFrame:
     """Every run kept (of ``robot``), in time order: id, robot, time, time_from, program,
-    source, checksum, page."""
+    source, checksum, page, units."""
     where = "WHERE robot = ?" if robot is not None else ""
     return _read(path, f"SELECT * FROM runs {where} ORDER BY robot, time, id",
                  (robot,) if robot is not None else ())
