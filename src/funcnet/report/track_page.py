@@ -90,9 +90,9 @@ def _chart(series: pd.DataFrame, figure: str, links: dict[int, str | None], titl
         parts.append(f'<polygon points="{top} {bottom}" fill="#cfe0f5" stroke="none"/>')
     line = " ".join(f"{a:.1f},{b:.1f}" for a, b in zip(sx(x), sy(y), strict=True))
     parts.append(f'<polyline points="{line}" fill="none" stroke="#555" stroke-width="1"/>')
-    top, bottom = float(np.nanmax(y)), float(np.nanmin(y))
-    digits = _digits(top, bottom)
-    for tick in {top, bottom}:
+    highest, lowest = float(np.nanmax(y)), float(np.nanmin(y))
+    digits = _digits(highest, lowest)
+    for tick in {highest, lowest}:
         parts.append(f'<line x1="{_L - 2}" x2="{_L + 2}" y1="{float(sy(tick)):.1f}" '
                      f'y2="{float(sy(tick)):.1f}" stroke="#333"/>'
                      f'<text x="{_L - 4}" y="{float(sy(tick)) + 3:.1f}" font-size="9" '

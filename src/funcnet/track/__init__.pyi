@@ -7,9 +7,9 @@ from funcnet.track.add import (
 )
 from funcnet.track.detect import (
     DRIFT as DRIFT,
-    Detection as Detection,
     LEARN as LEARN,
     LEVEL as LEVEL,
+    Detection as Detection,
     detect as detect,
 )
 from funcnet.track.figures import (

@@ -28,8 +28,14 @@ from typing import Any
 from funcnet._io import file_sha256
 from funcnet.errors import FuncnetWarning, ParameterError
 from funcnet.track import store as kept
-from funcnet.track.figures import as_recording, axis_figures, departures, recorded_units, \
-    run_axes, trace_columns
+from funcnet.track.figures import (
+    as_recording,
+    axis_figures,
+    departures,
+    recorded_units,
+    run_axes,
+    trace_columns,
+)
 from funcnet.track.program import program_name, program_signature, same_program
 
 __all__ = ["REFERENCES", "RunTask", "ReadRun", "Added", "iso_time", "read_run", "add_runs"]
@@ -131,7 +137,7 @@ def read_run(task: RunTask) -> ReadRun:
         recording, _ = in_degrees(replace(recording, source=task.path), warn=False)
     time, time_from = _time(task, recording.start_time)
     figures: dict[tuple[int, str], float] = {}
-    notes = []
+    notes: list[str] = []
     for axis in run_axes(recording):
         found = axis_figures(recording, axis)
         figures.update({(axis, name): value for name, value in found.values.items()})
@@ -224,7 +230,7 @@ def add_runs(paths: Sequence[str | os.PathLike[str]], store: str | os.PathLike[s
         pass  # created (or refused) before anything is read
     known = set(kept.read_runs(target, robot)["checksum"])
     tasks, done = [], []
-    for path in map(os.fspath, paths):
+    for path in (os.fspath(p) for p in paths):
         if os.path.exists(path) and file_sha256(path) in known:
             done.append(Added(path, False, "", "", "", ("already kept for this robot",)))
         else:

@@ -69,6 +69,25 @@ class Detection:
     alarm: np.ndarray = field(repr=False)
 
 
+def _standardised(v: np.ndarray, centre: np.ndarray, spread: np.ndarray, n: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """``size`` and the normal score ``u`` of values against histories of ``n`` values."""
+    spread = np.maximum(spread, np.maximum(SPREAD_FLOOR * np.abs(centre), np.finfo(float).tiny))
+    t = (v - centre) / (spread * np.sqrt(1.0 + 1.0 / n))
+    u = stats.norm.ppf(np.clip(stats.t.cdf(t, n - 1), 1e-12, 1 - 1e-12))
+    return (v - centre) / spread, u
+
+
+def _growing(v: np.ndarray, first: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Mean and spread of ``v[:j]`` for every ``j >= first``, and ``j``."""
+    n = np.arange(first, v.size, dtype=np.float64)
+    shifted = v - v[0]  # a shift keeps the running sums well conditioned
+    total, squares = np.cumsum(shifted)[first - 1:-1], np.cumsum(shifted ** 2)[first - 1:-1]
+    mean = total / n
+    variance = np.maximum(squares - n * mean ** 2, 0.0) / (n - 1)
+    return mean + v[0], np.sqrt(variance), n
+
+
 def detect(values: np.ndarray, *, learn: int = LEARN, drift: float = DRIFT,
            level: float = LEVEL) -> Detection:
     """Run the detector over a figure's series, in time order (module notes).
@@ -87,28 +106,30 @@ def detect(values: np.ndarray, *, learn: int = LEARN, drift: float = DRIFT,
     Detection
     """
     x = np.asarray(values, dtype=np.float64)
-    n = x.size
-    centre, spread, size, cusum = (np.full(n, np.nan) for _ in range(4))
-    alarm = np.zeros(n, dtype=bool)
-    history: list[float] = []
-    high = low = 0.0
-    frozen = False
-    for i in np.flatnonzero(np.isfinite(x)):
-        if len(history) >= max(learn, 3):
-            m, s = float(np.mean(history)), float(np.std(history, ddof=1))
-            s = max(s, SPREAD_FLOOR * abs(m), np.finfo(float).tiny)
-            centre[i], spread[i] = m, s
-            t = (x[i] - m) / (s * np.sqrt(1.0 + 1.0 / len(history)))
-            size[i] = (x[i] - m) / s
-            u = float(stats.norm.ppf(np.clip(stats.t.cdf(t, len(history) - 1), 1e-12,
-                                             1 - 1e-12)))
-            high, low = max(0.0, high + u - drift), max(0.0, low - u - drift)
-            cusum[i] = max(high, low)
-            if cusum[i] > level:
-                alarm[i] = True
-                frozen = True
+    kept = np.flatnonzero(np.isfinite(x))
+    v = x[kept]
+    first = max(learn, 3)
+    centre, spread, size, cusum = (np.full(v.size, np.nan) for _ in range(4))
+    alarm = np.zeros(v.size, dtype=bool)
+    if v.size > first:
+        centre[first:], spread[first:], n = _growing(v, first)
+        size[first:], u = _standardised(v[first:], centre[first:], spread[first:], n)
+        high = low = 0.0
+        for j in range(first, v.size):
+            score = u[j - first]
+            high, low = max(0.0, high + score - drift), max(0.0, low - score - drift)
+            cusum[j] = max(high, low)
+            if cusum[j] > level:
+                alarm[j] = True
                 high = low = 0.0
-                continue
-        if not frozen:
-            history.append(float(x[i]))
-    return Detection(centre, spread, size, cusum, alarm)
+                if not alarm[:j].any():  # the first alarm: the history stops growing
+                    rest = slice(j + 1, v.size)
+                    centre[rest], spread[rest] = centre[j], spread[j]
+                    size[rest], u[j + 1 - first:] = _standardised(
+                        v[rest], centre[rest], spread[rest], np.full(v.size - j - 1, float(j)))
+    out = [np.full(x.size, np.nan) for _ in range(4)]
+    for full, part in zip(out, (centre, spread, size, cusum), strict=True):
+        full[kept] = part
+    flags = np.zeros(x.size, dtype=bool)
+    flags[kept] = alarm
+    return Detection(out[0], out[1], out[2], out[3], flags)

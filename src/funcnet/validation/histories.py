@@ -1,12 +1,13 @@
 """Simulated histories of one axis: many healthy runs of one program, then its backlash growing.
 
 Every run is the simulated axis (:func:`funcnet.sim.simulate_trial`) moving 8 deg out and back
-(long enough to reach the programmed speed), one run a day, 0.4 s logged after it arrives. From day to day what a healthy machine varies: its friction and its gear's
-stiffness (scales drawn around 1 with :class:`Nuisance`'s relative spreads), and the program's
-speed (the override an operator sets). The healthy backlash is 0.5 arcmin; worn runs follow with
-their own (by default 0.57, 1.5 and 3 arcmin). Each run is written as the controller would write
-it, a SINUMERIK trace whose ``startTime`` is its day (:func:`funcnet.sim.write_trace`), so that
-a history is read exactly as real runs are (``funcnet track add``).
+(long enough to reach the programmed speed), one run a day, 0.4 s logged after it arrives. From
+day to day a healthy machine varies: its friction and its gear's stiffness (scales drawn around 1
+with :class:`Nuisance`'s relative spreads), and the program's speed (the override an operator
+sets). The healthy backlash is 0.5 arcmin; worn runs follow with their own (by default 0.57, 1.5
+and 3 arcmin). Each run is written as the controller would write it, a SINUMERIK trace whose
+``startTime`` is its day (:func:`funcnet.sim.write_trace`), so that a history is read exactly as
+real runs are (``funcnet track add``).
 
 Examples
 --------
