@@ -111,20 +111,22 @@ def _chart(series: pd.DataFrame, figure: str, links: dict[int, str | None], titl
 def _dots(series: pd.DataFrame, xs: np.ndarray, ys: np.ndarray,
           links: dict[int, str | None], unit: str, *, dense: bool) -> list[str]:
     out = []
-    for (_, row), a, b in zip(series.iterrows(), xs, ys, strict=True):
-        alarm = bool(row["alarm"])
+    columns = [series[c].tolist() for c in ("alarm", "centre", "time", "source", "value",
+                                            "size", "run")]
+    for a, b, alarm, centre, when, source, value, size, run in zip(xs, ys, *columns,
+                                                                   strict=True):
         if dense and not alarm:
             continue
-        colour = "#c00" if alarm else ("#999" if not math.isfinite(row["centre"]) else "#245")
-        tip = (f"{row['time']} {Path(str(row['source'])).name}: {row['value']:.4g} {unit}"
-               + (f", {row['size']:+.1f} spreads" if math.isfinite(row["size"]) else
-                  ", learning") + (" ALARM" if alarm else ""))
+        colour = "#c00" if alarm else ("#999" if not math.isfinite(centre) else "#245")
+        tip = (f"{when} {os.path.basename(str(source))}: {value:.4g} {unit}"
+               + (f", {size:+.1f} spreads" if math.isfinite(size) else ", learning")
+               + (" ALARM" if alarm else ""))
         dot = (f'<circle cx="{a:.1f}" cy="{b:.1f}" r="{4.5 if alarm else 2.5}" fill="{colour}">'
                f"<title>{escape(tip)}</title></circle>")
         if alarm:
             dot += (f'<circle cx="{a:.1f}" cy="{b:.1f}" r="8" fill="none" stroke="#c00" '
                     'stroke-width="1.5"/>')
-        link = links.get(int(row["run"]))
+        link = links.get(int(run))
         out.append(f'<a href="{escape(link)}">{dot}</a>' if link else dot)
     return out
 
@@ -134,18 +136,17 @@ _ORDER = ("departure", *(f for f in FIGURES if f != "departure"))
 
 def _runs_table(of_program: pd.DataFrame, runs: pd.DataFrame) -> str:
     """The program's runs: time, file, largest departure and its axis, alarms."""
-    rows = []
-    for run_id, of_run in of_program.groupby("run", sort=False):
-        run = runs[runs["id"] == run_id].iloc[0]
-        departure = of_run[of_run["figure"] == "departure"]
-        top = departure.loc[departure["value"].idxmax()] if len(departure) else None
-        rows.append({"time": run["time"], "run": Path(str(run["source"])).name,
-                     "time from": run["time_from"],
-                     "largest departure [spreads]": (
-                         f"{top['value']:.1f} (axis {int(top['axis'])})" if top is not None
-                         else "first run: none"),
-                     "alarms": int(of_run["alarm"].sum())})
-    frame = pd.DataFrame(rows).sort_values("time")
+    departure = of_program[of_program["figure"] == "departure"]
+    top = departure.loc[departure.groupby("run")["value"].idxmax()].set_index("run")
+    alarms = of_program.groupby("run")["alarm"].sum()
+    mine = runs[runs["id"].isin(alarms.index)].sort_values(["time", "id"])
+    largest = [f"{top.at[i, 'value']:.1f} (axis {int(top.at[i, 'axis'])})" if i in top.index
+               else "first run: none" for i in mine["id"]]
+    frame = pd.DataFrame({"time": mine["time"].to_numpy(),
+                          "run": [Path(str(s)).name for s in mine["source"]],
+                          "time from": mine["time_from"].to_numpy(),
+                          "largest departure [spreads]": largest,
+                          "alarms": [int(alarms[i]) for i in mine["id"]]})
     return table(frame, classes={"alarms": lambda v: "no" if v else ""})
 
 
@@ -167,16 +168,16 @@ def _program_section(program: str, of_program: pd.DataFrame, runs: pd.DataFrame,
             continue
         label, unit = FIGURES[figure]
         unit = units.get(figure, unit)
-        charts = [_chart(of_axis.sort_values(["time", "run"]), figure, links,
-                         f"axis {int(axis)} [{unit}]")
-                  for axis, of_axis in of_figure.groupby("axis")]
+        charts = [_chart(of_axis, figure, links, f"axis {int(axis)} [{unit}]")
+                  for axis, of_axis in of_figure.groupby("axis")]  # in time order (_judge)
         parts.append(f"<h4>{escape(label)}</h4><div class=\"charts\">{''.join(charts)}</div>")
     return parts
 
 
 def _robot_section(trends: Trends, robot: str, pages: Path | None, out: Path) -> str:
     runs = trends.runs[trends.runs["robot"] == robot]
-    links = {int(r["id"]): _link(r, pages, out) for _, r in runs.iterrows()}
+    links = {int(r["id"]): _link(r, pages, out) for _, r in runs.iterrows()} \
+        if pages is not None or runs["page"].notna().any() else {}
     points = trends.points[trends.points["robot"] == robot]
     alarms = [a for a in trends.alarms if a["robot"] == robot]
     parts = [f'<h2 id="{escape(robot)}">Robot {escape(robot)}</h2>',

@@ -50,16 +50,21 @@ def _why(row: pd.Series, cusum: float) -> str:
 
 
 def _judge(points: pd.DataFrame) -> pd.DataFrame:
-    """The detector over every series of ``points`` (sorted by time within a series)."""
-    parts = []
-    for _, series in points.groupby(["robot", "program", "axis", "figure"], sort=False):
-        series = series.sort_values(["time", "run"])
-        found = detect(series["value"].to_numpy(dtype=np.float64))
-        parts.append(series.assign(centre=found.centre, spread=found.spread, size=found.size,
-                                   cusum=found.cusum, alarm=found.alarm))
-    if not parts:
-        return points.assign(centre=[], spread=[], size=[], cusum=[], alarm=[])
-    return pd.concat(parts, ignore_index=True)
+    """The detector over every series of ``points``: one sort, then each series a slice."""
+    keys = ["robot", "program", "axis", "figure"]
+    points = points.sort_values([*keys, "time", "run"], ignore_index=True)
+    columns = {name: np.full(len(points), np.nan) for name in ("centre", "spread", "size",
+                                                               "cusum")}
+    alarm = np.zeros(len(points), dtype=bool)
+    values = points["value"].to_numpy(dtype=np.float64)
+    codes = points.groupby(keys, sort=False).ngroup().to_numpy()
+    edges = np.r_[0, np.flatnonzero(np.diff(codes)) + 1, len(points)]
+    for a, b in zip(edges[:-1], edges[1:], strict=True):
+        found = detect(values[a:b])
+        for name, column in columns.items():
+            column[a:b] = getattr(found, name)
+        alarm[a:b] = found.alarm
+    return points.assign(**columns, alarm=alarm)
 
 
 def robot_trends(store: str | os.PathLike[str], robot: str | None = None) -> Trends:
