@@ -21,8 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from funcnet.report.track_page import write_trends
-from funcnet.track import FIGURES, robot_trends
-from funcnet.track import store as kept
+from funcnet.track import FIGURES, robot_trends, store as kept
 
 
 def build(path: Path, robots: int, runs: int, seed: int = 0) -> float:

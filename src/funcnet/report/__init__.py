@@ -16,6 +16,7 @@ module                what it holds
 ``inspect_text``      its words: the summary of a trace (its gaps, moves, turns, windows)
 ``backlash_page``     :func:`write_backlash_page`: the backlash diagnoses of several traces
 ``repetitions_page``  the repetitions' page (``inspect --repeated``)
+``track_page``        :func:`~funcnet.report.track_page.write_trends`: a fleet's trend page
 ====================  ==========================================================================
 
 The paper's demo report [1]_ is :func:`funcnet.paper.demo.build_demo_report` (the bench).

@@ -23,6 +23,7 @@ import pandas as pd
 
 from funcnet._io import write_text_atomic
 from funcnet.report.html import escape, mapping_table, page, provenance, table
+from funcnet.track.add import REFERENCES
 from funcnet.track.detect import DRIFT, LEARN, LEVEL
 from funcnet.track.figures import FIGURES
 from funcnet.track.trend import Trends, run_records
@@ -71,8 +72,8 @@ def _chart(series: pd.DataFrame, figure: str, links: dict[int, str | None], titl
     label = title
     x = _seconds(series["time"])
     y = series["value"].to_numpy(dtype=np.float64)
-    lo_band = (series["centre"] - 3 * series["spread"]).to_numpy(dtype=np.float64)
-    hi_band = (series["centre"] + 3 * series["spread"]).to_numpy(dtype=np.float64)
+    lo_band = series["low"].to_numpy(dtype=np.float64)
+    hi_band = series["high"].to_numpy(dtype=np.float64)
     values = np.r_[y, lo_band[np.isfinite(lo_band)], hi_band[np.isfinite(hi_band)]]
     low, high = float(np.nanmin(values)), float(np.nanmax(values))
     pad = (high - low) * 0.08 or abs(high) * 0.05 or 1.0
@@ -219,7 +220,10 @@ def write_trends(trends: Trends, out_dir: str | os.PathLike[str], *,
            f"(k = {DRIFT:g}, h = {LEVEL:g}) against the healthy history of the same figure: "
            f"the first {LEARN} runs of a program only learn; the band is the healthy mean "
            "+- 3 spreads; an alarm (red ring) stops the history from growing. About one false "
-           "alarm in 465 runs per steady figure (docs/validation/track.md).")
+           "alarm in 500 runs per steady normal figure (docs/validation/track.md). The "
+           f"departure is measured against the program's first {REFERENCES} runs, and judged on "
+           f"a log scale once it has all {REFERENCES}: from the program's {REFERENCES + 1}th run "
+           f"on, so its first alarm can come on the {REFERENCES + LEARN + 1}th.")
     times = trends.runs["time_from"].value_counts().to_dict()
     body = [f"<h1>Health over time: {', '.join(map(escape, robots))}</h1>",
             _STYLE, f"<p>{escape(how)}</p>",

@@ -38,10 +38,13 @@ from funcnet.track.figures import (
 )
 from funcnet.track.program import program_name, program_signature, same_program
 
-__all__ = ["REFERENCES", "RunTask", "ReadRun", "Added", "iso_time", "read_run", "add_runs"]
+__all__ = ["REFERENCES", "REFERENCE_COUNT", "RunTask", "ReadRun", "Added", "iso_time", "read_run",
+           "add_runs"]
 
 #: The earliest runs of a program a new run's departure is measured against.
 REFERENCES = 5
+#: The figure (not shown) that keeps how many references a run's departure had.
+REFERENCE_COUNT = "departure_references"
 
 
 @dataclass(frozen=True)
@@ -157,24 +160,25 @@ def _program(store: str, robot: str, signature: list[list[float]]) -> str:
 
 
 def _departure(store: str, robot: str, program: str, run: ReadRun
-               ) -> tuple[dict[int, float], str]:
+               ) -> tuple[dict[int, float], str, int]:
     runs = kept.read_runs(store, robot)
     earlier = runs[(runs["program"] == program) & (runs["time"] < run.time)].head(REFERENCES)
     traces = kept.read_traces(store, [int(i) for i in earlier["id"]])
     references = [as_recording(*traces[i], source=str(s))
                   for i, s in zip(earlier["id"], earlier["source"], strict=True) if i in traces]
     own = as_recording(*kept.unpack_trace(run.trace), source=run.source)
-    return departures(own, references)
+    return (*departures(own, references), len(references))
 
 
 def _keep(store: str, robot: str, run: ReadRun) -> Added:
     import json
 
     program = _program(store, robot, run.signature)
-    found, note = _departure(store, robot, program, run)
+    found, note, count = _departure(store, robot, program, run)
     figures = dict(run.figures)
     for axis in {a for a, _ in figures}:
         figures[(axis, "departure")] = found.get(axis, math.nan)
+        figures[(axis, REFERENCE_COUNT)] = float(count)
     row = kept.RunRow(robot, run.time, run.time_from, program, run.source, run.checksum,
                       units=json.dumps(run.units))
     with kept.open_store(store) as db:
