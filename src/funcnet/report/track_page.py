@@ -24,13 +24,13 @@ import pandas as pd
 from funcnet._io import write_text_atomic
 from funcnet.report.html import escape, mapping_table, page, provenance, table
 from funcnet.track.add import REFERENCES
-from funcnet.track.detect import DRIFT, LEARN, LEVEL
+from funcnet.track.detect import DRIFT, LEARN, LEVEL, SPREAD_FLOOR
 from funcnet.track.figures import FIGURES
 from funcnet.track.trend import Trends, run_records
 
 __all__ = ["write_trends"]
 
-_W, _H, _L, _R, _T, _B = 196, 118, 46, 6, 20, 22
+_W, _H, _L, _R, _T, _B = 200, 118, 60, 6, 20, 22
 _STYLE = ("<style>body{max-width:1300px}.charts{display:flex;flex-wrap:wrap;gap:4px}"
           ".charts svg{border:1px solid #ddd;background:#fff}.alarm{color:#b00}"
           "h4{margin:.8em 0 .2em}</style>")
@@ -62,7 +62,7 @@ def _digits(top: float, bottom: float) -> int:
     """Significant digits that tell ``top`` from ``bottom`` (3 at least, 8 at most)."""
     if top == bottom or not math.isfinite(top - bottom):
         return 4
-    return int(min(8, max(3, math.ceil(math.log10(max(abs(top), abs(bottom)) / (top - bottom)))
+    return int(min(7, max(3, math.ceil(math.log10(max(abs(top), abs(bottom)) / (top - bottom)))
                           + 2)))
 
 
@@ -76,6 +76,10 @@ def _chart(series: pd.DataFrame, figure: str, links: dict[int, str | None], titl
     hi_band = series["high"].to_numpy(dtype=np.float64)
     values = np.r_[y, lo_band[np.isfinite(lo_band)], hi_band[np.isfinite(hi_band)]]
     low, high = float(np.nanmin(values)), float(np.nanmax(values))
+    # never narrower than the detector's spread floor: a figure the program fixes stays flat
+    least = 6 * SPREAD_FLOOR * max(abs(low), abs(high))
+    if high - low < least:
+        low, high = (low + high - least) / 2, (low + high + least) / 2
     pad = (high - low) * 0.08 or abs(high) * 0.05 or 1.0
     sx = _scale(float(x.min()), float(x.max()), _L + 6, _W - _R - 6)
     sy = _scale(low - pad, high + pad, _H - _B, _T)
@@ -93,7 +97,10 @@ def _chart(series: pd.DataFrame, figure: str, links: dict[int, str | None], titl
     parts.append(f'<polyline points="{line}" fill="none" stroke="#555" stroke-width="1"/>')
     highest, lowest = float(np.nanmax(y)), float(np.nanmin(y))
     digits = _digits(highest, lowest)
-    for tick in {highest, lowest}:
+    ticks = {highest, lowest}
+    if abs(float(sy(highest)) - float(sy(lowest))) < 14:  # as good as flat: one label
+        ticks, digits = {(highest + lowest) / 2}, 4
+    for tick in ticks:
         parts.append(f'<line x1="{_L - 2}" x2="{_L + 2}" y1="{float(sy(tick)):.1f}" '
                      f'y2="{float(sy(tick)):.1f}" stroke="#333"/>'
                      f'<text x="{_L - 4}" y="{float(sy(tick)) + 3:.1f}" font-size="9" '
