@@ -30,7 +30,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet.track import add_runs, robot_trends
-from funcnet.track.detect import DRIFT, LEARN, LEVEL, detect
+from funcnet.track.detect import DRIFT, LEARN, LEVEL, detect_changes
 from funcnet.validation.histories import WORN_ARCMIN, write_history
 
 HEALTHY = 24
@@ -61,7 +61,7 @@ def null_rates(series: int, runs: int, seed: int = 0) -> dict[str, float]:
     rng = np.random.default_rng(seed)
     own = first = judged = 0
     for _ in range(series):
-        found = detect(rng.normal(3.0, 0.2, runs))
+        found = detect_changes(rng.normal(3.0, 0.2, runs))
         alarms = np.flatnonzero(found.alarm)
         # until its first alarm (after it the history is frozen): runs judged, alarms raised
         stop = int(alarms[0]) + 1 if alarms.size else runs

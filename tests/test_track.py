@@ -18,7 +18,7 @@ from typer.testing import CliRunner
 from funcnet.cli import app
 from funcnet.track import store as kept
 from funcnet.track.add import RunTask, _time, iso_time
-from funcnet.track.detect import DRIFT, LEARN, LEVEL, detect
+from funcnet.track.detect import DRIFT, LEARN, LEVEL, detect_changes
 
 ROOT = Path(__file__).resolve().parents[1]
 ENV = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
@@ -148,7 +148,7 @@ def test_the_self_starting_detector_alarms_as_often_as_the_known_parameter_cusum
     # CUSUM that knows them (the self-starting transform is exact for normal figures).
     rng = np.random.default_rng(7)
     series, runs = 400, 200
-    own = np.mean([detect(rng.normal(3.0, 0.2, runs)).alarm.any() for _ in range(series)])
+    own = np.mean([detect_changes(rng.normal(3.0, 0.2, runs)).alarm.any() for _ in range(series)])
     known = np.mean([_standard_cusum(rng.normal(0, 1, runs - LEARN)) for _ in range(series)])
     # about 0.34 both: 4 binomial spreads of the difference apart would be 0.13
     assert abs(own - known) < 0.13
@@ -157,9 +157,9 @@ def test_the_self_starting_detector_alarms_as_often_as_the_known_parameter_cusum
 
 def test_the_learning_runs_never_alarm_and_a_step_is_found_at_once() -> None:
     x = np.r_[[1.0, 50.0, -30.0, 1.0, 2.0], np.random.default_rng(3).normal(1, 0.1, 20)]
-    assert not detect(x).alarm[:LEARN].any()
+    assert not detect_changes(x).alarm[:LEARN].any()
     y = np.r_[np.random.default_rng(4).normal(1, 0.1, 20), 3.0, np.nan, 3.0]  # 20 spreads
-    found = detect(y)
+    found = detect_changes(y)
     assert found.alarm[20] and math.isnan(found.size[21]) and not found.alarm[21]
     assert found.centre[22] == pytest.approx(np.mean(y[:20]))  # judged against the history
 
@@ -175,7 +175,7 @@ def test_no_alarm_on_a_healthy_run_and_worn_backlash_found_by_the_third_worn_run
     figures = [axis_figures(r, 1).values for r in history_recordings(0)]
     first = {}
     for name in ("lost_motion", "backlash_score", "current_at_turns", "peak_speed"):
-        found = detect(np.array([f[name] for f in figures]))
+        found = detect_changes(np.array([f[name] for f in figures]))
         assert not found.alarm[:24].any(), name
         assert np.nanmax(found.cusum[:24]) < LEVEL - 2  # far from the level, not at its edge
         alarms = np.flatnonzero(found.alarm)

@@ -5,7 +5,7 @@ per run, a run recognised by its content); :mod:`~funcnet.track.program` tells w
 run is a run of; :mod:`~funcnet.track.figures` reads each axis's health figures from what the
 backlash, inspect and compare code computes; :mod:`~funcnet.track.add` adds runs
 (:func:`add_runs`, on local processes or a Dask cluster); :mod:`~funcnet.track.detect` is the
-change detector (a self-starting CUSUM per figure, :func:`detect`) and
+change detector (a self-starting CUSUM per figure, :func:`detect_changes`) and
 :mod:`~funcnet.track.trend` judges a robot's history with it (:func:`robot_trends`). The page
 is :mod:`funcnet.report.track_page`. Names are imported lazily.
 
@@ -31,7 +31,7 @@ _EXPORTS = {
     "add_runs": "funcnet.track.add",
     "read_run": "funcnet.track.add",
     "Added": "funcnet.track.add",
-    "detect": "funcnet.track.detect",
+    "detect_changes": "funcnet.track.detect",
     "Detection": "funcnet.track.detect",
     "LEVEL": "funcnet.track.detect",
     "DRIFT": "funcnet.track.detect",

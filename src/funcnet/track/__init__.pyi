@@ -10,7 +10,7 @@ from funcnet.track.detect import (
     LEARN as LEARN,
     LEVEL as LEVEL,
     Detection as Detection,
-    detect as detect,
+    detect_changes as detect_changes,
 )
 from funcnet.track.figures import (
     FIGURES as FIGURES,

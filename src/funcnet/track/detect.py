@@ -21,7 +21,7 @@ Examples
 --------
 >>> import numpy as np
 >>> x = np.r_[np.random.default_rng(0).normal(1.0, 0.05, 24), [1.07, 2.0, 3.0]]
->>> found = detect(x)
+>>> found = detect_changes(x)
 >>> [int(i) for i in np.flatnonzero(found.alarm)]
 [25, 26]
 """
@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import stats
 
-__all__ = ["LEARN", "DRIFT", "LEVEL", "SPREAD_FLOOR", "Detection", "detect"]
+__all__ = ["LEARN", "DRIFT", "LEVEL", "SPREAD_FLOOR", "Detection", "detect_changes"]
 
 #: Runs of a program that only learn.
 LEARN = 5
@@ -47,7 +47,7 @@ SPREAD_FLOOR = 1e-3
 
 @dataclass(frozen=True)
 class Detection:
-    """What :func:`detect` found on one series (NaN values skipped and left NaN).
+    """What :func:`detect_changes` found on one series (NaN values skipped and left NaN).
 
     Attributes
     ----------
@@ -88,7 +88,7 @@ def _growing(v: np.ndarray, first: int) -> tuple[np.ndarray, np.ndarray, np.ndar
     return mean + v[0], np.sqrt(variance), n
 
 
-def detect(values: np.ndarray, *, learn: int = LEARN, drift: float = DRIFT,
+def detect_changes(values: np.ndarray, *, learn: int = LEARN, drift: float = DRIFT,
            level: float = LEVEL) -> Detection:
     """Run the detector over a figure's series, in time order (module notes).
 

@@ -1,8 +1,8 @@
 """A robot's history read back: every figure's series per program and axis, judged.
 
 :func:`robot_trends` reads a robot's runs and figures from the store and runs the detector
-(:func:`funcnet.track.detect.detect`) on each figure of each axis, within each program, in time
-order. Its :class:`Trends` hold one row per run, axis and figure (value, the healthy history's
+(:func:`funcnet.track.detect.detect_changes`) on each figure of each axis, within each
+program, in time order. Its :class:`Trends` hold one row per run, axis and figure (value, the healthy history's
 centre and spread, size in spreads, CUSUM, alarm) and the alarms as plain records.
 """
 
@@ -16,7 +16,7 @@ import pandas as pd
 
 from funcnet.track import store as kept
 from funcnet.track.add import REFERENCE_COUNT, REFERENCES
-from funcnet.track.detect import LEVEL, detect
+from funcnet.track.detect import LEVEL, detect_changes
 from funcnet.track.figures import FIGURES
 
 __all__ = ["Trends", "robot_trends", "run_records"]
@@ -80,7 +80,7 @@ def _judge(points: pd.DataFrame, counts: pd.DataFrame) -> pd.DataFrame:
     codes = points.groupby(keys, sort=False).ngroup().to_numpy()
     edges = np.r_[0, np.flatnonzero(np.diff(codes)) + 1, len(points)]
     for a, b in zip(edges[:-1], edges[1:], strict=True):
-        found = detect(values[a:b])
+        found = detect_changes(values[a:b])
         for name, column in columns.items():
             column[a:b] = getattr(found, name)
         alarm[a:b] = found.alarm
