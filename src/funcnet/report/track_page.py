@@ -155,7 +155,10 @@ def _runs_table(of_program: pd.DataFrame, runs: pd.DataFrame) -> str:
                           "time from": mine["time_from"].to_numpy(),
                           "largest departure [spreads]": largest,
                           "alarms": [int(alarms[i]) for i in mine["id"]]})
-    return table(frame, classes={"alarms": lambda v: "no" if v else ""})
+    shown = table(frame, classes={"alarms": lambda v: "no" if v else ""})
+    if len(frame) <= 12:
+        return shown
+    return f"<details><summary>The program's {len(frame)} runs</summary>{shown}</details>"
 
 
 def _program_section(program: str, of_program: pd.DataFrame, runs: pd.DataFrame,

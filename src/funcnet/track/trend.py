@@ -2,8 +2,9 @@
 
 :func:`robot_trends` reads a robot's runs and figures from the store and runs the detector
 (:func:`funcnet.track.detect.detect_changes`) on each figure of each axis, within each
-program, in time order. Its :class:`Trends` hold one row per run, axis and figure (value, the healthy history's
-centre and spread, size in spreads, CUSUM, alarm) and the alarms as plain records.
+program, in time order. Its :class:`Trends` hold one row per run, axis and figure (value, the
+healthy history's centre and spread, size in spreads, CUSUM, alarm) and the alarms as plain
+records.
 """
 
 from __future__ import annotations
