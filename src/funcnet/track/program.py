@@ -14,7 +14,7 @@ Examples
 >>> same_program(a, [[45.77, 124.93], [-174.96, -122.37]]), same_program(a, [[45.7, 72.5]])
 (True, False)
 >>> program_name(a)
-'P-0d4a5a1f'
+'P-41a9f6e4'
 """
 
 from __future__ import annotations
