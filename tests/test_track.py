@@ -239,6 +239,13 @@ def test_two_track_add_at_once_both_land_and_bad_input_is_one_line(tmp_path: Pat
     bad = _funcnet("track", "add", str(paths[0]), "--store", str(store), "--robot", "x",
                    "--time", "soon")
     assert bad.exit_code == 2 and bad.stderr.count("\n") == 1 and "soon" in bad.stderr
+    broken = tmp_path / "broken.xml"
+    broken.write_text("<trace>")
+    partly = _funcnet("track", "add", str(broken), str(paths[1]), "--store",
+                      str(tmp_path / "other.sqlite"), "--robot", "cell-5")
+    assert partly.exit_code == 2 and partly.stderr.count("\n") == 1
+    assert "broken.xml" in partly.stderr
+    assert len(kept.read_runs(tmp_path / "other.sqlite", "cell-5")) == 1  # the readable one kept
     missing = _funcnet("track", "show", "--store", str(tmp_path / "none.sqlite"), "-o",
                        str(tmp_path / "o"))
     assert missing.exit_code == 2 and "no such store" in missing.stderr

@@ -50,7 +50,8 @@ def add(
     """Add runs to ROBOT's history: per axis their health figures, their program, their
     departure from the program's earlier runs. A run the robot already holds (same content) is
     not counted twice. Prints one line per run: kept or not, its time and where it came from,
-    its program."""
+    its program. A run that cannot be read is one error line and is not kept (the others are);
+    the exit status is then 2."""
     with reported_errors(verbose=verbose):
         from funcnet.track.add import add_runs
 
@@ -59,11 +60,16 @@ def add(
                             axis=axis, time=time, workers=workers, scheduler=scheduler,
                             progress=progress)
     for item in done:
+        if item.error:
+            typer.echo(f"funcnet: error: {item.source}: {item.notes[0]}", err=True)
+            continue
         if not item.added:
             typer.echo(f"{item.source}: already kept for {robot}, not counted again")
             continue
         typer.echo(f"{item.source}: kept for {robot}, time {item.time} ({_said(item.time_from)}),"
                    f" program {item.program}; " + "; ".join(item.notes))
+    if any(item.error for item in done):
+        raise typer.Exit(2)
 
 
 def _said(time_from: str) -> str:

@@ -26,7 +26,7 @@ from datetime import UTC, datetime
 from typing import Any
 
 from funcnet._io import file_sha256
-from funcnet.errors import FuncnetWarning, ParameterError
+from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError
 from funcnet.track import store as kept
 from funcnet.track.figures import (
     as_recording,
@@ -79,7 +79,8 @@ class ReadRun:
 
 @dataclass(frozen=True)
 class Added:
-    """One run handed to :func:`add_runs`: kept (or already there), with what was said."""
+    """One run handed to :func:`add_runs`: kept, already there, or not read (``error``), with
+    what was said."""
 
     source: str
     added: bool
@@ -87,6 +88,15 @@ class Added:
     time_from: str
     program: str
     notes: tuple[str, ...]
+    error: bool = False
+
+
+def _read_or_why(task: RunTask) -> tuple[str, ReadRun | str]:
+    """:func:`read_run`, or why the run cannot be read (one line)."""
+    try:
+        return task.path, read_run(task)
+    except (FuncnetError, OSError) as error:
+        return task.path, f"not read: {error}"
 
 
 def iso_time(value: str | datetime) -> str:
@@ -220,8 +230,11 @@ def add_runs(paths: Sequence[str | os.PathLike[str]], store: str | os.PathLike[s
     ------
     ParameterError
         An empty robot name, a bad time, or a store that is no store.
-    TraceError
-        A run that cannot be read (nothing of it is kept; runs before it are).
+
+
+    A run that cannot be read (a :class:`~funcnet.errors.FuncnetError` or an operating-system
+    error) is not kept and the others are: its :class:`Added` has ``added`` False, ``error``
+    True and the reason as its note.
     """
     from funcnet.study.backends import Backend
 
@@ -241,7 +254,11 @@ def add_runs(paths: Sequence[str | os.PathLike[str]], store: str | os.PathLike[s
             tasks.append(RunTask(path, channels, axis, time))
     backend: Any = Backend(scheduler, workers)
     with contextlib.closing(backend):
-        read = sorted(backend.map_unordered(read_run, tasks), key=lambda r: (r.time, r.source))
+        results = list(backend.map_unordered(_read_or_why, tasks))
+    done += [Added(path, False, "", "", "", (why,), error=True)
+             for path, why in results if isinstance(why, str)]
+    read = sorted((r for _, r in results if isinstance(r, ReadRun)),
+                  key=lambda r: (r.time, r.source))
     for k, run in enumerate(read):
         done.append(_keep(target, robot, run))
         if progress is not None:
