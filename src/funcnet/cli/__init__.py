@@ -146,6 +146,8 @@ COMMANDS: tuple[Callable[..., None], ...] = (
 )
 for _command in COMMANDS:
     app.command(cls=_PlainUsageCommand)(_command)
+for _info in track_app.registered_commands:  # track add, track show: the same usage lines
+    _info.cls = _PlainUsageCommand
 app.add_typer(track_app)
 
 

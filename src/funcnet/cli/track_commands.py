@@ -24,7 +24,7 @@ Store = Annotated[Path, typer.Option("--store", help="The store of runs (one SQL
 
 @track_app.command("add")
 def add(
-    runs: Annotated[list[Path], typer.Argument(metavar="RUN...", help="Trace files or log "
+    runs: Annotated[list[Path], typer.Argument(metavar="RUN", help="Trace files or log "
                                                "folders (read as inspect reads them).")],
     store: Store,
     robot: Annotated[str, typer.Option("--robot", help="The robot they are runs of.")],
