@@ -173,15 +173,22 @@ def _program_section(program: str, of_program: pd.DataFrame, runs: pd.DataFrame,
     units: dict[str, str] = {}
     for text in runs.loc[runs["program"] == program, "units"].dropna():
         units.update(json.loads(text))
+    axes = sorted(of_program["axis"].unique())
+    one: list[str] = []  # one axis: every figure side by side
     for figure in _ORDER:
         of_figure = of_program[of_program["figure"] == figure]
         if of_figure.empty:
             continue
         label, unit = FIGURES[figure]
         unit = units.get(figure, unit)
+        if len(axes) == 1:
+            one.append(_chart(of_figure, figure, links, f"{figure} [{unit}]"))
+            continue
         charts = [_chart(of_axis, figure, links, f"axis {int(axis)} [{unit}]")
                   for axis, of_axis in of_figure.groupby("axis")]  # in time order (_judge)
         parts.append(f"<h4>{escape(label)}</h4><div class=\"charts\">{''.join(charts)}</div>")
+    if one:
+        parts.append(f"<h4>Axis {int(axes[0])}</h4><div class=\"charts\">{''.join(one)}</div>")
     return parts
 
 
