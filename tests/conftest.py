@@ -28,3 +28,14 @@ def real_trace() -> Path:
     if not REAL_TRACE.exists():  # pragma: no cover - CI always has it
         pytest.fail(f"the real trace is missing: {REAL_TRACE}")
     return REAL_TRACE
+
+
+UR5 = SHARED / "data" / "ur5"
+
+
+@pytest.fixture(scope="session")
+def ur5_runs() -> Path:
+    """The folder of the UR5's log folders kept in ``../shared`` (one folder per run)."""
+    if not UR5.is_dir():  # pragma: no cover - CI always has it
+        pytest.fail(f"the UR5 runs are missing: {UR5}")
+    return UR5

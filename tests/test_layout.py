@@ -61,6 +61,7 @@ LAYERS: dict[str, tuple[str, float]] = {
     "funcnet.study": ("study", 7),
     "funcnet.inspection": ("inspection", 7.5),
     "funcnet.comparison": ("comparison", 7.5),
+    "funcnet.track": ("track", 7.75),
     "funcnet.report": ("report", 8),
     "funcnet.cli": ("cli", 9),
     "funcnet.__main__": ("cli", 9),

@@ -4,7 +4,8 @@ Commands: ``demo`` (simulate the paper's plan, analyse it, write the report), ``
 ``network`` (the functional networks of one trace: one per phase, or of one window),
 ``inspect`` (the engineer's HTML report of traces), ``compare`` (a run against earlier
 runs of its program), ``backlash`` (diagnose backlash in traces),
-``study`` (a batch from a TOML file) and ``report`` (HTML report of a study's results).
+``study`` (a batch from a TOML file), ``report`` (HTML report of a study's results) and
+``track add``/``track show`` (a robot's runs kept and trended).
 ``funcnet COMMAND --help`` is each command's reference.
 
 Conventions:
@@ -46,6 +47,7 @@ from funcnet.cli.messages import one_line
 from funcnet.cli.network_commands import network, stability
 from funcnet.cli.simulation_commands import demo, simulate
 from funcnet.cli.study_commands import report, study
+from funcnet.cli.track_commands import track_app
 
 __all__ = ["COMMANDS", "app", "main"]
 
@@ -144,6 +146,9 @@ COMMANDS: tuple[Callable[..., None], ...] = (
 )
 for _command in COMMANDS:
     app.command(cls=_PlainUsageCommand)(_command)
+for _info in track_app.registered_commands:  # track add, track show: the same usage lines
+    _info.cls = _PlainUsageCommand
+app.add_typer(track_app)
 
 
 def main() -> None:

@@ -16,6 +16,7 @@ module                what it holds
 ``inspect_text``      its words: the summary of a trace (its gaps, moves, turns, windows)
 ``backlash_page``     :func:`write_backlash_page`: the backlash diagnoses of several traces
 ``repetitions_page``  the repetitions' page (``inspect --repeated``)
+``track_page``        :func:`write_trends`: a fleet's trend page (``funcnet track show``)
 ====================  ==========================================================================
 
 The paper's demo report [1]_ is :func:`funcnet.paper.demo.build_demo_report` (the bench).
@@ -35,6 +36,7 @@ _EXPORTS = {
     "inspect_trace": "funcnet.report.inspect",
     "write_inspection": "funcnet.report.inspect",
     "write_backlash_page": "funcnet.report.backlash_page",
+    "write_trends": "funcnet.report.track_page",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

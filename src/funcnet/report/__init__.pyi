@@ -7,5 +7,6 @@ from funcnet.report.inspect import (
     write_inspection as write_inspection,
 )
 from funcnet.report.study_report import write_report as write_report
+from funcnet.report.track_page import write_trends as write_trends
 
 __all__: list[str]
