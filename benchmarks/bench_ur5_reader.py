@@ -4,7 +4,7 @@ Run from the repository root::
 
     python -m benchmarks.bench_ur5_reader [--repeat 5]
 
-For each run of ``../shared/data/ur5`` (README there): ``read_trace(FOLDER,
+For each run of ``data/ur5`` (README there): ``read_trace(FOLDER,
 channels="examples/ur5-channels.toml")`` -- seven files of one signal and six joints each, cut
 lines dropped, ends trimmed, joined on their time stamps, every joint's columns named -- against
 the competitor, the same data (the recording's 42 columns over the same ticks, written once by
@@ -26,7 +26,7 @@ from pathlib import Path
 import pandas as pd
 
 ROOT = Path(__file__).resolve().parents[1]
-DATA = ROOT.parent / "shared" / "data" / "ur5"
+DATA = ROOT / "data" / "ur5"
 CHANNELS = ROOT / "examples" / "ur5-channels.toml"
 
 

@@ -8,10 +8,11 @@ import pandas as pd
 import pytest
 from typer.testing import CliRunner
 
+from conftest import KUKA
 from funcnet.cli import app
 
 ROOT = Path(__file__).resolve().parents[1]
-RUN = ROOT.parent / "shared" / "data" / "kuka-kr300" / "kr300-run-A.mat"
+RUN = KUKA / "kr300-run-A.mat"
 KUKA_MAP = ROOT / "examples" / "kuka-kr300-channels.toml"
 
 runner = CliRunner()
