@@ -337,10 +337,16 @@ def test_cli_constant_signal_is_an_error_or_dropped(trace, tmp_path) -> None:
     window = f"{data['time'].iloc[0]}:{data['time'].iloc[-1]}"
     arguments = ["stability", str(trace), "--signals", "RP,AC,RC,MP", "--window", window,
                  "--delay", "2", "--vary", "mu=0.1"]
-    failed = CliRunner().invoke(app, arguments)
+    failed = CliRunner().invoke(app, [*arguments, "--strict-constant"])
     assert failed.exit_code == 2 and "'MP' is constant" in failed.stderr
     out = tmp_path / "dropped.parquet"
-    result = CliRunner().invoke(app, [*arguments, "--drop-constant", "-o", str(out)])
+    result = CliRunner().invoke(app, [*arguments, "-o", str(out)])  # the default: left out
     assert result.exit_code == 0, result.output
     table = pd.read_parquet(out)
     assert len(table) == 3 and "MP" not in set(table["x"]) | set(table["y"])
+    said = [line for line in result.stderr.splitlines() if "constant inside the window" in line]
+    assert len(said) == 1 and said[0].startswith(f"funcnet: warning: {trace}: "), said
+    assert "in 1 of 1 window(s)" in said[0]
+    assert said[0].endswith(" (MP)") and "--strict-constant makes it an error" in said[0]
+    again = CliRunner().invoke(app, [*arguments, "--drop-constant", "-o", str(out)])
+    assert again.exit_code == 0 and pd.read_parquet(out).equals(table)

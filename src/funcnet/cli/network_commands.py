@@ -109,12 +109,12 @@ def network(
     drop_constant: Annotated[
         bool,
         typer.Option(
-            "--drop-constant",
-            metavar="",
-            help="Leave a signal constant in the window out of the network (min-max needs a "
-            "range); by default it is an error.",
+            "--drop-constant/--strict-constant",
+            help="Leave a signal constant in a window out of that window's network, said in "
+            "one line (the default: min-max needs a range); --strict-constant makes it an "
+            "error.",
         ),
-    ] = False,
+    ] = True,
     output: Annotated[
         Path | None,
         typer.Option(
@@ -348,9 +348,10 @@ def stability(
     ] = False,
     drop_constant: Annotated[
         bool,
-        typer.Option("--drop-constant", metavar="", help="Leave a signal constant in a "
-                     "window out of its table (by default it is an error)."),
-    ] = False,
+        typer.Option("--drop-constant/--strict-constant", help="Leave a signal constant in "
+                     "a window out of that window's table, said in one line (the default); "
+                     "--strict-constant makes it an error."),
+    ] = True,
     list_phases: Annotated[
         bool,
         typer.Option("--list-phases", metavar="", help="Print the detected phases and stop."),
@@ -427,22 +428,26 @@ def stability(
 
 def _compute(recording: Any, chosen: list[Any], nodes: list[str], parameters: NetworkParameters,
              grid: Any, full: bool, trace: Path,
-             drop_constant: bool = False) -> tuple[list[Any], list[Any], list[str]]:
+             drop_constant: bool = True) -> tuple[list[Any], list[Any], list[str]]:
     """Per window: its table (window, start, stop first), the result, its label."""
     import warnings
 
     from funcnet.network.stability import edge_stability
+    from funcnet.pipeline import constant_warning
     from funcnet.robot.preprocess import staircase_warning
 
     staircase = staircase_warning(recording, nodes, str(trace))
     if staircase is not None:
         warnings.warn(staircase, stacklevel=2)
     frames, results, labels = [], [], []
+    dropped: dict[str, tuple[str, ...]] = {}
     for chosen_window in chosen:
         part = recording.window(chosen_window.start, chosen_window.stop).data[list(nodes)]
         if drop_constant and parameters.normalize is not None:
-            # as funcnet network --drop-constant: a constant signal cannot be normalized
-            part = part.loc[:, (part.max() > part.min()).to_numpy()]
+            # as funcnet network: a constant signal cannot be normalized
+            varies = (part.max() > part.min()).to_numpy()
+            dropped[str(chosen_window.label)] = tuple(map(str, part.columns[~varies]))
+            part = part.loc[:, varies]
         try:
             result = edge_stability(part, parameters=parameters, grid=grid, full=full)
         except FuncnetError as error:
@@ -455,4 +460,7 @@ def _compute(recording: Any, chosen: list[Any], nodes: list[str], parameters: Ne
         frames.append(frame)
         results.append(result)
         labels.append(str(chosen_window.label))
+    left_out = constant_warning(str(trace), dropped, len(chosen))
+    if left_out is not None:
+        warnings.warn(left_out, stacklevel=2)
     return frames, results, labels
