@@ -399,7 +399,7 @@ def window_networks(
     found.sort(key=lambda warning: order.get(str(warning.window), -1))
     for warning in _summarized(found, where, len(windows)):
         warnings.warn(warning, stacklevel=caller_stacklevel())
-    left_out = constant_warning(where, {label: net.window.get("dropped", ())
+    left_out = constant_warning(where, {label: (net.window or {}).get("dropped", ())
                                         for label, net in networks.items()}, len(windows))
     if left_out is not None:
         warnings.warn(left_out, stacklevel=caller_stacklevel())

@@ -410,7 +410,12 @@ def stability(
         if list_phases:
             print_phases(recording, trace)
             return
-        chosen = chosen_windows(recording, trace, phase, whole, bounds)
+        from funcnet.core.embedding import MIN_STATES
+
+        chosen = chosen_windows(  # as funcnet network: phases the embedding cannot hold, said
+            recording, trace, phase, whole, bounds,
+            min_samples=(parameters.dim - 1) * parameters.delay + MIN_STATES,
+        )
         nodes = names or paper_nodes(recording.data.columns)
         check_cost(recording, chosen, nodes, parameters, force)
         frames, results, labels = _compute(recording, chosen, nodes, parameters, grid,
@@ -432,7 +437,8 @@ def _compute(recording: Any, chosen: list[Any], nodes: list[str], parameters: Ne
     """Per window: its table (window, start, stop first), the result, its label."""
     import warnings
 
-    from funcnet.network.stability import edge_stability
+    from funcnet.errors import RecordingWarning
+    from funcnet.network.stability import edge_stability, fitting_grid
     from funcnet.pipeline import constant_warning
     from funcnet.robot.preprocess import staircase_warning
 
@@ -441,6 +447,7 @@ def _compute(recording: Any, chosen: list[Any], nodes: list[str], parameters: Ne
         warnings.warn(staircase, stacklevel=2)
     frames, results, labels = [], [], []
     dropped: dict[str, tuple[str, ...]] = {}
+    short: dict[str, str] = {}
     for chosen_window in chosen:
         part = recording.window(chosen_window.start, chosen_window.stop).data[list(nodes)]
         if drop_constant and parameters.normalize is not None:
@@ -448,8 +455,13 @@ def _compute(recording: Any, chosen: list[Any], nodes: list[str], parameters: Ne
             varies = (part.max() > part.min()).to_numpy()
             dropped[str(chosen_window.label)] = tuple(map(str, part.columns[~varies]))
             part = part.loc[:, varies]
+        # a short window is read over the settings whose embedding it holds
+        fitted, left_out = fitting_grid(grid, parameters, len(part))
+        if left_out:
+            short[str(chosen_window.label)] = f"{len(part)} samples: {', '.join(left_out)}"
         try:
-            result = edge_stability(part, parameters=parameters, grid=grid, full=full)
+            # (no value fits: the grid as given, and its error)
+            result = edge_stability(part, parameters=parameters, grid=fitted or grid, full=full)
         except FuncnetError as error:
             error.args = (f"{trace}: window {chosen_window.label!r}: {error}",)
             raise
@@ -460,7 +472,13 @@ def _compute(recording: Any, chosen: list[Any], nodes: list[str], parameters: Ne
         frames.append(frame)
         results.append(result)
         labels.append(str(chosen_window.label))
-    left_out = constant_warning(str(trace), dropped, len(chosen))
-    if left_out is not None:
-        warnings.warn(left_out, stacklevel=2)
+    constant = constant_warning(str(trace), dropped, len(chosen))
+    if constant is not None:
+        warnings.warn(constant, stacklevel=2)
+    if short:
+        listed = "; ".join(f"{label!r} ({why})" for label, why in short.items())
+        warnings.warn(RecordingWarning(
+            f"{trace}: settings whose embedding a window is too short for ((dim - 1) * delay "
+            f"+ 7 samples) left out of its grid: {listed}", problem="short_setting"),
+            stacklevel=2)
     return frames, results, labels
