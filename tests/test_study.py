@@ -340,6 +340,8 @@ def test_constant_drop_leaves_constant_signals_out(plan_dir: Path, tmp_path: Pat
 
     result = run_study(drop, tmp_path, workers=0)
     assert (result.tasks, result.computed, result.failures) == (1, 1, ())
+    count, example = result.warnings["constant"]  # said, counted as the other problems are
+    assert count == 1 and example.endswith("in 1 of 1 window(s): '0.000-0.200 s' (AP, V)")
     rows = load_results(tmp_path)
     # Before the motion AP (and V, derived from it) are constant: left out, and recorded so.
     part = read_recording(trace).window(0.0, 0.2).data

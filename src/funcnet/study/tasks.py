@@ -414,15 +414,20 @@ def task_warnings(networks: Mapping[str, Any], recording: Any, signals: Sequence
     -------
     tuple of (problem, count, message)
         ``problem`` is the warning's :attr:`~funcnet.errors.FuncnetWarning.problem`
-        (``"eps_order"``, ``"rate_exceeded"``, ``"degenerate"``, ``"staircase"``).
+        (``"eps_order"``, ``"rate_exceeded"``, ``"degenerate"``, ``"staircase"``, and
+        ``"constant"`` for signals left out of a window as constant in it).
     """
-    from funcnet.pipeline import window_warnings
+    from funcnet.pipeline import constant_warning, window_warnings
     from funcnet.robot.preprocess import staircase_warning
 
     found: dict[str, tuple[int, str]] = {}
     staircase = staircase_warning(recording, list(signals), where)
     if staircase is not None:
         found["staircase"] = (len(staircase.signals), str(staircase))
+    constant = constant_warning(where, {label: (net.window or {}).get("dropped", ())
+                                        for label, net in networks.items()}, len(networks))
+    if constant is not None:
+        found["constant"] = (len(constant.signals), str(constant))
     for warning in window_warnings(networks):
         problem = str(warning.problem)
         count, message = found.get(problem, (0, f"{where}: {warning}"))
