@@ -2,7 +2,8 @@
 
 Run from the repository root::
 
-    PYTHONPATH=src python -m benchmarks.every_recording [--only COMMAND ...] [--json FILE]
+    PYTHONPATH=src python -m benchmarks.every_recording [--only COMMAND ...] [--match TEXT]
+        [--json FILE]
 
 The recordings: the KUKA KR 300 runs and the UR5 runs shipped in ``data/`` (read with their
 channel maps in ``examples/``), and the SINUMERIK trace when it is beside the clone
@@ -57,9 +58,12 @@ def recordings() -> Iterator[tuple[str, Path, list[str], list[int | None]]]:
                    ["--channels", "examples/ur5-channels.toml"], list(range(1, 7)))
 
 
-def calls(only: set[str], out: Path) -> Iterator[tuple[str, str, str, list[str]]]:
-    """(recording, command, axis, arguments after ``funcnet``) of every call to make."""
+def calls(only: set[str], out: Path, match: str = "") -> Iterator[tuple[str, str, str, list[str]]]:
+    """(recording, command, axis, arguments after ``funcnet``) of every call to make, on the
+    recordings whose name holds ``match``."""
     for name, path, channels, axes in recordings():
+        if match not in name:
+            continue
         for command in ("network", "stability"):
             if command in only:
                 for axis in axes:
@@ -95,6 +99,7 @@ def said(stderr: str, path: str) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", nargs="+", choices=COMMANDS, default=list(COMMANDS))
+    parser.add_argument("--match", default="", help="Only the recordings whose name holds it.")
     parser.add_argument("--json", type=Path, help="Write every call's full stderr here.")
     args = parser.parse_args(argv)
     env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
@@ -103,7 +108,7 @@ def main(argv: list[str] | None = None) -> int:
     print("| recording | command | axis | exit | wall [s] | said on stderr |")
     print("|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as folder:
-        for name, command, axis, arguments in calls(set(args.only), Path(folder)):
+        for name, command, axis, arguments in calls(set(args.only), Path(folder), args.match):
             start = time.perf_counter()
             done = subprocess.run([sys.executable, "-m", "funcnet", *arguments], env=env,
                                   cwd=ROOT, capture_output=True, text=True, timeout=3600)
