@@ -311,11 +311,17 @@ def network_rows(task: NetworkTask) -> Outcome:
     """
     import funcnet.robot as robot
     from funcnet.pipeline import window_evidence, window_networks
+    from funcnet.robot.axes import split_qualified
 
     try:
         recording = _cached_recording(task)
         signals = _nodes(task.signals, recording.data.columns, robot.PAPER_NODES)
         window = robot.Window(**task.window)
+        # Dropping a constant set-point node would leave the noise of a resting axis to analyse.
+        setpoint = any(split_qualified(s)[1] == "RP" for s in signals)
+        resting = standstill(recording, window) if setpoint and task.constant == "drop" else None
+        if resting is not None:
+            return Outcome(task.key, skipped=f"{resting} (its set-point is constant)")
         with _one_thread_per_task():
             networks = window_networks(
                 recording, [window], signals=signals, parameters=task.parameters,
