@@ -380,7 +380,7 @@ def kuka_table() -> str:
              "| dead zone; friction [95 %] |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
     for run in ("A", "B"):
-        path = ROOT.parent / "shared" / "data" / "kuka-kr300" / f"kr300-run-{run}.mat"
+        path = ROOT / "data" / "kuka-kr300" / f"kr300-run-{run}.mat"
         mat = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)
         rec, para = mat["rec"], mat["para"]
         for axis in (1, 2, 3):

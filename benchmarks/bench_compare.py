@@ -7,7 +7,7 @@ with the networks' reading (what ``funcnet compare`` computes) and without it. I
 process the competitor: what an engineer writes in pandas without funcnet -- one global lag
 per reference from the cross-correlation of the set-points, then ``|AC - RC|`` of RUN minus
 the references' mean at that lag -- which finds no local slow-down, no extra cycle, and no
-band. When the UR5 folders are there (``FUNCNET_UR5``, default ../shared/data/ur5), the
+band. When the UR5 folders are there (``FUNCNET_UR5``, default data/ur5), the
 force-sensor run against No8 and No9 NoDist is timed too, reading included.
 
     PYTHONPATH=src python -m benchmarks.bench_compare
@@ -87,7 +87,7 @@ def main() -> None:
     print(f"  residuals only: {plain:.2f} s; competitor (global lag + |AC - RC|, pandas): "
           f"{rival:.3f} s; ratio with networks {full / rival:.0f}x, residuals only "
           f"{plain / rival:.0f}x")
-    folder = Path(os.environ.get("FUNCNET_UR5", Path(__file__).parents[2] / "shared/data/ur5"))
+    folder = Path(os.environ.get("FUNCNET_UR5", Path(__file__).parents[1] / "data/ur5"))
     channels = Path(__file__).parents[1] / "examples/ur5-channels.toml"
     if (folder / "Movement_No9_Singularity_Free_ForceSensor").is_dir():
         from funcnet.robot.recording import read_trace

@@ -5,7 +5,7 @@ Run from the repository root::
     PYTHONPATH=src python -m benchmarks.bench_direction [--plan DIR] [--seed N] [--candidates]
         [--variants] [--contradicted] [--only WORD ...]
 
-For every real recording in ``../shared/data`` -- the SINUMERIK trace (its phase windows), both
+For every real recording -- the SINUMERIK trace (``../shared/data``, its phase windows), both
 KUKA KR 300 runs (``examples/kuka-kr300-channels.toml``; every axis's phase windows, and the
 whole robot as one network), the UR5 runs when their reader and ``examples/ur5-channels.toml``
 are present -- and for a simulated plan (the paper's 36 trials, ``funcnet simulate``, moving
@@ -53,7 +53,8 @@ import pandas as pd
 from benchmarks.bench_core import Run
 
 REPO = Path(__file__).resolve().parents[1]
-DATA = REPO.parent / "shared" / "data"
+DATA = REPO.parent / "shared" / "data"  # the SINUMERIK trace (no licence: not shipped)
+SHIPPED = REPO / "data"
 KUKA_CHANNELS = REPO / "examples" / "kuka-kr300-channels.toml"
 UR5_CHANNELS = REPO / "examples" / "ur5-channels.toml"
 
@@ -64,12 +65,12 @@ def recordings(plan: Path) -> Iterator[tuple[str, str, Any]]:
 
     yield "SINUMERIK", "axis 7", read_recording(DATA / "sinumerik" / "axis7-braking-trace.xml")
     for run in "AB":
-        path = DATA / "kuka-kr300" / f"kr300-run-{run}.mat"
+        path = SHIPPED / "kuka-kr300" / f"kr300-run-{run}.mat"
         for axis in range(1, 7):
             yield f"KUKA run {run}", f"axis {axis}", read_recording(
                 path, channels=KUKA_CHANNELS, axis=axis)
         yield f"KUKA run {run}", "robot", read_recording(path, channels=KUKA_CHANNELS)
-    ur5 = DATA / "ur5"
+    ur5 = SHIPPED / "ur5"
     if UR5_CHANNELS.exists():
         for folder in sorted(p for p in ur5.iterdir() if p.is_dir()):
             whole = read_recording(folder, channels=UR5_CHANNELS)

@@ -33,17 +33,18 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-SHARED = ROOT.parent / "shared" / "data"
+SHARED = ROOT.parent / "shared" / "data"  # the SINUMERIK trace (no licence: not shipped)
+SHIPPED = ROOT / "data"
 CASES = {
     "SINUMERIK trace": [str(SHARED / "sinumerik" / "axis7-braking-trace.xml")],
-    "KUKA run A, whole robot": [str(SHARED / "kuka-kr300" / "kr300-run-A.mat"), "--channels",
+    "KUKA run A, whole robot": [str(SHIPPED / "kuka-kr300" / "kr300-run-A.mat"), "--channels",
                                 str(ROOT / "examples" / "kuka-kr300-channels.toml")],
-    "UR5 No8, six joints": [str(SHARED / "ur5" / "Movement_No8_Singularity_Free_1"),
+    "UR5 No8, six joints": [str(SHIPPED / "ur5" / "Movement_No8_Singularity_Free_1"),
                             "--channels", str(ROOT / "examples" / "ur5-channels.toml")],
 }
 TARGETS = {"KUKA run A, whole robot": 20.0, "UR5 No8, six joints": 30.0}
 # Named only: minutes per run.
-OPT_IN = {"UR5 No5, six joints": [str(SHARED / "ur5" / "Movement_No5_Acc_slow_no_disturbance"),
+OPT_IN = {"UR5 No5, six joints": [str(SHIPPED / "ur5" / "Movement_No5_Acc_slow_no_disturbance"),
                                   "--channels", str(ROOT / "examples" / "ur5-channels.toml")]}
 
 

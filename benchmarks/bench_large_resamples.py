@@ -5,7 +5,7 @@ Run from the repository root::
 
     OMP_WAIT_POLICY=PASSIVE python -m benchmarks.bench_large_resamples [--nodes K] [--resamples R]
 
-The data: the whole UR5 run ``Movement_No5_Acc_slow_no_disturbance`` (``../shared/data/ur5``,
+The data: the whole UR5 run ``Movement_No5_Acc_slow_no_disturbance`` (``data/ur5``,
 26 s at 125 Hz), its robot network's nodes as ``funcnet inspect`` takes them (every joint's
 RP, AP, RC, AC, V, constant ones left out), min-max normalized and embedded with the default
 parameters (3,223 states). The intervals resample these states (kept fractions 0.4 and 0.75 of
@@ -29,7 +29,7 @@ import numba
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-RUN = ROOT.parent / "shared" / "data" / "ur5" / "Movement_No5_Acc_slow_no_disturbance"
+RUN = ROOT / "data" / "ur5" / "Movement_No5_Acc_slow_no_disturbance"
 FRACTIONS = (0.27, 0.33, 0.4, 0.5, 0.6, 0.75)
 
 

@@ -4,7 +4,7 @@ Run from the repository root::
 
     OMP_WAIT_POLICY=PASSIVE python -m benchmarks.bench_robot_evidence [--against DIR] [--repeats N]
 
-The data: run A of the KUKA KR 300 in ``../shared/data/kuka-kr300/`` (MAT 5, the struct ``rec``,
+The data: run A of the KUKA KR 300 in ``data/kuka-kr300/`` (MAT 5, the struct ``rec``,
 6 axes x 2,501 samples at 250 Hz): per axis the set-point RP (``ref_pos_deg``), the motor
 position MP (``act_pos_mot_deg``) and the motor torque AC (``act_torque_abs_nm``), and the
 arm-side position AP (``act_pos_se_deg``) of axes 1-3: 21 nodes (``A1.RP`` ...), over the
@@ -34,7 +34,7 @@ from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
-RUN = ROOT.parent / "shared" / "data" / "kuka-kr300" / "kr300-run-A.mat"
+RUN = ROOT / "data" / "kuka-kr300" / "kr300-run-A.mat"
 START, SAMPLES = 1000, 750  # 4.0-7.0 s at 250 Hz
 
 

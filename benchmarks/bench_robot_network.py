@@ -5,7 +5,7 @@ Run from the repository root::
     python -m benchmarks.bench_robot_network [--against DIR] [--rounds N] [--run A|B]
 
 The 21 nodes are RP, MP and the motor torque of each of the six axes and AP of axes 1-3
-(``../shared/data/kuka-kr300/kr300-run-A.mat``: 2,501 samples at 250 Hz, read with
+(``data/kuka-kr300/kr300-run-A.mat``: 2,501 samples at 250 Hz, read with
 ``scipy.io.loadmat``), named ``A1.RP`` ...; ``funcnet.functional_network`` with the default
 parameters (M = 2,481 states, 210 pairs). Target: at most 2 s on the 2-core machine.
 
@@ -32,7 +32,7 @@ from typing import Any
 from benchmarks.bench_core import Run
 
 ROOT = Path(__file__).resolve().parents[1]
-DATA = ROOT.parent / "shared/data/kuka-kr300"
+DATA = ROOT / "data" / "kuka-kr300"
 
 
 def robot_frame(run: str) -> Any:

@@ -4,8 +4,7 @@ Run from the repository root::
 
     python -m benchmarks.bench_ur5_reader [--repeat 5]
 
-For each run of the UR5 recordings (``data/ur5`` of the repository, else ``../shared/data/ur5``;
-README there):
+For each run of the UR5 recordings (``data/ur5`` of the repository; README there):
 
 1. ``read_trace(FOLDER, channels="examples/ur5-channels.toml")`` -- seven files of one signal and
    six joints each, cut lines dropped, ends trimmed, joined on their time stamps, every joint's
@@ -37,8 +36,7 @@ from pathlib import Path
 import pandas as pd
 
 ROOT = Path(__file__).resolve().parents[1]
-DATA = next((p for p in (ROOT / "data" / "ur5", ROOT.parent / "shared" / "data" / "ur5")
-             if p.is_dir()), ROOT.parent / "shared" / "data" / "ur5")
+DATA = ROOT / "data" / "ur5"
 CHANNELS = ROOT / "examples" / "ur5-channels.toml"
 ROS2_CHANNELS = ROOT / "examples" / "ros2-channels.toml"
 JOINTS = ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_1_joint",

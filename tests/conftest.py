@@ -1,4 +1,10 @@
-"""Shared test settings: headless plotting, hypothesis profile, the real trace beside the repo."""
+"""Shared test settings: headless plotting, hypothesis profile, the recordings the tests read.
+
+The licensed sample recordings ship in the repository's ``data/`` folder (``KUKA``, ``UR5``). The
+SINUMERIK trace has no licence and lives beside the clone, in ``../shared/data/sinumerik/``: a test
+that needs it skips with one line saying where to put it, unless ``FUNCNET_REQUIRE_SHARED=1`` (set
+by ``.ci/run``, whose machine has ``../shared``) turns that skip into a failure.
+"""
 
 from __future__ import annotations
 
@@ -18,24 +24,40 @@ settings.register_profile(
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "funcnet"))
 
 REPO = Path(__file__).resolve().parents[1]
+DATA = REPO / "data"
+KUKA = DATA / "kuka-kr300"
+UR5 = DATA / "ur5"
 SHARED = REPO.parent / "shared"
 REAL_TRACE = SHARED / "data" / "sinumerik" / "axis7-braking-trace.xml"
+REQUIRE_SHARED = "FUNCNET_REQUIRE_SHARED"
+
+
+def shipped(*parts: str) -> Path:
+    """Path of a sample recording shipped in ``data/``; a missing one fails (it is committed)."""
+    path = DATA.joinpath(*parts)
+    if not path.exists():
+        pytest.fail(f"the shipped recording is missing: {path}")
+    return path
+
+
+def need_real_trace() -> Path:
+    """The SINUMERIK trace beside the clone; a skip, or a failure under ``REQUIRE_SHARED``."""
+    if REAL_TRACE.is_file():
+        return REAL_TRACE
+    message = (f"the SINUMERIK trace is not beside the clone: put it at "
+               f"../shared/data/sinumerik/axis7-braking-trace.xml ({REAL_TRACE})")
+    if os.environ.get(REQUIRE_SHARED) == "1":
+        pytest.fail(message)
+    pytest.skip(message)
 
 
 @pytest.fixture(scope="session")
 def real_trace() -> Path:
-    """Path of the real SINUMERIK trace kept in ``../shared`` (CI puts it beside the clone)."""
-    if not REAL_TRACE.exists():  # pragma: no cover - CI always has it
-        pytest.fail(f"the real trace is missing: {REAL_TRACE}")
-    return REAL_TRACE
-
-
-UR5 = SHARED / "data" / "ur5"
+    """Path of the real SINUMERIK trace kept in ``../shared`` (see :func:`need_real_trace`)."""
+    return need_real_trace()
 
 
 @pytest.fixture(scope="session")
 def ur5_runs() -> Path:
-    """The folder of the UR5's log folders kept in ``../shared`` (one folder per run)."""
-    if not UR5.is_dir():  # pragma: no cover - CI always has it
-        pytest.fail(f"the UR5 runs are missing: {UR5}")
-    return UR5
+    """The folder of the UR5's log folders shipped in ``data/ur5`` (one folder per run)."""
+    return shipped("ur5")

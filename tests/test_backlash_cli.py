@@ -8,24 +8,26 @@ import re
 import pytest
 from typer.testing import CliRunner
 
-from conftest import REAL_TRACE as REAL
+from conftest import KUKA, REPO
 from funcnet.cli import app
 
 runner = CliRunner()
 
 
-def test_the_real_trace_is_a_result_not_an_error(tmp_path):
+def test_the_real_trace_is_a_result_not_an_error(real_trace, tmp_path):
     out = tmp_path / "result.json"
-    result = runner.invoke(app, ["backlash", str(REAL), "-o", str(out)])
+    result = runner.invoke(app, ["backlash", str(real_trace), "-o", str(out)])
     assert result.exit_code == 0, result.output
     assert "no reversal" in result.output and "lost_motion" in result.output
     traces = json.loads(out.read_text())["traces"]
-    assert traces[0]["path"] == str(REAL) and traces[0]["backlash_score"] is None
+    assert traces[0]["path"] == str(real_trace) and traces[0]["backlash_score"] is None
 
 
-@pytest.mark.parametrize("args", [["nope.xml"], ["{real}", "-o", "r.txt"]])
+@pytest.mark.parametrize("args", [["nope.xml"], ["{run}", "-o", "r.txt"]])
 def test_bad_input_is_one_line_and_exit_2(tmp_path, args):
-    args = [a.replace("{real}", str(REAL)) for a in args]
+    kuka = [str(KUKA / "kr300-run-A.mat"), "--channels",
+            str(REPO / "examples" / "kuka-kr300-channels.toml")]
+    args = [part for a in args for part in (kuka if a == "{run}" else [a])]
     result = runner.invoke(app, ["backlash", *args])
     assert result.exit_code == 2
     assert result.output.strip().count("\n") == 0 and "error" in result.output

@@ -719,11 +719,14 @@ def test_drop_constant_and_a_sized_titled_drawing(trial: Path, tmp_path: Path) -
     from matplotlib.image import imread
 
     arguments = ["network", str(trial), "--window", "2.5:3.3", "--signals", "RP,AP,RC,AC"]
-    refused = runner.invoke(app, arguments)
+    refused = runner.invoke(app, [*arguments, "--strict-constant"])
     assert refused.exit_code == 2 and "constant" in refused.stderr
     out = tmp_path / "net.png"
-    done = runner.invoke(app, [*arguments, "--drop-constant", "-o", str(out), "--size", "800x600"])
+    done = runner.invoke(app, [*arguments, "-o", str(out), "--size", "800x600"])  # the default
     assert done.exit_code == 0, done.output
+    said = [line for line in done.stderr.splitlines() if "constant inside the window" in line]
+    assert len(said) == 1 and said[0].startswith(f"funcnet: warning: {trial}: ")
+    assert "--strict-constant makes it an error" in said[0] and "in 1 of 1 window(s)" in said[0]
     assert imread(out).shape[:2] == (600, 800)
     bad = runner.invoke(app, [*arguments, "-o", str(out), "--size", "big"])
     _assert_one_error_line(bad, "--size must be WIDTHxHEIGHT")

@@ -1,17 +1,20 @@
-"""``funcnet network`` on recordings of several axes: the KUKA KR 300 runs with a channel map."""
+"""``funcnet network`` on recordings of several axes: the KUKA KR 300 runs with a channel map;
+a UR5 run whose current set-point is constant in one window."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pandas as pd
 import pytest
 from typer.testing import CliRunner
 
+from conftest import KUKA, shipped
 from funcnet.cli import app
 
 ROOT = Path(__file__).resolve().parents[1]
-RUN = ROOT.parent / "shared" / "data" / "kuka-kr300" / "kr300-run-A.mat"
+RUN = KUKA / "kr300-run-A.mat"
 KUKA_MAP = ROOT / "examples" / "kuka-kr300-channels.toml"
 
 runner = CliRunner()
@@ -111,3 +114,68 @@ def test_backlash_of_every_axis_is_each_axis_on_its_own(tmp_path):
         f"{RUN} axis {n}" for n in range(1, 7)]
     entries = json.loads(out.read_text())["traces"]
     assert [entry["axis"] for entry in entries] == [1, 2, 3, 4, 5, 6]
+
+
+# --------------------------------------------------------------------------------------------
+# a signal constant in one window of a real run: left out of that window, said in one line
+
+UR5_MAP = ROOT / "examples" / "ur5-channels.toml"
+
+
+@pytest.fixture(scope="module")
+def ur5_constant_rc(tmp_path_factory) -> Path:
+    """The shipped UR5 run No8 with joint 6's current set-point held at 0 through its last
+    braking (15.2-15.75 s), as other UR5 runs log it: RC constant in that window alone."""
+    import shutil
+
+    source = shipped("ur5", "Movement_No8_Singularity_Free_1")
+    run = tmp_path_factory.mktemp("ur5") / source.name
+    shutil.copytree(source, run)
+    path = run / "log_i_target.csv"
+    rows = [line.split(", ") for line in path.read_text().splitlines()]
+    for fields in rows:
+        if 15.2 <= float(fields[0]) <= 15.75:
+            fields[6] = "0.000000"
+    path.write_text("".join(", ".join(fields) + "\n" for fields in rows))
+    return run
+
+
+def _left_out(stderr: str) -> list[str]:
+    return [line for line in stderr.splitlines() if "constant inside the window" in line]
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_network_leaves_a_signal_constant_in_one_window_out_of_it(ur5_constant_rc, tmp_path):
+    from funcnet.network import FunctionalNetwork
+
+    arguments = ["network", str(ur5_constant_rc), "--channels", str(UR5_MAP), "--axis", "6"]
+    strict = runner.invoke(app, [*arguments, "--strict-constant"])
+    assert strict.exit_code == 2, strict.output
+    assert "window 'braking 4'" in strict.stderr
+    assert "signal 'RC' is constant (value 0)" in strict.stderr
+    out = tmp_path / "net.json"
+    result = runner.invoke(app, [*arguments, "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    (said,) = _left_out(result.stderr)
+    assert said.startswith(f"funcnet: warning: {ur5_constant_rc}: constant inside the window, ")
+    assert "--strict-constant makes it an error" in said
+    assert re.search(r"in 1 of \d+ window\(s\): 'braking 4' \(RC\)$", said), said
+    braking = FunctionalNetwork.read(tmp_path / "net-braking-4.json")
+    assert "RC" not in braking.nodes and tuple(braking.window["dropped"]) == ("RC",)
+    cruise = FunctionalNetwork.read(tmp_path / "net-cruise-4.json")
+    assert "RC" in cruise.nodes and tuple(cruise.window["dropped"]) == ()
+
+
+@pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
+def test_stability_leaves_a_signal_constant_in_one_window_out_of_it(ur5_constant_rc, tmp_path):
+    arguments = ["stability", str(ur5_constant_rc), "--channels", str(UR5_MAP), "--axis", "6",
+                 "--phase", "braking 4", "--vary", "mu=0.1"]
+    strict = runner.invoke(app, [*arguments, "--strict-constant"])
+    assert strict.exit_code == 2 and "'RC' is constant" in strict.stderr, strict.output
+    out = tmp_path / "stability.csv"
+    result = runner.invoke(app, [*arguments, "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    (said,) = _left_out(result.stderr)
+    assert said.endswith("in 1 of 1 window(s): 'braking 4' (RC)"), said
+    table = pd.read_csv(out)
+    assert len(table) > 0 and "RC" not in set(table["x"]) | set(table["y"])

@@ -9,7 +9,6 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import REAL_TRACE as REAL
 from funcnet.diagnosis import (
     MOTOR_LOOP_SCORE,
     SCORE,
@@ -33,8 +32,8 @@ def _reversal_trace(tmp_path: Path, backlash_arcmin: float, name: str) -> tuple[
     return path, sim.truth
 
 
-def test_the_real_trace_has_no_reversal_only_changes_after_long_standstills(tmp_path):
-    (result,) = diagnose_backlash(REAL)
+def test_the_real_trace_has_no_reversal_only_changes_after_long_standstills(real_trace, tmp_path):
+    (result,) = diagnose_backlash(real_trace)
     assert result.backlash_score is None and result.reading is None
     kinds = [r.change.kind for r in result.reversals]
     assert kinds == ["after standstill", "after standstill"]
@@ -44,12 +43,12 @@ def test_the_real_trace_has_no_reversal_only_changes_after_long_standstills(tmp_
     assert 0.0005 < result.lost_motion < 0.01
     out = write_results([result], tmp_path / "r.json")
     traces = json.loads(out.read_text())["traces"]
-    assert traces[0]["path"] == str(REAL) and traces[0]["backlash_score"] is None
+    assert traces[0]["path"] == str(real_trace) and traces[0]["backlash_score"] is None
     assert {"path", "backlash_score", "lost_motion", "reversals"} <= set(traces[0])
 
 
-def test_a_trace_that_moves_one_way_says_so():
-    rec = read_trace(REAL)
+def test_a_trace_that_moves_one_way_says_so(real_trace):
+    rec = read_trace(real_trace)
     first_move = rec.window(0.0, 20.0)  # the real trace's first move only
     result = diagnose_recording(first_move, "first-move")
     assert result.reversals == () and result.backlash_score is None
@@ -82,11 +81,11 @@ def test_without_the_arm_encoder_the_motor_loop_indicator_is_read(tmp_path):
     assert result.reading is not None and result.reading["indicator"] == MOTOR_LOOP_SCORE
 
 
-def test_several_traces_give_a_trend(tmp_path):
+def test_several_traces_give_a_trend(real_trace, tmp_path):
     paths = [_reversal_trace(tmp_path, b, f"t{i}")[0] for i, b in enumerate((0.0, 1.0, 4.0))]
-    results = diagnose_backlash(*paths, REAL)
+    results = diagnose_backlash(*paths, real_trace)
     table = trend_table(results)
-    assert table["path"].tolist() == [str(p) for p in (*paths, REAL)]
+    assert table["path"].tolist() == [str(p) for p in (*paths, real_trace)]
     scores = table["backlash_score"].tolist()
     assert scores[0] < scores[1] < scores[2] and np.isnan(scores[3])
     page = write_backlash_page(results, tmp_path / "trend.html").read_text()
@@ -104,14 +103,14 @@ def test_no_path_and_a_wrong_suffix_are_parameter_errors(tmp_path):
         write_backlash_page([], tmp_path / "r.json")
 
 
-def test_the_html_page_holds_the_trend(tmp_path):
-    result = diagnose_recording(read_trace(REAL).window(0.0, 20.0), "first-move")
+def test_the_html_page_holds_the_trend(real_trace, tmp_path):
+    result = diagnose_recording(read_trace(real_trace).window(0.0, 20.0), "first-move")
     page = write_backlash_page([result], tmp_path / "r.html").read_text()
     assert "first-move" in page and "no direction change" in page and "model-based" in page
 
 
-def test_direction_changes_of_the_real_trace():
-    changes = find_direction_changes(read_trace(REAL))
+def test_direction_changes_of_the_real_trace(real_trace):
+    changes = find_direction_changes(read_trace(real_trace))
     assert [c.direction for c in changes] == [-1, 1]
 
 

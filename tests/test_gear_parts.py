@@ -12,7 +12,7 @@ import pandas as pd
 import pytest
 from typer.testing import CliRunner
 
-from conftest import REPO, SHARED
+from conftest import KUKA, REPO
 from funcnet.cli import app
 from funcnet.diagnosis import diagnose_recording
 from funcnet.diagnosis.dead_zone import gear_parts
@@ -21,7 +21,6 @@ from funcnet.robot import Recording, SignalInfo, read_trace
 from funcnet.sim import Trial, simulate_trial
 from funcnet.validation.sweep import simulated_recording
 
-KUKA = SHARED / "data" / "kuka-kr300"
 KUKA_MAP = REPO / "examples" / "kuka-kr300-channels.toml"
 
 

@@ -1,8 +1,8 @@
 """The engineer's report of a trace: on the real SINUMERIK trace, once, end to end.
 
 The trace lives outside the repository (its source has no licence file): ``../shared/data/
-sinumerik/axis7-braking-trace.xml`` from the repository root. Without it the real-trace test is
-skipped; the small tests run on a synthetic recording.
+sinumerik/axis7-braking-trace.xml`` from the repository root. Without it the real-trace tests skip
+(``real_trace`` in ``conftest.py``); the small tests run on a synthetic recording.
 """
 
 from __future__ import annotations
@@ -16,10 +16,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import REAL_TRACE
 from test_report import check_page
 
 ROOT = Path(__file__).resolve().parents[1]
-TRACE = ROOT.parent / "shared" / "data" / "sinumerik" / "axis7-braking-trace.xml"
 
 _RUN = """
 import sys
@@ -29,22 +29,20 @@ print(inspect_trace(sys.argv[1], out_dir=sys.argv[2]))
 
 
 @pytest.fixture(scope="module")
-def real_report(tmp_path_factory):
-    if not TRACE.is_file():
-        pytest.skip(f"the real trace is not at {TRACE}")
+def real_report(real_trace, tmp_path_factory):
     out = tmp_path_factory.mktemp("inspect")
     # Its time is measured in benchmarks/bench_inspect.py, not asserted here.
-    result = subprocess.run(_inspect_command(out), capture_output=True, text=True,
+    result = subprocess.run(_inspect_command(real_trace, out), capture_output=True, text=True,
                             timeout=900, cwd=ROOT)
     return out, result
 
 
-def _inspect_command(out: Path) -> list[str]:
+def _inspect_command(trace: Path, out: Path) -> list[str]:
     cli = Path(sys.executable).with_name("funcnet")
     help_text = subprocess.run([str(cli), "--help"], capture_output=True, text=True).stdout
     if re.search(r"\binspect\b", help_text):
-        return [str(cli), "inspect", str(TRACE), "-o", str(out), "--quiet"]
-    return [sys.executable, "-c", _RUN, str(TRACE), str(out)]
+        return [str(cli), "inspect", str(trace), "-o", str(out), "--quiet"]
+    return [sys.executable, "-c", _RUN, str(trace), str(out)]
 
 
 def test_inspect_real_trace_end_to_end(real_report, tmp_path):
@@ -69,7 +67,7 @@ def test_inspect_real_trace_end_to_end(real_report, tmp_path):
     for label in ("early spin-up 1", "cruise 2", "braking 3"):
         assert label in text
     shown = text[:text.index('id="parameters"')]  # provenance records the command as typed
-    assert str(TRACE.parent) not in shown, "absolute path of the trace in the page"
+    assert str(REAL_TRACE.parent) not in shown, "absolute path of the trace in the page"
 
 
 def test_real_trace_page_says_no_long_text_more_than_twice(real_report):

@@ -10,12 +10,11 @@ import pandas as pd
 import pytest
 import scipy.io
 
+from conftest import KUKA, REPO
 from funcnet.inspection.motion import motion_summary, numbered_moves
 from funcnet.report.inspect import inspect_trace
 from funcnet.robot import detect_phases, direction_changes, read_trace
 
-REPO = Path(__file__).resolve().parents[1]
-KUKA = REPO.parent / "shared" / "data" / "kuka-kr300"
 CHANNELS = REPO / "examples" / "kuka-kr300-channels.toml"
 
 

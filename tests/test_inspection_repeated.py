@@ -13,8 +13,6 @@ from funcnet.inspection.repeated import inspect_repetitions
 from funcnet.robot.recording import Recording, SignalInfo
 from funcnet.sim import Trial, simulate_trial
 
-TRACE = Path(__file__).resolve().parents[1] / ".." / "shared" / "data" / "sinumerik" / \
-    "axis7-braking-trace.xml"
 SIGNALS = ["RP", "AP", "MP", "RC", "AC"]
 
 

@@ -18,6 +18,7 @@ from funcnet.errors import (
     DegenerateWarning,
     FuncnetWarning,
     ParameterError,
+    RecordingWarning,
     SignalError,
     StaircaseWarning,
     ThresholdWarning,
@@ -203,11 +204,12 @@ SHORT = Window("short", 2.0, 2.05, phase="braking")
 
 @pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 def test_collect_leaves_out_a_window_without_network_and_says_why(synthetic):
-    windows = [STILL, MOVING[0], SHORT]  # AC is constant in STILL: no network there
-    found = window_networks(synthetic, windows, errors="collect", dim=3, delay=1)
+    windows = [STILL, MOVING[0], SHORT]  # AC is constant in STILL: strict, no network there
+    found = window_networks(synthetic, windows, constant="error", errors="collect", dim=3,
+                            delay=1)
     assert list(found) == ["w0", "short"]
     with pytest.raises(SignalError) as raised:  # the error the raising path gives that window
-        window_networks(synthetic, [STILL], dim=3, delay=1)
+        window_networks(synthetic, [STILL], constant="error", dim=3, delay=1)
     assert found.failures == (WindowFailure("still", "network", str(raised.value)),)
     # the windows that have a network have the one each gets alone
     for window in (MOVING[0], SHORT):
@@ -253,7 +255,7 @@ def test_collect_leaves_out_the_intervals_of_a_window_too_short_for_them(synthet
 
 def test_errors_inside_a_window_name_file_window_and_span(synthetic):
     with pytest.raises(SignalError) as caught:
-        window_networks(synthetic, [MOVING[0], STILL])
+        window_networks(synthetic, [MOVING[0], STILL], constant="error")
     # The same class and the original message, after the file, the label and the span.
     with pytest.raises(SignalError) as direct:
         functional_network(synthetic.window(STILL.start, STILL.stop).data, warn=False)
@@ -330,7 +332,16 @@ def test_per_window_warnings_are_those_functional_network_gives(synthetic):
 @pytest.mark.filterwarnings("ignore::funcnet.errors.ThresholdWarning")
 def test_constant_signals_dropped_per_window(synthetic):
     windows = [STILL, MOVING[0]]
-    networks = window_networks(synthetic, windows, constant="drop")
+    with pytest.warns(RecordingWarning) as said:  # the default: dropped, and said once
+        networks = window_networks(synthetic, windows)
+    [left_out] = [w.message for w in said if isinstance(w.message, RecordingWarning)]
+    assert left_out.problem == "constant" and left_out.signals == ("AC",)
+    assert str(left_out) == (
+        "/data/synthetic.csv: constant inside the window, left out of it (a normalization needs "
+        "a range; constant='error' makes it an error): in 1 of 2 window(s): 'still' (AC)")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RecordingWarning)
+        assert window_networks(synthetic, windows, constant="drop") == networks
     still, moving = networks["still"], networks["w0"]
     assert still.nodes == ("RP", "AP") and tuple(still.window["dropped"]) == ("AC",)
     assert moving.nodes == ("RP", "AP", "AC") and tuple(moving.window["dropped"]) == ()

@@ -10,7 +10,7 @@ import pandas as pd
 import pytest
 import scipy.io
 
-from conftest import REAL_TRACE, SHARED
+from conftest import shipped
 from funcnet.diagnosis import diagnose_recording, find_direction_changes, write_results
 from funcnet.diagnosis.reversal_error import fit_gear, reversal_error, torque_traversed
 from funcnet.diagnosis.reversals import DirectionChange, motor_side_recording
@@ -18,7 +18,6 @@ from funcnet.robot import Recording, SignalInfo, read_trace
 from funcnet.robot.preprocess import velocity
 from funcnet.sim import Trial, simulate_trial, write_trace
 
-KUKA = SHARED / "data" / "kuka-kr300"
 RUNS = ("A", "B")
 
 
@@ -27,9 +26,7 @@ def kuka() -> dict[str, object]:
     """The two runs' ``rec`` structs, read directly with SciPy."""
     out = {}
     for run in RUNS:
-        path = KUKA / f"kr300-run-{run}.mat"
-        if not path.exists():  # pragma: no cover - CI always has it
-            pytest.fail(f"the KUKA run is missing: {path}")
+        path = shipped("kuka-kr300", f"kr300-run-{run}.mat")
         out[run] = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)["rec"]
     return out
 
@@ -253,8 +250,8 @@ def test_the_bootstrap_refits_on_the_samples_the_gear_was_fitted_on():
         assert given == error
 
 
-def test_no_lost_motion_says_why(tmp_path):
-    first_move = read_trace(REAL_TRACE).window(0.0, 20.0)
+def test_no_lost_motion_says_why(real_trace, tmp_path):
+    first_move = read_trace(real_trace).window(0.0, 20.0)
     result = diagnose_recording(first_move, "first-move")
     assert result.lost_motion is None and result.lost_motion_reason == "no direction change"
     rec, _ = _synthetic_gear(0.02, 0)

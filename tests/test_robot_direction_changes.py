@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pandas as pd
 import pytest
 import scipy.io
 
+from conftest import shipped
 from funcnet.errors import ChannelError, ParameterError
 from funcnet.robot.grid import mask_runs
 from funcnet.robot.phases import (
@@ -20,7 +19,6 @@ from funcnet.robot.phases import (
 )
 from funcnet.robot.recording import Recording, SignalInfo
 
-KUKA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "kuka-kr300"
 DT = 0.004
 
 
@@ -52,9 +50,7 @@ def expected_changes(time: np.ndarray, rp: np.ndarray, min_speed: float) -> list
 
 def kuka_axes():
     for run in "AB":
-        path = KUKA / f"kr300-run-{run}.mat"
-        if not path.exists():  # pragma: no cover - the shared data are always there
-            pytest.fail(f"the KUKA recording is missing: {path}")
+        path = shipped("kuka-kr300", f"kr300-run-{run}.mat")
         rec = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)["rec"]
         for axis in range(6):
             yield run, axis + 1, np.asarray(rec.time_cont, float), np.asarray(

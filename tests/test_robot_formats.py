@@ -1,6 +1,6 @@
 """Recordings engineers have: MATLAB (MAT 5, MAT 7.3), HDF5, CSV and Parquet, one or many axes.
 
-The KUKA KR 300 runs of ``../shared/data/kuka-kr300`` are compared with an independent reading
+The KUKA KR 300 runs shipped in ``data/kuka-kr300`` are compared with an independent reading
 (``scipy.io.loadmat`` as their README says); the rules on gaps, duplicates, off-grid time,
 constant channels, bad text and time that does not increase are checked on small files written
 here, in every format they apply to.
@@ -19,6 +19,7 @@ import pyarrow.parquet as pq
 import pytest
 import scipy.io
 
+from conftest import KUKA
 from funcnet.errors import (
     ChannelError,
     ParameterError,
@@ -31,7 +32,6 @@ from funcnet.robot.preprocess import velocity
 from funcnet.robot.recording import Recording
 
 ROOT = Path(__file__).resolve().parents[1]
-KUKA = ROOT.parent / "shared" / "data" / "kuka-kr300"
 KUKA_MAP = ROOT / "examples" / "kuka-kr300-channels.toml"
 RUNS = ["kr300-run-A.mat", "kr300-run-B.mat"]
 FIELDS = {"RP": "ref_pos_deg", "AP": "act_pos_se_deg", "MP": "act_pos_mot_deg",

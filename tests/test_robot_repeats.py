@@ -15,9 +15,6 @@ from funcnet.robot import find_repetitions, read_recording
 from funcnet.robot.recording import Recording, SignalInfo
 from funcnet.sim import Trial, simulate_trial
 
-TRACE = Path(__file__).resolve().parents[1] / ".." / "shared" / "data" / "sinumerik" / \
-    "axis7-braking-trace.xml"
-
 
 def _recording(data: pd.DataFrame, period: float, t0: float = 0.0) -> Recording:
     data = data.copy()
@@ -33,8 +30,8 @@ def _move(n: int, first: int, travel: float, width: int) -> np.ndarray:
 
 
 @pytest.fixture(scope="module")
-def real() -> Recording:
-    return read_recording(TRACE, resample="decimate")
+def real(real_trace: Path) -> Recording:
+    return read_recording(real_trace, resample="decimate")
 
 
 def test_real_trace_moves_one_and_three_repeat(real: Recording) -> None:

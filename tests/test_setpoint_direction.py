@@ -324,16 +324,16 @@ def test_direction_holds_on_real_recordings(recording):
     robot as one network) the reading points into a set-point for at most 5 % of the
     set-point pairs, and the set-points it reads are the ones the single-precision KUKA files
     and the decimal SINUMERIK trace log on a grid."""
-    from conftest import REAL_TRACE, REPO, SHARED
+    from conftest import KUKA, REPO, need_real_trace
     from funcnet.pipeline import window_networks
     from funcnet.robot import complete_span, detect_phases, phase_windows, read_recording
 
-    kuka = SHARED / "data" / "kuka-kr300" / "kr300-run-A.mat"
+    kuka = KUKA / "kr300-run-A.mat"
     channels = REPO / "examples" / "kuka-kr300-channels.toml"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         if recording == "sinumerik":
-            run = read_recording(REAL_TRACE)
+            run = read_recording(need_real_trace())
         else:
             run = read_recording(kuka, channels=channels,
                                  axis=2 if recording == "kuka-axis-2" else None)

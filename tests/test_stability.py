@@ -10,7 +10,7 @@ from typer.testing import CliRunner
 from funcnet import NetworkParameters, functional_network
 from funcnet.errors import ParameterError, SignalError
 from funcnet.network import stability as stability_module
-from funcnet.network.stability import check_grid, default_grid, edge_stability
+from funcnet.network.stability import check_grid, default_grid, edge_stability, fitting_grid
 
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
 
@@ -337,10 +337,65 @@ def test_cli_constant_signal_is_an_error_or_dropped(trace, tmp_path) -> None:
     window = f"{data['time'].iloc[0]}:{data['time'].iloc[-1]}"
     arguments = ["stability", str(trace), "--signals", "RP,AC,RC,MP", "--window", window,
                  "--delay", "2", "--vary", "mu=0.1"]
-    failed = CliRunner().invoke(app, arguments)
+    failed = CliRunner().invoke(app, [*arguments, "--strict-constant"])
     assert failed.exit_code == 2 and "'MP' is constant" in failed.stderr
     out = tmp_path / "dropped.parquet"
-    result = CliRunner().invoke(app, [*arguments, "--drop-constant", "-o", str(out)])
+    result = CliRunner().invoke(app, [*arguments, "-o", str(out)])  # the default: left out
     assert result.exit_code == 0, result.output
     table = pd.read_parquet(out)
     assert len(table) == 3 and "MP" not in set(table["x"]) | set(table["y"])
+    said = [line for line in result.stderr.splitlines() if "constant inside the window" in line]
+    assert len(said) == 1 and said[0].startswith(f"funcnet: warning: {trace}: "), said
+    assert "in 1 of 1 window(s)" in said[0]
+    assert said[0].endswith(" (MP)") and "--strict-constant makes it an error" in said[0]
+    again = CliRunner().invoke(app, [*arguments, "--drop-constant", "-o", str(out)])
+    assert again.exit_code == 0 and pd.read_parquet(out).equals(table)
+
+
+@pytest.mark.parametrize("n", [30, 36, 37, 46, 47, 60])
+def test_fitting_grid_keeps_exactly_the_values_a_window_can_embed(n) -> None:
+    data = _signals(n)
+    grid = default_grid()
+    fitted, left_out = fitting_grid(grid, None, n)
+    # the reference: each value alone, computed, and whether the embedding refuses it
+    for key, values in check_grid(grid).items():
+        for value in values:
+            try:
+                edge_stability(data, grid={key: [value]})
+            except SignalError as error:
+                assert "too short for the embedding" in str(error)
+                assert f"{key}={value!r}" in left_out and value not in fitted.get(key, ())
+            else:
+                assert value in fitted[key] and f"{key}={value!r}" not in left_out
+    assert edge_stability(data, grid=fitted).settings.shape[0] == sum(map(len, fitted.values()))
+
+
+def test_cli_reads_a_short_window_over_the_settings_it_can_embed(tmp_path) -> None:
+    """A KUKA phase of a few dozen samples: the settings of a larger embedding are left out
+    of its grid (said in one line), the others computed as the library computes them."""
+    from conftest import KUKA, REPO
+    from funcnet.cli import app
+    from funcnet.robot import detect_phases, phase_windows, read_recording
+
+    run, channels = KUKA / "kr300-run-B.mat", REPO / "examples" / "kuka-kr300-channels.toml"
+    recording = read_recording(run, channels=channels, axis=1)
+    length = {w.label: len(recording.window(w.start, w.stop).data)
+              for w in phase_windows(detect_phases(recording))}
+    label = min((lab for lab in length if lab.startswith("cruise")), key=length.__getitem__)
+    n = length[label]
+    fitted, left_out = fitting_grid(None, None, n)
+    assert left_out  # shorter than (4 - 1) * 10 + 7 or (3 - 1) * 20 + 7 samples
+    out = tmp_path / "short.csv"
+    result = CliRunner().invoke(app, ["stability", str(run), "--channels", str(channels),
+                                      "--axis", "1", "--phase", label, "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    said = [line for line in result.stderr.splitlines() if "too short for" in line]
+    assert said == [f"funcnet: warning: {run}: settings whose embedding a window is too short "
+                    "for ((dim - 1) * delay + 7 samples) left out of its grid: "
+                    f"{label!r} ({n} samples: {', '.join(left_out)})"]
+    window = next(w for w in phase_windows(detect_phases(recording)) if w.label == label)
+    part = recording.window(window.start, window.stop).data[["RP", "AP", "MP", "V", "AC"]]
+    expected = edge_stability(part, grid=fitted).table
+    table = pd.read_csv(out)
+    assert table["settings"].tolist() == expected["settings"].tolist()
+    np.testing.assert_array_equal(table["stability"], expected["stability"])

@@ -240,7 +240,7 @@ def test_rows_hold_every_pair_window_and_parameter(baseline, study_file: Path) -
     assert set(rows["rr"]) == {0.05} and set(rows["degenerate_policy"]) == {"drop"}
     assert rows["degenerate"].dtype == bool
     assert set(rows["dim"]) == {3} and set(rows["delay"]) == {5, 10}
-    assert set(rows["constant"]) == {"error"} and set(rows["dropped"]) == {""}
+    assert set(rows["constant"]) == {"drop"} and set(rows["dropped"]) == {""}  # the default
 
 
 def test_rows_are_plain_parquet_and_study_json_has_provenance(baseline) -> None:
@@ -307,6 +307,7 @@ def test_failed_windows_are_recorded_and_not_retried(plan_dir: Path, tmp_path: P
         windows=(WindowSpec("range", (("start", 0.0), ("stop", 0.2))),),
         signals=("RP", "AP"),
         base_dir=plan_dir,
+        constant="error",
     )
     result = run_study(study, tmp_path, workers=0)
     assert (result.tasks, result.computed, len(result.failures)) == (1, 1, 1)
@@ -331,12 +332,16 @@ def test_constant_drop_leaves_constant_signals_out(plan_dir: Path, tmp_path: Pat
     )
     drop = load_study(_write(plan_dir.parent, text.format('constant = "drop"\n', trace.name),
                              "drop.toml"))
-    error = load_study(_write(plan_dir.parent, text.format("", trace.name), "error.toml"))
-    assert (drop.constant, error.constant) == ("drop", "error")
+    error = load_study(_write(plan_dir.parent, text.format('constant = "error"\n', trace.name),
+                              "error.toml"))
+    default = load_study(_write(plan_dir.parent, text.format("", trace.name), "default.toml"))
+    assert (drop.constant, error.constant, default.constant) == ("drop", "error", "drop")
     assert drop.to_dict()["constant"] == "drop"
 
     result = run_study(drop, tmp_path, workers=0)
     assert (result.tasks, result.computed, result.failures) == (1, 1, ())
+    count, example = result.warnings["constant"]  # said, counted as the other problems are
+    assert count == 1 and example.endswith("in 1 of 1 window(s): '0.000-0.200 s' (AP, V)")
     rows = load_results(tmp_path)
     # Before the motion AP (and V, derived from it) are constant: left out, and recorded so.
     part = read_recording(trace).window(0.0, 0.2).data

@@ -167,5 +167,6 @@ class StaircaseWarning(FuncnetWarning):
 class RecordingWarning(FuncnetWarning):
     """A recording was read, but part of it is not usable as it stands; the message names the
     file and what was done. ``problem`` is ``"gap"`` (missing values: the recording is split
-    into segments), ``"constant"`` (a channel constant over the whole recording, left out) or
-    ``"duplicate"`` (a column name given twice, both left out); ``signals`` names them."""
+    into segments), ``"constant"`` (a channel constant over the whole recording, or inside a
+    window, left out of it) or ``"duplicate"`` (a column name given twice, both left out);
+    ``signals`` names them."""

@@ -36,6 +36,7 @@ from funcnet.errors import (
     FuncnetError,
     FuncnetWarning,
     ParameterError,
+    RecordingWarning,
     WindowError,
     caller_stacklevel,
 )
@@ -55,11 +56,12 @@ from funcnet.robot.preprocess import staircase_warning
 from funcnet.robot.recording import Recording
 from funcnet.robot.windows import Window, paper_nodes, phase_windows
 
-__all__ = ["window_networks", "window_evidence", "window_warnings", "WindowNetworks",
-           "WindowFailure", "CONSTANT_POLICIES", "ERROR_POLICIES", "FAILURE_PARTS"]
+__all__ = ["window_networks", "window_evidence", "window_warnings", "constant_warning",
+           "WindowNetworks", "WindowFailure", "CONSTANT_POLICIES", "ERROR_POLICIES",
+           "FAILURE_PARTS"]
 
 #: What :func:`window_networks` does with a signal constant inside a window: raise, or leave it
-#: out of that window's network.
+#: out of that window's network (the default: one window does not stop the others).
 CONSTANT_POLICIES = ("error", "drop")
 #: What :func:`window_networks` and :func:`window_evidence` do with a window that fails: raise
 #: its error, or record it (:class:`WindowFailure`) and go on with the other windows.
@@ -228,7 +230,7 @@ def window_networks(
     *,
     signals: Sequence[str] | None = None,
     parameters: NetworkParameters | None = None,
-    constant: str = "error",
+    constant: str = "drop",
     errors: str = "raise",
     progress: Callable[[int, int, str], None] | None = None,
     **overrides: Unpack[ParameterOverrides],
@@ -253,11 +255,13 @@ def window_networks(
         same for every window. Normalization (min-max by default) happens per window. Per-signal
         ``rr`` and ``eps`` follow the order of ``signals``; a window that drops a signal drops
         its entries too.
-    constant : {"error", "drop"}
-        A signal constant inside a window cannot be normalized (min-max or z-score): ``"error"``
-        raises :class:`~funcnet.errors.SignalError`; ``"drop"`` leaves it out of that window's
-        network (listed in its ``window["dropped"]``). Without normalization
-        (``normalize=None``) nothing is dropped.
+    constant : {"drop", "error"}
+        A signal constant inside a window cannot be normalized (min-max or z-score): ``"drop"``
+        (the default) leaves it out of that window's network (listed in its
+        ``window["dropped"]``; one :class:`~funcnet.errors.RecordingWarning` names every window
+        and signal left out, :func:`constant_warning`); ``"error"`` raises
+        :class:`~funcnet.errors.SignalError`. Without normalization (``normalize=None``)
+        nothing is dropped.
     errors : {"raise", "collect"}
         A window that has no network (its error is one of those listed under ``WindowError``
         and ``FuncnetError`` below): ``"raise"`` its error; ``"collect"`` records it (the
@@ -296,6 +300,9 @@ def window_networks(
 
     Warns
     -----
+    RecordingWarning
+        Signals constant inside a window, left out of its network (``problem="constant"``):
+        one warning for the whole call, naming each window and its signals.
     StaircaseWarning
         A node's native interval is coarser than the grid (the 4 ms IPO signals AP and MP on the
         2 ms grid): it is a staircase, and recurrences are counted on repeated values. Use
@@ -326,18 +333,18 @@ def window_networks(
     >>> windows = [Window("still", 0.2, 0.8), Window("moving", 1.2, 1.8)]
     >>> with warnings.catch_warnings(record=True) as caught:
     ...     warnings.simplefilter("always")
-    ...     nets = window_networks(rec, windows, constant="drop", delay=5)
+    ...     nets = window_networks(rec, windows, delay=5)
     >>> nets["still"].nodes, nets["still"].window["dropped"]
     (('RP', 'AP'), ('AC',))
     >>> [(w.message.problem, w.message.pairs[:2], w.message.window) for w in caught]
-    [('eps_order', (('RP', 'AP'), ('RP', 'AC')), None)]
-    >>> window_networks(rec, [Window("still", 0.2, 0.8)])
+    [('eps_order', (('RP', 'AP'), ('RP', 'AC')), None), ('constant', (), None)]
+    >>> window_networks(rec, [Window("still", 0.2, 0.8)], constant="error")
     Traceback (most recent call last):
         ...
     funcnet.errors.SignalError: trace.csv: window 'still' [0.2, 0.8) s: signal 'AC' is constant ...
     >>> with warnings.catch_warnings():
     ...     warnings.simplefilter("ignore")
-    ...     found = window_networks(rec, windows, errors="collect", delay=5)
+    ...     found = window_networks(rec, windows, constant="error", errors="collect", delay=5)
     >>> list(found), found.failures[0].window, found.failures[0].part
     (['moving'], 'still', 'network')
     """
@@ -392,8 +399,50 @@ def window_networks(
     found.sort(key=lambda warning: order.get(str(warning.window), -1))
     for warning in _summarized(found, where, len(windows)):
         warnings.warn(warning, stacklevel=caller_stacklevel())
+    left_out = constant_warning(where, {label: (net.window or {}).get("dropped", ())
+                                        for label, net in networks.items()}, len(windows))
+    if left_out is not None:
+        warnings.warn(left_out, stacklevel=caller_stacklevel())
     networks.failures = tuple(failures)
     return networks
+
+
+def constant_warning(where: str, dropped: Mapping[str, Sequence[str]],
+                     n_windows: int) -> RecordingWarning | None:
+    """The one warning that says which signals were left out of which windows as constant.
+
+    Parameters
+    ----------
+    where : str
+        The recording's file (the message starts with it).
+    dropped : mapping
+        Window label -> the signals left out of it (empty: none).
+    n_windows : int
+        How many windows the call computed.
+
+    Returns
+    -------
+    RecordingWarning or None
+        ``problem="constant"`` and ``signals`` every signal left out somewhere (the message
+        names the windows); None when no window lost one.
+
+    Examples
+    --------
+    >>> print(constant_warning("run.csv", {"cruise 1": (), "braking 1": ("RC",)}, 2))
+    run.csv: constant inside the window, left out of it (a normalization needs a range;
+    constant='error' makes it an error): in 1 of 2 window(s): 'braking 1' (RC)
+    >>> constant_warning("run.csv", {"cruise 1": ()}, 1) is None
+    True
+    """
+    lost = {str(label): tuple(names) for label, names in dropped.items() if names}
+    if not lost:
+        return None
+    listed = ", ".join(f"{label!r} ({', '.join(names)})" for label, names in lost.items())
+    return RecordingWarning(
+        f"{where}: constant inside the window, left out of it (a normalization needs a range; "
+        f"constant='error' makes it an error): in {len(lost)} of {n_windows} window(s): "
+        f"{listed}",
+        problem="constant", signals=tuple(dict.fromkeys(n for v in lost.values() for n in v)))
 
 
 def channel_steps(data: pd.DataFrame, signals: Sequence[str]) -> dict[str, float]:

@@ -44,6 +44,7 @@ _RESPELLED = {
     "funcnet.robot.resample decimates or interpolates them":
         "--resample decimate or --resample interpolate brings them onto one grid",
     "normalize=None": "--normalize none",
+    "constant='error' makes it an error": "--strict-constant makes it an error",
 }
 
 

@@ -109,12 +109,12 @@ def network(
     drop_constant: Annotated[
         bool,
         typer.Option(
-            "--drop-constant",
-            metavar="",
-            help="Leave a signal constant in the window out of the network (min-max needs a "
-            "range); by default it is an error.",
+            "--drop-constant/--strict-constant",
+            help="Leave a signal constant in a window out of that window's network, said in "
+            "one line (the default: min-max needs a range); --strict-constant makes it an "
+            "error.",
         ),
-    ] = False,
+    ] = True,
     output: Annotated[
         Path | None,
         typer.Option(
@@ -348,9 +348,10 @@ def stability(
     ] = False,
     drop_constant: Annotated[
         bool,
-        typer.Option("--drop-constant", metavar="", help="Leave a signal constant in a "
-                     "window out of its table (by default it is an error)."),
-    ] = False,
+        typer.Option("--drop-constant/--strict-constant", help="Leave a signal constant in "
+                     "a window out of that window's table, said in one line (the default); "
+                     "--strict-constant makes it an error."),
+    ] = True,
     list_phases: Annotated[
         bool,
         typer.Option("--list-phases", metavar="", help="Print the detected phases and stop."),
@@ -409,7 +410,12 @@ def stability(
         if list_phases:
             print_phases(recording, trace)
             return
-        chosen = chosen_windows(recording, trace, phase, whole, bounds)
+        from funcnet.core.embedding import MIN_STATES
+
+        chosen = chosen_windows(  # as funcnet network: phases the embedding cannot hold, said
+            recording, trace, phase, whole, bounds,
+            min_samples=(parameters.dim - 1) * parameters.delay + MIN_STATES,
+        )
         nodes = names or paper_nodes(recording.data.columns)
         check_cost(recording, chosen, nodes, parameters, force)
         frames, results, labels = _compute(recording, chosen, nodes, parameters, grid,
@@ -427,24 +433,35 @@ def stability(
 
 def _compute(recording: Any, chosen: list[Any], nodes: list[str], parameters: NetworkParameters,
              grid: Any, full: bool, trace: Path,
-             drop_constant: bool = False) -> tuple[list[Any], list[Any], list[str]]:
+             drop_constant: bool = True) -> tuple[list[Any], list[Any], list[str]]:
     """Per window: its table (window, start, stop first), the result, its label."""
     import warnings
 
-    from funcnet.network.stability import edge_stability
+    from funcnet.errors import RecordingWarning
+    from funcnet.network.stability import edge_stability, fitting_grid
+    from funcnet.pipeline import constant_warning
     from funcnet.robot.preprocess import staircase_warning
 
     staircase = staircase_warning(recording, nodes, str(trace))
     if staircase is not None:
         warnings.warn(staircase, stacklevel=2)
     frames, results, labels = [], [], []
+    dropped: dict[str, tuple[str, ...]] = {}
+    short: dict[str, str] = {}
     for chosen_window in chosen:
         part = recording.window(chosen_window.start, chosen_window.stop).data[list(nodes)]
         if drop_constant and parameters.normalize is not None:
-            # as funcnet network --drop-constant: a constant signal cannot be normalized
-            part = part.loc[:, (part.max() > part.min()).to_numpy()]
+            # as funcnet network: a constant signal cannot be normalized
+            varies = (part.max() > part.min()).to_numpy()
+            dropped[str(chosen_window.label)] = tuple(map(str, part.columns[~varies]))
+            part = part.loc[:, varies]
+        # a short window is read over the settings whose embedding it holds
+        fitted, left_out = fitting_grid(grid, parameters, len(part))
+        if left_out:
+            short[str(chosen_window.label)] = f"{len(part)} samples: {', '.join(left_out)}"
         try:
-            result = edge_stability(part, parameters=parameters, grid=grid, full=full)
+            # (no value fits: the grid as given, and its error)
+            result = edge_stability(part, parameters=parameters, grid=fitted or grid, full=full)
         except FuncnetError as error:
             error.args = (f"{trace}: window {chosen_window.label!r}: {error}",)
             raise
@@ -455,4 +472,13 @@ def _compute(recording: Any, chosen: list[Any], nodes: list[str], parameters: Ne
         frames.append(frame)
         results.append(result)
         labels.append(str(chosen_window.label))
+    constant = constant_warning(str(trace), dropped, len(chosen))
+    if constant is not None:
+        warnings.warn(constant, stacklevel=2)
+    if short:
+        listed = "; ".join(f"{label!r} ({why})" for label, why in short.items())
+        warnings.warn(RecordingWarning(
+            f"{trace}: settings whose embedding a window is too short for ((dim - 1) * delay "
+            f"+ 7 samples) left out of its grid: {listed}", problem="short_setting"),
+            stacklevel=2)
     return frames, results, labels

@@ -74,6 +74,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet.core.batch import batch_pairs
+from funcnet.core.embedding import MIN_STATES
 from funcnet.errors import FuncnetError, ParameterError, SignalError
 from funcnet.network._inputs import column_names, float_columns, node_groups
 from funcnet.network.functional import functional_network
@@ -81,8 +82,8 @@ from funcnet.network.rule import pair_kinds
 from funcnet.parameters import METRICS, PAIR_FIELDS, NetworkParameters, ParameterOverrides, resolve
 
 __all__ = [
-    "EdgeStability", "edge_stability", "default_grid", "check_grid", "GRID_FIELDS",
-    "DEFAULT_FACTORS",
+    "EdgeStability", "edge_stability", "default_grid", "check_grid", "fitting_grid",
+    "GRID_FIELDS", "DEFAULT_FACTORS",
 ]
 
 #: The fields a grid may vary: every network parameter except ``degenerate`` (which says how
@@ -320,6 +321,53 @@ cr, eps, metric, rule, theiler, mu, mu_c, mu_t, normalize, measure)
     base = parameters if parameters is not None else NetworkParameters()
     return {label: tuple(_value(change, fields) for change in changes)
             for label, (fields, changes) in _parse_grid(grid, base).items()}
+
+
+def fitting_grid(grid: Mapping[Any, Sequence[Any]] | None, parameters: NetworkParameters | None,
+                 n_samples: int) -> tuple[dict[str, tuple[Any, ...]], tuple[str, ...]]:
+    """The grid without the values whose embedding a window of ``n_samples`` cannot hold.
+
+    A value (its key's fields changed, the others at the base) needs ``(dim - 1) * delay + 7``
+    samples; one that needs more is left out, and a key left without values too. A short
+    window is then read over the settings it can hold, not refused for the others. With
+    ``full=True`` each value is checked against the base, not against every combination.
+
+    Parameters
+    ----------
+    grid : mapping or None
+        As :func:`edge_stability`'s ``grid``; None: :func:`default_grid` of ``parameters``.
+    parameters : NetworkParameters, optional
+        The base (default: the defaults).
+    n_samples : int
+        The window's length in samples.
+
+    Returns
+    -------
+    grid : dict
+        Key -> the values kept (as :func:`check_grid`); empty when none fits.
+    left_out : tuple of str
+        Each value left out, as ``"delay=20"``.
+
+    Examples
+    --------
+    >>> fitting_grid({"delay": [5, 20], "mu": [0.1]}, None, 44)
+    ({'delay': (5,), 'mu': (0.1,)}, ('delay=20',))
+    """
+    base = parameters if parameters is not None else NetworkParameters()
+    kept: dict[str, tuple[Any, ...]] = {}
+    left_out: list[str] = []
+    for label, (fields, changes) in _parse_grid(grid, base).items():
+        values = []
+        for change in changes:
+            setting = base.replace(**change)
+            value = _value(change, fields)
+            if (setting.dim - 1) * setting.delay + MIN_STATES > n_samples:
+                left_out.append(f"{label}={value!r}")
+            else:
+                values.append(value)
+        if values:
+            kept[label] = tuple(values)
+    return kept, tuple(left_out)
 
 
 def _setting(base: NetworkParameters, changes: Mapping[str, Any], label: str) -> NetworkParameters:

@@ -18,11 +18,11 @@ Decisions (where the specification leaves room):
   studies (an earlier grid) are moved to ``cache/`` and moved back, not recomputed, when a study
   names them again. So ``rows/`` can be read as one data set by pandas, polars or DuckDB.
 * Every parameter value is checked before anything is simulated, hashed or written.
-* A task whose window cannot be analysed (a constant signal, a window too short for the
-  embedding, an unreadable trace) is recorded in ``failed/`` and reported; the other tasks go on.
-  With ``constant = "drop"`` a signal constant in a window is left out of that window's network
-  instead (:func:`funcnet.window_networks`); its rows name the nodes used (``signals``) and the
-  signals left out (``dropped``).
+* A task whose window cannot be analysed (a window too short for the embedding, an unreadable
+  trace, a constant signal under ``constant = "error"``) is recorded in ``failed/`` and
+  reported; the other tasks go on. By default (``constant = "drop"``) a signal constant in a
+  window is left out of that window's network (:func:`funcnet.window_networks`); its rows name
+  the nodes used (``signals``) and the signals left out (``dropped``).
 * The problems of a network (degenerate pairs, thresholds out of order, rates above target) are
   counted from the flags of its pairs table (which the rows keep), per kind, in ``study.json``
   and :attr:`StudyResult.warnings`: never captured from :mod:`warnings` (not thread-safe on a

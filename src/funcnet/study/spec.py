@@ -150,7 +150,7 @@ class Study:
     channels: Path | None = None
     axis: int | None = None
     resample: str | None = None
-    constant: str = "error"
+    constant: str = "drop"
     base_dir: Path = dataclasses.field(default_factory=Path.cwd)
     source: Path | None = None
     evidence: tuple[tuple[str, Any], ...] = ()
@@ -278,7 +278,7 @@ def load_study(path: str | os.PathLike[str]) -> Study:
     ``examples/study.toml`` for a documented example. Layout::
 
         signals = ["RP", "AP", "MP", "V", "RC", "AC"]   # optional
-        constant = "drop"            # optional: "error" (default) or "drop"
+        constant = "error"           # optional: "drop" (default) or "error"
         [recordings]
         paths = ["traces/*.xml"]     # files, run folders (read through channels) or globs
         simulated = "paper"          # optional: "paper" or a plan TOML file
@@ -407,7 +407,7 @@ def _study_from_document(doc: Mapping[str, Any], source: Path) -> Study:
 
     from funcnet.pipeline import CONSTANT_POLICIES
 
-    constant = doc.get("constant", "error")
+    constant = doc.get("constant", "drop")
     if constant not in CONSTANT_POLICIES:
         raise fail("constant", f"must be {' or '.join(map(repr, CONSTANT_POLICIES))}")
 

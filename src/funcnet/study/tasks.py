@@ -311,11 +311,17 @@ def network_rows(task: NetworkTask) -> Outcome:
     """
     import funcnet.robot as robot
     from funcnet.pipeline import window_evidence, window_networks
+    from funcnet.robot.axes import split_qualified
 
     try:
         recording = _cached_recording(task)
         signals = _nodes(task.signals, recording.data.columns, robot.PAPER_NODES)
         window = robot.Window(**task.window)
+        # Dropping a constant set-point node would leave the noise of a resting axis to analyse.
+        setpoint = any(split_qualified(s)[1] == "RP" for s in signals)
+        resting = standstill(recording, window) if setpoint and task.constant == "drop" else None
+        if resting is not None:
+            return Outcome(task.key, skipped=f"{resting} (its set-point is constant)")
         with _one_thread_per_task():
             networks = window_networks(
                 recording, [window], signals=signals, parameters=task.parameters,
@@ -414,15 +420,20 @@ def task_warnings(networks: Mapping[str, Any], recording: Any, signals: Sequence
     -------
     tuple of (problem, count, message)
         ``problem`` is the warning's :attr:`~funcnet.errors.FuncnetWarning.problem`
-        (``"eps_order"``, ``"rate_exceeded"``, ``"degenerate"``, ``"staircase"``).
+        (``"eps_order"``, ``"rate_exceeded"``, ``"degenerate"``, ``"staircase"``, and
+        ``"constant"`` for signals left out of a window as constant in it).
     """
-    from funcnet.pipeline import window_warnings
+    from funcnet.pipeline import constant_warning, window_warnings
     from funcnet.robot.preprocess import staircase_warning
 
     found: dict[str, tuple[int, str]] = {}
     staircase = staircase_warning(recording, list(signals), where)
     if staircase is not None:
         found["staircase"] = (len(staircase.signals), str(staircase))
+    constant = constant_warning(where, {label: (net.window or {}).get("dropped", ())
+                                        for label, net in networks.items()}, len(networks))
+    if constant is not None:
+        found["constant"] = (len(constant.signals), str(constant))
     for warning in window_warnings(networks):
         problem = str(warning.problem)
         count, message = found.get(problem, (0, f"{where}: {warning}"))
