@@ -52,7 +52,7 @@ def per_window_path() -> Iterator[None]:
     import funcnet.pipeline
 
     original = funcnet.pipeline._batched_networks
-    funcnet.pipeline._batched_networks = lambda *args, **kwargs: None  # type: ignore[assignment]
+    funcnet.pipeline._batched_networks = lambda *args, **kwargs: ({}, [])  # type: ignore[assignment]
     try:
         yield
     finally:
