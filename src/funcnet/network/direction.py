@@ -99,8 +99,7 @@ from funcnet.network.precision import checked_steps, logged_step
 from funcnet.parameters import NetworkParameters
 
 __all__ = ["DIRECTIONS", "DIRECTION_ALPHA", "DIRECTION_GAP", "direction_lags", "prediction_p",
-           "read_direction",
-           "direction_columns"]
+           "read_direction", "direction_columns", "window_directions"]
 
 #: Values of the ``direction`` column.
 DIRECTIONS: tuple[str, ...] = ("x->y", "y->x", "none")
@@ -343,9 +342,10 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
     out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
     tested = [bool(flagged) for flagged in pairs["degenerate"].tolist()]
     first, second = pairs["x"].tolist(), pairs["y"].tolist()  # plain lists: fast to walk
-    names = list(dict.fromkeys(name for x, y, flagged in zip(first, second, tested,
-                                                             strict=True)
-                               if not flagged for name in (x, y)))
+    # every node of the table, tested or not: the same columns whichever pairs a window
+    # flags (as in :func:`window_directions`)
+    names = list(dict.fromkeys(name for x, y in zip(first, second, strict=True)
+                               for name in (x, y)))
     arrays = {name: np.asarray(signals[name], dtype=np.float64) for name in names}
     single = [name for name in names if arrays[name].ndim < 2 or arrays[name].shape[1] == 1]
     sizes = {arrays[name].shape[0] for name in single}
@@ -371,6 +371,74 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
                                lags, DIRECTION_GAP, alpha, (str(x), str(y)))
         out["direction"].append(reading[0])
         out["direction_reason"].append(reading[1])
+    return out
+
+
+def window_directions(windows: Sequence[np.ndarray], names: Sequence[str],
+                      pairs: Sequence[tuple[str, str]], degenerate: np.ndarray,
+                      parameters: NetworkParameters, steps: np.ndarray,
+                      alpha: float = DIRECTION_ALPHA) -> dict[str, list[str]]:
+    """:func:`direction_columns` of many windows' pairs tables at once, one stacked pass.
+
+    Parameters
+    ----------
+    windows : sequence of ndarray, shape (N_w, k)
+        Each window's nodes (single-channel, in the order of ``names``), normalized as the
+        networks' are.
+    names : sequence of str
+        The ``k`` nodes.
+    pairs : sequence of (str, str)
+        The rows of each window's table, the same for every window.
+    degenerate : ndarray of bool, shape (W, len(pairs))
+        Each window's degenerate rows.
+    parameters : NetworkParameters
+        Its ``dim`` and ``delay`` set the lags.
+    steps : ndarray, shape (W, k)
+        Each node's logged step in its window's unit.
+    alpha : float
+        As :func:`read_direction`.
+
+    Returns
+    -------
+    dict
+        ``{"direction": [...], "direction_reason": [...]}``: every window's rows, in order;
+        each window's equal to :func:`direction_columns` of its table.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(1)
+    >>> x = rng.standard_normal(600)
+    >>> y = np.concatenate([[0.0, 0.0], x[:-2]]) + 0.5 * rng.standard_normal(600)
+    >>> parts = [np.column_stack([x, y])[:300], np.column_stack([y, x])[300:]]
+    >>> window_directions(parts, ["A", "B"], [("A", "B")], np.zeros((2, 1), bool),
+    ...                   NetworkParameters(delay=1), np.zeros((2, 2)))["direction"]
+    ['x->y', 'y->x']
+    """
+    lags = direction_lags(parameters)
+    if not 0.0 < alpha < 1.0:
+        raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha!r}")
+    by_length: dict[int, list[int]] = {}
+    for w, part in enumerate(windows):
+        by_length.setdefault(part.shape[0], []).append(w)
+    found: list[Any] = [None] * len(windows)
+    for members in by_length.values():  # windows of one length: one stack
+        values, within = pair_p_values(np.stack([windows[w] for w in members]), lags,
+                                       DIRECTION_GAP, np.asarray(steps, dtype=np.float64)[members])
+        for slot, w in enumerate(members):  # plain lists: fast to walk
+            found[w] = (values[slot].tolist(), within[slot].tolist())
+    column = {name: k for k, name in enumerate(names)}
+    index = [(column[x], column[y], str(x), str(y)) for x, y in pairs]
+    out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
+    for w, flags in enumerate(np.asarray(degenerate, dtype=bool).tolist()):
+        p_values, within = found[w]
+        n = windows[w].shape[0]
+        for (i, j, x, y), flagged in zip(index, flags, strict=True):
+            reading = (("none", "degenerate pair: too few distinct states") if flagged else
+                       _reading((p_values[j][i], p_values[i][j]),
+                                (within[j][i], within[i][j]), n, lags, DIRECTION_GAP, alpha,
+                                (x, y)))
+            out["direction"].append(reading[0])
+            out["direction_reason"].append(reading[1])
     return out
 
 
