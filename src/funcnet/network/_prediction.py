@@ -99,16 +99,22 @@ def pair_p_values(windows: np.ndarray, lags: int, gap: int,
     groups: dict[tuple[Any, ...], list[int]] = defaultdict(list)
     for w in range(n_windows):
         groups[(tuple(varies[w]), tuple(orders[w][varies[w]]))].append(w)
+    steps = np.asarray(steps, dtype=np.float64)
     with _blas().limit(limits=1, user_api="blas"):
         for (mask, order), members in groups.items():
             chosen = np.flatnonzero(mask)
             if chosen.size < 2:
                 continue
-            rows = np.asarray(members)[:, None, None]
-            found, inside = _group(values[members][:, :, chosen], np.asarray(order), lags,
-                                   gap, np.asarray(steps, dtype=np.float64)[members][:, chosen])
-            out[rows, chosen[:, None], chosen] = found
-            within[rows, chosen[:, None], chosen] = inside
+            # windows per stack: its pairs' factors within _CHUNK elements (bounded memory)
+            size = chosen.size * (chosen.size - 1) * (n_samples + 1) * (2 * lags + 2)
+            per = max(1, _CHUNK // size)
+            for first in range(0, len(members), per):
+                some = np.asarray(members[first : first + per])
+                found, inside = _group(values[some][:, :, chosen], np.asarray(order), lags,
+                                       gap, steps[some][:, chosen])
+                rows = some[:, None, None]
+                out[rows, chosen[:, None], chosen] = found
+                within[rows, chosen[:, None], chosen] = inside
     return out, within
 
 
@@ -149,21 +155,14 @@ def _group(values: np.ndarray, orders: np.ndarray, p: int, gap: int,
     stacked = stacked.reshape(n_windows * pairs, r_window.shape[1], c + 1)
     target_of = np.tile(ahead, n_windows)
     window_of = np.repeat(np.arange(n_windows), pairs)
-    values_out = np.empty(n_windows * pairs)
-    inside = np.empty(n_windows * pairs, dtype=bool)
-    chunk = max(1, _CHUNK // (stacked.shape[1] * (c + 1)))
-    for first in range(0, stacked.shape[0], chunk):
-        part = slice(first, first + chunk)
-        own_rss, found = _read(_triangular(stacked[part]), p, n)
-        where = (window_of[part], target_of[part])
-        # predicted by its own past to the rounding of the arithmetic: nothing to explain
-        exact = own_rss <= (_EPS * max(n, c)) ** 2 * size[where]
-        found[exact] = np.nan
-        values_out[part] = found
-        # within a step of its log, and its own past is what predicts it (rounding its past
-        # is what a follower could undo): nothing left that the log can show
-        inside[part] = exact | ((own_rss <= n * step[where] ** 2)
-                                & (own_rss <= _EXPLAINED * spread[where]))
+    own_rss, values_out = _read(_triangular(stacked), p, n)
+    where = (window_of, target_of)
+    # predicted by its own past to the rounding of the arithmetic: nothing to explain
+    exact = own_rss <= (_EPS * max(n, c)) ** 2 * size[where]
+    values_out[exact] = np.nan
+    # within a step of its log, and its own past is what predicts it (rounding its past is
+    # what a follower could undo): nothing left that the log can show
+    inside = exact | ((own_rss <= n * step[where] ** 2) & (own_rss <= _EXPLAINED * spread[where]))
     shape = (n_windows, kk, kk)
     out, within = np.full(shape, np.nan), np.zeros(shape, dtype=bool)
     out[:, ahead, behind] = values_out.reshape(n_windows, pairs)
@@ -203,7 +202,10 @@ def _design(values: np.ndarray, orders: np.ndarray, p: int,
     span = p + gap
     n = n_samples - span
     scale = values.std(axis=1, keepdims=True)
+    # a difference's rounding: 2^q roundings of the largest value, in the standardized unit
+    rounding = _EPS * np.abs(values).max(axis=1, keepdims=True) / scale
     columns: list[np.ndarray] = [np.ones((values.shape[0], n))]
+    floors: list[Any] = [0.0]
     own, source, target = [], [], []
     for a, d in enumerate(orders.tolist()):
         differences = [(values[:, :, a] - values[:, :, a].mean(axis=1, keepdims=True))]
@@ -217,6 +219,7 @@ def _design(values: np.ndarray, orders: np.ndarray, p: int,
                 index[(q, lag)] = len(columns)
                 columns.append(differences[q][:, span - lag - q : n_samples - lag - q]
                                / scale[:, :, a])
+                floors.append(2.0**q * rounding[:, 0, a])
             return index[(q, lag)]
 
         target.append(column(d, 0))
@@ -226,8 +229,14 @@ def _design(values: np.ndarray, orders: np.ndarray, p: int,
     design = np.stack(columns, axis=2)
     design[:, :, 1:] -= design[:, :, 1:].mean(axis=1, keepdims=True)
     norms = np.sqrt((design**2).sum(axis=1, keepdims=True))
+    # A column within max(n, columns) times the rounding its differences carry (a ramp's
+    # second difference) is zero, as least squares drops a singular value within
+    # eps max(n, columns); scaled to unit norm it would be rounding noise made a regressor.
+    floor = np.stack(np.broadcast_arrays(*floors), axis=1)[:, None, :]
+    negligible = norms <= max(n, 2 * p + 2) * np.sqrt(n) * floor
     norms[:, :, target] = 1.0
     design /= np.where(norms > 0.0, norms, 1.0)
+    design[np.broadcast_to(negligible, design.shape)] = 0.0
     return design, np.array(own, dtype=np.intp), np.array(source, dtype=np.intp), np.array(
         target, dtype=np.intp)
 
