@@ -151,11 +151,13 @@ def _group(values: np.ndarray, orders: np.ndarray, p: int, gap: int,
                               source[behind], target[ahead]])  # (pairs, 2p + 2)
     c = 2 * p + 1
     pairs = ahead.size
-    stacked = r_window[:, :, subset].transpose(0, 2, 1, 3)  # (W, pairs, rows, 2p + 2)
-    stacked = stacked.reshape(n_windows * pairs, r_window.shape[1], c + 1)
+    # (W, pairs, 2p + 2, rows) gathered, read as (W pairs, rows, 2p + 2): each matrix in
+    # the column-major order LAPACK takes, and no copy but the gather
+    stacked = r_window.transpose(0, 2, 1)[:, subset].transpose(0, 1, 3, 2).reshape(
+        n_windows * pairs, r_window.shape[1], c + 1)
     target_of = np.tile(ahead, n_windows)
     window_of = np.repeat(np.arange(n_windows), pairs)
-    own_rss, values_out = _read(_triangular(stacked), p, n)
+    own_rss, values_out = _read(_householder(stacked), p, n)
     where = (window_of, target_of)
     # predicted by its own past to the rounding of the arithmetic: nothing to explain
     exact = own_rss <= (_EPS * max(n, c)) ** 2 * size[where]
@@ -170,22 +172,25 @@ def _group(values: np.ndarray, orders: np.ndarray, p: int, gap: int,
     return out, within
 
 
-def _read(r: np.ndarray, p: int, n: int) -> tuple[np.ndarray, np.ndarray]:
+def _read(h: np.ndarray, p: int, n: int) -> tuple[np.ndarray, np.ndarray]:
     """The restricted model's residual sum of squares and the F test's p-value of each pair's
-    triangular factor ``r`` (design ``[1, own block, source block]``, then the target)."""
+    factorization ``h`` (:func:`_householder`: ``R[i, j] = h[j, i]``, ``i <= j``; design
+    ``[1, own block, source block]``, then the target)."""
     c = 2 * p + 1
-    y = r[:, :, c]
+    y = h[:, c, : c + 1]  # R's last column
     full = y[:, c] ** 2
     gain = (y[:, p + 1 : c] ** 2).sum(axis=1)
     own = gain + full
-    diagonal = np.abs(np.diagonal(r[:, :c, :c], axis1=1, axis2=2))
+    diagonal = np.abs(np.diagonal(h[:, :c, :c], axis1=1, axis2=2))
     flagged = np.flatnonzero(diagonal.min(axis=1) <= _SCREEN * diagonal.max(axis=1))
     if flagged.size:
-        dropped_full = _dropped(r[flagged, :c, :c], y[flagged, :c], n)
-        dropped_own = _dropped(r[flagged, : p + 1, : p + 1], y[flagged, : p + 1], n)
-        full[flagged] += dropped_full
-        own[flagged] += dropped_own
-        gain[flagged] = np.maximum(gain[flagged] + dropped_own - dropped_full, 0.0)
+        r = np.triu(h[flagged, :c, :c].transpose(0, 2, 1))
+        y = y[flagged]
+        flagged_full, flagged_own = _dropped(r, y[:, :c], n), _dropped(
+            r[:, : p + 1, : p + 1], y[:, : p + 1], n)
+        full[flagged] += flagged_full
+        own[flagged] += flagged_own
+        gain[flagged] = np.maximum(gain[flagged] + flagged_own - flagged_full, 0.0)
     dfd = n - c
     with np.errstate(divide="ignore", invalid="ignore"):
         found = special.fdtrc(p, dfd, gain / p / (full / dfd))  # F's upper tail (f.sf)
@@ -245,6 +250,14 @@ def _triangular(a: np.ndarray) -> np.ndarray:
     """The triangular factor ``R`` of ``a = Q R`` (of each matrix of a stack), without ``Q``."""
     factor: Any = np.linalg.qr  # NumPy's stubs lack mode "r" for stacks
     return np.asarray(factor(a, mode="r"))
+
+
+def _householder(a: np.ndarray) -> np.ndarray:
+    """LAPACK's Householder factorization of each matrix of a stack ``a`` (m, n), as
+    ``(n, m)``: its triangular factor is ``R[i, j] = h[j, i]`` for ``i <= j`` (no copy of the
+    triangle made)."""
+    factor: Any = np.linalg.qr  # NumPy's stubs lack mode "raw" for stacks
+    return np.asarray(factor(a, mode="raw")[0])
 
 
 def _dropped(r: np.ndarray, y: np.ndarray, n: int) -> np.ndarray:
