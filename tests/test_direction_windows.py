@@ -13,8 +13,13 @@ import pandas as pd
 import pytest
 
 from funcnet.network._prediction import pair_p_values
-from funcnet.network.direction import (DIRECTION_GAP, _p_matrix, direction_columns,
-                                       direction_lags, window_directions)
+from funcnet.network.direction import (
+    DIRECTION_GAP,
+    _p_matrix,
+    direction_columns,
+    direction_lags,
+    window_directions,
+)
 from funcnet.parameters import NetworkParameters
 
 NAMES = ["RP", "AP", "AC"]
