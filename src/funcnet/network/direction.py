@@ -340,10 +340,11 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
     out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
     tested = [bool(flagged) for flagged in pairs["degenerate"].tolist()]
     first, second = pairs["x"].tolist(), pairs["y"].tolist()  # plain lists: fast to walk
-    # every node of the table, tested or not: the same columns whichever pairs a window
-    # flags (as in :func:`window_directions`)
-    names = list(dict.fromkeys(name for x, y in zip(first, second, strict=True)
-                               for name in (x, y)))
+    # every node of the table, tested or not (a degenerate pair's where given): the same
+    # columns whichever pairs a window flags, as in :func:`window_directions`
+    names = list(dict.fromkeys(name for x, y, flagged in zip(first, second, tested,
+                                                             strict=True)
+                               for name in (x, y) if not flagged or name in signals))
     arrays = {name: np.asarray(signals[name], dtype=np.float64) for name in names}
     single = [name for name in names if arrays[name].ndim < 2 or arrays[name].shape[1] == 1]
     sizes = {arrays[name].shape[0] for name in single}
