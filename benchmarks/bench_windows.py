@@ -16,7 +16,9 @@ Run from the repository root::
    0.05 s after its braking): one :func:`funcnet.window_networks` call (batched) after a
    warm-up call on two windows, against the same function on the per-window path and pyunicorn
    (10 pairs per window), both timed on an evenly spread sample of the windows; both rules.
-   The sample's networks are asserted equal (``==``) to the per-window path's.
+   The sample's networks are asserted equal (``==``) to the per-window path's. The batched call
+   is timed again with the direction reading replaced by a constant (its share of the time),
+   and pyunicorn's CPU time is measured beside its wall time (a loaded machine inflates wall).
 4. With ``--paper DIR`` (a plan from ``funcnet simulate --plan paper --out DIR``): the paper's
    analyses (:func:`funcnet.paper.analyses.run_paper_analyses`) batched and per-window.
 
@@ -52,11 +54,36 @@ def per_window_path() -> Iterator[None]:
     import funcnet.pipeline
 
     original = funcnet.pipeline._batched_networks
-    funcnet.pipeline._batched_networks = lambda *args, **kwargs: None  # type: ignore[assignment]
+    funcnet.pipeline._batched_networks = lambda *args, **kwargs: ({}, [])  # type: ignore[assignment]
     try:
         yield
     finally:
         funcnet.pipeline._batched_networks = original  # type: ignore[assignment]
+
+
+@contextmanager
+def without_direction() -> Iterator[None]:
+    """``window_networks`` with the direction reading replaced by a constant (its share)."""
+    import funcnet.pipeline
+
+    # the stacked reading, or the per-window one of earlier versions (for a before/after)
+    name = ("window_directions" if hasattr(funcnet.pipeline, "window_directions")
+            else "direction_columns")
+    original = getattr(funcnet.pipeline, name)
+
+    def constant(windows: Any, names: Any, pairs: Any = None, *args: Any, **kwargs: Any) -> Any:
+        rows = len(windows) * len(pairs) if name == "window_directions" else len(windows)
+        return {"direction": ["none"] * rows, "direction_reason": [""] * rows}
+
+    setattr(funcnet.pipeline, name, constant)
+    try:
+        yield
+    finally:
+        setattr(funcnet.pipeline, name, original)
+
+
+#: CPU seconds of the last :func:`pyunicorn_measures` call.
+PYUNICORN_CPU = [0.0]
 
 
 def pyunicorn_measures(x: np.ndarray, y: np.ndarray,
@@ -66,6 +93,7 @@ def pyunicorn_measures(x: np.ndarray, y: np.ndarray,
 
     from funcnet.core.embedding import embed
 
+    cpu = time.process_time()
     start = time.perf_counter()
     network = InterSystemRecurrenceNetwork(
         embed(x, DIM, DELAY), embed(y, DIM, DELAY), metric=metric,
@@ -77,6 +105,7 @@ def pyunicorn_measures(x: np.ndarray, y: np.ndarray,
         network.cross_transitivity_xy(),
         network.cross_transitivity_yx(),
     )
+    PYUNICORN_CPU[0] = time.process_time() - cpu
     return time.perf_counter() - start, values
 
 
@@ -182,17 +211,19 @@ def timeline(skip_pyunicorn: bool, n_sample: int) -> None:
     print(f"\n### Sliding timeline over the real trace ({TRACE.name}: {moves} moves, "
           f"{len(windows)} windows of 0.3 s every 2 ms, {len(NODES)} signals = 10 pairs per "
           "window), `window_networks`\n")
-    print(f"| rule, metric | batched, all windows [s] (CPU) | batched [ms/window] | per-window "
-          f"path [ms/window] ({n_sample} windows) | pyunicorn [ms/window] "
-          f"({min(30, n_sample)} windows) | "
-          "per-window / batched | pyunicorn / batched |")
-    print("|---|---|---|---|---|---|---|")
+    print(f"| rule, metric | batched, all windows [s] (CPU) | without the direction [s] (CPU) "
+          f"| batched [ms/window] | per-window path [ms/window] ({n_sample} windows) | "
+          f"pyunicorn [ms/window] (CPU) ({min(30, n_sample)} windows) | "
+          "per-window / batched | pyunicorn / batched, wall (CPU) |")
+    print("|---|---|---|---|---|---|---|---|")
     for options in ({}, {"rule": "pyunicorn", "metric": "supremum"}):
         def batched(chosen: list[Any], options: dict[str, Any] = options) -> Any:
             return window_networks(recording, chosen, signals=NODES, **options)
 
         batched(windows[:2])  # warm-up
         wall, _, cpu, networks = timed(lambda: batched(windows), 1)
+        with without_direction():
+            bare, _, bare_cpu, _ = timed(lambda: batched(windows), 1)
         per_window = wall / len(windows)
         with per_window_path():
             batched(sample[:2])
@@ -201,21 +232,24 @@ def timeline(skip_pyunicorn: bool, n_sample: int) -> None:
         for window in sample:
             assert networks[window.label] == singles[window.label], window.label  # type: ignore
         label = f"{options.get('rule', 'funcnet')}, {options.get('metric', 'euclidean')}"
-        row = (f"| {label} | {wall:.2f} ({cpu:.2f}) | {per_window * 1e3:.2f} | "
-               f"{path * 1e3:.1f} |")
+        row = (f"| {label} | {wall:.2f} ({cpu:.2f}) | {bare:.2f} ({bare_cpu:.2f}) | "
+               f"{per_window * 1e3:.2f} | {path * 1e3:.1f} |")
         if skip_pyunicorn:
             print(f"{row} skipped | {path / per_window:.0f}x | |")
             continue
-        seconds = 0.0
+        seconds = cpu_seconds = 0.0
         metric = options.get("metric", "euclidean")
         for window in sample[: min(30, len(sample))]:
             part = recording.window(window.start, window.stop).data[NODES].to_numpy()
             part = (part - part.min(axis=0)) / np.ptp(part, axis=0)
             for i, j in zip(*np.triu_indices(5, k=1), strict=True):
                 seconds += pyunicorn_measures(part[:, i], part[:, j], metric)[0]
+                cpu_seconds += PYUNICORN_CPU[0]
         reference = seconds / min(30, len(sample))
-        print(f"{row} {reference * 1e3:.0f} | {path / per_window:.0f}x | "
-              f"{reference / per_window:.0f}x |")
+        reference_cpu = cpu_seconds / min(30, len(sample))
+        print(f"{row} {reference * 1e3:.0f} ({reference_cpu * 1e3:.0f}) | "
+              f"{path / per_window:.0f}x | {reference / per_window:.0f}x "
+              f"({reference_cpu * len(windows) / cpu:.0f}x) |")
 
 
 def paper(plan: Path) -> None:

@@ -47,10 +47,10 @@ from funcnet.network import (
     functional_network,
     pair_kinds,
 )
-from funcnet.network.direction import direction_columns
+from funcnet.network.direction import window_directions
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.precision import logged_step, normalized_steps, single_spacing
-from funcnet.network.schema import DIRECTION_COLUMNS, RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
+from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.preprocess import staircase_warning
 from funcnet.robot.recording import Recording
@@ -561,20 +561,15 @@ def _batched_networks(
                                      "y": [y for _, y in result.pairs] * len(windows)}
     columns.update({name: result[name].ravel().tolist() for name in RESULT_COLUMNS})
     columns.update({**dict.fromkeys(RULE_COLUMNS, [""] * n_rows), "weight": [0.0] * n_rows})
-    readings: dict[str, list[str]] = {name: [] for name in DIRECTION_COLUMNS}
-    for w in range(len(windows)):
-        mine = slice(w * n_pairs, (w + 1) * n_pairs)
-        normalized = normalize_signals(parts[w], p.normalize)
-        read = direction_columns(
-            pd.DataFrame({name: columns[name][mine] for name in ("x", "y", "degenerate")}),
-            # normalized as functional_network's nodes are: the same bits, the same reading
-            dict(zip(result.names, normalized.T, strict=True)), p,
-            steps=dict(zip(result.names, normalized_steps(
-                list(window_steps(parts[w], result.names, steps).values()), parts[w],
-                normalized), strict=True)))
-        for name in DIRECTION_COLUMNS:
-            readings[name] += read[name]
-    columns.update(readings)
+    # normalized as functional_network's nodes are: the same bits, the same reading
+    normalized = [normalize_signals(part, p.normalize) for part in parts]
+    columns.update(window_directions(
+        normalized, result.names, result.pairs,
+        np.reshape(columns["degenerate"], (len(windows), n_pairs)), p,
+        np.array([normalized_steps(list(window_steps(part, result.names, steps).values()),
+                                   part, scaled)
+                  for part, scaled in zip(parts, normalized, strict=True)]).reshape(
+            len(windows), len(result.names))))
     table = pair_kinds(pairs_frame(columns), p)  # every window's rows, then sliced
     # Edges of every window at once (the rule is row by row); rows named by their position
     # tell which rows became edges, hence where each window's edges start.

@@ -47,16 +47,14 @@ The log's precision
     set-point there claimed an improvement of one its own past predicts to 0.2-0.9 of a step.
 
 The computation
-    One QR factorization of the window's lag matrix serves every pair of the window: each
-    pair's design is a column subset of it, so its triangular factor comes from a small one
-    (at most ``1 + k (p + g + 1)`` rows for ``k`` signals, however long the window), and both
-    residual sums of squares are read from it -- orthogonal throughout (lagged smooth signals
-    are nearly collinear; normal equations would square their condition number), and the
-    improvement ``RSS_r - RSS_f`` is a sum of squares, never a difference of nearly equal
-    numbers. Numerically rank-deficient designs drop the singular directions least squares
-    drops. Against least squares run pair by pair (the previous implementation, without the
-    gap) the p-values above 1e-12 agree to a relative 1e-5 and the decisions are equal on
-    every window of the recordings.
+    :mod:`funcnet.network._prediction`: each signal's lags are replaced by differences that
+    span the same columns exactly (every residual is the same number; the rounding is that of
+    the differences, not of the levels of a smooth position), one QR factorization of a
+    window's design serves every pair of it, and every window of a call is read in one stacked
+    pass. Numerically rank-deficient designs drop the singular directions least squares drops.
+    The p-values agree across OpenBLAS kernels to a relative 1e-6 and with exact rational
+    arithmetic to 1e-7 (tests/test_direction_kernels.py); with the previous implementation
+    (the levels factored as they stand) the decisions are equal.
 
 Why this test (measured, docs/guide/direction.md)
     A set-point computed ahead by a planner is predicted by its own past; a measured signal of
@@ -87,22 +85,19 @@ testing Granger causality", IEEE Trans. Signal Process. 64, 2746-2760 (2016).
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 import pandas as pd
-from scipy import special
-from threadpoolctl import ThreadpoolController
 
 from funcnet.errors import ParameterError
+from funcnet.network._prediction import pair_p_values
 from funcnet.network.precision import checked_steps, logged_step
 from funcnet.parameters import NetworkParameters
 
 __all__ = ["DIRECTIONS", "DIRECTION_ALPHA", "DIRECTION_GAP", "direction_lags", "prediction_p",
-           "read_direction",
-           "direction_columns"]
+           "read_direction", "direction_columns", "window_directions"]
 
 #: Values of the ``direction`` column.
 DIRECTIONS: tuple[str, ...] = ("x->y", "y->x", "none")
@@ -129,138 +124,22 @@ def direction_lags(parameters: NetworkParameters) -> int:
 
 def _p_matrix(columns: np.ndarray, lags: int, gap: int,
               steps: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """p-values of every ordered pair of columns: ``P[i, j]`` that column j's past (lags
-    ``gap + 1 .. gap + p``) improves the prediction of column i beyond i's own past (lags
-    ``1 .. p``); NaN: too short, constant, or exact. With them ``W[i, j]``: column i's own past
-    predicts it to within its logged step (``steps[i]`` in the columns' unit; default
-    :func:`logged_step` of each column), ``RSS_r <= n q^2``, or to the rounding of the
-    arithmetic.
-
-    One QR factorization of the window's lag matrix ``W = [1, v_k(t - l) for every column k
-    and lag l = 0..p + gap]`` (rows ``t = p + gap..N-1``) serves every pair: a pair's design and
-    target ``[1, y(t-1..t-p), x(t-1-gap..t-p-gap), y(t)]`` is a column subset ``W S = Q (R_W S)``,
-    so its triangular factor is that of the small ``R_W S`` (at most ``1 + k (p + gap + 1)``
-    rows, however long the window). In that factor ``R`` (target column ``c = 2 p + 1``) the
-    full model's residual sum of squares is ``R[c, c]^2`` and the improvement over the
-    restricted model is
-    ``sum R[p+1..2p, c]^2``: orthogonal throughout (lagged smooth signals are nearly collinear,
-    normal equations would square their condition number), and the improvement is never the
-    difference of two nearly equal numbers. Where the diagonal of ``R`` spans more than
-    ``1 / _SCREEN`` (a numerically rank-deficient design), singular values decide as least
-    squares does: directions at most ``eps max(n, columns) s_max`` are dropped, from the full
-    and the restricted design alike. A target its own past predicts to the rounding of the
-    arithmetic (``RSS_r <= (eps max(n, columns))^2 |y|^2``: a set-point that is a polynomial
-    over the window) leaves nothing to explain: NaN, as a constant signal.
+    """p-values of every ordered pair of columns of one window: ``P[i, j]`` that column j's
+    past (lags ``gap + 1 .. gap + p``) improves the prediction of column i beyond i's own past
+    (lags ``1 .. p``); NaN: too short, constant, or exact. With them ``W[i, j]``: column i's
+    own past predicts it to within its logged step (``steps[i]`` in the columns' unit; default
+    :func:`logged_step` of each column), or to the rounding of the arithmetic
+    (:func:`funcnet.network._prediction.pair_p_values`, one window).
     """
     if steps is None:
         steps = np.array([logged_step(column) for column in columns.T])
-    with _blas().limit(limits=1, user_api="blas"):
-        return _p_matrix_here(columns, lags, gap, np.asarray(steps, dtype=np.float64))
-
-
-@functools.cache
-def _blas() -> ThreadpoolController:
-    """The BLAS thread pools: one thread for the small factorizations of a window (several
-    threads spin on matrices of this size, and compete with the rule's compiled kernels: ten
-    times slower on two busy cores)."""
-    return ThreadpoolController()
-
-
-def _p_matrix_here(columns: np.ndarray, lags: int, gap: int,
-                   steps: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_p_matrix`, in the calling thread's BLAS setting."""
-    n_samples, k = columns.shape
-    out = np.full((k, k), np.nan)
-    within = np.zeros((k, k), dtype=bool)
-    p = lags
-    span = p + gap
-    if n_samples - 3 * p - 1 - gap < 1:  # too short for the full model's degrees of freedom
-        return out, within
-    chosen = np.flatnonzero(np.ptp(columns, axis=0) > 0)
-    if chosen.size < 2:
-        return out, within
-    v = columns[:, chosen]
-    v_spread = v.std(axis=0)
-    v = (v - v.mean(axis=0)) / v_spread
-    step = steps[chosen] / v_spread  # in the standardized unit
-    kk, n = chosen.size, n_samples - span
-    window = np.lib.stride_tricks.sliding_window_view(v, span + 1, axis=0)  # (n, kk, span+1)
-    design = np.empty((n, 1 + kk * (span + 1)))
-    design[:, 0] = 1.0
-    design[:, 1:] = window[:, :, ::-1].reshape(n, kk * (span + 1))  # lags 0..span per node
-    r_window = _triangular(design)
-    target, source = np.nonzero(~np.eye(kk, dtype=bool))
-    lag = np.arange(1, p + 1)
-    subset = np.column_stack([np.zeros(target.size, dtype=np.intp),
-                              1 + target[:, None] * (span + 1) + lag,
-                              1 + source[:, None] * (span + 1) + gap + lag,
-                              1 + target * (span + 1)])  # (pairs, 2p + 2)
-    c = 2 * p + 1
-    dfd = n - c
-    values = np.empty(target.size)
-    within_pairs = np.empty(target.size, dtype=bool)
-    # the part of each column its own past has to explain (the rows the models predict)
-    spread = ((v[span:] - v[span:].mean(axis=0)) ** 2).sum(axis=0)
-    chunk = max(1, _CHUNK // (r_window.shape[0] * (c + 1)))
-    for first in range(0, target.size, chunk):
-        part = slice(first, first + chunk)
-        r = _triangular(r_window[:, subset[part]].transpose(1, 0, 2))
-        y = r[:, :, c]
-        full = y[:, c] ** 2
-        gain = (y[:, p + 1 : c] ** 2).sum(axis=1)
-        own = gain + full
-        diagonal = np.abs(np.diagonal(r[:, :c, :c], axis1=1, axis2=2))
-        flagged = np.flatnonzero(diagonal.min(axis=1) <= _SCREEN * diagonal.max(axis=1))
-        if flagged.size:
-            dropped_full = _dropped(r[flagged, :c, :c], y[flagged, :c], n)
-            dropped_own = _dropped(r[flagged, : p + 1, : p + 1], y[flagged, : p + 1], n)
-            full[flagged] += dropped_full
-            own[flagged] += dropped_own
-            gain[flagged] = np.maximum(gain[flagged] + dropped_own - dropped_full, 0.0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            found = special.fdtrc(p, dfd, gain / p / (full / dfd))  # F's upper tail (f.sf)
-        # predicted by its own past to the rounding of the arithmetic: nothing left to explain
-        exact = own <= (_EPS * max(n, c)) ** 2 * (y**2).sum(axis=1)
-        found[exact | ~(full > 0.0)] = np.nan
-        values[part] = found
-        # within a step of its log, and its own past is what predicts it (rounding its past
-        # is what a follower could undo): nothing left that the log can show
-        ahead = target[part]
-        within_pairs[part] = exact | ((own <= n * step[ahead] ** 2)
-                                      & (own <= _EXPLAINED * spread[ahead]))
-    out[chosen[target], chosen[source]] = values
-    within[chosen[target], chosen[source]] = within_pairs
-    return out, within
-
-
-def _triangular(a: np.ndarray) -> np.ndarray:
-    """The triangular factor ``R`` of ``a = Q R`` (of each matrix of a stack), without ``Q``."""
-    factor: Any = np.linalg.qr  # NumPy's stubs lack mode "r" for stacks
-    return np.asarray(factor(a, mode="r"))
-
-
-def _dropped(r: np.ndarray, y: np.ndarray, n: int) -> np.ndarray:
-    """Per matrix of the stack ``r`` (and its target ``y``), the target's part that least
-    squares leaves unexplained beyond ``r``'s own residual: along the singular directions of
-    ``r`` at most ``eps max(n, columns) s_max``, which :func:`numpy.linalg.lstsq` treats as
-    zero."""
-    u, s, _ = np.linalg.svd(r)
-    along = np.einsum("mij,mi->mj", u, y) ** 2
-    return np.where(s <= _EPS * max(n, r.shape[-1]) * s[:, :1], along, 0.0).sum(axis=1)
-
-
-_EPS = float(np.finfo(np.float64).eps)
-#: Designs whose triangular diagonal spans less than ``1 / _SCREEN`` are read from ``R`` alone.
-#: The diagonal only bounds the condition number from below; least squares drops directions
-#: below ``eps max(n, columns)`` (1e-14 to 1e-12 here), four orders under the screen. Over every
-#: window of the recordings, screens from 1e-6 to 1e-12 gave the same p-values.
-_SCREEN = 1e-8
-#: The precision rule needs the own past to explain all but this share of a signal's variance:
-#: rounding the past matters only where the past carries the prediction (a coarse signal that
-#: its own past does not predict, a few levels of noise, stays testable).
-_EXPLAINED = 0.01
-#: Elements of one batch of triangular factors (bounds the memory of a long window).
-_CHUNK = 2_000_000
+    values = np.asarray(columns, dtype=np.float64)
+    if values.ndim != 2 or values.shape[1] == 0:
+        k = values.shape[1] if values.ndim == 2 else 0
+        return np.full((k, k), np.nan), np.zeros((k, k), dtype=bool)
+    found, within = pair_p_values(values[np.newaxis], lags, gap,
+                                  np.asarray(steps, dtype=np.float64)[np.newaxis])
+    return found[0], within[0]
 
 
 def prediction_p(x: Any, y: Any, lags: int, *, gap: int = DIRECTION_GAP) -> float:
@@ -461,9 +340,11 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
     out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
     tested = [bool(flagged) for flagged in pairs["degenerate"].tolist()]
     first, second = pairs["x"].tolist(), pairs["y"].tolist()  # plain lists: fast to walk
+    # every node of the table, tested or not (a degenerate pair's where given): the same
+    # columns whichever pairs a window flags, as in :func:`window_directions`
     names = list(dict.fromkeys(name for x, y, flagged in zip(first, second, tested,
                                                              strict=True)
-                               if not flagged for name in (x, y)))
+                               for name in (x, y) if not flagged or name in signals))
     arrays = {name: np.asarray(signals[name], dtype=np.float64) for name in names}
     single = [name for name in names if arrays[name].ndim < 2 or arrays[name].shape[1] == 1]
     sizes = {arrays[name].shape[0] for name in single}
@@ -489,6 +370,74 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
                                lags, DIRECTION_GAP, alpha, (str(x), str(y)))
         out["direction"].append(reading[0])
         out["direction_reason"].append(reading[1])
+    return out
+
+
+def window_directions(windows: Sequence[np.ndarray], names: Sequence[str],
+                      pairs: Sequence[tuple[str, str]], degenerate: np.ndarray,
+                      parameters: NetworkParameters, steps: np.ndarray,
+                      alpha: float = DIRECTION_ALPHA) -> dict[str, list[str]]:
+    """:func:`direction_columns` of many windows' pairs tables at once, one stacked pass.
+
+    Parameters
+    ----------
+    windows : sequence of ndarray, shape (N_w, k)
+        Each window's nodes (single-channel, in the order of ``names``), normalized as the
+        networks' are.
+    names : sequence of str
+        The ``k`` nodes.
+    pairs : sequence of (str, str)
+        The rows of each window's table, the same for every window.
+    degenerate : ndarray of bool, shape (W, len(pairs))
+        Each window's degenerate rows.
+    parameters : NetworkParameters
+        Its ``dim`` and ``delay`` set the lags.
+    steps : ndarray, shape (W, k)
+        Each node's logged step in its window's unit.
+    alpha : float
+        As :func:`read_direction`.
+
+    Returns
+    -------
+    dict
+        ``{"direction": [...], "direction_reason": [...]}``: every window's rows, in order;
+        each window's equal to :func:`direction_columns` of its table.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(1)
+    >>> x = rng.standard_normal(600)
+    >>> y = np.concatenate([[0.0, 0.0], x[:-2]]) + 0.5 * rng.standard_normal(600)
+    >>> parts = [np.column_stack([x, y])[:300], np.column_stack([y, x])[300:]]
+    >>> window_directions(parts, ["A", "B"], [("A", "B")], np.zeros((2, 1), bool),
+    ...                   NetworkParameters(delay=1), np.zeros((2, 2)))["direction"]
+    ['x->y', 'y->x']
+    """
+    lags = direction_lags(parameters)
+    if not 0.0 < alpha < 1.0:
+        raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha!r}")
+    by_length: dict[int, list[int]] = {}
+    for w, part in enumerate(windows):
+        by_length.setdefault(part.shape[0], []).append(w)
+    found: list[Any] = [None] * len(windows)
+    for members in by_length.values():  # windows of one length: one stack
+        values, within = pair_p_values(np.stack([windows[w] for w in members]), lags,
+                                       DIRECTION_GAP, np.asarray(steps, dtype=np.float64)[members])
+        for slot, w in enumerate(members):  # plain lists: fast to walk
+            found[w] = (values[slot].tolist(), within[slot].tolist())
+    column = {name: k for k, name in enumerate(names)}
+    index = [(column[x], column[y], str(x), str(y)) for x, y in pairs]
+    out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
+    for w, flags in enumerate(np.asarray(degenerate, dtype=bool).tolist()):
+        p_values, within = found[w]
+        n = windows[w].shape[0]
+        for (i, j, x, y), flagged in zip(index, flags, strict=True):
+            reading = (("none", "degenerate pair: too few distinct states") if flagged else
+                       _reading((p_values[j][i], p_values[i][j]),
+                                (within[j][i], within[i][j]), n, lags, DIRECTION_GAP, alpha,
+                                (x, y)))
+            out["direction"].append(reading[0])
+            out["direction_reason"].append(reading[1])
     return out
 
 
