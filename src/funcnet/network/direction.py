@@ -2,11 +2,12 @@
 
 The paper's ``kind`` (:mod:`funcnet.network.rule`) reads the ISRN asymmetry, which never uses
 the timing of the two signals: circularly shifting Y leaves ``C_diff`` and ``T_diff`` unchanged
-(DESIGN section 1.6), so tested against a null that keeps each signal's structure and breaks
-their timing it never differs from that null. On real robot recordings its arrows point into
-the position set-point -- which nothing in a robot drives -- more often than out of it
-(:mod:`funcnet.network.setpoint`). The ``direction`` column reads something else: whether one
-signal's **past** improves the prediction of the other beyond the other's own past.
+(docs/validation/evidence.md, 'What the asymmetry measures'), so tested against a null that
+keeps each signal's structure and breaks their timing it never differs from that null. On real
+robot recordings its arrows point into the position set-point -- which nothing in a robot drives
+-- more often than out of it (:mod:`funcnet.network.setpoint`). The ``direction`` column reads
+something else: whether one signal's **past** improves the prediction of the other beyond the
+other's own past.
 
 The test (one pair, both ways)
     For ``X -> Y``: the least-squares prediction of ``y[t]`` from ``1, y[t-1], ..., y[t-p]``
@@ -56,7 +57,7 @@ The computation
     arithmetic to 1e-7 (tests/test_direction_kernels.py); with the previous implementation
     (the levels factored as they stand) the decisions are equal.
 
-Why this test (measured, docs/guide/direction.md)
+Why this test (measured, docs/validation/direction.md)
     A set-point computed ahead by a planner is predicted by its own past; a measured signal of
     the axis is not, and the set-point's past improves it. Over the SINUMERIK trace, both
     KUKA runs and five UR5 runs (every axis and phase, and the whole robot) the reading points
@@ -439,15 +440,3 @@ def window_directions(windows: Sequence[np.ndarray], names: Sequence[str],
             out["direction"].append(reading[0])
             out["direction_reason"].append(reading[1])
     return out
-
-
-def check_directions(values: Sequence[str]) -> None:
-    """Raise a :class:`ParameterError` for a value outside :data:`DIRECTIONS`.
-
-    Examples
-    --------
-    >>> check_directions(["none", "x->y"])
-    """
-    bad = sorted(set(values) - set(DIRECTIONS))
-    if bad:
-        raise ParameterError.of("direction", f"holds {bad}; values are {list(DIRECTIONS)}")

@@ -37,7 +37,13 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from funcnet.errors import ChannelError, RecordingWarning, TraceError, TraceFormatError
+from funcnet.errors import (
+    ChannelError,
+    RecordingWarning,
+    TraceError,
+    TraceFormatError,
+    caller_stacklevel,
+)
 from funcnet.robot.axes import qualified, split_qualified
 from funcnet.robot.channels import DEFAULT_CHANNEL_MAP, TIME_ROLE, ChannelMap, SignalInfo
 from funcnet.robot.clock import Clock, clock_seconds
@@ -302,7 +308,7 @@ def read_signal_files(
                 problem="cut_line", signals=tuple(e.signal for f, t in tables.items()
                                                   if t.cut_line is not None for e in by_file[f]),
             ),
-            stacklevel=4,
+            stacklevel=caller_stacklevel(),
         )
     grids = {}
     for file, table in tables.items():
@@ -341,7 +347,7 @@ def read_signal_files(
                 f"{', '.join(beyond)}",
                 problem="trimmed", signals=tuple(e.signal for e in entries),
             ),
-            stacklevel=4,
+            stacklevel=caller_stacklevel(),
         )
     n_ticks = int(np.floor((stop - start) / period + GRID_TOLERANCE)) + 1
     return _joined(path, cmap, axis, by_file, tables, grids, start, period, n_ticks)
