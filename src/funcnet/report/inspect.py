@@ -467,7 +467,9 @@ def write_robot_inspection(
         "resolve it.</p>"
         f"{findings}</section>",
         "<section id=\"robot\"><h2>The robot as one network</h2>",
-        f"<p>Nodes: {escape(', '.join(ins.signals))}.</p>", *network_parts, "</section>",
+        f"<p>Nodes: {escape(', '.join(ins.signals))}.</p>",
+        f"<p>{escape(ins.windows_note)}</p>" if ins.windows_note else "", *network_parts,
+        "</section>",
         f"<section id=\"arrows\"><h2>Reading an arrow</h2><p>{escape(READING_AN_ARROW)}</p>"
         "</section>",
         "<section id=\"parameters\"><h2>Parameters and provenance</h2>",
