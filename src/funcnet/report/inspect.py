@@ -431,7 +431,7 @@ def write_robot_inspection(
     gaps += " The robot network is one per segment." if gaps else ""
     units = converted_sentence(ins.recording.signals)
     name = Path(ins.source).name
-    network_parts = []
+    network_parts = [f"<p>{escape(ins.windows_note)}</p>"] if ins.windows_note else []
     for k, window in enumerate(ins.windows):
         label = window.label
         if label not in ins.networks:
@@ -467,9 +467,7 @@ def write_robot_inspection(
         "resolve it.</p>"
         f"{findings}</section>",
         "<section id=\"robot\"><h2>The robot as one network</h2>",
-        f"<p>Nodes: {escape(', '.join(ins.signals))}.</p>",
-        f"<p>{escape(ins.windows_note)}</p>" if ins.windows_note else "", *network_parts,
-        "</section>",
+        f"<p>Nodes: {escape(', '.join(ins.signals))}.</p>", *network_parts, "</section>",
         f"<section id=\"arrows\"><h2>Reading an arrow</h2><p>{escape(READING_AN_ARROW)}</p>"
         "</section>",
         "<section id=\"parameters\"><h2>Parameters and provenance</h2>",
