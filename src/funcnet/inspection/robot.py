@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -31,13 +32,25 @@ from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOve
 from funcnet.pipeline import WindowFailure, window_evidence, window_networks
 from funcnet.robot import Recording, Window, paper_nodes
 from funcnet.robot.axes import split_qualified
+from funcnet.robot.windows import span_window
 
-__all__ = ["RobotInspection", "inspect_robot", "pair_scope", "WITHIN_AXIS", "BETWEEN_AXES"]
+__all__ = ["RobotInspection", "inspect_robot", "pair_scope", "robot_windows", "WITHIN_AXIS",
+           "BETWEEN_AXES", "ROBOT_MAX_STATES", "ROBOT_MAX_WINDOWS"]
 
 #: The ``scope`` of a pair of one axis's signals.
 WITHIN_AXIS = "within-axis"
 #: The ``scope`` of a pair of two axes' signals.
 BETWEEN_AXES = "between-axes"
+#: Most states of one robot-network window. A network's cost grows about as the cube of its
+#: states (the triangle counts of Eq. 6-7) and its intervals' resamples grow with it: a longer
+#: segment is cut into equal consecutive parts of at most this many states, so the cost per
+#: recorded second and the peak memory stay bounded. 2,500 keeps each shared KUKA KR 300 run
+#: (2,481 states) and the shortest UR5 run (1,943) whole (benchmarks/RESULTS.md).
+ROBOT_MAX_STATES = 2500
+#: Most robot-network windows of one page: a recording that needs more parts (at the default
+#: embedding, over about 12 x 2,520 samples) gets this many, spread evenly over it, and the
+#: page says which; each axis's own report still covers its every move.
+ROBOT_MAX_WINDOWS = 12
 
 
 def pair_scope(pairs: pd.DataFrame) -> pd.DataFrame:
@@ -74,6 +87,73 @@ def pair_scope(pairs: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
+def _parts(start: float, stop: float, period: float, lag: int) -> list[tuple[float, float]]:
+    """A segment cut into equal consecutive spans of at most ``ROBOT_MAX_STATES`` states."""
+    samples = int(round((stop - start) / period))
+    count = max(1, math.ceil(samples / (ROBOT_MAX_STATES + lag)))
+    if count == 1:
+        return [(start, stop)]
+    edges = [start + round(k * samples / count) * period for k in range(count)] + [stop]
+    return list(zip(edges[:-1], edges[1:], strict=True))
+
+
+def robot_windows(recording: Recording,
+                  parameters: NetworkParameters | None = None) -> tuple[tuple[Window, ...], str]:
+    """The robot network's windows: each segment whole, or in parts of bounded size.
+
+    A segment of at most :data:`ROBOT_MAX_STATES` states (at the parameters' embedding) is
+    one window, labelled ``whole recording A-B s``. A longer one is cut into the fewest equal
+    consecutive parts that each hold at most that many states (``part k of n: A-B s``). When
+    the parts of all segments number more than :data:`ROBOT_MAX_WINDOWS`, that many are kept,
+    spread evenly over the recording (the first and the last among them).
+
+    Parameters
+    ----------
+    recording : Recording
+    parameters : NetworkParameters, optional
+        Their ``dim`` and ``delay`` give the states of a span (default parameters).
+
+    Returns
+    -------
+    (tuple of Window, str)
+        The windows, and one sentence for the page saying how the recording was cut (empty
+        when every segment is one window).
+
+    Examples
+    --------
+    >>> from funcnet.robot.recording import Recording, SignalInfo
+    >>> data = pd.DataFrame({"A1.RP": 0.0}, index=pd.Index([k / 100 for k in range(6000)],
+    ...                     name="time"))
+    >>> info = {"A1.RP": SignalInfo("A1.RP", None, None, 0.01)}
+    >>> windows, note = robot_windows(Recording(data, {}, info, sample_period=0.01))
+    >>> [w.label for w in windows]
+    ['part 1 of 3: 0-20 s', 'part 2 of 3: 20-40 s', 'part 3 of 3: 40-60 s']
+    """
+    p = parameters if parameters is not None else NetworkParameters()
+    lag = (p.dim - 1) * p.delay
+    period = recording.sample_period
+    spans = [_parts(a, b, period, lag) for a, b in recording.segments]
+    if all(len(parts) == 1 for parts in spans):
+        return tuple(dataclasses.replace(span_window(a, b), label=f"whole recording {a:g}-{b:g} s")
+                     for (a, b), in spans), ""
+    flat = [span for parts in spans for span in parts]
+    chosen = sorted({round(k * (len(flat) - 1) / (ROBOT_MAX_WINDOWS - 1))
+                     for k in range(ROBOT_MAX_WINDOWS)}) if len(flat) > ROBOT_MAX_WINDOWS \
+        else list(range(len(flat)))
+    windows = tuple(dataclasses.replace(span_window(*flat[k]),
+                                        label=f"part {k + 1} of {len(flat)}: "
+                                              f"{flat[k][0]:g}-{flat[k][1]:g} s")
+                    for k in chosen)
+    longest = max(b - a for a, b in flat)
+    note = (f"A network over more than {ROBOT_MAX_STATES:,} states costs minutes: the "
+            f"recording is cut into {len(flat)} consecutive parts of at most "
+            f"{ROBOT_MAX_STATES:,} states ({longest:.1f} s) each, one network per part")
+    if len(chosen) < len(flat):
+        note += (f"; {len(chosen)} of them, spread evenly over the recording, are computed "
+                 "here (each axis's own report covers its every move)")
+    return windows, note + "."
+
+
 @dataclass(frozen=True)
 class RobotInspection:
     """What :func:`inspect_robot` found in a recording of several axes.
@@ -98,6 +178,9 @@ class RobotInspection:
         (:func:`pair_scope`), derived from ``networks`` when first read.
     failures : tuple of WindowFailure
         Windows without their robot network or a part of its evidence.
+    windows_note : str
+        How the recording was cut into windows (:func:`robot_windows`; empty when each
+        segment is one window).
     parameters : NetworkParameters
     evidence : bool
     elapsed : float
@@ -116,6 +199,7 @@ class RobotInspection:
     evidence: bool
     elapsed: float
     recording: Recording = dataclasses.field(repr=False)
+    windows_note: str = ""
 
     @functools.cached_property
     def pairs(self) -> dict[str, pd.DataFrame]:
@@ -162,7 +246,6 @@ def inspect_robot(
         A signal that is not in the recording.
     """
     from funcnet.errors import FuncnetError, ParameterError
-    from funcnet.robot.windows import span_window
 
     started = time.perf_counter()
     if not recording.axes:
@@ -171,10 +254,7 @@ def inspect_robot(
     if evidence:
         check_evidence_settings(**(evidence_options or EvidenceSettings()))
     nodes = list(signals) if signals is not None else paper_nodes(recording.data.columns)
-    windows = tuple(
-        dataclasses.replace(span_window(a, b), label=f"whole recording {a:g}-{b:g} s")
-        for a, b in recording.segments
-    )
+    windows, note = robot_windows(recording, p)
     total = len(recording.axes) + 2
     _step(progress, 0, total, "robot network")
     networks = window_networks(recording, windows, signals=nodes, parameters=p,
@@ -207,5 +287,6 @@ def inspect_robot(
         evidence=evidence,
         elapsed=time.perf_counter() - started,
         recording=recording,
+        windows_note=note,
     )
 

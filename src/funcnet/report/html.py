@@ -73,10 +73,35 @@ def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: int = 100) -> Pa
     pathlib.Path
         ``path``.
     """
+    _settle_layout(fig, dpi)
     with atomic_path(path) as tmp:
         # zlib level 3, not PIL's 6: the same pixels, files ~8% larger, encoding ~40% faster
         fig.savefig(tmp, format="png", dpi=dpi, pil_kwargs={"compress_level": 3})
     return Path(path)
+
+
+def _settle_layout(fig: Any, dpi: int) -> None:
+    """Run a figure's layout engine once and switch it off before saving.
+
+    With a layout engine on, ``savefig`` draws the whole figure twice: a dry run (every
+    artist, to run the layout first) and the pixels. The layout alone gives the same positions
+    (the dry run calls it before drawing anything), so the saved pixels are the same and the
+    dry run's drawing is saved (a tenth of a robot page's time). Only at the figure's own dpi,
+    which the layout is computed at.
+    """
+    engine = fig.get_layout_engine()
+    if engine is None or fig.dpi != dpi or not hasattr(engine, "execute"):
+        return
+    import matplotlib
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    if not isinstance(fig.canvas, FigureCanvasAgg):
+        FigureCanvasAgg(fig)
+    engine.execute(fig)
+    # None, not "none": "none" leaves a placeholder engine, and savefig still dry-runs for it.
+    with matplotlib.rc_context({"figure.autolayout": False,
+                                "figure.constrained_layout.use": False}):
+        fig.set_layout_engine(None)
 
 
 def escape(value: Any) -> str:

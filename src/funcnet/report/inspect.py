@@ -420,7 +420,7 @@ def write_robot_inspection(
     gaps += " The robot network is one per segment." if gaps else ""
     units = converted_sentence(ins.recording.signals)
     name = Path(ins.source).name
-    network_parts = []
+    network_parts = [f"<p>{escape(ins.windows_note)}</p>"] if ins.windows_note else []
     for k, window in enumerate(ins.windows):
         label = window.label
         if label not in ins.networks:
