@@ -41,8 +41,8 @@ def time_sentence(recording: Any) -> str:
     >>> import pandas as pd
     >>> rec = S(data=pd.DataFrame(index=[0.0, 0.001, 0.002]), sample_period=0.001,
     ...         time_origin=107742.743, time_unit="us", start_time=None)
-    >>> time_sentence(rec)
-    '0.002 s sampled every 1 ms (time from the log's start; its clock, in us, read 107742.743 s there)'
+    >>> print(time_sentence(rec))
+    0.002 s sampled every 1 ms (time from the log's start; its clock, in us, read 107742.743 s there)
     """  # noqa: E501
     index = recording.data.index
     span = float(index[-1] - index[0]) if len(index) else 0.0

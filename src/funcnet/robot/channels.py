@@ -21,8 +21,8 @@ any tail of it (``ref_pos_deg``, ``"rec.ref_pos_deg"``; :func:`resolve_fields`).
 ``time`` marks the file's time signal; a ``[units]`` table gives units to signals whose file does
 not state them (``act_torque_abs_nm = "N m"``).
 
-Length: one parser checks every table of a map ([signals], [layout], [units], [bag]) against
-the others, so they stay in one module.
+Length: over 600 lines because one parser checks every table of a map ([signals], [layout],
+[units], [bag]) against the others.
 """
 
 from __future__ import annotations
