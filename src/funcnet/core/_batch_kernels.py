@@ -59,7 +59,7 @@ DIRECT_PAIRS = 6144
 #: :func:`funcnet.core.measures.cross_measures`, is computed by these kernels (thresholds selected
 #: among candidate distances that fit in cache); larger ones go through the per-window path,
 #: whose kernels for the whole matrix are faster there. Chosen by measurement
-#: (benchmarks/RESULTS.md, "Many short windows").
+#: (benchmarks/HISTORY.md, "Many short windows").
 DIRECT_MAX_STATES = 800
 _SAMPLE = 512
 # From this many candidates on, the sample is _LARGE_SAMPLE keys: four times the sample, a

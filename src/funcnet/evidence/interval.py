@@ -109,7 +109,7 @@ BETA_MAX = 0.75
 #: (the limit for plain windows) the kernel still beats the per-resample path here, where each
 #: of many pairs shares its signals' recurrences: measured on 18 nodes (153 pairs) of a 26 s
 #: UR5 run, one thread each, 1.8x at 855 kept states, 1.4x at 1,254, 1.1x at 1,596, 1.0x at
-#: 1,881 and 0.95x at 2,394 (benchmarks/RESULTS.md, "Whole robots with evidence"). The
+#: 1,881 and 0.95x at 2,394 (benchmarks/HISTORY.md, "Whole robots with evidence"). The
 #: numbers are the same either way.
 RESAMPLE_MAX_STATES = 1600
 
