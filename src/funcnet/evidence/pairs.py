@@ -36,7 +36,7 @@ import numpy as np
 
 from funcnet.core.embedding import signal_states
 from funcnet.core.measures import isrn_measures
-from funcnet.core.recurrence import auto_recurrence, cross_recurrence
+from funcnet.core.recurrence import PackedRecurrence, auto_recurrence, cross_recurrence
 from funcnet.core.thresholds import signal_thresholds
 from funcnet.errors import ParameterError, SignalError
 from funcnet.evidence.dependence import (
@@ -295,72 +295,15 @@ def pairwise_evidence(
     alpha = float(alpha)
     p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
     signals = list(signals)
+    keys, called = _signal_names(signals, names)
     n = len(signals)
-    if n < 2:
-        raise SignalError(f"pairwise_evidence needs at least two signals, got {n}")
-    keys: list[Any] = list(range(n)) if names is None else list(names)
-    if len(keys) != n:
-        raise ParameterError.of("names", f"has {len(keys)} entries for {n} signals")
-    lengths = {np.shape(s)[0] for s in signals}
-    if len(lengths) != 1:
-        raise SignalError(f"signals must have equal lengths, got {sorted(lengths)}")
     n_pairs = n * (n - 1) // 2
     k = default_surrogates(n_pairs, alpha) if surrogates is None else surrogates
-    called = [f"signals[{i}]" if names is None else repr(str(keys[i])) for i in range(n)]
-    thresholds, (cr, cross_eps) = signal_thresholds(p, n)
-    states = [signal_states(s, parameters=p, name=c) for s, c in zip(signals, called, strict=True)]
-    autos = [
-        auto_recurrence(s, rr=rate, eps=eps, parameters=p, name=c)
-        for s, (rate, eps), c in zip(states, thresholds, called, strict=True)
-    ]
-    dense = [a.to_dense().astype(np.uint8) for a in autos]
-    # each signal's recurrent pairs once, for all its pairs' shift tests
-    recurrent = [recurrent_pairs(d) for d in dense] if surrogate_method == "shift" else None
-    decorrelation = [decorrelation_time(s) for s in signals]
-    span = (p.dim - 1) * p.delay + 1
-    # Whether each pair can reach alpha is known from the sizes: the intervals of those that
-    # cannot are not drawn (unless asked for).
-    n_states = int(np.shape(states[0])[0])
-    planned = [planned_surrogates(surrogate_method, n_states, k,
-                                  min_shift=max(decorrelation[i], decorrelation[j], span))
-               for i in range(n) for j in range(i + 1, n)]
-    # the least p-value each can reach, BH-adjusted (funcnet.evidence.reading.untestable)
-    k_planned = np.asarray(planned, dtype=np.float64)
-    with np.errstate(divide="ignore"):
-        least = benjamini_hochberg(np.where(k_planned > 0, 1.0 / (k_planned + 1.0), np.nan))
-    can_reach = least <= alpha if intervals != "all" else np.ones(n_pairs, bool)
-    raw: list[dict[str, Any]] = []
-    for i in range(n):
-        for j in range(i + 1, n):
-            if observed is None:
-                cr_ij = cross_recurrence(states[i], states[j], cr=cr, eps=cross_eps,
-                                         parameters=p, names=(called[i], called[j]))
-                measures = isrn_measures(autos[i], autos[j], cr_ij,
-                                         parameters=p.for_pair(i, j))
-                differences = (measures.c_diff, measures.t_diff)
-            else:
-                c_diff, t_diff = observed[(keys[i], keys[j])]
-                differences = (float(c_diff), float(t_diff))
-            try:
-                plan = surrogate_plan(
-                    surrogate_method, dense[j], k,
-                    min_shift=max(decorrelation[i], decorrelation[j], span),
-                    seed=[int(seed), i, j],
-                )
-            except ParameterError:
-                plan = None
-            entry: dict[str, Any] = {"key": (keys[i], keys[j])}
-            if plan is None:
-                entry.update(statistic=np.nan, p=np.nan, k=0, index=np.nan, index_p=np.nan)
-            else:
-                test = dependence_test(
-                    dense[i], dense[j], plan, theiler=p.theiler,
-                    recurrent=None if recurrent is None else (recurrent[i], recurrent[j]))
-                entry.update(statistic=test.statistic, p=test.p_value, k=test.surrogates,
-                             index=test.direction_index, index_p=test.direction_p)
-            entry["observed"] = differences
-            entry["pair"] = (i, j)
-            raw.append(entry)
+    prepared = _prepare(signals, p, called, surrogate_method)
+    can_reach = _can_reach(prepared, surrogate_method, k, alpha, intervals)
+    raw = [_test_pair(prepared, p, i, j, k, keys=keys, seed=seed,
+                      surrogate_method=surrogate_method, observed=observed)
+           for i in range(n) for j in range(i + 1, n)]
     for e in raw:
         c_diff, t_diff = e["observed"]
         e["interval"] = AsymmetryInterval.without_resamples(c_diff, t_diff, level=level)
@@ -370,25 +313,134 @@ def pairwise_evidence(
     if resamples and chosen:
         # One set of subsamples for the network: each signal is re-thresholded once per
         # resample.
-        found = asymmetry_intervals(states, [e["pair"] for e in chosen],
+        found = asymmetry_intervals(prepared.states, [e["pair"] for e in chosen],
                                     [e["observed"] for e in chosen], parameters=p,
                                     resamples=resamples, level=level, seed=seed)
         for e, interval in zip(chosen, found, strict=True):
             e["interval"] = interval
     direction_p = benjamini_hochberg([e["index_p"] for e in raw])
-    out: dict[tuple[Any, Any], PairEvidence] = {}
-    for e, cp, dp in zip(raw, coupling_p, direction_p, strict=True):
-        coupled = bool(cp <= alpha)  # NaN compares False
-        direction = ""
-        if coupled and dp <= alpha and e["index"] != 0:
-            direction = "x->y" if e["index"] > 0 else "y->x"
-        iv = e["interval"]
-        out[e["key"]] = PairEvidence(
-            coupling_statistic=float(e["statistic"]), coupling_p=float(cp), coupled=coupled,
-            surrogates=int(e["k"]), c_diff=iv.c_diff, t_diff=iv.t_diff,
-            c_diff_low=iv.c_diff_low, c_diff_high=iv.c_diff_high,
-            t_diff_low=iv.t_diff_low, t_diff_high=iv.t_diff_high,
-            c_sign_fraction=iv.c_sign_fraction, t_sign_fraction=iv.t_sign_fraction,
-            direction_index=float(e["index"]), direction_p=float(dp), direction=direction,
-        )
-    return out
+    return {e["key"]: _pair_evidence(e, cp, dp, alpha)
+            for e, cp, dp in zip(raw, coupling_p, direction_p, strict=True)}
+
+
+@dataclass(frozen=True)
+class _Prepared:
+    """Each signal's states and recurrence, computed once for all the pairs it is in."""
+
+    called: list[str]
+    states: list[np.ndarray]
+    autos: list[PackedRecurrence]
+    dense: list[np.ndarray]
+    # each signal's recurrent pairs, for all its pairs' shift tests (None for twins)
+    recurrent: list[np.ndarray] | None
+    decorrelation: list[int]
+    span: int
+    cr: float
+    cross_eps: float | None
+
+    def min_shift(self, i: int, j: int) -> int:
+        """``s0`` of the pair's shift lattice."""
+        return max(self.decorrelation[i], self.decorrelation[j], self.span)
+
+
+def _signal_names(signals: list[Any], names: Sequence[str] | None) -> tuple[list[Any], list[str]]:
+    """The result's keys and the names errors use; raise on too few or unequal signals."""
+    n = len(signals)
+    if n < 2:
+        raise SignalError(f"pairwise_evidence needs at least two signals, got {n}")
+    keys: list[Any] = list(range(n)) if names is None else list(names)
+    if len(keys) != n:
+        raise ParameterError.of("names", f"has {len(keys)} entries for {n} signals")
+    lengths = {np.shape(s)[0] for s in signals}
+    if len(lengths) != 1:
+        raise SignalError(f"signals must have equal lengths, got {sorted(lengths)}")
+    called = [f"signals[{i}]" if names is None else repr(str(keys[i])) for i in range(n)]
+    return keys, called
+
+
+def _prepare(signals: list[Any], p: NetworkParameters, called: list[str],
+             surrogate_method: str) -> _Prepared:
+    """Embed each signal and compute its recurrence once, at the network's thresholds."""
+    thresholds, (cr, cross_eps) = signal_thresholds(p, len(signals))
+    states = [signal_states(s, parameters=p, name=c) for s, c in zip(signals, called, strict=True)]
+    autos = [
+        auto_recurrence(s, rr=rate, eps=eps, parameters=p, name=c)
+        for s, (rate, eps), c in zip(states, thresholds, called, strict=True)
+    ]
+    dense = [a.to_dense().astype(np.uint8) for a in autos]
+    recurrent = [recurrent_pairs(d) for d in dense] if surrogate_method == "shift" else None
+    decorrelation = [decorrelation_time(s) for s in signals]
+    return _Prepared(called=called, states=states, autos=autos, dense=dense,
+                     recurrent=recurrent, decorrelation=decorrelation,
+                     span=(p.dim - 1) * p.delay + 1, cr=cr, cross_eps=cross_eps)
+
+
+def _can_reach(prepared: _Prepared, surrogate_method: str, k: int, alpha: float,
+               intervals: str) -> np.ndarray:
+    """Per pair, whether its intervals may be drawn, before any measure.
+
+    Whether each pair can reach alpha is known from the sizes: the intervals of those that
+    cannot are not drawn (unless ``intervals="all"``).
+    """
+    n = len(prepared.states)
+    n_states = int(np.shape(prepared.states[0])[0])
+    planned = [planned_surrogates(surrogate_method, n_states, k,
+                                  min_shift=prepared.min_shift(i, j))
+               for i in range(n) for j in range(i + 1, n)]
+    # the least p-value each can reach, BH-adjusted (funcnet.evidence.reading.untestable)
+    k_planned = np.asarray(planned, dtype=np.float64)
+    with np.errstate(divide="ignore"):
+        least = benjamini_hochberg(np.where(k_planned > 0, 1.0 / (k_planned + 1.0), np.nan))
+    return least <= alpha if intervals != "all" else np.ones(len(planned), bool)
+
+
+def _test_pair(prepared: _Prepared, p: NetworkParameters, i: int, j: int, k: int, *,
+               keys: list[Any], seed: int, surrogate_method: str,
+               observed: Mapping[tuple[Any, Any], tuple[float, float]] | None,
+               ) -> dict[str, Any]:
+    """One pair's differences and dependence test, before the adjustment across pairs."""
+    if observed is None:
+        cr_ij = cross_recurrence(prepared.states[i], prepared.states[j], cr=prepared.cr,
+                                 eps=prepared.cross_eps, parameters=p,
+                                 names=(prepared.called[i], prepared.called[j]))
+        measures = isrn_measures(prepared.autos[i], prepared.autos[j], cr_ij,
+                                 parameters=p.for_pair(i, j))
+        differences = (measures.c_diff, measures.t_diff)
+    else:
+        c_diff, t_diff = observed[(keys[i], keys[j])]
+        differences = (float(c_diff), float(t_diff))
+    try:
+        plan = surrogate_plan(surrogate_method, prepared.dense[j], k,
+                              min_shift=prepared.min_shift(i, j), seed=[int(seed), i, j])
+    except ParameterError:
+        plan = None
+    entry: dict[str, Any] = {"key": (keys[i], keys[j])}
+    if plan is None:
+        entry.update(statistic=np.nan, p=np.nan, k=0, index=np.nan, index_p=np.nan)
+    else:
+        recurrent = prepared.recurrent
+        test = dependence_test(
+            prepared.dense[i], prepared.dense[j], plan, theiler=p.theiler,
+            recurrent=None if recurrent is None else (recurrent[i], recurrent[j]))
+        entry.update(statistic=test.statistic, p=test.p_value, k=test.surrogates,
+                     index=test.direction_index, index_p=test.direction_p)
+    entry["observed"] = differences
+    entry["pair"] = (i, j)
+    return entry
+
+
+def _pair_evidence(e: Mapping[str, Any], cp: float, dp: float, alpha: float) -> PairEvidence:
+    """One pair's evidence from its test, its interval and its adjusted p-values."""
+    coupled = bool(cp <= alpha)  # NaN compares False
+    direction = ""
+    if coupled and dp <= alpha and e["index"] != 0:
+        direction = "x->y" if e["index"] > 0 else "y->x"
+    iv = e["interval"]
+    return PairEvidence(
+        coupling_statistic=float(e["statistic"]), coupling_p=float(cp), coupled=coupled,
+        surrogates=int(e["k"]), c_diff=iv.c_diff, t_diff=iv.t_diff,
+        c_diff_low=iv.c_diff_low, c_diff_high=iv.c_diff_high,
+        t_diff_low=iv.t_diff_low, t_diff_high=iv.t_diff_high,
+        c_sign_fraction=iv.c_sign_fraction, t_sign_fraction=iv.t_sign_fraction,
+        direction_index=float(e["index"]), direction_p=float(dp), direction=direction,
+    )
