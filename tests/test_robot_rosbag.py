@@ -347,6 +347,10 @@ def test_a_map_for_a_bag_is_checked(tmp_path):
     with pytest.raises(ChannelError, match=r"\[bag\]: joints must list"):
         channel_map(_map(tmp_path, '[bag]\njoints = []\n[bag.signals]\n'
                                    'q = { topic = "/j", field = "position" }\n'))
+    # a name repeated but for blanks is the same joint twice
+    with pytest.raises(ChannelError, match=r"\[bag\]: joints must list"):
+        channel_map(_map(tmp_path, '[bag]\njoints = ["a", " a"]\n[bag.signals]\n'
+                                   'q = { topic = "/j", field = "position" }\n'))
     with pytest.raises(ChannelError, match=r"time must be \"header\"|time must be"):
         channel_map(_map(tmp_path, '[bag]\ntime = "stamp"\njoints = ["a"]\n[bag.signals]\n'
                                    'q = { topic = "/j", field = "position" }\n'))

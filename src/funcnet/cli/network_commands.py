@@ -207,11 +207,11 @@ def network(
             if list_phases:
                 print_phases(recording, trace)
                 return
-            from funcnet.core.embedding import MIN_STATES
+            from funcnet.core.embedding import min_samples
 
             chosen = chosen_windows(
                 recording, trace, phase, whole, bounds,
-                min_samples=(parameters.dim - 1) * parameters.delay + MIN_STATES,
+                min_samples=min_samples(parameters.dim, parameters.delay),
             )
             check_cost(recording, chosen, names, parameters, force)
             nets = window_networks(
@@ -410,11 +410,11 @@ def stability(
         if list_phases:
             print_phases(recording, trace)
             return
-        from funcnet.core.embedding import MIN_STATES
+        from funcnet.core.embedding import min_samples
 
         chosen = chosen_windows(  # as funcnet network: phases the embedding cannot hold, said
             recording, trace, phase, whole, bounds,
-            min_samples=(parameters.dim - 1) * parameters.delay + MIN_STATES,
+            min_samples=min_samples(parameters.dim, parameters.delay),
         )
         nodes = names or paper_nodes(recording.data.columns)
         check_cost(recording, chosen, nodes, parameters, force)

@@ -31,6 +31,7 @@ from funcnet.parameters import (
 
 __all__ = [
     "MIN_STATES",
+    "min_samples",
     "embed",
     "signal_states",
     "estimate_delay",
@@ -41,6 +42,17 @@ __all__ = [
 #: 0.05 selects 3 of the 42 ordered pairs of ``A_X`` (2 unordered: more than one pair) and 3 of
 #: the 49 pairs of ``CR_XY``; with fewer, one pair or none decides a whole structure.
 MIN_STATES = 7
+
+
+def min_samples(dim: int, delay: int) -> int:
+    """The fewest samples a signal needs to give :data:`MIN_STATES` states at ``dim``, ``delay``.
+
+    Examples
+    --------
+    >>> min_samples(3, 10)
+    27
+    """
+    return (dim - 1) * delay + MIN_STATES
 
 
 # --------------------------------------------------------------------------------------------

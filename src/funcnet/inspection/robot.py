@@ -44,11 +44,13 @@ BETWEEN_AXES = "between-axes"
 #: Most states of one robot-network window. A network's cost grows about as the cube of its
 #: states (the triangle counts of Eq. 6-7) and its intervals' resamples grow with it: a longer
 #: segment is cut into equal consecutive parts of at most this many states, so the cost per
-#: recorded second and the peak memory stay bounded. 2,500 keeps each shared KUKA KR 300 run
-#: (2,481 states) and the shortest UR5 run (1,943) whole (benchmarks/RESULTS.md).
-ROBOT_MAX_STATES = 2500
+#: recorded second and the peak memory stay bounded. A cut is a last resort: the direction
+#: reading of a shorter window is weaker, and cut at 2,500 states UR5 run No9 (no disturbance)
+#: read 19 of its 153 set-point pairs into a set-point, against none whole. 4,500 keeps every
+#: shipped recording whole (the longest, UR5 No9 with the force sensor, has 4,276 states).
+ROBOT_MAX_STATES = 4500
 #: Most robot-network windows of one page: a recording that needs more parts (at the default
-#: embedding, over about 12 x 2,520 samples) gets this many, spread evenly over it, and the
+#: embedding, over about 12 x 4,520 samples) gets this many, spread evenly over it, and the
 #: page says which; each axis's own report still covers its every move.
 ROBOT_MAX_WINDOWS = 12
 
@@ -122,12 +124,12 @@ def robot_windows(recording: Recording,
     Examples
     --------
     >>> from funcnet.robot.recording import Recording, SignalInfo
-    >>> data = pd.DataFrame({"A1.RP": 0.0}, index=pd.Index([k / 100 for k in range(6000)],
+    >>> data = pd.DataFrame({"A1.RP": 0.0}, index=pd.Index([k / 100 for k in range(12000)],
     ...                     name="time"))
     >>> info = {"A1.RP": SignalInfo("A1.RP", None, None, 0.01)}
     >>> windows, note = robot_windows(Recording(data, {}, info, sample_period=0.01))
     >>> [w.label for w in windows]
-    ['part 1 of 3: 0-20 s', 'part 2 of 3: 20-40 s', 'part 3 of 3: 40-60 s']
+    ['part 1 of 3: 0-40 s', 'part 2 of 3: 40-80 s', 'part 3 of 3: 80-120 s']
     """
     p = parameters if parameters is not None else NetworkParameters()
     lag = (p.dim - 1) * p.delay

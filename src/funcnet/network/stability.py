@@ -74,7 +74,7 @@ import numpy as np
 import pandas as pd
 
 from funcnet.core.batch import batch_pairs
-from funcnet.core.embedding import MIN_STATES
+from funcnet.core.embedding import min_samples
 from funcnet.errors import FuncnetError, ParameterError, SignalError
 from funcnet.network._inputs import column_names, float_columns, node_groups
 from funcnet.network.functional import functional_network
@@ -361,7 +361,7 @@ def fitting_grid(grid: Mapping[Any, Sequence[Any]] | None, parameters: NetworkPa
         for change in changes:
             setting = base.replace(**change)
             value = _value(change, fields)
-            if (setting.dim - 1) * setting.delay + MIN_STATES > n_samples:
+            if min_samples(setting.dim, setting.delay) > n_samples:
                 left_out.append(f"{label}={value!r}")
             else:
                 values.append(value)

@@ -157,7 +157,7 @@ def bag_layout(table: Any, origin: object) -> BagLayout:
             origin, f"[bag]: unknown keys {sorted(unknown)}; it holds time, joints, signals"
         )
     joints, signals = table.get("joints"), table.get("signals")
-    if not _texts(joints) or len(set(joints)) != len(joints):
+    if not _texts(joints) or len({j.strip() for j in joints}) != len(joints):
         raise ChannelError(
             origin, f"[bag]: joints must list the joints' names as the messages give them, axis "
             f"1 first, each once; got {joints!r}"
