@@ -48,6 +48,7 @@ LAYERS: dict[str, tuple[str, float]] = {
     "funcnet.core._isrn_kernels": ("core1", 1),
     "funcnet.core.thresholds": ("core1", 1),
     "funcnet.core._batch_kernels": ("core1", 1),  # below the measures, which use them
+    "funcnet.core._keys": ("core1", 1),
     "funcnet.core.recurrence": ("recurrence", 2),
     "funcnet.core.measures": ("measures", 3),
     "funcnet.core.kinds": ("measures", 3),

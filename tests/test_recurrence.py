@@ -12,10 +12,12 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
+import numba
 import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
+import funcnet.core._keys as _keys
 import funcnet.core.thresholds as order_statistic
 from funcnet.core.embedding import embed, estimate_delay, estimate_dimension, signal_states
 from funcnet.core.recurrence import (
@@ -319,6 +321,54 @@ def test_squared_bound_decides_exactly_like_the_distance(eps, relative, strict):
     for key in (bound, math.nextafter(bound, math.inf), eps * eps * (1 + relative)):
         distance = math.sqrt(key)
         assert (key <= bound) == (distance < eps if strict else distance <= eps)
+
+
+def _brute_key_bound(eps: float, strict: bool, metric: int) -> float:
+    """The largest non-negative float key whose distance is within eps, by bisection of the
+    keys' bit patterns (non-negative floats order as their bits); -inf when not even 0 is."""
+
+    def within(bits: int) -> bool:
+        key = float(np.int64(bits).view(np.float64))
+        distance = float(np.sqrt(key)) if metric == 0 else key
+        return distance < eps if strict else distance <= eps
+
+    lo, hi = 0, int(np.float64(np.inf).view(np.int64))  # within(lo) holds, within(hi) not
+    if not within(lo):
+        return -math.inf
+    while hi - lo > 1:
+        middle = (lo + hi) // 2
+        lo, hi = (middle, hi) if within(middle) else (lo, middle)
+    return float(np.int64(lo).view(np.float64))
+
+
+@numba.njit
+def _compiled_key_bound(eps, strict, metric):
+    return _keys.key_bound(eps, strict, metric)  # as the batched kernels call it
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    eps=st.one_of(st.floats(5e-324, 1e300), st.floats(1e-6, 1e3).map(lambda v: v * v)),
+    ulps=st.integers(-3, 3),
+    strict=st.booleans(),
+    metric=st.sampled_from([0, 1, 2]),
+)
+def test_the_one_key_bound_is_the_brute_force_bound_bit_for_bit(eps, ulps, strict, metric):
+    for _ in range(abs(ulps)):  # a few ulps off a square: where rounding of the root decides
+        eps = math.nextafter(eps, math.copysign(math.inf, ulps))
+    want = _brute_key_bound(eps, strict, metric)
+    for got in (order_statistic._key_bound(eps, strict, metric),
+                _compiled_key_bound(eps, strict, metric)):
+        assert np.float64(got).view(np.int64) == np.float64(want).view(np.int64)
+
+
+def test_key_bound_at_zero():
+    # eps = 0 (an order statistic among tied, resting samples): only key 0, and none if strict
+    assert order_statistic._key_bound(0.0, False, 0) == 0.0 == _brute_key_bound(0.0, False, 0)
+    assert order_statistic._key_bound(0.0, True, 0) == -math.inf
+    for metric in (1, 2):
+        assert order_statistic._key_bound(0.0, False, metric) == 0.0
+        assert order_statistic._key_bound(0.0, True, metric) < 0.0  # no key >= 0 is within
 
 
 def test_rate_times_pairs_a_hair_above_an_integer_takes_no_extra_pair():

@@ -9,9 +9,10 @@ pair.
 
 Every float is computed with the operations, and in the order, of the per-window path
 (:func:`funcnet.network.functional_network`): the same keys (squared distances accumulated
-coordinate by coordinate), the same exact order statistic, the same key bound, the same integer
-counts, and NumPy's pairwise summation for the means (:func:`_pairwise_sum` reproduces
-``np.add.reduce`` on a contiguous float64 array).
+coordinate by coordinate), the same exact order statistic, the same key bound (one compiled
+copy for both, :func:`funcnet.core._keys.key_bound`), the same integer counts, and NumPy's
+pairwise summation for the means (:func:`_pairwise_sum` reproduces ``np.add.reduce`` on a
+contiguous float64 array).
 
 Thresholds (small M: all candidate keys fit in cache). Below :data:`DIRECT_PAIRS` candidates,
 every key is written to a buffer and the k-th is selected (:func:`_select`, a quickselect with
@@ -45,6 +46,7 @@ from funcnet.core._isrn_kernels import (
     dim3_squared_keys,
     first_candidate,
 )
+from funcnet.core._keys import key_bound, key_distance, next_up
 
 Array = np.ndarray
 
@@ -171,52 +173,6 @@ def _mean(a: Array) -> float:
 
 
 @njit(cache=True)
-def _next_up(x: float) -> float:
-    """``np.nextafter(x, inf)`` for finite x, by stepping the bit pattern."""
-    if x == 0.0:
-        return 5e-324
-    bits = np.empty(1, dtype=np.float64)
-    bits[0] = x
-    as_int = bits.view(np.int64)
-    as_int[0] += 1 if x > 0 else -1
-    return bits[0]
-
-
-@njit(cache=True)
-def _next_down(x: float) -> float:
-    """``np.nextafter(x, -inf)`` for finite x."""
-    return -_next_up(-x)
-
-
-@njit(cache=True)
-def _within(key: float, eps: float, strict: bool) -> bool:
-    distance = math.sqrt(key)
-    return distance < eps if strict else distance <= eps
-
-
-@njit(cache=True)
-def _key_bound(eps: float, strict: bool, metric: int) -> float:
-    """The largest key whose distance is <= eps (< eps if strict); -inf when there is none.
-
-    The compiled twin of :func:`funcnet.core.recurrence._key_bound`.
-    """
-    if metric != 0:
-        if math.isinf(eps):
-            return eps
-        return _next_down(eps) if strict else eps
-    if math.isinf(eps):
-        return eps
-    key = eps * eps if eps > 0 else 0.0
-    while key > 0 and not _within(key, eps, strict):
-        key = _next_down(key)
-    if not _within(key, eps, strict):
-        return -np.inf
-    while _within(_next_up(key), eps, strict):
-        key = _next_up(key)
-    return key
-
-
-@njit(cache=True)
 def _partition(a: Array, lo: int, hi: int, pivot: float, or_equal: bool) -> int:
     """Move the keys of a[lo:hi] below ``pivot`` (or equal to it, if ``or_equal``) to the front,
     without branches (Lomuto, swap always, advance by the comparison); return their end."""
@@ -290,11 +246,6 @@ def _row_keys(
     for c in range(dim):
         column = y[start + c * delay : start + c * delay + n]
         add_coordinate_keys(x[i + c * delay], column, n, c == 0, metric, keys)
-
-
-@njit(cache=True)
-def _key_distance(key: float, metric: int) -> float:
-    return math.sqrt(key) if metric == 0 else key
 
 
 # --------------------------------------------------------------------------------------------
@@ -437,8 +388,8 @@ def _threshold(
         )
         if inside <= capacity and below < rank <= below + inside:
             work = band_keys[:inside].copy()
-            eps = _key_distance(_select(work, inside, rank - below - 1), metric)
-            bound = _key_bound(eps, strict, metric)
+            eps = key_distance(_select(work, inside, rank - below - 1), metric)
+            bound = key_bound(eps, strict, metric)
             if lo <= bound <= hi:
                 count = below
                 for t in range(inside):  # without branches: half of them are taken
@@ -455,10 +406,10 @@ def _threshold(
         if start < m:
             _row_keys(x, i, y, start, m - start, dim, delay, metric, cand[n:])
             n += m - start
-    eps = _key_distance(_select(cand, n, rank - 1), metric)
-    bound = _key_bound(eps, strict, metric)
+    eps = key_distance(_select(cand, n, rank - 1), metric)
+    bound = key_bound(eps, strict, metric)
     # Pack key <= bound as key < the next key up; an empty band.
-    lo = -np.inf if bound == -np.inf else _next_up(bound)
+    lo = -np.inf if bound == -np.inf else next_up(bound)
     no_keys = np.empty(0, dtype=np.float64)
     no_index = np.empty(0, dtype=np.int64)
     count, _ = _scan(

@@ -3,7 +3,7 @@
 Distances are compared through a monotone *key*: the sum of squares for "euclidean" (no square
 root in the hot loops), the distance itself otherwise. A threshold eps becomes the largest key
 whose distance is <= eps (or < eps), computed exactly with the same correctly rounded square
-root (:func:`funcnet.core.thresholds._key_bound`), so every comparison equals the one on
+root (:func:`funcnet.core._keys.key_bound`), so every comparison equals the one on
 distances. Keys are accumulated coordinate by coordinate in the order pyunicorn's kernels use,
 so both give the same bits. One row of keys at a time is held, never the distance matrix.
 

@@ -39,6 +39,7 @@ from funcnet.core._isrn_kernels import (
     _scan_rows,
     _transpose_packed,
 )
+from funcnet.core._keys import key_bound as _key_bound, key_distance as _key_distance
 from funcnet.errors import ParameterError
 from funcnet.parameters import NetworkParameters, check_eps_value, check_rate
 
@@ -56,31 +57,6 @@ _BAND_LIMIT = 1 << 22
 # Band buffers hold this many times the pairs the sample expects inside the bracket (plus two
 # rows); a buffer that overflows costs one more pass, not a wrong result.
 _BAND_SLACK = 2.0
-
-
-def _key_bound(eps: float, strict: bool, metric: int) -> float:
-    """The largest key whose distance is <= eps (< eps if strict); -inf when there is none."""
-    if metric != 0:
-        return math.nextafter(eps, -math.inf) if strict else eps
-    if math.isinf(eps):
-        return eps
-
-    def within(key: float) -> bool:
-        distance = math.sqrt(key)
-        return distance < eps if strict else distance <= eps
-
-    key = eps * eps if eps > 0 else 0.0
-    while key > 0 and not within(key):
-        key = math.nextafter(key, -math.inf)
-    if not within(key):
-        return -math.inf
-    while within(math.nextafter(key, math.inf)):
-        key = math.nextafter(key, math.inf)
-    return key
-
-
-def _key_distance(key: float, metric: int) -> float:
-    return math.sqrt(key) if metric == 0 else key
 
 
 def _sample_bracket(
