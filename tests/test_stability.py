@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 import pytest
 from typer.testing import CliRunner
 
 from funcnet import NetworkParameters, functional_network
-from funcnet.errors import ParameterError, SignalError
+from funcnet.errors import ParameterError, RecordingWarning, SignalError
 from funcnet.network import stability as stability_module
 from funcnet.network.stability import check_grid, default_grid, edge_stability, fitting_grid
 
@@ -399,3 +401,88 @@ def test_cli_reads_a_short_window_over_the_settings_it_can_embed(tmp_path) -> No
     table = pd.read_csv(out)
     assert table["settings"].tolist() == expected["settings"].tolist()
     np.testing.assert_array_equal(table["stability"], expected["stability"])
+
+
+# --------------------------------------------------------------------------------------------
+# one rule for a constant signal, and for a missing value, in stability and in the pipeline
+
+
+def _recording_with(column: np.ndarray):
+    """A recording whose MP is ``column`` (not marked as a gap: built directly, as a library
+    user may), beside three moving signals."""
+    from funcnet.robot import Recording, SignalInfo
+
+    t = np.arange(column.size) / 500.0
+    rng = np.random.default_rng(3)
+    data = pd.DataFrame({"RP": np.sin(2 * np.pi * 1.3 * t), "AC": rng.standard_normal(t.size),
+                         "RC": rng.standard_normal(t.size), "MP": column},
+                        index=pd.Index(t, name="time"))
+    signals = {name: SignalInfo(name, None, None, 0.0) for name in data}
+    return Recording(data, {}, signals, source="made.csv", sample_period=0.002)
+
+
+def _stability_compute(recording, window):
+    from funcnet.cli.network_commands import _compute
+
+    return _compute(recording, [window], ["RP", "AC", "RC", "MP"],
+                    NetworkParameters(dim=2, delay=1), {"mu": (0.1,)}, False, Path("made.csv"))
+
+
+def _pipeline(recording, window):
+    from funcnet.pipeline import window_networks
+
+    return window_networks(recording, [window], signals=["RP", "AC", "RC", "MP"], dim=2,
+                           delay=1)
+
+
+@pytest.mark.parametrize("where", ["one", "every but one", "constant but one"])
+def test_a_missing_value_is_the_same_error_in_stability_and_the_pipeline(where) -> None:
+    from funcnet.errors import WindowError
+    from funcnet.robot import Window
+
+    column = np.random.default_rng(4).standard_normal(200)
+    if where == "one":
+        column[50] = np.nan
+    elif where == "every but one":  # before: dropped by stability as constant (NaN > NaN)
+        column[1:] = np.nan
+    else:  # before: dropped by stability as constant (pandas skips the NaN)
+        column[:] = 1.0
+        column[50] = np.nan
+    recording = _recording_with(column)
+    window = Window("w", 0.0, 0.35)
+    with pytest.raises(WindowError) as stability:
+        _stability_compute(recording, window)
+    with pytest.raises(WindowError) as pipeline:
+        _pipeline(recording, window)
+    for caught in (stability, pipeline):
+        assert "signal 'MP' has no recorded value at some of its ticks" in str(caught.value)
+    assert str(stability.value).startswith("made.csv: window 'w'")
+
+
+def test_a_constant_signal_is_left_out_by_both() -> None:
+    from funcnet.pipeline import constant_signals
+    from funcnet.robot import Window
+
+    column = np.full(200, 2.5)
+    column[150:] = 3.0  # constant inside the window only
+    recording = _recording_with(column)
+    window = Window("w", 0.0, 0.25)
+    part = recording.window(0.0, 0.25).data
+    assert constant_signals(part, "w") == ("MP",) and np.ptp(part["MP"]) == 0
+    with pytest.warns(RecordingWarning, match=r"'w' \(MP\)"):
+        frames, _, _ = _stability_compute(recording, window)
+    assert "MP" not in set(frames[0]["x"]) | set(frames[0]["y"])
+    with pytest.warns(RecordingWarning, match=r"'w' \(MP\)"):
+        networks = _pipeline(recording, window)
+    assert networks["w"].window["dropped"] == ("MP",)
+
+
+def test_constant_signals_against_the_range() -> None:
+    from funcnet.pipeline import constant_signals
+
+    rng = np.random.default_rng(5)
+    part = pd.DataFrame({"a": rng.standard_normal(50), "b": np.full(50, -0.0),
+                         "c": np.r_[np.full(49, 1.0), np.nextafter(1.0, 2.0)],
+                         "d": np.r_[np.inf, np.ones(49)], "e": np.full(50, 7.0)})
+    want = tuple(name for name in part if part[name].max() == part[name].min())
+    assert constant_signals(part, "w") == want == ("b", "e")

@@ -57,8 +57,8 @@ from funcnet.robot.recording import Recording
 from funcnet.robot.windows import Window, paper_nodes, phase_windows
 
 __all__ = ["window_networks", "window_evidence", "window_warnings", "constant_warning",
-           "WindowNetworks", "WindowFailure", "CONSTANT_POLICIES", "ERROR_POLICIES",
-           "FAILURE_PARTS"]
+           "constant_signals", "WindowNetworks", "WindowFailure", "CONSTANT_POLICIES",
+           "ERROR_POLICIES", "FAILURE_PARTS"]
 
 #: What :func:`window_networks` does with a signal constant inside a window: raise, or leave it
 #: out of that window's network (the default: one window does not stop the others).
@@ -407,6 +407,48 @@ def window_networks(
     return networks
 
 
+def constant_signals(part: pd.DataFrame, where: str) -> tuple[str, ...]:
+    """The signals of a window that hold one value throughout it (a range of 0).
+
+    The one rule for a constant signal of every command that leaves such a signal out of its
+    window (:func:`window_networks`, ``funcnet stability``).
+
+    Parameters
+    ----------
+    part : DataFrame
+        The window's samples, a column per signal.
+    where : str
+        The window, as an error should name it (the file, the window's label).
+
+    Returns
+    -------
+    tuple of str
+        The constant signals, in column order. An infinite value is not constant (its range is
+        not 0); the normalization refuses it, naming the signal.
+
+    Raises
+    ------
+    WindowError
+        A signal has a missing value (NaN) in the window: it is neither constant nor usable;
+        the message names ``where`` and the first such signal.
+
+    Examples
+    --------
+    >>> part = pd.DataFrame({"RP": [0.0, 1.0], "RC": [2.0, 2.0]})
+    >>> constant_signals(part, "run.csv: window 'cruise 1'")
+    ('RC',)
+    >>> constant_signals(part.assign(RC=[2.0, np.nan]), "run.csv: window 'cruise 1'")
+    Traceback (most recent call last):
+    funcnet.errors.WindowError: run.csv: window 'cruise 1': signal 'RC' has no recorded value...
+    """
+    values = part.to_numpy(dtype=np.float64)
+    missing = np.isnan(values).any(axis=0)
+    if missing.any():
+        raise WindowError(f"{where}: signal {part.columns[missing][0]!r} has no recorded value "
+                          "at some of its ticks")
+    return tuple(str(name) for name in part.columns[np.ptp(values, axis=0) == 0])
+
+
 def constant_warning(where: str, dropped: Mapping[str, Sequence[str]],
                      n_windows: int) -> RecordingWarning | None:
     """The one warning that says which signals were left out of which windows as constant.
@@ -488,15 +530,8 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
     """The network of one window, located (errors name the window; the network records it)."""
     part = recording.window(window.start, window.stop).data[list(signals)]
     values = part.to_numpy(dtype=np.float64)
-    if np.isnan(values).any():
-        column = part.columns[np.isnan(values).any(axis=0)][0]
-        raise WindowError(
-            f"{where}: window {window.label!r} {_span(window)}: "
-            f"signal {column!r} has no recorded value at some of its ticks"
-        )
-    dropped: tuple[str, ...] = ()
-    if drop:
-        dropped = tuple(str(name) for name in part.columns[np.ptp(values, axis=0) == 0])
+    constant = constant_signals(part, f"{where}: window {window.label!r} {_span(window)}")
+    dropped = constant if drop else ()
     if dropped and len(signals) - len(dropped) < 2:
         raise WindowError(
             f"{where}: window {window.label!r} {_span(window)}: signals {list(dropped)} are "

@@ -439,7 +439,7 @@ def _compute(recording: Any, chosen: list[Any], nodes: list[str], parameters: Ne
 
     from funcnet.errors import RecordingWarning
     from funcnet.network.stability import edge_stability, fitting_grid
-    from funcnet.pipeline import constant_warning
+    from funcnet.pipeline import constant_signals, constant_warning
     from funcnet.robot.preprocess import staircase_warning
 
     staircase = staircase_warning(recording, nodes, str(trace))
@@ -450,11 +450,12 @@ def _compute(recording: Any, chosen: list[Any], nodes: list[str], parameters: Ne
     short: dict[str, str] = {}
     for chosen_window in chosen:
         part = recording.window(chosen_window.start, chosen_window.stop).data[list(nodes)]
+        # as funcnet network: a missing value is an error, naming the signal
+        flat = constant_signals(part, f"{trace}: window {chosen_window.label!r}")
         if drop_constant and parameters.normalize is not None:
             # as funcnet network: a constant signal cannot be normalized
-            varies = (part.max() > part.min()).to_numpy()
-            dropped[str(chosen_window.label)] = tuple(map(str, part.columns[~varies]))
-            part = part.loc[:, varies]
+            dropped[str(chosen_window.label)] = flat
+            part = part.drop(columns=list(flat))
         # a short window is read over the settings whose embedding it holds
         fitted, left_out = fitting_grid(grid, parameters, len(part))
         if left_out:
