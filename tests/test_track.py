@@ -249,3 +249,68 @@ def test_two_track_add_at_once_both_land_and_bad_input_is_one_line(tmp_path: Pat
     missing = _funcnet("track", "show", "--store", str(tmp_path / "none.sqlite"), "-o",
                        str(tmp_path / "o"))
     assert missing.exit_code == 2 and "no such store" in missing.stderr
+
+
+# --------------------------------------------------------------------------------------------
+# many runs in one call
+
+
+def _other_program(folder: Path, days: list[float]) -> list[Path]:
+    """Runs of a second program (a 5 deg move instead of the history's 8 deg)."""
+    from datetime import timedelta
+
+    from funcnet.sim import AxisParameters, Trial, simulate_trial, write_trace
+    from funcnet.validation.histories import FIRST_DAY, SETTLE
+
+    paths = []
+    for k, day in enumerate(days):
+        trial = Trial(f"other-{k}", "track", speed=300.0, tcp=1.2, step=5.0, reverse=True,
+                      seed=11 + k)
+        sim = simulate_trial(trial, AxisParameters(settle_time=SETTLE), seed=11)
+        start = (FIRST_DAY + timedelta(days=day)).isoformat()
+        paths.append(write_trace(folder / f"{trial.name}.xml", sim.data.round(6),
+                                 start_time=start))
+    return paths
+
+
+def _whole_store(path: Path) -> dict[str, Any]:
+    """Every table of a store, as plain values (NaN as None)."""
+    with sqlite3.connect(path) as db:
+        return {table: sorted(db.execute(f"SELECT * FROM {table}").fetchall(), key=repr)
+                for table in ("runs", "figures", "programs", "traces")}
+
+
+def test_many_runs_in_one_call_give_the_store_of_one_call_each(tmp_path: Path,
+                                                                monkeypatch) -> None:
+    from funcnet.track import add_runs
+    from funcnet.validation.histories import write_history
+
+    folder = tmp_path / "runs"
+    # 7 runs of one program (more than the 5 references), 2 of another between them in time
+    history = write_history(folder, 5, healthy=6, worn=(1.5,))
+    other = _other_program(folder, [2.5, 8.0])
+    every = [*history, *other, history[0]]  # the first again: kept once
+    reads = {"runs": 0, "programs": 0}
+    for name in reads:
+        original = getattr(kept, f"read_{name}")
+
+        def counted(*args: Any, _name: str = name, _original: Any = original) -> Any:
+            reads[_name] += 1
+            return _original(*args)
+
+        monkeypatch.setattr(kept, f"read_{name}", counted)
+    at_once = add_runs(every, tmp_path / "at-once.sqlite", "cell")
+    assert reads == {"runs": 1, "programs": 1}  # read once per call, not once per run
+    assert sum(a.added for a in at_once) == 9 and not any(a.error for a in at_once)
+
+    one_by_one = tmp_path / "one-by-one.sqlite"
+    in_time = sorted(at_once, key=lambda a: (a.time, a.source))
+    for added in in_time:
+        add_runs([added.source], one_by_one, "cell")
+    first, second = _whole_store(tmp_path / "at-once.sqlite"), _whole_store(one_by_one)
+    assert first == second
+    programs = {row[4] for row in first["runs"]}  # id, robot, time, time_from, program
+    assert len(programs) == 2 and len(first["runs"]) == 9
+    # the departure of the history's last run is against the program's 5 earliest runs
+    counts = {row[0]: row[3] for row in first["figures"] if row[2] == "departure_references"}
+    assert sorted(counts.values()) == [0.0, 0.0, 1.0, 1.0, 2.0, 3.0, 4.0, 5.0, 5.0]

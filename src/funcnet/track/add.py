@@ -7,7 +7,10 @@ plain function of a picklable :class:`RunTask`, so that many runs are read on lo
 or a Dask cluster (:class:`funcnet.study.backends.Backend`, as studies do). :func:`add_runs`
 then, in time order and in this process, names each run's program among the robot's, computes
 its departure from the program's earliest runs (:data:`REFERENCES` of them, kept in the store)
-and writes it in one transaction (:func:`funcnet.track.store.add_run`).
+and writes it in one transaction (:func:`funcnet.track.store.add_run`). The robot's runs and
+programs are read from the store once per call and kept up to date as the call adds runs, so
+adding many runs at once gives the store adding them one call each, in time order, gives; a run
+another process adds meanwhile is not among this call's references.
 
 The run's time: ``--time`` when given, else the file's own start time where the format has one
 (a SINUMERIK trace's ``startTime``), else the file's modification time (a folder's newest file);
@@ -16,14 +19,18 @@ a naive time is taken as UTC. Which one is said per run.
 
 from __future__ import annotations
 
+import bisect
 import contextlib
 import math
 import os
+import sqlite3
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from datetime import UTC, datetime
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+import pandas as pd
 
 from funcnet._io import file_sha256
 from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError
@@ -37,6 +44,9 @@ from funcnet.track.figures import (
     trace_columns,
 )
 from funcnet.track.program import program_name, program_signature, same_program
+
+if TYPE_CHECKING:
+    from funcnet.robot import Recording
 
 __all__ = ["REFERENCES", "REFERENCE_COUNT", "RunTask", "ReadRun", "Added", "iso_time", "read_run",
            "add_runs"]
@@ -162,38 +172,76 @@ def read_run(task: RunTask) -> ReadRun:
                    notes=tuple(notes), units=recorded_units(recording))
 
 
-def _program(store: str, robot: str, signature: list[list[float]]) -> str:
-    for name, theirs in kept.read_programs(store, robot).items():
-        if same_program(signature, theirs):
-            return name
-    return program_name(signature)
+@dataclass
+class _Known:
+    """The robot's runs and programs as the store holds them: read once per call, then kept up
+    to date in memory as this call adds runs (not O(runs) of reading per run added)."""
+
+    store: str
+    robot: str
+    runs: list[tuple[str, int, str, str]]  # (time, id, program, source), in the store's order
+    checksums: set[str]
+    programs: dict[str, list[list[float]]]
+    traces: dict[int, tuple[pd.DataFrame, float] | None]
+
+    @classmethod
+    def read(cls, store: str, robot: str) -> _Known:
+        table = kept.read_runs(store, robot)
+        runs = [(str(t), int(i), str(p), str(s)) for t, i, p, s in zip(
+            table["time"], table["id"], table["program"], table["source"], strict=True)]
+        return cls(store, robot, runs, set(table["checksum"]), kept.read_programs(store, robot),
+                   {})
+
+    def program(self, signature: list[list[float]]) -> str:
+        """The name of the robot's program the signature is, else a new program's name."""
+        for name, theirs in self.programs.items():
+            if same_program(signature, theirs):
+                return name
+        return program_name(signature)
+
+    def references(self, program: str, time: str) -> list[Recording]:
+        """The program's earliest runs before ``time`` (at most :data:`REFERENCES`) that have
+        a kept trace, as recordings."""
+        earlier = [(i, s) for t, i, p, s in self.runs if p == program and t < time]
+        earlier = earlier[:REFERENCES]
+        missing = [i for i, _ in earlier if i not in self.traces]
+        found = kept.read_traces(self.store, missing)
+        self.traces.update({i: found.get(i) for i in missing})
+        return [as_recording(trace[0].copy(), trace[1], source=s)
+                for i, s in earlier if (trace := self.traces[i]) is not None]
+
+    def added(self, run: ReadRun, program: str, db: sqlite3.Connection) -> None:
+        """Note a run this call has just added (its id as the store gave it)."""
+        (run_id,), = db.execute("SELECT id FROM runs WHERE robot = ? AND checksum = ?",
+                                (self.robot, run.checksum)).fetchall()
+        bisect.insort(self.runs, (run.time, int(run_id), program, run.source))
+        self.checksums.add(run.checksum)
+        self.programs.setdefault(program, run.signature)
+        self.traces[int(run_id)] = kept.unpack_trace(run.trace)
 
 
-def _departure(store: str, robot: str, program: str, run: ReadRun
-               ) -> tuple[dict[int, float], str, int]:
-    runs = kept.read_runs(store, robot)
-    earlier = runs[(runs["program"] == program) & (runs["time"] < run.time)].head(REFERENCES)
-    traces = kept.read_traces(store, [int(i) for i in earlier["id"]])
-    references = [as_recording(*traces[i], source=str(s))
-                  for i, s in zip(earlier["id"], earlier["source"], strict=True) if i in traces]
+def _departure(known: _Known, program: str, run: ReadRun) -> tuple[dict[int, float], str, int]:
+    references = known.references(program, run.time)
     own = as_recording(*kept.unpack_trace(run.trace), source=run.source)
     return (*departures(own, references), len(references))
 
 
-def _keep(store: str, robot: str, run: ReadRun) -> Added:
+def _keep(known: _Known, run: ReadRun) -> Added:
     import json
 
-    program = _program(store, robot, run.signature)
-    found, note, count = _departure(store, robot, program, run)
+    program = known.program(run.signature)
+    found, note, count = _departure(known, program, run)
     figures = dict(run.figures)
     for axis in {a for a, _ in figures}:
         figures[(axis, "departure")] = found.get(axis, math.nan)
         figures[(axis, REFERENCE_COUNT)] = float(count)
-    row = kept.RunRow(robot, run.time, run.time_from, program, run.source, run.checksum,
+    row = kept.RunRow(known.robot, run.time, run.time_from, program, run.source, run.checksum,
                       units=json.dumps(run.units))
-    with kept.open_store(store) as db:
+    with kept.open_store(known.store) as db:
         added = kept.add_run(db, row, figures, trace=run.trace,
                              signature=json.dumps(run.signature))
+        if added:
+            known.added(run, program, db)
     return Added(run.source, added, run.time, run.time_from, program, (*run.notes, note))
 
 
@@ -245,10 +293,10 @@ def add_runs(paths: Sequence[str | os.PathLike[str]], store: str | os.PathLike[s
     target = os.fspath(store)
     with kept.open_store(target):
         pass  # created (or refused) before anything is read
-    known = set(kept.read_runs(target, robot)["checksum"])
+    known = _Known.read(target, robot)
     tasks, done = [], []
     for path in (os.fspath(p) for p in paths):
-        if os.path.exists(path) and file_sha256(path) in known:
+        if os.path.exists(path) and file_sha256(path) in known.checksums:
             done.append(Added(path, False, "", "", "", ("already kept for this robot",)))
         else:
             tasks.append(RunTask(path, channels, axis, time))
@@ -260,7 +308,7 @@ def add_runs(paths: Sequence[str | os.PathLike[str]], store: str | os.PathLike[s
     read = sorted((r for _, r in results if isinstance(r, ReadRun)),
                   key=lambda r: (r.time, r.source))
     for k, run in enumerate(read):
-        done.append(_keep(target, robot, run))
+        done.append(_keep(known, run))
         if progress is not None:
             progress(k + 1, len(read))
     return done
