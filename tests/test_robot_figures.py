@@ -46,3 +46,28 @@ def test_legend_and_labels_stay_inside_and_apart(axes, roles, arrows):
         assert frame.x0 <= box.x0
     roles = min(t.get_window_extent(renderer).x0 for t in ax.get_yticklabels())
     assert all(n.get_window_extent(renderer).x1 < roles for n in names)
+
+
+@pytest.mark.parametrize(("axes", "arrows"), [(4, "direction"), (4, "rule"), (6, "direction")])
+def test_every_text_is_inside_and_the_legend_overlaps_none(axes, arrows):
+    fig = figure_robot_matrix(_robot(axes), "whole recording 0-1.698 s", arrows=arrows)
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    frame = fig.bbox
+    ax = fig.axes[0]
+    texts = [ax.title, ax.xaxis.label, ax.yaxis.label, *ax.texts, *ax.get_xticklabels(),
+             *ax.get_yticklabels()]
+    boxes = {f"{t.get_text()!r} ({k})": t.get_window_extent(renderer)
+             for k, t in enumerate(texts) if t.get_text()}
+    for name, box in boxes.items():
+        assert (frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0
+                and box.y1 <= frame.y1), f"{name} outside the figure: {box} in {frame}"
+    legend = fig.legends[0].get_window_extent(renderer)
+    assert frame.y0 <= legend.y0 and legend.y1 <= frame.y1
+    for name, box in boxes.items():
+        assert not legend.overlaps(box), f"the legend overlaps {name}"
+    # the axis names below the columns stay clear of "target Y"
+    below = [t.get_window_extent(renderer) for t in ax.texts if t.get_ha() == "center"]
+    assert len(below) == axes
+    assert all(not b.overlaps(ax.xaxis.label.get_window_extent(renderer)) for b in below)
