@@ -314,3 +314,29 @@ def test_many_runs_in_one_call_give_the_store_of_one_call_each(tmp_path: Path,
     # the departure of the history's last run is against the program's 5 earliest runs
     counts = {row[0]: row[3] for row in first["figures"] if row[2] == "departure_references"}
     assert sorted(counts.values()) == [0.0, 0.0, 1.0, 1.0, 2.0, 3.0, 4.0, 5.0, 5.0]
+
+
+def test_runs_read_on_a_dask_cluster_give_the_store_read_here(tmp_path: Path) -> None:
+    # Dask worker threads in this process (1 worker, 2 threads): the runs are read there, kept
+    # here; the store and what is said of each run are the serial call's.
+    from distributed import LocalCluster
+
+    from funcnet.track import add_runs
+    from funcnet.validation.histories import write_history
+
+    paths = write_history(tmp_path / "runs", 6, healthy=3, worn=())
+    broken = tmp_path / "runs" / "broken.xml"
+    broken.write_text("<trace>")
+    given = [*paths, broken, paths[1]]  # an unreadable run, and one run twice
+    serial = add_runs(given, tmp_path / "serial.sqlite", "cell")
+    with LocalCluster(n_workers=1, threads_per_worker=2, processes=False, protocol="tcp://",
+                      host="127.0.0.1", dashboard_address=None) as cluster:
+        on_dask = add_runs(given, tmp_path / "dask.sqlite", "cell",
+                           scheduler=cluster.scheduler_address)
+    assert _whole_store(tmp_path / "dask.sqlite") == _whole_store(tmp_path / "serial.sqlite")
+
+    def said(found: list[Any]) -> list[tuple[Any, ...]]:
+        return sorted((a.source, a.added, a.error, a.time, a.program, a.notes) for a in found)
+
+    assert said(on_dask) == said(serial)
+    assert [a.added for a in serial].count(True) == 3 and sum(a.error for a in serial) == 1
