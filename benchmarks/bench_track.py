@@ -4,9 +4,13 @@ Builds a synthetic store (every robot 100 runs of one program, one a day, six ax
 of :data:`funcnet.track.FIGURES` drawn around a level of its own; no kept traces, which only a
 run's departure reads), one transaction per run as ``track add`` writes them, then times
 ``track show`` for one robot: reading its runs and figures, judging every series, writing the
-page and the JSON. Also the same for the whole fleet's runs list (``read_runs``).
+page and the JSON. Also the same for the whole fleet's runs list (``read_runs``). With
+``--add N``: ``track add`` of N simulated runs (:func:`funcnet.validation.histories.
+write_history`) in one call onto the first robot's history, CPU seconds (a robot with many runs:
+``--robots 1 --runs 20000``).
 
     PYTHONPATH=src python benchmarks/bench_track.py [--robots 100] [--runs 100] [--repeat 5]
+        [--add N]
 """
 
 from __future__ import annotations
@@ -42,11 +46,26 @@ def build(path: Path, robots: int, runs: int, seed: int = 0) -> float:
     return time.perf_counter() - began
 
 
+def time_add(path: Path, folder: Path, n: int) -> None:
+    """``track add`` of ``n`` simulated runs in one call onto robot-000's history."""
+    from funcnet.track import add_runs
+    from funcnet.validation.histories import write_history
+
+    runs = write_history(folder, 0, healthy=n, worn=())
+    held = len(kept.read_runs(path, "robot-000"))
+    wall, cpu = time.perf_counter(), time.process_time()
+    added = add_runs(runs, path, "robot-000")
+    wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+    print(f"track add of {sum(a.added for a in added)} runs in one call onto a robot holding "
+          f"{held} runs: {wall:.2f} s wall, {cpu:.2f} s CPU")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--robots", type=int, default=100)
     parser.add_argument("--runs", type=int, default=100)
     parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--add", type=int, default=0, help="time track add of N runs")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "fleet.sqlite"
@@ -72,6 +91,8 @@ def main() -> None:
         began = time.perf_counter()
         listed = kept.read_runs(path)
         print(f"every run listed ({len(listed)}): {time.perf_counter() - began:.2f} s")
+        if args.add:
+            time_add(path, Path(tmp) / "new", args.add)
         print(f"load average: {os.getloadavg()[0]:.1f}")
 
 
