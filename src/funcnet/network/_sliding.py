@@ -328,7 +328,10 @@ def _slide(design: Any, n: int, block: int, norms: Any, p: int, limits: Any,
         lows = np.empty(count, dtype=np.int64)
         for m in range(count):
             lows[m] = min(first + (m + 1) * block, n_windows) - 1
-        suffixes = np.zeros((count, c, c, lanes))
+        suffixes = np.empty((count, c, c, lanes))
+        for m in range(count):
+            if lows[m] == boundary:  # no rows before the boundary
+                suffixes[m] = 0.0
         factor[:] = 0.0
         for x in range(boundary - 1, lows[0] - 1, -1):  # the suffix factors, backwards
             row[:] = design[x]
@@ -445,7 +448,8 @@ def _drop(r: Any, p: int, below: float, limit_full: float,
 
 
 @njit(cache=True)
-def _bounds(r: Any, null: Any, count: int, own_count: int) -> tuple[float, float]:  # pragma: no cover
+def _bounds(r: Any, null: Any, count: int,
+            own_count: int) -> tuple[float, float]:  # pragma: no cover
     """Upper bounds on the ``count`` smallest singular values of the triangle ``r`` and on the
     ``own_count`` smallest of its own columns, from the combinations ``V`` (``null``, its first
     ``count`` columns) that ``r`` nearly annihilates: by Courant-Fischer over the span of ``V``,
