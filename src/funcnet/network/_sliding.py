@@ -161,8 +161,8 @@ def _run(windows: np.ndarray, values: np.ndarray, first: int, orders: np.ndarray
     full[zero], gain[zero] = 0.0, 0.0
     # in the old unit: the target standardized over its window
     own = (gain + full) * (sigma[:, 0] / spread_raw)[:, ahead] ** 2
-    return (*_decide(windows, own, gain, full, p, span, steps, ahead, behind),
-            (status > 0).all(axis=1))
+    found, inside = _decide(windows, own, gain, full, p, span, steps, ahead, behind)
+    return found, inside, np.asarray((status > 0).all(axis=1))
 
 
 def _decide(windows: np.ndarray, own: np.ndarray, gain: np.ndarray, full: np.ndarray, p: int,

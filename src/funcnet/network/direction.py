@@ -53,6 +53,8 @@ The computation
     the differences, not of the levels of a smooth position), one QR factorization of a
     window's design serves every pair of it, and every window of a call is read in one stacked
     pass. Numerically rank-deficient designs drop the singular directions least squares drops.
+    Windows cut one row apart from a recording (a sliding timeline) share their factors along
+    the run (:mod:`funcnet.network._sliding`).
     The p-values agree across OpenBLAS kernels to a relative 1e-6 and with exact rational
     arithmetic to 1e-7 (tests/test_direction_kernels.py); with the previous implementation
     (the levels factored as they stand) the decisions are equal.
@@ -455,5 +457,6 @@ def window_directions(windows: Sequence[np.ndarray], names: Sequence[str],
     index = [(column[x], column[y], str(x), str(y)) for x, y in pairs]
     out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
     for w, flags in enumerate(np.asarray(degenerate, dtype=bool).tolist()):
-        _read_rows(*found[w], index, flags, windows[w].shape[0], lags, alpha, out)
+        p_values, within = found[w]
+        _read_rows(p_values, within, index, flags, windows[w].shape[0], lags, alpha, out)
     return out
