@@ -136,13 +136,14 @@ def test_sliding_p_values_match_exact_arithmetic():
 
 
 def test_window_directions_read_the_same_through_the_recording_rows():
-    values = _derived(600, 5)
+    """Without the derived velocity (whose reading alone hinges on the rounding, above)."""
+    values = _derived(600, 5)[:, [0, 1, 3]]
     firsts = np.arange(30, 230)
     windows = [_minmax(values[f : f + 150]) for f in firsts]
-    names = ["RP", "AP", "V", "AC"]
+    names = ["RP", "AP", "AC"]
     pairs = [(a, b) for k, a in enumerate(names) for b in names[k + 1 :]]
     degenerate = np.zeros((len(windows), len(pairs)), dtype=bool)
-    steps = np.zeros((len(windows), 4))
+    steps = np.zeros((len(windows), 3))
     parameters = NetworkParameters()
     sliding = window_directions(windows, names, pairs, degenerate, parameters, steps,
                                 origin=(values, firsts))
