@@ -52,8 +52,9 @@ from funcnet.network._prediction import _EPS, _EXPLAINED, _SCREEN, _orders, pair
 #: Windows in a block that share the factor of their common rows (the arithmetic per window is
 #: least near 5: a merge of two triangles per block against a few added rows per window).
 BLOCK = 5
-#: Shortest run read by sliding factors (a run first pays for the rows of one whole window).
-MIN_RUN = 8
+#: Shortest run read by sliding factors: a run first pays for the rows of one whole window, so
+#: a single window costs about what LAPACK's factorization of each pair does.
+MIN_RUN = 2
 
 
 def sliding_p_values(windows: np.ndarray, values: np.ndarray, firsts: np.ndarray, lags: int,
