@@ -1,17 +1,17 @@
 """The direction reading of windows that slide one row at a time: factors shared along the run.
 
 :func:`sliding_p_values` returns what :func:`funcnet.network._prediction.pair_p_values` returns
-for windows cut from one recording every sample (a sliding timeline), at a tenth of its
-arithmetic. Its notes (differenced lags, the negligible-column rule, the rank screen) hold here;
+for windows cut from one recording every sample (a sliding timeline), at a fifth of its
+cost. Its notes (differenced lags, the negligible-column rule, the rank screen) hold here;
 what changes is how each window's least squares is factored.
 
 Why windows can share their factors
     Least squares does not depend on a column's centring (the intercept takes it) nor on its
     scale, so a window's design is, up to those, the rows of one design over the whole run:
     the recording's own differences, centred and scaled once per run. Consecutive windows then
-    share all rows but one. Windows whose nodes take the same difference orders and zero the
-    same negligible columns (decided on each window as before) form a run; a run of
-    :data:`MIN_RUN` windows or more is read here, any other window by ``pair_p_values``.
+    share all rows but one. Windows whose nodes take the same difference orders (decided on
+    each window as before) form a run; a run of :data:`MIN_RUN` windows or more is read here,
+    any other window by ``pair_p_values``.
 
 The factorization (orthogonal throughout, no downdating)
     Rows enter a triangular factor by Givens rotations (``3 c^2`` flops a row, ``c = 2 p + 2``
@@ -23,19 +23,28 @@ The factorization (orthogonal throughout, no downdating)
     the CPU's kernel.
 
 Reading a window's factor (the rank screen, without the SVD)
-    The old design's diagonal is this factor's divided by the window's column norms. Where it
+    The old design's diagonal is this factor's divided by the window's column norms (a
+    negligible column's norm taken as 0: it is dropped, as the old design zeroes it). Where it
     spans less than ``1 / _SCREEN`` the old path asks singular values: directions at most
-    ``eps max(n, 2 p + 1) s_max`` are dropped (``s_max >= 1``: unit columns). Here a column whose
-    diagonal is at most ``eps max(n, 2 p + 1) / sqrt(2 p + 1)`` is dropped as the factor is read
-    (its row is rotated into the columns after it): the dropped columns are then within that
-    of the span of the kept ones, so the design's singular values split, by Weyl's inequality,
-    into as many at most ``eps max(n, 2 p + 1)`` as were dropped and the kept ones, and the
-    least squares on the kept columns is the SVD's truncated one (to the angle between the two
-    spans, about the dropped residual over the kept columns' smallest singular value). The
-    kept diagonal must still pass the screen; a window with any diagonal between the two bounds
-    goes to ``pair_p_values``, SVD and all. On the SINUMERIK timeline the velocity derived from
-    the measured position makes 17 of a pair's 43 columns dependent: their diagonals sit under
-    1e-15, the kept ones above 1e-4.
+    ``eps max(n, 2 p + 1) s_max`` are dropped. Here the columns whose diagonal is under the
+    screen are dropped as the factor is read, in order (each row rotated into the columns after
+    it), and the drop is certified: with ``V`` the dropped columns' combinations that the
+    design nearly annihilates (each dropped column minus its least squares on the kept ones
+    before it), Courant-Fischer bounds the as many smallest singular values by
+    ``|R V L^-T|_F``, ``L L^T = V^T V``; where that is within ``eps max(n, 2 p + 1)`` times a
+    lower bound on ``s_max`` (and likewise for the own columns), least squares' SVD drops as
+    many directions, and the least squares on the kept columns is its truncated one (to the
+    angle between the two spans). A window with any lane not certified goes to
+    ``pair_p_values``, SVD and all. On the SINUMERIK timeline the velocity derived from the
+    measured position makes 17 of a pair's 43 columns dependent: their diagonals sit near
+    1e-13, the kept ones above 1e-3, the bound a quarter of the threshold.
+
+Where the inputs' rounding sets the reading
+    The rows here are the recording's as recorded; the old path reads each window normalized.
+    Where a column is a little above rounding (a set-point's third differences on a ramp) or
+    the normalization's rounding hides a dependence from the SVD's threshold, the old path's
+    own p-values move when the same window is rounded otherwise (z-scored instead of min-max),
+    and these differ as much (tests/test_direction_sliding.py).
 """
 
 from __future__ import annotations
@@ -75,8 +84,8 @@ def sliding_p_values(windows: np.ndarray, values: np.ndarray, firsts: np.ndarray
     Returns
     -------
     (ndarray, ndarray), each shape (W, k, k)
-        As ``pair_p_values``, to a relative 1e-9 or so on the p-values (rounding: the factors
-        are not LAPACK's, and the rows are the recording's, not the normalized window's).
+        As ``pair_p_values``: the p-values to a relative 1e-6 (measured: 3e-8) wherever those
+        do not hinge on how the window was rounded (module notes), the flags equal.
 
     Examples
     --------
