@@ -604,7 +604,8 @@ def _batched_networks(
         np.array([normalized_steps(list(window_steps(part, result.names, steps).values()),
                                    part, scaled)
                   for part, scaled in zip(parts, normalized, strict=True)]).reshape(
-            len(windows), len(result.names))))
+            len(windows), len(result.names)),
+        origin=(values, firsts[kept])))
     table = pair_kinds(pairs_frame(columns), p)  # every window's rows, then sliced
     # Edges of every window at once (the rule is row by row); rows named by their position
     # tell which rows became edges, hence where each window's edges start.

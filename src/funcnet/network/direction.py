@@ -53,6 +53,8 @@ The computation
     the differences, not of the levels of a smooth position), one QR factorization of a
     window's design serves every pair of it, and every window of a call is read in one stacked
     pass. Numerically rank-deficient designs drop the singular directions least squares drops.
+    Windows cut one row apart from a recording (a sliding timeline) share their factors along
+    the run (:mod:`funcnet.network._sliding`).
     The p-values agree across OpenBLAS kernels to a relative 1e-6 and with exact rational
     arithmetic to 1e-7 (tests/test_direction_kernels.py); with the previous implementation
     (the levels factored as they stand) the decisions are equal.
@@ -94,6 +96,7 @@ import pandas as pd
 
 from funcnet.errors import ParameterError
 from funcnet.network._prediction import pair_p_values
+from funcnet.network._sliding import sliding_p_values
 from funcnet.network.precision import checked_steps, logged_step
 from funcnet.parameters import NetworkParameters
 
@@ -360,24 +363,37 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
         else np.empty((0, 0)), lags, DIRECTION_GAP,
         np.array([known[name] if name in known else logged_step(arrays[name])
                   for name in single]))
-    for x, y, flagged in zip(first, second, tested, strict=True):
+    index = [(column.get(x, -1), column.get(y, -1), str(x), str(y))
+             for x, y in zip(first, second, strict=True)]
+    _read_rows(found.tolist(), within.tolist(), index, tested, n, lags, alpha, out)
+    return out
+
+
+def _read_rows(p_values: list[list[float]], within: list[list[bool]],
+               index: list[tuple[int, int, str, str]], flags: list[bool], n: int, lags: int,
+               alpha: float, out: dict[str, list[str]]) -> None:
+    """Append the readings of one window's rows to ``out``: each row's columns ``(i, j)`` in
+    the window's p-values (-1: a multichannel node), its names, and whether it is degenerate
+    (plain lists: this loop runs once per row of every window)."""
+    directions, reasons = out["direction"], out["direction_reason"]
+    for (i, j, x, y), flagged in zip(index, flags, strict=True):
         if flagged:
             reading = ("none", "degenerate pair: too few distinct states")
-        elif x not in column or y not in column:
+        elif i < 0 or j < 0:
             reading = ("none", "a multichannel node: the test reads one channel per node")
         else:
-            i, j = column[x], column[y]
-            reading = _reading((found[j, i], found[i, j]), (within[j, i], within[i, j]), n,
-                               lags, DIRECTION_GAP, alpha, (str(x), str(y)))
-        out["direction"].append(reading[0])
-        out["direction_reason"].append(reading[1])
-    return out
+            reading = _reading((p_values[j][i], p_values[i][j]), (within[j][i], within[i][j]),
+                               n, lags, DIRECTION_GAP, alpha, (x, y))
+        directions.append(reading[0])
+        reasons.append(reading[1])
 
 
 def window_directions(windows: Sequence[np.ndarray], names: Sequence[str],
                       pairs: Sequence[tuple[str, str]], degenerate: np.ndarray,
                       parameters: NetworkParameters, steps: np.ndarray,
-                      alpha: float = DIRECTION_ALPHA) -> dict[str, list[str]]:
+                      alpha: float = DIRECTION_ALPHA, *,
+                      origin: tuple[np.ndarray, np.ndarray] | None = None
+                      ) -> dict[str, list[str]]:
     """:func:`direction_columns` of many windows' pairs tables at once, one stacked pass.
 
     Parameters
@@ -397,12 +413,18 @@ def window_directions(windows: Sequence[np.ndarray], names: Sequence[str],
         Each node's logged step in its window's unit.
     alpha : float
         As :func:`read_direction`.
+    origin : (ndarray, ndarray), optional
+        ``(values, firsts)``: the recording's rows ``(T, k)`` and each window's first row, the
+        window being an affine map of each column of ``values[firsts[w] : firsts[w] + N_w]``.
+        Windows one row apart are then read by factors shared along their run
+        (:mod:`funcnet.network._sliding`: the same p-values to a relative 1e-6 but where the
+        inputs' rounding sets them).
 
     Returns
     -------
     dict
         ``{"direction": [...], "direction_reason": [...]}``: every window's rows, in order;
-        each window's equal to :func:`direction_columns` of its table.
+        each window's equal to :func:`direction_columns` of its table (without ``origin``).
 
     Examples
     --------
@@ -421,9 +443,14 @@ def window_directions(windows: Sequence[np.ndarray], names: Sequence[str],
     for w, part in enumerate(windows):
         by_length.setdefault(part.shape[0], []).append(w)
     found: list[Any] = [None] * len(windows)
+    all_steps = np.asarray(steps, dtype=np.float64)
     for members in by_length.values():  # windows of one length: one stack
-        values, within = pair_p_values(np.stack([windows[w] for w in members]), lags,
-                                       DIRECTION_GAP, np.asarray(steps, dtype=np.float64)[members])
+        stack = np.stack([windows[w] for w in members])
+        if origin is None:
+            values, within = pair_p_values(stack, lags, DIRECTION_GAP, all_steps[members])
+        else:
+            values, within = sliding_p_values(stack, origin[0], np.asarray(origin[1])[members],
+                                              lags, DIRECTION_GAP, all_steps[members])
         for slot, w in enumerate(members):  # plain lists: fast to walk
             found[w] = (values[slot].tolist(), within[slot].tolist())
     column = {name: k for k, name in enumerate(names)}
@@ -431,12 +458,5 @@ def window_directions(windows: Sequence[np.ndarray], names: Sequence[str],
     out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
     for w, flags in enumerate(np.asarray(degenerate, dtype=bool).tolist()):
         p_values, within = found[w]
-        n = windows[w].shape[0]
-        for (i, j, x, y), flagged in zip(index, flags, strict=True):
-            reading = (("none", "degenerate pair: too few distinct states") if flagged else
-                       _reading((p_values[j][i], p_values[i][j]),
-                                (within[j][i], within[i][j]), n, lags, DIRECTION_GAP, alpha,
-                                (x, y)))
-            out["direction"].append(reading[0])
-            out["direction_reason"].append(reading[1])
+        _read_rows(p_values, within, index, flags, windows[w].shape[0], lags, alpha, out)
     return out
