@@ -199,9 +199,9 @@ def figure_networks(inspection: TraceInspection) -> Any:
         plot.plot_network(net, ax, nodes=list(inspection.signals), title=title, legend=False,
                           arrows="direction")
         ax.set_facecolor(plot.phase_color(w.phase))
-        ax.set_axis_on()
-        ax.set_xticks([])
-        ax.set_yticks([])
+        ax.set_axis_on()  # the frame around the phase's colour; no ticks, no axis to lay out
+        ax.xaxis.set_visible(False)
+        ax.yaxis.set_visible(False)
         degenerate |= bool(plot.network_edges(net)["degenerate"].any())
         dropped |= bool(net.window and net.window.get("dropped"))
         with_evidence |= "evidence" in net.pairs.columns
