@@ -199,3 +199,18 @@ def test_files_that_hold_no_network_are_named(tmp_path):
     assert not (tmp_path / "net.gml").exists()
     with pytest.raises(FileNotFoundError):
         read_fields(tmp_path / "missing.graphml")
+
+
+def test_networkx_is_imported_only_by_what_uses_it():
+    """A report and the command line start without networkx (its import is slow); the graph
+    writers still give a networkx graph and a GraphML file."""
+    import subprocess
+    import sys
+
+    code = ("import sys, funcnet, funcnet.cli, funcnet.report.inspect, funcnet.network; "
+            "print('networkx' in sys.modules)")
+    found = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           check=True)
+    assert found.stdout.strip() == "False"
+    network = functional_network(quantized_data(), delay=1)
+    assert isinstance(network.to_networkx(), nx.DiGraph)

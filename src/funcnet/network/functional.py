@@ -20,9 +20,8 @@ import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Unpack
+from typing import TYPE_CHECKING, Any, Unpack
 
-import networkx as nx
 import pandas as pd
 
 from funcnet.core.measures import pairwise_cross_measures
@@ -34,6 +33,9 @@ from funcnet.network.edge_evidence import check_edge_rule, evidence_columns
 from funcnet.network.rule import edges_from_pairs, pair_kinds
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
+
+if TYPE_CHECKING:
+    import networkx as nx
 
 __all__ = ["FunctionalNetwork", "functional_network"]
 
@@ -312,6 +314,7 @@ class FunctionalNetwork:
         >>> data = np.column_stack([x, x + 0.1 * rng.random(203)])
         >>> network = functional_network(data, names=["x", "y"], delay=1)
         >>> out = network.write(pathlib.Path(tempfile.mkdtemp()) / "copy.graphml")
+        >>> import networkx as nx
         >>> sorted(nx.read_graphml(out).nodes), FunctionalNetwork.read(out) == network
         (['x', 'y'], True)
         """

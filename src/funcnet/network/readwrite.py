@@ -30,7 +30,6 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import networkx as nx
 import pandas as pd
 
 from funcnet._io import atomic_path, write_text_atomic
@@ -40,6 +39,8 @@ from funcnet.network.schema import EDGE_COLUMNS, edges_frame, pairs_frame
 from funcnet.parameters import NetworkParameters
 
 if TYPE_CHECKING:
+    import networkx as nx
+
     from funcnet.network.functional import FunctionalNetwork
 
 __all__ = ["FORMAT", "VERSION", "ARC_EVIDENCE", "to_json", "fields_from_json", "to_networkx",
@@ -221,6 +222,8 @@ def to_networkx(network: FunctionalNetwork) -> nx.DiGraph:
     >>> arc["kind"], arc["direction"]
     ('bidirectional', 'none')
     """
+    import networkx as nx  # here: a page or a JSON file never needs it (its import is slow)
+
     graph = nx.DiGraph(
         label=network.label,
         parameters=network.parameters.to_dict(),
@@ -313,6 +316,7 @@ def write(network: FunctionalNetwork, path: str | os.PathLike[str]) -> Path:
     >>> x = rng.random(203)
     >>> network = functional_network(np.column_stack([x, x + 0.1 * rng.random(203)]), delay=1)
     >>> out = write(network, pathlib.Path(tempfile.mkdtemp()) / "copy.graphml")
+    >>> import networkx as nx
     >>> nx.read_graphml(out).edges["0", "1"]["degenerate"]
     False
     """
@@ -328,6 +332,8 @@ def write(network: FunctionalNetwork, path: str | os.PathLike[str]) -> Path:
     }
     if network.label is not None:
         graph.graph["label"] = network.label
+    import networkx as nx
+
     with atomic_path(path) as tmp:
         nx.write_graphml(graph, tmp)
     return path
@@ -370,6 +376,8 @@ def read_fields(path: str | os.PathLike[str]) -> dict[str, Any]:
     try:
         if suffix == ".json":
             return fields_from_json(path.read_text(encoding="utf-8"))
+        import networkx as nx
+
         try:
             graph = nx.read_graphml(path)
         except (ValueError, KeyError, TypeError, SyntaxError) as error:

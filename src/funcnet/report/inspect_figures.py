@@ -199,9 +199,9 @@ def figure_networks(inspection: TraceInspection) -> Any:
         plot.plot_network(net, ax, nodes=list(inspection.signals), title=title, legend=False,
                           arrows="direction")
         ax.set_facecolor(plot.phase_color(w.phase))
-        ax.set_axis_on()
-        ax.set_xticks([])
-        ax.set_yticks([])
+        ax.set_axis_on()  # the frame around the phase's colour; no ticks, no axis to lay out
+        ax.xaxis.set_visible(False)
+        ax.yaxis.set_visible(False)
         degenerate |= bool(plot.network_edges(net)["degenerate"].any())
         dropped |= bool(net.window and net.window.get("dropped"))
         with_evidence |= "evidence" in net.pairs.columns
@@ -316,25 +316,19 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     ax = fig.add_subplot()
     used: dict[str, str] = {}
     for c, label in enumerate(labels):
-        table_ = inspection.networks[label].pairs.set_index(["x", "y"])
+        readings = _cell_readings(inspection.networks[label].pairs)
         for r, (a, b) in enumerate(pairs):
-            if (a, b) not in table_.index:
+            if (a, b) not in readings:
                 used["left out"] = _EVIDENCE_COLORS["left out"]
                 ax.text(c, r, "–", ha="center", va="center", fontsize=9, color="0.4",
                         in_layout=False)
                 continue
-            row = table_.loc[(a, b)]
-            if bool(row["degenerate"]):
-                key = "degenerate"
-            elif "evidence" in table_.columns:
-                key = str(row["evidence"])
-            else:
-                key = str(row["kind"])
+            key, kind = readings[(a, b)]
             colour = _EVIDENCE_COLORS.get(key, plot.KIND_COLORS.get(key, "0.8"))
             used[key] = colour
             image[r, c] = to_rgb(colour)
             # in_layout=False: a cell's arrow lies inside the image, nothing for the layout
-            ax.text(c, r, ARROWS.get(str(row["kind"]), "?"), ha="center", va="center",
+            ax.text(c, r, ARROWS.get(kind, "?"), ha="center", va="center",
                     fontsize=10, color="0.55" if key == "untestable" else "black",
                     in_layout=False)
     ax.imshow(image, aspect="auto", interpolation="nearest")
@@ -346,6 +340,20 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     fig.legend(handles=handles, loc="outside right upper", fontsize=9, frameon=False,
                title="evidence" if inspection.evidence else "edge kind", title_fontsize=9)
     return fig
+
+
+def _cell_readings(pairs: Any) -> dict[tuple[str, str], tuple[str, str]]:
+    """Each pair's cell in the evidence figure: (its colour's key, its kind), by (x, y).
+
+    The key is ``degenerate`` for a degenerate pair, else its evidence reading, else (no
+    evidence columns) its kind. Read column by column: a table lookup per cell cost more than
+    drawing the cell.
+    """
+    keys = (pairs["evidence"] if "evidence" in pairs.columns else pairs["kind"]).astype(str)
+    return {(str(x), str(y)): ("degenerate" if bool(degenerate) else key, str(kind))
+            for x, y, degenerate, key, kind in zip(
+                pairs["x"].tolist(), pairs["y"].tolist(), pairs["degenerate"].tolist(),
+                keys.tolist(), pairs["kind"].tolist(), strict=True)}
 
 
 def figure_lost_motion(inspection: TraceInspection) -> Any | None:
