@@ -3,7 +3,8 @@
 Run from the repository root::
 
     NUMBA_NUM_THREADS=1 OMP_WAIT_POLICY=PASSIVE python -m benchmarks.validate_segment_test \
-        [--pairs 200] [--power-pairs 100] [--reference]
+        [--pairs 200] [--power-pairs 100] [--reference] \
+        [--only false-positives|power]
 
 :func:`funcnet.evidence.segment.segment_tests` runs the shift-lattice test
 (:mod:`funcnet.evidence.dependence`) on every ``d``-th embedded state of a long segment, at
@@ -77,6 +78,7 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--pairs", type=int, default=200)
     parser.add_argument("--power-pairs", type=int, default=100)
+    parser.add_argument("--only", choices=("false-positives", "power"), default=None)
     parser.add_argument("--reference", action="store_true",
                         help="also the false positives of the unthinned test")
     parser.add_argument("--lengths", type=int, nargs="+", default=[3000, 12000])
@@ -85,7 +87,7 @@ def main(argv: list[str] | None = None) -> None:
     header = "| system | N | design | rate | SE | median K | pairs |\n|---|---|---|---|---|---|---|"
     print(f"False positives at alpha = {ALPHA} (bound 0.05 + 3 SE = "
           f"{0.05 + 3 * math.sqrt(0.05 * 0.95 / args.pairs):.3f})\n\n{header}")
-    for case in UNCOUPLED:
+    for case in UNCOUPLED if args.only != "power" else []:
         for n in args.lengths:
             print(row(case.name, "thinned to 1,500", n, *rejections(case, n, args.pairs, 1500)),
                   flush=True)
@@ -93,7 +95,7 @@ def main(argv: list[str] | None = None) -> None:
             print(row(case.name, "unthinned", args.lengths[0],
                       *rejections(case, args.lengths[0], args.pairs, 10**7)), flush=True)
     print(f"\nPower at alpha = {ALPHA}\n\n{header}")
-    for case in COUPLED:
+    for case in COUPLED if args.only != "false-positives" else []:
         for n in args.lengths:
             print(row(case.name, "thinned to 1,500", n,
                       *rejections(case, n, args.power_pairs, 1500)), flush=True)

@@ -187,14 +187,16 @@ def _segment_tests(recording: Recording, networks: WindowNetworks, windows: Sequ
                                     alpha=settings.get("alpha", 0.05))
         tests.update({label: found for label in labels})
         ks = [t.surrogates for t in found.values() if t is not None]
-        said.append(f"{a:g}-{b:g} s: every {step} state(s) of its {len(span):,} samples, "
+        said.append(f"{a:g}-{b:g} s: one state in {step} of its {len(span):,} samples, "
                     f"K = {min(ks, default=0)}-{max(ks, default=0)}")
     if not said:
         return tests, ""
+    drawn = "" if settings.get("edge_rule", "paper") == "interval" else (
+        " The parts' asymmetry intervals are not drawn (`funcnet network` on a window draws "
+        "them).")
     return tests, ("The coupling test of each part is its whole segment's, run once on at most "
                    f"{SEGMENT_MAX_STATES:,} states taken evenly over it ({'; '.join(said)}): "
-                   "a part alone holds too few surrogates to decide. The parts' asymmetry "
-                   "intervals are not drawn (`funcnet network` on a window draws them).")
+                   f"a part alone holds too few surrogates to decide.{drawn}")
 
 
 def _evidence(recording: Recording, networks: WindowNetworks, windows: Sequence[Window],
@@ -209,7 +211,7 @@ def _evidence(recording: Recording, networks: WindowNetworks, windows: Sequence[
     found = window_evidence(recording, own, windows, errors="collect", **settings)
     failures = list(found.failures)
     if cut:
-        parts = dict(settings)
+        parts = EvidenceSettings(**settings)
         if parts.get("edge_rule", "paper") != "interval":
             parts["resamples"] = 0
         more = window_evidence(recording, cut, windows, errors="collect", tests=tests, **parts)
