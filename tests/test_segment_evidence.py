@@ -124,7 +124,8 @@ def test_a_long_segment_in_parts_finds_its_coupled_pairs_and_not_the_others(monk
     monkeypatch.setattr(robot_module, "ROBOT_MAX_STATES", 300)
     found = inspect_robot(recording, backlash=False, delay=DELAY,
                           evidence_options=EvidenceSettings(resamples=50))
-    assert len(found.windows) == 16 and "part 1 of 16" in found.windows[0].label
+    assert len(found.windows) == robot_module.ROBOT_MAX_WINDOWS
+    assert found.windows[0].label.startswith("part 1 of 16:")
     # a part alone: K = 2 floor(150 / s0), too few to reach alpha whatever the data
     s0 = 2 * DELAY + 1
     part_k = shift_plan(300, 10**4, min_shift=max(s0, 19)).surrogates
@@ -133,7 +134,7 @@ def test_a_long_segment_in_parts_finds_its_coupled_pairs_and_not_the_others(monk
     for label, pairs in found.pairs.items():
         by_pair = {(x, y): row for x, y, row in zip(pairs["x"], pairs["y"],
                                                     pairs.itertuples(), strict=True)}
-        assert set(pairs["surrogates"]) == {200}, label
+        assert set(pairs["surrogates"]) == {120}, label  # K asked for 6 pairs: 119
         for pair, row in by_pair.items():
             within = pair[0][:2] == pair[1][:2]
             if within:  # each axis's AP follows its RP: the smallest p-value, adjusted
