@@ -138,9 +138,10 @@ def test_a_long_segment_in_parts_finds_its_coupled_pairs_and_not_the_others(monk
         for pair, row in by_pair.items():
             within = pair[0][:2] == pair[1][:2]
             if within:  # each axis's AP follows its RP: the smallest p-value, adjusted
-                assert row.coupled and row.coupling_p <= 0.02, (label, pair)
+                # the smallest p-value 1 / 121, adjusted over 6 pairs with 2 at it
+                assert row.coupled and row.coupling_p == pytest.approx(3 / 121), (label, pair)
                 assert row.evidence.startswith("coupled")
             else:
-                assert not row.coupled and row.coupling_p >= 0.2, (label, pair)
+                assert not row.coupled and row.coupling_p >= 0.15, (label, pair)
             # the parts draw no interval
             assert np.isnan(row.c_diff_low)

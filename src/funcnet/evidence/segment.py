@@ -1,7 +1,7 @@
 """The coupling test of a long segment at a bounded cost: the shift lattice on thinned states.
 
 A robot network over more states than its bound is computed in parts
-(:func:`funcnet.inspection.robot_windows`), and the coupling test of a part holds few
+(:func:`funcnet.inspection.robot.robot_windows`), and the coupling test of a part holds few
 surrogates: the shift lattice (:mod:`funcnet.evidence.dependence`) caps ``K`` at
 ``2 floor(M / (2 s0))``, the number of decorrelation times ``s0`` in half the window. Two parts
 of a quiet 42.6 s arm hold K = 22 each for the position signals (``s0`` about 0.9 s), which
