@@ -32,9 +32,10 @@ def dump(recording_path: str, channels: str | None, out: Path) -> None:
     tables = {f"robot / {label}": net.pairs for label, net in found.networks.items()}
     for axis, one in getattr(found, "axes", {}).items():
         tables.update({f"axis {axis} / {label}": net.pairs for label, net in one.networks.items()})
-    payload = {key: json.loads(table.to_json(orient="split", double_precision=17))
+    # json writes floats by repr, which round-trips every float64 bit for bit (NaN as NaN)
+    payload = {key: table.astype(object).where(table.notna(), None).to_dict(orient="split")
                for key, table in tables.items()}
-    out.write_text(json.dumps(payload))
+    out.write_text(json.dumps(payload, default=str))
     print(f"{out}: {len(payload)} pairs tables")
 
 

@@ -143,6 +143,7 @@ def _collects(errors: str) -> bool:
 def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwork],
                     windows: Sequence[Window], *, errors: str = "raise",
                     progress: Callable[[int, int, str], None] | None = None,
+                    tests: Mapping[str, Mapping[tuple[str, str], Any]] | None = None,
                     **settings: Unpack[EvidenceSettings]) -> WindowNetworks:
     """Each window's network with the evidence columns (:func:`funcnet.network.add_evidence`:
     the measures are not computed again).
@@ -163,6 +164,9 @@ def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwo
         ``"evidence"``). The settings are checked before any window either way.
     progress : callable, optional
         Called as ``progress(done, total, label)`` after each window.
+    tests : mapping, optional
+        Window label -> its pairs' coupling tests already run
+        (:func:`funcnet.network.add_evidence`); a window not named runs its own.
     **settings
         ``evidence=True``'s settings of :func:`funcnet.network.functional_network`
         (``surrogates``, ``alpha``, ``seed``, ``resamples``, ``edge_rule``, ...).
@@ -192,12 +196,13 @@ def window_evidence(recording: Recording, networks: Mapping[str, FunctionalNetwo
     for done, (label, net) in enumerate(networks.items(), start=1):
         span = spans[label]
         part = recording.window(span.start, span.stop).data[list(net.nodes)]
+        given = {} if tests is None or label not in tests else {"tests": tests[label]}
         try:
-            found[label] = add_evidence(net, part, **settings)
+            found[label] = add_evidence(net, part, **given, **settings)
         except FuncnetError as error:
             if not collect:
                 raise
-            failure = _evidence_failure(net, part, settings, error, where, span)
+            failure = _evidence_failure(net, part, {**settings, **given}, error, where, span)
             found[label] = failure[0]
             failures.append(failure[1])
         if progress is not None:

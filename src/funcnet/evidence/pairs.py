@@ -40,6 +40,7 @@ from funcnet.core.recurrence import PackedRecurrence, auto_recurrence, cross_rec
 from funcnet.core.thresholds import signal_thresholds
 from funcnet.errors import ParameterError, SignalError
 from funcnet.evidence.dependence import (
+    DependenceResult,
     benjamini_hochberg,
     check_surrogate_method,
     decorrelation_time,
@@ -201,6 +202,7 @@ def pairwise_evidence(
     surrogate_method: str = "shift",
     intervals: str = "coupled",
     observed: Mapping[tuple[Any, Any], tuple[float, float]] | None = None,
+    tests: Mapping[tuple[Any, Any], DependenceResult | None] | None = None,
     **overrides: Unpack[ParameterOverrides],
 ) -> dict[tuple[Any, Any], PairEvidence]:
     """Coupling test, intervals and direction of every pair ``i < j`` of equally long signals.
@@ -245,6 +247,12 @@ def pairwise_evidence(
         ``{(name_i, name_j): (c_diff, t_diff)}``: the pairs' differences already computed on
         these signals with these parameters (a network's pairs table); default computed here.
         Given, no cross recurrence is computed but for the intervals.
+    tests : mapping, optional
+        ``{(name_i, name_j): DependenceResult or None}``: every pair's dependence test already
+        run (over a longer span holding these signals: the whole segment of a recording cut
+        into parts, :func:`funcnet.evidence.segment.segment_tests`; None: not testable).
+        Given, no test and no dense recurrence is computed here; the adjustment across the
+        pairs, the readings and the intervals are as without it.
     **overrides
         Fields of ``parameters`` (pair fields only).
 
@@ -299,11 +307,13 @@ def pairwise_evidence(
     n = len(signals)
     n_pairs = n * (n - 1) // 2
     k = default_surrogates(n_pairs, alpha) if surrogates is None else surrogates
-    prepared = _prepare(signals, p, called, surrogate_method)
-    can_reach = _can_reach(prepared, surrogate_method, k, alpha, intervals)
+    prepared = _prepare(signals, p, called, surrogate_method, test=tests is None,
+                        autos=observed is None)
     raw = [_test_pair(prepared, p, i, j, k, keys=keys, seed=seed,
-                      surrogate_method=surrogate_method, observed=observed)
+                      surrogate_method=surrogate_method, observed=observed, tests=tests)
            for i in range(n) for j in range(i + 1, n)]
+    can_reach = (_can_reach(prepared, surrogate_method, k, alpha, intervals) if tests is None
+                 else _reachable([e["k"] for e in raw], alpha, intervals))
     for e in raw:
         c_diff, t_diff = e["observed"]
         e["interval"] = AsymmetryInterval.without_resamples(c_diff, t_diff, level=level)
@@ -359,18 +369,23 @@ def _signal_names(signals: list[Any], names: Sequence[str] | None) -> tuple[list
 
 
 def _prepare(signals: list[Any], p: NetworkParameters, called: list[str],
-             surrogate_method: str) -> _Prepared:
-    """Embed each signal and compute its recurrence once, at the network's thresholds."""
+             surrogate_method: str, *, test: bool = True, autos: bool = True) -> _Prepared:
+    """Embed each signal and compute its recurrence once, at the network's thresholds.
+
+    Without ``test`` (the tests given) no dense matrix is made, and without ``autos`` (the
+    differences given too) no recurrence: the states are what the intervals read.
+    """
     thresholds, (cr, cross_eps) = signal_thresholds(p, len(signals))
     states = [signal_states(s, parameters=p, name=c) for s, c in zip(signals, called, strict=True)]
-    autos = [
+    packed = [
         auto_recurrence(s, rr=rate, eps=eps, parameters=p, name=c)
         for s, (rate, eps), c in zip(states, thresholds, called, strict=True)
-    ]
-    dense = [a.to_dense().astype(np.uint8) for a in autos]
-    recurrent = [recurrent_pairs(d) for d in dense] if surrogate_method == "shift" else None
-    decorrelation = [decorrelation_time(s) for s in signals]
-    return _Prepared(called=called, states=states, autos=autos, dense=dense,
+    ] if test or autos else []
+    dense = [a.to_dense().astype(np.uint8) for a in packed] if test else []
+    recurrent = ([recurrent_pairs(d) for d in dense] if test and surrogate_method == "shift"
+                 else None)
+    decorrelation = [decorrelation_time(s) for s in signals] if test else []
+    return _Prepared(called=called, states=states, autos=packed, dense=dense,
                      recurrent=recurrent, decorrelation=decorrelation,
                      span=(p.dim - 1) * p.delay + 1, cr=cr, cross_eps=cross_eps)
 
@@ -388,6 +403,11 @@ def _can_reach(prepared: _Prepared, surrogate_method: str, k: int, alpha: float,
                                   min_shift=prepared.min_shift(i, j))
                for i in range(n) for j in range(i + 1, n)]
     # the least p-value each can reach, BH-adjusted (funcnet.evidence.reading.untestable)
+    return _reachable(planned, alpha, intervals)
+
+
+def _reachable(planned: Sequence[int], alpha: float, intervals: str) -> np.ndarray:
+    """Per pair of ``K`` surrogates, whether it can reach ``alpha`` after the adjustment."""
     k_planned = np.asarray(planned, dtype=np.float64)
     with np.errstate(divide="ignore"):
         least = benjamini_hochberg(np.where(k_planned > 0, 1.0 / (k_planned + 1.0), np.nan))
@@ -397,8 +417,10 @@ def _can_reach(prepared: _Prepared, surrogate_method: str, k: int, alpha: float,
 def _test_pair(prepared: _Prepared, p: NetworkParameters, i: int, j: int, k: int, *,
                keys: list[Any], seed: int, surrogate_method: str,
                observed: Mapping[tuple[Any, Any], tuple[float, float]] | None,
+               tests: Mapping[tuple[Any, Any], DependenceResult | None] | None = None,
                ) -> dict[str, Any]:
-    """One pair's differences and dependence test, before the adjustment across pairs."""
+    """One pair's differences and dependence test (run, or given), before the adjustment
+    across pairs."""
     if observed is None:
         cr_ij = cross_recurrence(prepared.states[i], prepared.states[j], cr=prepared.cr,
                                  eps=prepared.cross_eps, parameters=p,
@@ -409,24 +431,30 @@ def _test_pair(prepared: _Prepared, p: NetworkParameters, i: int, j: int, k: int
     else:
         c_diff, t_diff = observed[(keys[i], keys[j])]
         differences = (float(c_diff), float(t_diff))
-    try:
-        plan = surrogate_plan(surrogate_method, prepared.dense[j], k,
-                              min_shift=prepared.min_shift(i, j), seed=[int(seed), i, j])
-    except ParameterError:
-        plan = None
     entry: dict[str, Any] = {"key": (keys[i], keys[j])}
-    if plan is None:
+    test = (_run_test(prepared, p, i, j, k, seed, surrogate_method) if tests is None
+            else tests[(keys[i], keys[j])])
+    if test is None:
         entry.update(statistic=np.nan, p=np.nan, k=0, index=np.nan, index_p=np.nan)
     else:
-        recurrent = prepared.recurrent
-        test = dependence_test(
-            prepared.dense[i], prepared.dense[j], plan, theiler=p.theiler,
-            recurrent=None if recurrent is None else (recurrent[i], recurrent[j]))
         entry.update(statistic=test.statistic, p=test.p_value, k=test.surrogates,
                      index=test.direction_index, index_p=test.direction_p)
     entry["observed"] = differences
     entry["pair"] = (i, j)
     return entry
+
+
+def _run_test(prepared: _Prepared, p: NetworkParameters, i: int, j: int, k: int, seed: int,
+              surrogate_method: str) -> DependenceResult | None:
+    """The dependence test of one pair on the prepared recurrences (None: too short)."""
+    try:
+        plan = surrogate_plan(surrogate_method, prepared.dense[j], k,
+                              min_shift=prepared.min_shift(i, j), seed=[int(seed), i, j])
+    except ParameterError:
+        return None
+    recurrent = prepared.recurrent
+    return dependence_test(prepared.dense[i], prepared.dense[j], plan, theiler=p.theiler,
+                           recurrent=None if recurrent is None else (recurrent[i], recurrent[j]))
 
 
 def _pair_evidence(e: Mapping[str, Any], cp: float, dp: float, alpha: float) -> PairEvidence:

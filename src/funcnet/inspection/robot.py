@@ -19,17 +19,19 @@ import dataclasses
 import functools
 import math
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Unpack
+from typing import Any, Unpack
 
 import pandas as pd
 
+from funcnet.evidence.segment import SEGMENT_MAX_STATES, segment_tests
 from funcnet.inspection.trace import TraceInspection, _step, inspect_recording
 from funcnet.network import FunctionalNetwork
+from funcnet.network._inputs import prepared_signals
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
-from funcnet.pipeline import WindowFailure, window_evidence, window_networks
+from funcnet.pipeline import WindowFailure, WindowNetworks, window_evidence, window_networks
 from funcnet.robot import Recording, Window, paper_nodes
 from funcnet.robot.axes import split_qualified
 from funcnet.robot.windows import span_window
@@ -156,6 +158,70 @@ def robot_windows(recording: Recording,
     return windows, note + "."
 
 
+def _cut_segments(recording: Recording, windows: Sequence[Window],
+                  p: NetworkParameters) -> dict[tuple[float, float], list[str]]:
+    """Each segment cut into parts (:func:`robot_windows`) -> the labels of its windows."""
+    lag = (p.dim - 1) * p.delay
+    return {(a, b): [w.label for w in windows if a <= w.start and w.stop <= b]
+            for a, b in recording.segments
+            if len(_parts(a, b, recording.sample_period, lag)) > 1}
+
+
+def _segment_tests(recording: Recording, networks: WindowNetworks, windows: Sequence[Window],
+                   p: NetworkParameters, settings: EvidenceSettings,
+                   ) -> tuple[dict[str, Mapping[tuple[str, str], Any]], str]:
+    """The coupling test of each cut segment, run once on its thinned states
+    (:func:`funcnet.evidence.segment.segment_tests`), by the label of each of its parts; and
+    the sentence for the page."""
+    tests: dict[str, Mapping[tuple[str, str], Any]] = {}
+    said = []
+    for (a, b), labels in _cut_segments(recording, windows, p).items():
+        labels = [label for label in labels if label in networks]
+        nodes = list(dict.fromkeys(n for label in labels for n in networks[label].nodes))
+        if len(nodes) < 2:
+            continue
+        span = recording.window(a, b).data[nodes]
+        prepared = prepared_signals(span, None, None, p.normalize)
+        found, step = segment_tests(list(prepared.signals), names=list(prepared.names),
+                                    parameters=p, surrogates=settings.get("surrogates"),
+                                    alpha=settings.get("alpha", 0.05))
+        tests.update({label: found for label in labels})
+        ks = [t.surrogates for t in found.values() if t is not None]
+        said.append(f"{a:g}-{b:g} s: one state in {step} of its {len(span):,} samples, "
+                    f"K = {min(ks, default=0)}-{max(ks, default=0)}")
+    if not said:
+        return tests, ""
+    drawn = "" if settings.get("edge_rule", "paper") == "interval" else (
+        " The parts' asymmetry intervals are not drawn (`funcnet network` on a window draws "
+        "them).")
+    return tests, ("The coupling test of each part is its whole segment's, run once on at most "
+                   f"{SEGMENT_MAX_STATES:,} states taken evenly over it ({'; '.join(said)}): "
+                   f"a part alone holds too few surrogates to decide.{drawn}")
+
+
+def _evidence(recording: Recording, networks: WindowNetworks, windows: Sequence[Window],
+              p: NetworkParameters, settings: EvidenceSettings,
+              ) -> tuple[WindowNetworks, str]:
+    """Each window's evidence; the parts of a cut segment read its segment's coupling test
+    and, but under the interval rule, draw no interval (their cost is the page's)."""
+    tests, note = ({}, "") if settings.get("surrogate_method", "shift") != "shift" else \
+        _segment_tests(recording, networks, windows, p, settings)
+    own = WindowNetworks({k: v for k, v in networks.items() if k not in tests})
+    cut = WindowNetworks({k: v for k, v in networks.items() if k in tests})
+    found = window_evidence(recording, own, windows, errors="collect", **settings)
+    failures = list(found.failures)
+    if cut:
+        parts = EvidenceSettings(**settings)
+        if parts.get("edge_rule", "paper") != "interval":
+            parts["resamples"] = 0
+        more = window_evidence(recording, cut, windows, errors="collect", tests=tests, **parts)
+        found.update(more)
+        failures += more.failures
+    order = {label: k for k, label in enumerate(networks)}
+    return WindowNetworks({k: found[k] for k in networks if k in found},
+                          sorted(failures, key=lambda f: order.get(f.window, 0))), note
+
+
 @dataclass(frozen=True)
 class RobotInspection:
     """What :func:`inspect_robot` found in a recording of several axes.
@@ -263,9 +329,10 @@ def inspect_robot(
                                constant="drop", errors="collect")
     failures = list(networks.failures)
     if evidence:
-        networks = window_evidence(recording, networks, windows, errors="collect",
-                                   **(evidence_options or EvidenceSettings()))
+        networks, tested = _evidence(recording, networks, windows, p,
+                                     evidence_options or EvidenceSettings())
         failures += networks.failures
+        note = " ".join(filter(None, [note, tested]))
     axes: dict[int, TraceInspection] = {}
     errors: dict[int, str] = {}
     for k, axis in enumerate(recording.axes):

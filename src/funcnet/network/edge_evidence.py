@@ -89,8 +89,9 @@ def check_evidence_settings(**settings: Unpack[EvidenceSettings]) -> None:
 
 def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkParameters, *,
                      surrogates: int | None, alpha: float, seed: int, resamples: int,
-                     surrogate_method: str, edge_rule: str,
-                     intervals: str = "coupled") -> tuple[pd.DataFrame, dict[str, Any]]:
+                     surrogate_method: str, edge_rule: str, intervals: str = "coupled",
+                     tests: Mapping[tuple[str, str], Any] | None = None,
+                     ) -> tuple[pd.DataFrame, dict[str, Any]]:
     """A plain pairs table with the evidence columns, and the settings that made them.
 
     Under ``edge_rule="interval"`` the kinds follow the interval rule
@@ -107,6 +108,8 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
         The network's parameters.
     surrogates, alpha, seed, resamples, surrogate_method, edge_rule, intervals
         As in :func:`funcnet.network.functional_network` (checked by the caller).
+    tests : mapping, optional
+        The pairs' coupling tests already run (:func:`funcnet.evidence.pairwise_evidence`).
 
     Returns
     -------
@@ -121,7 +124,7 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
     found = pairwise_evidence(
         list(prepared.signals), names=list(prepared.names), parameters=p, surrogates=surrogates,
         alpha=alpha, seed=seed, resamples=resamples, surrogate_method=surrogate_method,
-        intervals=intervals, observed=observed,
+        intervals=intervals, observed=observed, tests=tests,
     )
     settings = {"surrogates": surrogates, "alpha": float(alpha), "seed": int(seed),
                 "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule,
@@ -203,7 +206,8 @@ def with_readings(pairs: pd.DataFrame, alpha: float) -> pd.DataFrame:
 def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | None = None,
                  alpha: float = 0.05, seed: int = 0, resamples: int = 200,
                  surrogate_method: str = "shift", edge_rule: str = "paper",
-                 intervals: str = "coupled") -> FunctionalNetwork:
+                 intervals: str = "coupled",
+                 tests: Mapping[tuple[str, str], Any] | None = None) -> FunctionalNetwork:
     """The network with the evidence columns, from the data it was computed from.
 
     Equal to ``functional_network(data, ..., evidence=True, ...)`` with the network's nodes and
@@ -219,6 +223,10 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
         only, an array with one column per node in node order.
     surrogates, alpha, seed, resamples, surrogate_method, edge_rule, intervals
         As in :func:`funcnet.network.functional_network`.
+    tests : mapping, optional
+        ``{(x, y): DependenceResult or None}`` for every pair: the coupling tests already run
+        over a longer span (the whole segment of a robot network cut into parts); none is run
+        here (:func:`funcnet.evidence.pairwise_evidence`).
 
     Returns
     -------
@@ -280,7 +288,7 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     pairs, settings = evidence_columns(
         network.pairs, prepared, network.parameters, surrogates=surrogates, alpha=alpha,
         seed=seed, resamples=resamples, surrogate_method=surrogate_method, edge_rule=edge_rule,
-        intervals=intervals,
+        intervals=intervals, tests=tests,
     )
     edges = edges_from_pairs(pairs, degenerate=network.parameters.degenerate)
     return dataclasses.replace(network, pairs=pairs, edges=edges, evidence=settings)
