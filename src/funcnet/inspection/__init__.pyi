@@ -1,6 +1,6 @@
 """Type stub of funcnet.inspection: the names its lazy table exports (:mod:`funcnet._lazy`)."""
 
-from funcnet.inspection.files import inspect_file as inspect_file
+from funcnet.inspection.run import inspect_file as inspect_file
 from funcnet.inspection.motion import (
     motion_summary as motion_summary,
     numbered_moves as numbered_moves,

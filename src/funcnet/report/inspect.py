@@ -37,7 +37,7 @@ import pandas as pd
 from funcnet._io import write_text_atomic
 from funcnet.errors import ParameterError
 from funcnet.inspection import TraceInspection
-from funcnet.inspection.files import inspect_file
+from funcnet.inspection.run import inspect_file
 from funcnet.inspection.repeated import repetitions_of
 from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
