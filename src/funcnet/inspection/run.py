@@ -1,24 +1,31 @@
-"""A trace file read and inspected: one axis, or each axis of a robot and the robot as a whole.
+"""The inspection step of ``funcnet inspect``: trace files read and inspected, one at a time.
 
 :func:`inspect_file` is what ``funcnet inspect FILE`` computes before anything is drawn: it reads
 the file (:func:`funcnet.robot.read_trace`) and hands the recording to
 :func:`~funcnet.inspection.inspect_recording`, or, for a recording of several axes read without
-``axis``, to :func:`~funcnet.inspection.inspect_robot`.
+``axis``, to :func:`~funcnet.inspection.inspect_robot`. :func:`inspect_files` does it for every
+file of the command, each when its turn comes (:class:`FileInspections`), so that its page is
+written before the next file is read; the report (:func:`funcnet.report.inspect.write_inspections`)
+draws them.
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from pathlib import Path
 from typing import Any, Unpack
 
+from funcnet.errors import ParameterError
+from funcnet.inspection.repeated import RepeatedInspection, repetitions_of
 from funcnet.inspection.robot import RobotInspection, inspect_robot
 from funcnet.inspection.trace import TraceInspection, inspect_recording
-from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot import read_trace
+from funcnet.robot.channels import ChannelMap, channel_map
 from funcnet.robot.units import in_axis_units
 
-__all__ = ["inspect_file"]
+__all__ = ["inspect_file", "inspect_files", "FileInspections"]
 
 
 def inspect_file(
@@ -75,3 +82,109 @@ def inspect_file(
     return inspect_recording(recording, signals=signals, parameters=parameters,
                              evidence=evidence, progress=progress,
                              evidence_options=evidence_options, **overrides)
+
+
+class FileInspections:
+    """Trace files inspected one after the other, each when iteration reaches it.
+
+    Iterating gives ``(path, inspection)`` per file, in the order given: the file is read and
+    inspected (:func:`inspect_file`) only then, and nothing of it is kept unless ``repeated``,
+    so a caller that draws each page before asking for the next holds one file at a time.
+    Made by :func:`inspect_files`; iterate it once.
+
+    Attributes
+    ----------
+    paths : tuple of pathlib.Path
+        The trace files, in order.
+    channels : ChannelMap
+        The channel map the files are read with (its ``axis_names`` name the axes on pages).
+    axis : int or None
+        The axis read from each file, or None (a file of several axes: a robot).
+    repeated : bool
+        Whether :meth:`repetitions` is asked for: the single-axis inspections are kept for it.
+    """
+
+    def __init__(self, paths: Sequence[Path], *, channels: ChannelMap, axis: int | None,
+                 repeated: bool, evidence_options: EvidenceSettings | None,
+                 inspect: Callable[[Path], TraceInspection | RobotInspection]) -> None:
+        self.paths = tuple(paths)
+        self.channels = channels
+        self.axis = axis
+        self.repeated = repeated
+        self._evidence_options = evidence_options
+        self._inspect = inspect
+        self._kept: list[TraceInspection] = []
+
+    def __iter__(self) -> Iterator[tuple[Path, TraceInspection | RobotInspection]]:
+        for path in self.paths:
+            found = self._inspect(path)
+            if self.repeated and isinstance(found, TraceInspection):
+                self._kept.append(found)
+            yield path, found
+
+    def repetitions(self) -> RepeatedInspection | None:
+        """The repetitions of the single-axis traces read together, once they are iterated.
+
+        :func:`funcnet.inspection.repetitions_of` the inspections iteration gave (a robot's
+        are not among them); None when there is none.
+        """
+        return repetitions_of(self._kept, self._evidence_options)
+
+
+def inspect_files(
+    *paths: str | os.PathLike[str],
+    channels: Any = None,
+    axis: int | None = None,
+    signals: Sequence[str] | None = None,
+    parameters: NetworkParameters | None = None,
+    evidence: bool = True,
+    progress: Callable[[int, int, str], None] | None = None,
+    evidence_options: EvidenceSettings | None = None,
+    repeated: bool = False,
+    **overrides: Unpack[ParameterOverrides],
+) -> FileInspections:
+    """Trace files to be read and inspected one after the other (:func:`inspect_file` each).
+
+    The arguments are checked now, before any file is read; each file is read when the result
+    is iterated.
+
+    Parameters
+    ----------
+    *paths : path-like
+        Trace files (:func:`funcnet.robot.read_trace`: SINUMERIK XML, CSV, Parquet, MATLAB,
+        HDF5).
+    channels, axis, signals, parameters, evidence, progress, evidence_options, **overrides
+        As :func:`inspect_file`.
+    repeated : bool
+        Keep the single-axis inspections for :meth:`FileInspections.repetitions`.
+
+    Returns
+    -------
+    FileInspections
+
+    Raises
+    ------
+    ParameterError
+        No trace, or a bad parameter.
+    ChannelError
+        The channel map cannot be read.
+
+    Examples
+    --------
+    >>> inspect_files()
+    Traceback (most recent call last):
+        ...
+    funcnet.errors.ParameterError: paths must name at least one trace file
+    """
+    if not paths:
+        raise ParameterError.of("paths", "must name at least one trace file")
+    p = resolve(parameters, overrides)
+    cmap = channel_map(channels)
+
+    def inspect(path: Path) -> TraceInspection | RobotInspection:
+        return inspect_file(path, channels=channels, axis=axis, signals=signals, parameters=p,
+                            evidence=evidence, progress=progress,
+                            evidence_options=evidence_options)
+
+    return FileInspections([Path(path) for path in paths], channels=cmap, axis=axis,
+                           repeated=repeated, evidence_options=evidence_options, inspect=inspect)

@@ -1,7 +1,7 @@
 """The engineer's report of a controller trace: "here is a trace of my axis: what is it doing?".
 
-:func:`inspect_trace` has one or several traces read and inspected
-(:func:`funcnet.inspection.inspect_file`) and writes, for each, one HTML page that reads from the
+:func:`write_inspections` writes, for each trace :func:`funcnet.inspection.inspect_files` read
+and inspected, one HTML page that reads from the
 top: a plain summary of the motion (moves, phases with their times, speeds, peak
 currents, following error, lost motion at the direction changes where both encoders exist),
 then the functional network of every phase of every move with its evidence, the edge timeline,
@@ -12,7 +12,7 @@ page. This module only draws: the computation is
 several axes read without ``axis`` is :func:`funcnet.inspection.inspect_robot`'s, rendered by
 :func:`write_robot_inspection`: the robot's page (a summary per axis, the robot network with
 its nodes grouped per axis and its pairs told apart within and between axes) and each axis's
-own page in ``axis-N/``.
+own page in ``axis-N/``. :func:`inspect_trace` is the two steps in one call.
 
 The figures are in :mod:`funcnet.report.inspect_figures`, the summary's words in
 :mod:`funcnet.report.inspect_text`. A recording with gaps (missing values) is said to have them
@@ -35,12 +35,10 @@ import numpy as np
 import pandas as pd
 
 from funcnet._io import write_text_atomic
-from funcnet.errors import ParameterError
 from funcnet.inspection import TraceInspection
-from funcnet.inspection.run import inspect_file
-from funcnet.inspection.repeated import repetitions_of
 from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection
-from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
+from funcnet.inspection.run import FileInspections, inspect_files
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides
 from funcnet.report.html import (
     Progress,
     contents,
@@ -77,10 +75,10 @@ from funcnet.report.inspect_text import (
 from funcnet.report.repetitions_page import write_repetitions
 from funcnet.report.robot_figures import figure_robot_matrix
 from funcnet.report.robot_summary import axis_findings
-from funcnet.robot.channels import channel_map
 from funcnet.robot.grid import format_spans
 
-__all__ = ["inspect_trace", "write_inspection", "write_robot_inspection", "READING_AN_ARROW"]
+__all__ = ["inspect_trace", "write_inspections", "write_inspection", "write_robot_inspection",
+           "READING_AN_ARROW"]
 
 #: What the report says about reading an arrow (paper section 2.4; docs/guide/direction.md).
 READING_AN_ARROW = (
@@ -477,6 +475,75 @@ def _slug(path: Path, taken: set[str]) -> str:
     return slug
 
 
+def write_inspections(
+    inspections: FileInspections,
+    out_dir: str | os.PathLike[str] = "inspect",
+    *,
+    progress: Progress = None,
+) -> Path:
+    """Write the engineer's report of each inspected trace (and an index for several).
+
+    Parameters
+    ----------
+    inspections : FileInspections
+        :func:`funcnet.inspection.inspect_files`' result: each file is read and inspected as
+        this reaches it, its page written before the next is read.
+    out_dir : path-like
+        The report folder. One trace: ``out_dir/index.html``; several: one folder per trace
+        (named after the file) and ``out_dir/index.html`` linking them. A file of several axes
+        read without ``axis`` gets the robot's page and one page per axis
+        (:func:`write_robot_inspection`). With ``repeated``, ``out_dir/repeated.html``.
+    progress : callable, optional
+        ``progress(done, total, description)``.
+
+    Returns
+    -------
+    pathlib.Path
+        The page to open first.
+    """
+    out = Path(out_dir)
+    cmap, axis = inspections.channels, inspections.axis
+
+    def write(found: TraceInspection | RobotInspection, folder: Path) -> None:
+        if isinstance(found, RobotInspection):
+            write_robot_inspection(found, folder, progress=progress,
+                                   axis_names=cmap.axis_names)
+        else:
+            write_inspection(found, folder, progress=progress,
+                             axis_label=cmap.axis_label(axis)
+                             if axis is not None and cmap.axis_names else None)
+
+    if len(inspections.paths) == 1:
+        for _, single in inspections:
+            write(single, out)
+        if inspections.repeated:
+            write_repetitions(inspections.repetitions(), out)
+        return out / "index.html"
+    taken: set[str] = set()
+    rows = []
+    for path, ins in inspections:
+        slug = _slug(path, taken)
+        write(ins, out / slug)
+        if isinstance(ins, RobotInspection):  # the axes' moves and diagnoses are on its page
+            duration, moves = f"{ins.recording.duration:.1f}", ""
+            networks, backlash = len(ins.networks), f"{len(ins.axes)} axes: see its page"
+        else:
+            duration, moves = f"{ins.duration:.1f}", str(len(ins.moves))
+            networks = len(ins.networks)
+            backlash = ins.backlash.message if ins.backlash else ins.backlash_error
+        rows.append(f"<tr><td><a href=\"{escape(slug)}/index.html\">{escape(path.name)}</a>"
+                    f"</td><td class=\"num\">{duration}</td><td class=\"num\">"
+                    f"{moves}</td><td class=\"num\">{networks}</td><td>"
+                    f"{escape(backlash)}</td></tr>")
+    index = ("<h1>funcnet inspect — traces</h1><table><thead><tr><th>trace</th>"
+             "<th>duration [s]</th><th>moves</th><th>networks</th><th>backlash</th></tr>"
+             f"</thead><tbody>{''.join(rows)}</tbody></table>")
+    if inspections.repeated:
+        write_repetitions(inspections.repetitions(), out)
+        index += "<p><a href=\"repeated.html\">The repetitions of the traces together</a></p>"
+    return write_text_atomic(out / "index.html", page("funcnet inspect", [index]))
+
+
 def inspect_trace(
     *paths: str | os.PathLike[str],
     out_dir: str | os.PathLike[str] = "inspect",
@@ -492,6 +559,9 @@ def inspect_trace(
 ) -> Path:
     """Read traces and write the engineer's report of each (and an index for several).
 
+    The two steps of ``funcnet inspect`` in one call: :func:`funcnet.inspection.inspect_files`
+    reads and inspects, :func:`write_inspections` draws.
+
     Parameters
     ----------
     *paths : path-like
@@ -502,7 +572,7 @@ def inspect_trace(
         The report folder. One trace: ``out_dir/index.html``; several: one folder per trace
         (named after the file) and ``out_dir/index.html`` linking them.
     signals, parameters, evidence, evidence_options
-        As :func:`inspect_recording`.
+        As :func:`funcnet.inspection.inspect_recording`.
     channels, axis
         As :func:`funcnet.robot.read_trace`. A file of several axes without ``axis`` gets the
         robot's page and one page per axis (:func:`write_robot_inspection`); ``signals`` then
@@ -536,54 +606,8 @@ def inspect_trace(
         ...
     funcnet.errors.ParameterError: paths must name at least one trace file
     """
-    if not paths:
-        raise ParameterError.of("paths", "must name at least one trace file")
-    p = resolve(parameters, overrides)
-    out = Path(out_dir)
-    cmap = channel_map(channels)
-
-    def inspected(path: Any, folder: Path) -> TraceInspection | RobotInspection:
-        found = inspect_file(path, channels=channels, axis=axis, signals=signals, parameters=p,
-                             evidence=evidence, progress=progress,
-                             evidence_options=evidence_options)
-        if isinstance(found, RobotInspection):
-            write_robot_inspection(found, folder, progress=progress,
-                                   axis_names=cmap.axis_names)
-        else:
-            write_inspection(found, folder, progress=progress,
-                             axis_label=cmap.axis_label(axis)
-                             if axis is not None and cmap.axis_names else None)
-        return found
-
-    if len(paths) == 1:
-        single = inspected(paths[0], out)
-        if repeated:
-            write_repetitions(repetitions_of([single] if isinstance(single, TraceInspection)
-                                             else [], evidence_options), out)
-        return out / "index.html"
-    taken: set[str] = set()
-    rows = []
-    inspections: list[TraceInspection] = []
-    for path in map(Path, paths):
-        slug = _slug(path, taken)
-        ins = inspected(path, out / slug)
-        if repeated and isinstance(ins, TraceInspection):
-            inspections.append(ins)
-        if isinstance(ins, RobotInspection):  # the axes' moves and diagnoses are on its page
-            duration, moves = f"{ins.recording.duration:.1f}", ""
-            networks, backlash = len(ins.networks), f"{len(ins.axes)} axes: see its page"
-        else:
-            duration, moves = f"{ins.duration:.1f}", str(len(ins.moves))
-            networks = len(ins.networks)
-            backlash = ins.backlash.message if ins.backlash else ins.backlash_error
-        rows.append(f"<tr><td><a href=\"{escape(slug)}/index.html\">{escape(path.name)}</a>"
-                    f"</td><td class=\"num\">{duration}</td><td class=\"num\">"
-                    f"{moves}</td><td class=\"num\">{networks}</td><td>"
-                    f"{escape(backlash)}</td></tr>")
-    index = ("<h1>funcnet inspect — traces</h1><table><thead><tr><th>trace</th>"
-             "<th>duration [s]</th><th>moves</th><th>networks</th><th>backlash</th></tr>"
-             f"</thead><tbody>{''.join(rows)}</tbody></table>")
-    if repeated:
-        write_repetitions(repetitions_of(inspections, evidence_options), out)
-        index += "<p><a href=\"repeated.html\">The repetitions of the traces together</a></p>"
-    return write_text_atomic(out / "index.html", page("funcnet inspect", [index]))
+    inspections = inspect_files(*paths, channels=channels, axis=axis, signals=signals,
+                                parameters=parameters, evidence=evidence, progress=progress,
+                                evidence_options=evidence_options, repeated=repeated,
+                                **overrides)
+    return write_inspections(inspections, out_dir, progress=progress)
