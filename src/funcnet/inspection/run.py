@@ -22,7 +22,7 @@ from funcnet.inspection.robot import RobotInspection, inspect_robot
 from funcnet.inspection.trace import TraceInspection, inspect_recording
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot import read_trace
-from funcnet.robot.channels import ChannelMap, channel_map
+from funcnet.robot.io.channels import ChannelMap, channel_map
 from funcnet.robot.units import in_axis_units
 
 __all__ = ["inspect_file", "inspect_files", "FileInspections"]

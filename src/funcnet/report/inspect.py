@@ -1,18 +1,17 @@
 """The engineer's report of a controller trace: "here is a trace of my axis: what is it doing?".
 
 :func:`write_inspections` writes, for each trace :func:`funcnet.inspection.inspect_files` read
-and inspected, one HTML page that reads from the
-top: a plain summary of the motion (moves, phases with their times, speeds, peak
-currents, following error, lost motion at the direction changes where both encoders exist),
-then the functional network of every phase of every move with its evidence, the edge timeline,
-the backlash diagnosis, and what an arrow does and does not say. Several traces get an index
-page. This module only draws: the computation is
-:func:`funcnet.inspection.inspect_recording` (a
-:class:`~funcnet.inspection.TraceInspection`); :func:`write_inspection` renders it. A file of
-several axes read without ``axis`` is :func:`funcnet.inspection.inspect_robot`'s, rendered by
-:func:`write_robot_inspection`: the robot's page (a summary per axis, the robot network with
-its nodes grouped per axis and its pairs told apart within and between axes) and each axis's
-own page in ``axis-N/``. :func:`inspect_trace` is the two steps in one call.
+and inspected, one HTML page that reads from the top: a plain summary of the motion (moves,
+phases with their times, speeds, peak currents, following error, lost motion at the direction
+changes where both encoders exist), then the functional network of every phase of every move
+with its evidence, the edge timeline, the backlash diagnosis, and what an arrow does and does
+not say. Several traces get an index page. This module only draws: the computation is
+:func:`funcnet.inspection.inspect_recording` (a :class:`~funcnet.inspection.TraceInspection`);
+:func:`write_inspection` renders it. A file of several axes read without ``axis`` is
+:func:`funcnet.inspection.inspect_robot`'s, rendered by :func:`write_robot_inspection`: the
+robot's page (a summary per axis, the robot network with its nodes grouped per axis and its
+pairs told apart within and between axes) and each axis's own page in ``axis-N/``.
+:func:`inspect_trace` is the two steps in one call.
 
 The figures are in :mod:`funcnet.report.inspect_figures`, the summary's words in
 :mod:`funcnet.report.inspect_text`. A recording with gaps (missing values) is said to have them
@@ -36,7 +35,7 @@ import pandas as pd
 
 from funcnet._io import write_text_atomic
 from funcnet.inspection import TraceInspection
-from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection
+from funcnet.inspection.robot import RobotInspection
 from funcnet.inspection.run import FileInspections, inspect_files
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides
 from funcnet.report.html import (
@@ -74,7 +73,7 @@ from funcnet.report.inspect_text import (
 )
 from funcnet.report.repetitions_page import write_repetitions
 from funcnet.report.robot_figures import figure_robot_matrix
-from funcnet.report.robot_summary import axis_findings
+from funcnet.report.robot_summary import axis_findings, evidence_sentence, scope_counts
 from funcnet.robot.grid import format_spans
 
 __all__ = ["inspect_trace", "write_inspections", "write_inspection", "write_robot_inspection",
@@ -348,39 +347,6 @@ def _figure(ins: RobotInspection, label: str) -> Any:
                                else "rule")
 
 
-def _scope_counts(pairs: pd.DataFrame) -> str:
-    edges = pairs[pairs["kind"].isin(["x->y", "y->x", "bidirectional"])]
-    if "degenerate" in edges:
-        edges = edges[~edges["degenerate"].astype(bool)]
-    within = int((edges["scope"] == WITHIN_AXIS).sum())
-    between = int((edges["scope"] == BETWEEN_AXES).sum())
-    return (f"{len(edges)} edges of {len(pairs)} pairs: {within} within an axis, {between} "
-            "between axes")
-
-
-def _evidence_sentence(pairs: pd.DataFrame) -> str:
-    """What the evidence says of a robot network's pairs, in one sentence ("" without it)."""
-    if "evidence" not in pairs.columns:
-        return ""
-    counts = pairs["evidence"].value_counts()
-    said = ", ".join(f"{n} {label}" for label, n in counts.items())
-    blind = pairs[pairs["evidence"] == "untestable"]
-    why = ""
-    if len(blind):
-        reasons = blind["evidence_reason"].value_counts()
-        drawn = "c_diff_low" in blind and not blind["c_diff_low"].isna().all()
-        why = (f" Untestable: {reasons.index[0]}" + (" (the most common reason)"
-                                                     if len(reasons) > 1 else "")
-               + ("." if drawn else "; their asymmetry intervals are not drawn (--intervals "
-                  "all draws them)."))
-    tested = pairs[pairs["evidence"] != "untestable"]  # their own sentence: above
-    undrawn = int((tested["c_diff_low"].isna() & ~tested["coupled"].astype(bool)).sum())
-    if undrawn:
-        why += (f" The asymmetry intervals of the {undrawn} tested pairs without coupling are "
-                "not drawn (--intervals all draws them).")
-    return escape(f" Evidence: {said} of {len(pairs)} pairs.{why}")
-
-
 def write_robot_inspection(
     inspection: RobotInspection,
     out_dir: str | os.PathLike[str],
@@ -435,7 +401,7 @@ def write_robot_inspection(
                    "independence. The rule's kinds are in the pairs tables.")
         network_parts.append(figure_html(out, f"robot-network-{k + 1}", _figure(ins, label),
                                          caption))
-        network_parts.append(f"<p>{escape(_scope_counts(pairs))}.{_evidence_sentence(pairs)}"
+        network_parts.append(f"<p>{escape(scope_counts(pairs))}.{evidence_sentence(pairs)}"
                              "</p>")
         shown = pairs_table(pairs)
         scope = table(pairs[["x", "y", "axis_x", "axis_y", "scope", "kind", "weight"]])
@@ -486,13 +452,12 @@ def write_inspections(
     Parameters
     ----------
     inspections : FileInspections
-        :func:`funcnet.inspection.inspect_files`' result: each file is read and inspected as
-        this reaches it, its page written before the next is read.
+        :func:`funcnet.inspection.inspect_files`' (each page is written before the next file
+        is read).
     out_dir : path-like
-        The report folder. One trace: ``out_dir/index.html``; several: one folder per trace
-        (named after the file) and ``out_dir/index.html`` linking them. A file of several axes
-        read without ``axis`` gets the robot's page and one page per axis
-        (:func:`write_robot_inspection`). With ``repeated``, ``out_dir/repeated.html``.
+        One trace: ``out_dir/index.html``; several: a folder per trace (named after the file)
+        and an ``index.html`` linking them; a robot: its page and one per axis
+        (:func:`write_robot_inspection`); ``repeated``: also ``repeated.html``.
     progress : callable, optional
         ``progress(done, total, description)``.
 
@@ -506,8 +471,7 @@ def write_inspections(
 
     def write(found: TraceInspection | RobotInspection, folder: Path) -> None:
         if isinstance(found, RobotInspection):
-            write_robot_inspection(found, folder, progress=progress,
-                                   axis_names=cmap.axis_names)
+            write_robot_inspection(found, folder, progress=progress, axis_names=cmap.axis_names)
         else:
             write_inspection(found, folder, progress=progress,
                              axis_label=cmap.axis_label(axis)
@@ -566,24 +530,14 @@ def inspect_trace(
     ----------
     *paths : path-like
         Trace files (SINUMERIK XML, CSV, Parquet, MATLAB, HDF5:
-        :func:`funcnet.robot.read_trace`), each read and inspected by
-        :func:`funcnet.inspection.inspect_file`.
+        :func:`funcnet.robot.read_trace`).
     out_dir : path-like
-        The report folder. One trace: ``out_dir/index.html``; several: one folder per trace
-        (named after the file) and ``out_dir/index.html`` linking them.
-    signals, parameters, evidence, evidence_options
-        As :func:`funcnet.inspection.inspect_recording`.
-    channels, axis
-        As :func:`funcnet.robot.read_trace`. A file of several axes without ``axis`` gets the
-        robot's page and one page per axis (:func:`write_robot_inspection`); ``signals`` then
-        names the robot network's nodes (``A1.RP``, ...).
-    progress : callable, optional
-        ``progress(done, total, description)``.
-    repeated : bool
-        Also read the repetitions of the most repeated motion in the (single-axis) traces
-        together (:func:`funcnet.inspection.repeated.inspect_repetitions`):
-        ``out_dir/repeated.html``, per phase the repetition evidence beside the single-window
-        networks, or how many repetitions a decision needs.
+        The report folder (:func:`write_inspections`).
+    signals, parameters, evidence, channels, axis, progress, evidence_options, repeated
+        As :func:`funcnet.inspection.inspect_files`. A file of several axes without ``axis``
+        gets the robot's page and one page per axis; ``signals`` then names the robot
+        network's nodes (``A1.RP``, ...). ``repeated`` adds ``out_dir/repeated.html``: per
+        phase the repetition evidence, or how many repetitions a decision needs.
     **overrides
         Network parameters by name.
 

@@ -19,7 +19,7 @@ the two, is an error naming the signal. A force (N) may stand where a current or
 
 Examples
 --------
->>> from funcnet.robot.channels import SignalInfo
+>>> from funcnet.robot.signals import SignalInfo
 >>> unit_of(SignalInfo("q_target(axis 1)", None, None, 0.008, "rad"))
 'rad'
 >>> unit_of(SignalInfo("measPos2 [u1, 7]", "posn", "double", 0.002))
@@ -42,8 +42,8 @@ from dataclasses import dataclass, replace
 
 from funcnet.errors import ChannelError, RecordingWarning
 from funcnet.robot.axes import split_qualified
-from funcnet.robot.channels import SignalInfo
 from funcnet.robot.recording import Recording
+from funcnet.robot.signals import SignalInfo
 
 __all__ = [
     "UNKNOWN", "unit_of", "to_degrees", "to_axis_unit", "in_axis_units", "in_degrees", "Units",
