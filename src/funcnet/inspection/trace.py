@@ -40,7 +40,7 @@ from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.pipeline import WindowFailure, window_evidence, window_networks, window_warnings
 from funcnet.robot import PAPER_NODES, Recording, Window, phase_windows
-from funcnet.robot.phases import Turn
+from funcnet.robot.phases import SetpointTurn
 from funcnet.robot.prepare import prepare_recording
 from funcnet.robot.preprocess import DERIVED_SIGNALS, staircase_signals
 
@@ -83,7 +83,7 @@ class TraceInspection:
         (:func:`~funcnet.inspection.motion.segment_phases`).
     moves : pandas.DataFrame
         :func:`~funcnet.inspection.motion.motion_summary`: one row per move.
-    turns : tuple of Turn
+    turns : tuple of SetpointTurn
         The set-point's direction changes (:func:`funcnet.robot.direction_changes`), within a
         move (continuous motion) or after a rest.
     windows : tuple of Window
@@ -129,7 +129,7 @@ class TraceInspection:
     signals: tuple[str, ...]
     phases: pd.DataFrame
     moves: pd.DataFrame
-    turns: tuple[Turn, ...]
+    turns: tuple[SetpointTurn, ...]
     windows: tuple[Window, ...]
     networks: dict[str, FunctionalNetwork]
     failures: tuple[WindowFailure, ...]

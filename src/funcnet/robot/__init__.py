@@ -33,7 +33,7 @@ _EXPORTS = {
     "PHASES": "funcnet.robot.phases",
     "detect_phases": "funcnet.robot.phases",
     "direction_changes": "funcnet.robot.phases",
-    "Turn": "funcnet.robot.phases",
+    "SetpointTurn": "funcnet.robot.phases",
     "phase_table": "funcnet.robot.phases",
     "PAPER_NODES": "funcnet.robot.windows",
     "paper_nodes": "funcnet.robot.windows",
@@ -48,4 +48,7 @@ _EXPORTS = {
     "find_repetitions": "funcnet.robot.repeats",
 }
 
-__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)
+# Renamed names, still given with a DeprecationWarning.
+_RENAMED = {"Turn": "SetpointTurn"}
+
+__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS, deprecated=_RENAMED)

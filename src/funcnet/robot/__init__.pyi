@@ -7,7 +7,7 @@ from funcnet.robot.io.channels import (
 from funcnet.robot.io.read import read_recording as read_recording, read_trace as read_trace
 from funcnet.robot.phases import (
     PHASES as PHASES,
-    Turn as Turn,
+    SetpointTurn as SetpointTurn,
     detect_phases as detect_phases,
     direction_changes as direction_changes,
     phase_table as phase_table,
