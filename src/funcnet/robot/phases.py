@@ -122,14 +122,10 @@ def merge_runs(
 
 @dataclass(frozen=True)
 class SetpointTurn:
-    """One direction change of the reference motion, as the set-point shows it: its turn.
+    """One direction change of the reference motion, as the set-point alone shows it: its turn.
 
-    :func:`direction_changes` finds it from the set-point alone, at a speed relative to the
-    set-point's peak; it gives the phases their reversals and a page its direction changes. The
-    backlash diagnosis reads the same direction changes between two moves, classified
-    (:class:`funcnet.diagnosis.DirectionChange`: a reversal, after a standstill, continuous),
-    and takes the turn's bracket for a continuous one. Formerly ``Turn`` (still importable,
-    deprecated).
+    The backlash diagnosis's view of the same change, between two moves and classified, is
+    :class:`funcnet.diagnosis.DirectionChange`. Formerly ``Turn`` (deprecated).
 
     Attributes
     ----------
