@@ -90,7 +90,7 @@ def main() -> None:
     folder = Path(os.environ.get("FUNCNET_UR5", Path(__file__).parents[1] / "data/ur5"))
     channels = Path(__file__).parents[1] / "examples/ur5-channels.toml"
     if (folder / "Movement_No9_Singularity_Free_ForceSensor").is_dir():
-        from funcnet.robot.recording import read_trace
+        from funcnet.robot.io.read import read_trace
 
         def real() -> None:
             with warnings.catch_warnings():

@@ -32,7 +32,7 @@ import pandas as pd
 
 from funcnet.evidence.repetitions import repetition_tests
 from funcnet.robot import Recording, detect_phases
-from funcnet.robot.channels import SignalInfo
+from funcnet.robot.signals import SignalInfo
 from funcnet.sim import Trial, simulate_trial
 
 SIGNALS = ("RP", "AP", "MP", "RC", "AC")

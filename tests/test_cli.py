@@ -868,6 +868,7 @@ def test_help_shows_no_python_types(command: str) -> None:
 
 
 def test_inspect_passes_the_network_options(trial: Path, tmp_path: Path, monkeypatch) -> None:
+    import funcnet.inspection.run
     import funcnet.report.inspect
     from funcnet import NetworkParameters
 
@@ -875,9 +876,14 @@ def test_inspect_passes_the_network_options(trial: Path, tmp_path: Path, monkeyp
 
     def recorded(*paths, **keywords):
         calls.append(keywords)
+        return "inspections"
+
+    def written(inspections, out_dir, **keywords):
+        assert inspections == "inspections"  # the page draws what the inspection step gave
         return tmp_path / "index.html"
 
-    monkeypatch.setattr(funcnet.report.inspect, "inspect_trace", recorded)
+    monkeypatch.setattr(funcnet.inspection.run, "inspect_files", recorded)
+    monkeypatch.setattr(funcnet.report.inspect, "write_inspections", written)
     options = ["--rr", "0.1", "--mu-c", "0.2", "--normalize", "none", "--metric", "chebyshev",
                "--keep-degenerate"]
     result = runner.invoke(app, ["inspect", str(trial), "-o", str(tmp_path), *options])

@@ -103,3 +103,18 @@ def test_edge_timeline_takes_what_window_networks_returns():
 
     with pytest.raises(ParameterError, match="not a time"):
         plot_edge_timeline({"a": FunctionalNetwork.from_pairs(nets["a"].pairs)})
+
+
+def test_inspect_files_checks_first_and_reads_each_file_when_its_turn_comes(tmp_path):
+    # The inspection step of `funcnet inspect`: arguments refused before any file is read, and
+    # a file read only when iteration reaches it (its page is drawn before the next is read).
+    from funcnet.inspection import inspect_files
+
+    with pytest.raises(ParameterError, match="rr"):
+        inspect_files(tmp_path / "missing.csv", rr=2.0)
+    first, second = tmp_path / "first.csv", tmp_path / "second.csv"
+    inspections = inspect_files(first, second, channels={"q": "RP"})  # neither exists: no error
+    assert inspections.paths == (first, second) and inspections.axis is None
+    assert inspections.channels.role_of("q") == "RP"
+    with pytest.raises(TraceError, match="first.csv: no such file"):
+        next(iter(inspections))

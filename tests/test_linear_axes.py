@@ -23,8 +23,8 @@ from typer.testing import CliRunner
 from funcnet.cli import app
 from funcnet.errors import ChannelError, RecordingWarning
 from funcnet.robot import read_trace
-from funcnet.robot.channels import SignalInfo
 from funcnet.robot.recording import Recording
+from funcnet.robot.signals import SignalInfo
 from funcnet.robot.units import axis_scale, in_axis_units, position_unit, to_axis_unit
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -33,9 +33,10 @@ from funcnet.pipeline import (
     window_networks,
     window_warnings,
 )
+from funcnet.robot.io.read import read_trace
 from funcnet.robot.phases import detect_phases
 from funcnet.robot.preprocess import add_derived_signals, resample
-from funcnet.robot.recording import Recording, SignalInfo, read_trace
+from funcnet.robot.recording import Recording, SignalInfo
 from funcnet.robot.windows import Window, phase_windows, sliding_windows
 
 

@@ -1,7 +1,7 @@
 """A time column in any unit: s, ms, us, ns, ISO 8601; absolute clocks read from the start.
 
 Every reference is the grid the file was written from (``k * period``), or the date-times'
-own arithmetic (:mod:`datetime`), independent of :mod:`funcnet.robot.clock`.
+own arithmetic (:mod:`datetime`), independent of :mod:`funcnet.robot.io.clock`.
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ from typer.testing import CliRunner
 from funcnet.cli import app
 from funcnet.errors import ChannelError, RecordingWarning, TraceFormatError
 from funcnet.robot import read_trace
-from funcnet.robot.channels import ChannelMap
-from funcnet.robot.layout import signal_files
+from funcnet.robot.io.channels import ChannelMap
+from funcnet.robot.io.layout import signal_files
 from funcnet.robot.recording import Recording
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -11,7 +11,7 @@ from conftest import shipped
 from funcnet.errors import ChannelError, ParameterError
 from funcnet.robot.grid import mask_runs
 from funcnet.robot.phases import (
-    Turn,
+    SetpointTurn,
     detect_phases,
     direction_changes,
     merge_runs,
@@ -140,7 +140,7 @@ def test_a_trapezoid_with_dwell_turns_in_the_middle_of_its_rest():
     # 1 deg/s is reached 0.1 s from the rest on both sides
     assert turn.stop == pytest.approx(3.4, abs=2 * DT)
     assert turn.start == pytest.approx(3.9, abs=2 * DT)
-    assert turn.to_dict()["direction"] == -1 and isinstance(turn, Turn)
+    assert turn.to_dict()["direction"] == -1 and isinstance(turn, SetpointTurn)
 
 
 def test_one_way_and_standstill_have_none_and_bad_input_raises():

@@ -394,9 +394,9 @@ def test_repetitions_say_why_a_move_was_not_taken():
 
 
 def test_files_that_start_late_are_read_from_the_first_stamp_all_share(tmp_path):
-    from funcnet.robot.channels import ChannelMap
-    from funcnet.robot.files import read_signal_files
-    from funcnet.robot.layout import signal_files
+    from funcnet.robot.io.channels import ChannelMap
+    from funcnet.robot.io.layout import signal_files
+    from funcnet.robot.io.signal_files import read_signal_files
 
     (tmp_path / "q.csv").write_text("".join(f"{k * 0.008:.3f}, {k}\n" for k in range(6)))
     (tmp_path / "i.csv").write_text("".join(f"{k * 0.008:.3f}, {10 * k}\n" for k in range(2, 8)))

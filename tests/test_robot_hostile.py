@@ -7,8 +7,8 @@ import resource
 import pytest
 
 from funcnet.errors import ChannelError, FuncnetError, TraceFormatError, WindowError
-from funcnet.robot.recording import read_trace
-from funcnet.robot.sinumerik import GRID_BYTES_FLOOR
+from funcnet.robot.io.read import read_trace
+from funcnet.robot.io.sinumerik import GRID_BYTES_FLOOR
 
 HEAD = '<?xml version="1.0" encoding="utf-8" ?>\n<traceSession>\n<traceData>\n<dataFrame>\n'
 SIGNALS = (

@@ -51,14 +51,14 @@ def _real_modules(names: set[str]) -> set[str]:
 
 
 def _robot_files() -> list[Path]:
-    return sorted(path for path in ROBOT.glob("*.py"))
+    return sorted(path for path in ROBOT.rglob("*.py"))  # the readers of robot/io too
 
 
 def _sim_files() -> list[Path]:
     return sorted(SIM.glob("*.py"))
 
 
-@pytest.mark.parametrize("path", _robot_files(), ids=lambda p: p.name)
+@pytest.mark.parametrize("path", _robot_files(), ids=lambda p: p.relative_to(ROBOT).as_posix())
 def test_robot_imports_nothing_numerical(path):
     imported = _real_modules(_imports(path))
     allowed = {name for name in imported if name in BOTTOM or name == "funcnet.robot"}
@@ -118,7 +118,8 @@ def test_no_import_cycle_in_robot():
     assert "funcnet.sim.axis" not in graph["funcnet.sim.trial"]
 
 
-@pytest.mark.parametrize("path", _robot_files() + _sim_files(), ids=lambda p: p.name)
+@pytest.mark.parametrize("path", _robot_files() + _sim_files(),
+                         ids=lambda p: p.relative_to(ROBOT.parent).as_posix())
 def test_module_length(path):
     lines = path.read_text(encoding="utf-8").count("\n")
     assert lines <= 900
@@ -131,4 +132,4 @@ def test_the_robot_package_exports_no_simulator():
     import funcnet.robot
 
     assert not hasattr(funcnet.robot, "Trial") and "simulate_trial" not in funcnet.robot.__all__
-    assert funcnet.robot.read_recording.__module__ == "funcnet.robot.load"
+    assert funcnet.robot.read_recording.__module__ == "funcnet.robot.io.read"

@@ -8,9 +8,9 @@ import pytest
 
 from funcnet.errors import ChannelError, ParameterError
 from funcnet.robot import read_recording
-from funcnet.robot.load import derived_signals_needed, prepare_recording
+from funcnet.robot.io.read import read_trace
+from funcnet.robot.prepare import derived_signals_needed, prepare_recording
 from funcnet.robot.preprocess import add_derived_signals, resample, staircase_signals, velocity
-from funcnet.robot.recording import read_trace
 
 
 @pytest.fixture(scope="module")

@@ -9,8 +9,9 @@ import pandas as pd
 import pytest
 
 from funcnet.errors import ChannelError, ParameterError, SignalError
+from funcnet.robot.io.read import read_trace
 from funcnet.robot.phases import PHASES, detect_phases, phase_table
-from funcnet.robot.recording import Recording, SignalInfo, read_trace
+from funcnet.robot.recording import Recording, SignalInfo
 
 DT = 0.002
 A, TJ, TA = 2.0, 0.2, 0.3  # acceleration, jerk time, constant-acceleration time

@@ -12,7 +12,7 @@ from lxml import etree
 
 import funcnet.sim.plan as plan_module
 from funcnet.errors import ParameterError, SignalError, StudyError
-from funcnet.robot.recording import read_trace
+from funcnet.robot.io.read import read_trace
 from funcnet.sim.axis import AxisParameters, simulate_trial
 from funcnet.sim.plan import MANIFEST_COLUMNS, paper_plan, read_plan, write_plan
 from funcnet.sim.trial import Trial

@@ -7,6 +7,7 @@ import pandas as pd
 import pytest
 
 from funcnet.errors import ChannelError, ParameterError, SignalError, WindowError
+from funcnet.robot.io.read import read_trace
 from funcnet.robot.preprocess import (
     add_derived_signals,
     resample,
@@ -15,7 +16,7 @@ from funcnet.robot.preprocess import (
     trim,
     velocity,
 )
-from funcnet.robot.recording import Recording, SignalInfo, read_trace
+from funcnet.robot.recording import Recording, SignalInfo
 
 
 @pytest.fixture(scope="module")

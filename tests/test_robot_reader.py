@@ -15,14 +15,10 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from funcnet.errors import ChannelError, ParameterError, RecordingWarning, TraceFormatError
-from funcnet.robot.channels import (
-    DEFAULT_CHANNEL_MAP,
-    ChannelMap,
-    channel_map,
-    check_entries,
-    parse_signal_name,
-)
-from funcnet.robot.recording import Recording, read_trace
+from funcnet.robot.io.channels import DEFAULT_CHANNEL_MAP, ChannelMap, channel_map, check_entries
+from funcnet.robot.io.read import read_trace
+from funcnet.robot.recording import Recording
+from funcnet.robot.signals import parse_signal_name
 
 
 @pytest.fixture(scope="module")

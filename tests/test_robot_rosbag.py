@@ -18,7 +18,7 @@ from typer.testing import CliRunner
 from funcnet.cli import app
 from funcnet.errors import ChannelError, TraceError, TraceFormatError
 from funcnet.robot import read_trace
-from funcnet.robot.channels import channel_map
+from funcnet.robot.io.channels import channel_map
 
 ROOT = Path(__file__).resolve().parents[1]
 ROS2_MAP = ROOT / "examples" / "ros2-channels.toml"

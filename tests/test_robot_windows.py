@@ -6,9 +6,10 @@ import pandas as pd
 import pytest
 
 from funcnet.errors import ParameterError, WindowError
+from funcnet.robot.io.read import read_trace
 from funcnet.robot.phases import detect_phases
 from funcnet.robot.preprocess import add_derived_signals
-from funcnet.robot.recording import Recording, read_trace
+from funcnet.robot.recording import Recording
 from funcnet.robot.windows import (
     Window,
     fixed_windows,

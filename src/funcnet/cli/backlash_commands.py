@@ -58,7 +58,7 @@ def backlash(
                 f"-o {output}: unknown format, use one of {', '.join(_BACKLASH_SUFFIXES)}"
             )
         from funcnet.diagnosis import diagnose_backlash, write_results
-        from funcnet.robot.channels import channel_map
+        from funcnet.robot.io.channels import channel_map
 
         with progress_bar(quiet, "backlash"):
             results = diagnose_backlash(*traces, channels=channels, axis=axis)

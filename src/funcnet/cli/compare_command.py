@@ -58,8 +58,8 @@ def compare(
             raise ParameterError("--threshold must be > 0")
         from funcnet.comparison import compare_runs
         from funcnet.report.compare_page import write_comparison
-        from funcnet.robot.channels import channel_map
-        from funcnet.robot.recording import read_trace
+        from funcnet.robot.io.channels import channel_map
+        from funcnet.robot.io.read import read_trace
 
         # named by the paths given: a Parquet recording keeps the source it was written from
         recording, *references = (replace(read_trace(path, channels=channels, axis=axis),

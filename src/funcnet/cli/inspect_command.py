@@ -1,4 +1,8 @@
-"""``funcnet inspect``: the engineer's HTML report of traces (:func:`funcnet.inspect_trace`)."""
+"""``funcnet inspect``: the engineer's HTML report of traces: the inspection, then the page.
+
+:func:`funcnet.inspection.inspect_files` reads and inspects each trace,
+:func:`funcnet.report.inspect.write_inspections` draws it (:func:`funcnet.inspect_trace` in one).
+"""
 
 from __future__ import annotations
 
@@ -100,7 +104,8 @@ def inspect(
     with reported_errors(verbose=verbose):
         names = signal_list(signals)
         from funcnet.inspection import DETRENDED_NODES
-        from funcnet.report.inspect import inspect_trace
+        from funcnet.inspection.run import inspect_files
+        from funcnet.report.inspect import write_inspections
 
         if detrended:
             if names is not None:
@@ -112,10 +117,11 @@ def inspect(
         parameters = network.parameters()
 
         with progress_bar(quiet, "inspect") as progress:
-            page = inspect_trace(*traces, out_dir=out, signals=names, parameters=parameters,
-                                 evidence=evidence, channels=channels, axis=axis,
-                                 progress=progress, evidence_options=options,
-                                 repeated=repeated)
+            inspections = inspect_files(*traces, signals=names, parameters=parameters,
+                                        evidence=evidence, channels=channels, axis=axis,
+                                        progress=progress, evidence_options=options,
+                                        repeated=repeated)
+            page = write_inspections(inspections, out, progress=progress)
     typer.echo(f"report: {page}")
     if repeated:
         typer.echo(f"repetitions: {out / 'repeated.html'}")

@@ -46,9 +46,10 @@ from funcnet.diagnosis.segments import (
 )
 from funcnet.diagnosis.two_encoder import lost_motion
 from funcnet.errors import ParameterError
-from funcnet.robot.channels import ChannelMap
+from funcnet.robot.io.channels import ChannelMap
+from funcnet.robot.io.read import read_trace
 from funcnet.robot.preprocess import encoder_step, velocity
-from funcnet.robot.recording import Recording, read_trace
+from funcnet.robot.recording import Recording
 from funcnet.robot.units import Units, in_axis_units, unit_of
 
 __all__ = [

@@ -60,7 +60,11 @@ MIN_SPEED = MOVE_SPEED
 
 @dataclass(frozen=True)
 class DirectionChange:
-    """One direction change of the set-point.
+    """One direction change of the set-point, as the backlash diagnosis reads it: between moves.
+
+    The change between two moves faster than the move threshold, classified by what lies
+    between them (``kind``). The set-point's own view of a direction change, its turning point
+    (:class:`funcnet.robot.SetpointTurn`), gives a continuous change its bracket and ``turn``.
 
     Attributes
     ----------

@@ -9,8 +9,9 @@ computed, and the backlash diagnosis (:func:`inspect_recording`, a :class:`Trace
 the robot-wide network, its pairs told apart within and between axes (:func:`inspect_robot`).
 :mod:`~funcnet.inspection.repeated` reads the repetitions of one motion in the traces together
 (:func:`inspect_repetitions`, :func:`repetitions_of` the inspections).
-:mod:`~funcnet.inspection.files` reads a trace file and inspects it as one axis or as a robot
-(:func:`inspect_file`). The report (:mod:`funcnet.report`) only draws what these return. Names
+:mod:`~funcnet.inspection.run` reads a trace file and inspects it as one axis or as a robot
+(:func:`inspect_file`), and the files of ``funcnet inspect`` one after the other
+(:func:`inspect_files`). The report (:mod:`funcnet.report`) only draws what these return. Names
 are imported lazily.
 
 Examples
@@ -36,7 +37,9 @@ _EXPORTS = {
     "RepeatedInspection": "funcnet.inspection.repeated",
     "inspect_repetitions": "funcnet.inspection.repeated",
     "repetitions_of": "funcnet.inspection.repeated",
-    "inspect_file": "funcnet.inspection.files",
+    "inspect_file": "funcnet.inspection.run",
+    "inspect_files": "funcnet.inspection.run",
+    "FileInspections": "funcnet.inspection.run",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

@@ -1,6 +1,5 @@
 """Type stub of funcnet.inspection: the names its lazy table exports (:mod:`funcnet._lazy`)."""
 
-from funcnet.inspection.files import inspect_file as inspect_file
 from funcnet.inspection.motion import (
     motion_summary as motion_summary,
     numbered_moves as numbered_moves,
@@ -14,6 +13,11 @@ from funcnet.inspection.robot import (
     RobotInspection as RobotInspection,
     inspect_robot as inspect_robot,
     pair_scope as pair_scope,
+)
+from funcnet.inspection.run import (
+    FileInspections as FileInspections,
+    inspect_file as inspect_file,
+    inspect_files as inspect_files,
 )
 from funcnet.inspection.trace import (
     DETRENDED_NODES as DETRENDED_NODES,

@@ -24,7 +24,7 @@ import pandas as pd
 
 from funcnet.robot import Recording, detect_phases
 from funcnet.robot.grid import format_spans
-from funcnet.robot.phases import TURN_SPEED, Turn, direction_changes
+from funcnet.robot.phases import TURN_SPEED, SetpointTurn, direction_changes
 from funcnet.robot.preprocess import segment_ticks, segment_velocity
 
 #: A tick rests when its set-point speed is at most this fraction of the recording's peak (the
@@ -34,7 +34,7 @@ STANDSTILL = 1e-4
 __all__ = ["numbered_moves", "motion_summary", "segment_phases", "turns_across_gaps"]
 
 
-def segment_phases(recording: Recording) -> tuple[pd.DataFrame, tuple[Turn, ...]]:
+def segment_phases(recording: Recording) -> tuple[pd.DataFrame, tuple[SetpointTurn, ...]]:
     """The phases and the set-point's direction changes of a recording, segment by segment.
 
     Parameters
@@ -52,7 +52,7 @@ def segment_phases(recording: Recording) -> tuple[pd.DataFrame, tuple[Turn, ...]
         the whole recording: its peak set-point speed read within each segment
         (:func:`funcnet.robot.preprocess.segment_velocity`), so that a segment where the
         set-point only jitters at rest holds no move.
-    turns : tuple of Turn
+    turns : tuple of SetpointTurn
         :func:`funcnet.robot.direction_changes` of each segment, at the same thresholds; a turn
         across a gap is in none (:func:`turns_across_gaps`).
 
@@ -139,7 +139,7 @@ def _sign(value: float) -> str:
 
 
 def motion_summary(
-    recording: Recording, phases: pd.DataFrame, turns: Sequence[Turn] | None = None
+    recording: Recording, phases: pd.DataFrame, turns: Sequence[SetpointTurn] | None = None
 ) -> pd.DataFrame:
     """One row per move of a recording: times, directions, distance, speeds, currents, errors.
 
@@ -149,7 +149,7 @@ def motion_summary(
         With RP (the set-point); AP, V, AC optional.
     phases : pandas.DataFrame
         :func:`numbered_moves` of :func:`funcnet.robot.detect_phases`.
-    turns : sequence of Turn, optional
+    turns : sequence of SetpointTurn, optional
         The set-point's direction changes; default :func:`funcnet.robot.direction_changes` of
         ``recording`` (of each segment: :func:`segment_phases`).
 

@@ -8,7 +8,7 @@ Defaults chosen for a real trace: the paper's nodes the trace has (``PAPER_NODES
 from AP), one window per detected phase of every move (standstill is summarized, not
 networked: the set-point is constant there), signals sampled coarser than the grid (the 4 ms
 IPO positions on the 2 ms servo grid) interpolated so that no node is a staircase
-(:func:`funcnet.robot.load.prepare_recording`), signals constant in a window left out of that
+(:func:`funcnet.robot.prepare.prepare_recording`), signals constant in a window left out of that
 window, and the evidence columns of :func:`funcnet.pipeline.window_evidence`. A window too short
 for its network, or for a part of its evidence, is left out of that part and listed in
 :attr:`TraceInspection.failures`: it never stops the inspection. A recording with gaps (missing
@@ -40,8 +40,8 @@ from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.pipeline import WindowFailure, window_evidence, window_networks, window_warnings
 from funcnet.robot import PAPER_NODES, Recording, Window, phase_windows
-from funcnet.robot.load import prepare_recording
-from funcnet.robot.phases import Turn
+from funcnet.robot.phases import SetpointTurn
+from funcnet.robot.prepare import prepare_recording
 from funcnet.robot.preprocess import DERIVED_SIGNALS, staircase_signals
 
 if TYPE_CHECKING:  # the diagnosis loads when it runs
@@ -83,7 +83,7 @@ class TraceInspection:
         (:func:`~funcnet.inspection.motion.segment_phases`).
     moves : pandas.DataFrame
         :func:`~funcnet.inspection.motion.motion_summary`: one row per move.
-    turns : tuple of Turn
+    turns : tuple of SetpointTurn
         The set-point's direction changes (:func:`funcnet.robot.direction_changes`), within a
         move (continuous motion) or after a rest.
     windows : tuple of Window
@@ -129,7 +129,7 @@ class TraceInspection:
     signals: tuple[str, ...]
     phases: pd.DataFrame
     moves: pd.DataFrame
-    turns: tuple[Turn, ...]
+    turns: tuple[SetpointTurn, ...]
     windows: tuple[Window, ...]
     networks: dict[str, FunctionalNetwork]
     failures: tuple[WindowFailure, ...]

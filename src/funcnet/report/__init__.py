@@ -11,7 +11,8 @@ module                what it holds
 ``html``              page building: escaping, tables (pairs columns from
                       :mod:`funcnet.network.schema`), figures, contents, :func:`save_figure`
 ``study``             :func:`write_report`: a study's results folder
-``inspect``           :func:`inspect_trace`: the engineer's report of one or several traces
+``inspect``           :func:`write_inspections`: the engineer's report of one or several traces
+                      (:func:`inspect_trace`: the inspection and the report in one call)
 ``inspect_figures``   its figures
 ``inspect_text``      its words: the summary of a trace (its gaps, moves, turns, windows)
 ``backlash_page``     :func:`write_backlash_page`: the backlash diagnoses of several traces
@@ -35,6 +36,7 @@ _EXPORTS = {
     "save_figure": "funcnet.report.html",
     "inspect_trace": "funcnet.report.inspect",
     "write_inspection": "funcnet.report.inspect",
+    "write_inspections": "funcnet.report.inspect",
     "write_backlash_page": "funcnet.report.backlash_page",
     "write_trends": "funcnet.report.track_page",
 }

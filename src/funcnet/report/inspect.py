@@ -1,18 +1,17 @@
 """The engineer's report of a controller trace: "here is a trace of my axis: what is it doing?".
 
-:func:`inspect_trace` has one or several traces read and inspected
-(:func:`funcnet.inspection.inspect_file`) and writes, for each, one HTML page that reads from the
-top: a plain summary of the motion (moves, phases with their times, speeds, peak
-currents, following error, lost motion at the direction changes where both encoders exist),
-then the functional network of every phase of every move with its evidence, the edge timeline,
-the backlash diagnosis, and what an arrow does and does not say. Several traces get an index
-page. This module only draws: the computation is
-:func:`funcnet.inspection.inspect_recording` (a
-:class:`~funcnet.inspection.TraceInspection`); :func:`write_inspection` renders it. A file of
-several axes read without ``axis`` is :func:`funcnet.inspection.inspect_robot`'s, rendered by
-:func:`write_robot_inspection`: the robot's page (a summary per axis, the robot network with
-its nodes grouped per axis and its pairs told apart within and between axes) and each axis's
-own page in ``axis-N/``.
+:func:`write_inspections` writes, for each trace :func:`funcnet.inspection.inspect_files` read
+and inspected, one HTML page that reads from the top: a plain summary of the motion (moves,
+phases with their times, speeds, peak currents, following error, lost motion at the direction
+changes where both encoders exist), then the functional network of every phase of every move
+with its evidence, the edge timeline, the backlash diagnosis, and what an arrow does and does
+not say. Several traces get an index page. This module only draws: the computation is
+:func:`funcnet.inspection.inspect_recording` (a :class:`~funcnet.inspection.TraceInspection`);
+:func:`write_inspection` renders it. A file of several axes read without ``axis`` is
+:func:`funcnet.inspection.inspect_robot`'s, rendered by :func:`write_robot_inspection`: the
+robot's page (a summary per axis, the robot network with its nodes grouped per axis and its
+pairs told apart within and between axes) and each axis's own page in ``axis-N/``.
+:func:`inspect_trace` is the two steps in one call.
 
 The figures are in :mod:`funcnet.report.inspect_figures`, the summary's words in
 :mod:`funcnet.report.inspect_text`. A recording with gaps (missing values) is said to have them
@@ -35,12 +34,10 @@ import numpy as np
 import pandas as pd
 
 from funcnet._io import write_text_atomic
-from funcnet.errors import ParameterError
 from funcnet.inspection import TraceInspection
-from funcnet.inspection.files import inspect_file
-from funcnet.inspection.repeated import repetitions_of
-from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS, RobotInspection
-from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
+from funcnet.inspection.robot import RobotInspection
+from funcnet.inspection.run import FileInspections, inspect_files
+from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides
 from funcnet.report.html import (
     Progress,
     contents,
@@ -76,11 +73,11 @@ from funcnet.report.inspect_text import (
 )
 from funcnet.report.repetitions_page import write_repetitions
 from funcnet.report.robot_figures import figure_robot_matrix
-from funcnet.report.robot_summary import axis_findings
-from funcnet.robot.channels import channel_map
+from funcnet.report.robot_summary import axis_findings, evidence_sentence, scope_counts
 from funcnet.robot.grid import format_spans
 
-__all__ = ["inspect_trace", "write_inspection", "write_robot_inspection", "READING_AN_ARROW"]
+__all__ = ["inspect_trace", "write_inspections", "write_inspection", "write_robot_inspection",
+           "READING_AN_ARROW"]
 
 #: What the report says about reading an arrow (paper section 2.4; docs/guide/direction.md).
 READING_AN_ARROW = (
@@ -350,39 +347,6 @@ def _figure(ins: RobotInspection, label: str) -> Any:
                                else "rule")
 
 
-def _scope_counts(pairs: pd.DataFrame) -> str:
-    edges = pairs[pairs["kind"].isin(["x->y", "y->x", "bidirectional"])]
-    if "degenerate" in edges:
-        edges = edges[~edges["degenerate"].astype(bool)]
-    within = int((edges["scope"] == WITHIN_AXIS).sum())
-    between = int((edges["scope"] == BETWEEN_AXES).sum())
-    return (f"{len(edges)} edges of {len(pairs)} pairs: {within} within an axis, {between} "
-            "between axes")
-
-
-def _evidence_sentence(pairs: pd.DataFrame) -> str:
-    """What the evidence says of a robot network's pairs, in one sentence ("" without it)."""
-    if "evidence" not in pairs.columns:
-        return ""
-    counts = pairs["evidence"].value_counts()
-    said = ", ".join(f"{n} {label}" for label, n in counts.items())
-    blind = pairs[pairs["evidence"] == "untestable"]
-    why = ""
-    if len(blind):
-        reasons = blind["evidence_reason"].value_counts()
-        drawn = "c_diff_low" in blind and not blind["c_diff_low"].isna().all()
-        why = (f" Untestable: {reasons.index[0]}" + (" (the most common reason)"
-                                                     if len(reasons) > 1 else "")
-               + ("." if drawn else "; their asymmetry intervals are not drawn (--intervals "
-                  "all draws them)."))
-    tested = pairs[pairs["evidence"] != "untestable"]  # their own sentence: above
-    undrawn = int((tested["c_diff_low"].isna() & ~tested["coupled"].astype(bool)).sum())
-    if undrawn:
-        why += (f" The asymmetry intervals of the {undrawn} tested pairs without coupling are "
-                "not drawn (--intervals all draws them).")
-    return escape(f" Evidence: {said} of {len(pairs)} pairs.{why}")
-
-
 def write_robot_inspection(
     inspection: RobotInspection,
     out_dir: str | os.PathLike[str],
@@ -437,7 +401,7 @@ def write_robot_inspection(
                    "independence. The rule's kinds are in the pairs tables.")
         network_parts.append(figure_html(out, f"robot-network-{k + 1}", _figure(ins, label),
                                          caption))
-        network_parts.append(f"<p>{escape(_scope_counts(pairs))}.{_evidence_sentence(pairs)}"
+        network_parts.append(f"<p>{escape(scope_counts(pairs))}.{evidence_sentence(pairs)}"
                              "</p>")
         shown = pairs_table(pairs)
         scope = table(pairs[["x", "y", "axis_x", "axis_y", "scope", "kind", "weight"]])
@@ -477,6 +441,73 @@ def _slug(path: Path, taken: set[str]) -> str:
     return slug
 
 
+def write_inspections(
+    inspections: FileInspections,
+    out_dir: str | os.PathLike[str] = "inspect",
+    *,
+    progress: Progress = None,
+) -> Path:
+    """Write the engineer's report of each inspected trace (and an index for several).
+
+    Parameters
+    ----------
+    inspections : FileInspections
+        :func:`funcnet.inspection.inspect_files`' (each page is written before the next file
+        is read).
+    out_dir : path-like
+        One trace: ``out_dir/index.html``; several: a folder per trace (named after the file)
+        and an ``index.html`` linking them; a robot: its page and one per axis
+        (:func:`write_robot_inspection`); ``repeated``: also ``repeated.html``.
+    progress : callable, optional
+        ``progress(done, total, description)``.
+
+    Returns
+    -------
+    pathlib.Path
+        The page to open first.
+    """
+    out = Path(out_dir)
+    cmap, axis = inspections.channels, inspections.axis
+
+    def write(found: TraceInspection | RobotInspection, folder: Path) -> None:
+        if isinstance(found, RobotInspection):
+            write_robot_inspection(found, folder, progress=progress, axis_names=cmap.axis_names)
+        else:
+            write_inspection(found, folder, progress=progress,
+                             axis_label=cmap.axis_label(axis)
+                             if axis is not None and cmap.axis_names else None)
+
+    if len(inspections.paths) == 1:
+        for _, single in inspections:
+            write(single, out)
+        if inspections.repeated:
+            write_repetitions(inspections.repetitions(), out)
+        return out / "index.html"
+    taken: set[str] = set()
+    rows = []
+    for path, ins in inspections:
+        slug = _slug(path, taken)
+        write(ins, out / slug)
+        if isinstance(ins, RobotInspection):  # the axes' moves and diagnoses are on its page
+            duration, moves = f"{ins.recording.duration:.1f}", ""
+            networks, backlash = len(ins.networks), f"{len(ins.axes)} axes: see its page"
+        else:
+            duration, moves = f"{ins.duration:.1f}", str(len(ins.moves))
+            networks = len(ins.networks)
+            backlash = ins.backlash.message if ins.backlash else ins.backlash_error
+        rows.append(f"<tr><td><a href=\"{escape(slug)}/index.html\">{escape(path.name)}</a>"
+                    f"</td><td class=\"num\">{duration}</td><td class=\"num\">"
+                    f"{moves}</td><td class=\"num\">{networks}</td><td>"
+                    f"{escape(backlash)}</td></tr>")
+    index = ("<h1>funcnet inspect — traces</h1><table><thead><tr><th>trace</th>"
+             "<th>duration [s]</th><th>moves</th><th>networks</th><th>backlash</th></tr>"
+             f"</thead><tbody>{''.join(rows)}</tbody></table>")
+    if inspections.repeated:
+        write_repetitions(inspections.repetitions(), out)
+        index += "<p><a href=\"repeated.html\">The repetitions of the traces together</a></p>"
+    return write_text_atomic(out / "index.html", page("funcnet inspect", [index]))
+
+
 def inspect_trace(
     *paths: str | os.PathLike[str],
     out_dir: str | os.PathLike[str] = "inspect",
@@ -492,28 +523,21 @@ def inspect_trace(
 ) -> Path:
     """Read traces and write the engineer's report of each (and an index for several).
 
+    The two steps of ``funcnet inspect`` in one call: :func:`funcnet.inspection.inspect_files`
+    reads and inspects, :func:`write_inspections` draws.
+
     Parameters
     ----------
     *paths : path-like
         Trace files (SINUMERIK XML, CSV, Parquet, MATLAB, HDF5:
-        :func:`funcnet.robot.read_trace`), each read and inspected by
-        :func:`funcnet.inspection.inspect_file`.
+        :func:`funcnet.robot.read_trace`).
     out_dir : path-like
-        The report folder. One trace: ``out_dir/index.html``; several: one folder per trace
-        (named after the file) and ``out_dir/index.html`` linking them.
-    signals, parameters, evidence, evidence_options
-        As :func:`inspect_recording`.
-    channels, axis
-        As :func:`funcnet.robot.read_trace`. A file of several axes without ``axis`` gets the
-        robot's page and one page per axis (:func:`write_robot_inspection`); ``signals`` then
-        names the robot network's nodes (``A1.RP``, ...).
-    progress : callable, optional
-        ``progress(done, total, description)``.
-    repeated : bool
-        Also read the repetitions of the most repeated motion in the (single-axis) traces
-        together (:func:`funcnet.inspection.repeated.inspect_repetitions`):
-        ``out_dir/repeated.html``, per phase the repetition evidence beside the single-window
-        networks, or how many repetitions a decision needs.
+        The report folder (:func:`write_inspections`).
+    signals, parameters, evidence, channels, axis, progress, evidence_options, repeated
+        As :func:`funcnet.inspection.inspect_files`. A file of several axes without ``axis``
+        gets the robot's page and one page per axis; ``signals`` then names the robot
+        network's nodes (``A1.RP``, ...). ``repeated`` adds ``out_dir/repeated.html``: per
+        phase the repetition evidence, or how many repetitions a decision needs.
     **overrides
         Network parameters by name.
 
@@ -536,54 +560,8 @@ def inspect_trace(
         ...
     funcnet.errors.ParameterError: paths must name at least one trace file
     """
-    if not paths:
-        raise ParameterError.of("paths", "must name at least one trace file")
-    p = resolve(parameters, overrides)
-    out = Path(out_dir)
-    cmap = channel_map(channels)
-
-    def inspected(path: Any, folder: Path) -> TraceInspection | RobotInspection:
-        found = inspect_file(path, channels=channels, axis=axis, signals=signals, parameters=p,
-                             evidence=evidence, progress=progress,
-                             evidence_options=evidence_options)
-        if isinstance(found, RobotInspection):
-            write_robot_inspection(found, folder, progress=progress,
-                                   axis_names=cmap.axis_names)
-        else:
-            write_inspection(found, folder, progress=progress,
-                             axis_label=cmap.axis_label(axis)
-                             if axis is not None and cmap.axis_names else None)
-        return found
-
-    if len(paths) == 1:
-        single = inspected(paths[0], out)
-        if repeated:
-            write_repetitions(repetitions_of([single] if isinstance(single, TraceInspection)
-                                             else [], evidence_options), out)
-        return out / "index.html"
-    taken: set[str] = set()
-    rows = []
-    inspections: list[TraceInspection] = []
-    for path in map(Path, paths):
-        slug = _slug(path, taken)
-        ins = inspected(path, out / slug)
-        if repeated and isinstance(ins, TraceInspection):
-            inspections.append(ins)
-        if isinstance(ins, RobotInspection):  # the axes' moves and diagnoses are on its page
-            duration, moves = f"{ins.recording.duration:.1f}", ""
-            networks, backlash = len(ins.networks), f"{len(ins.axes)} axes: see its page"
-        else:
-            duration, moves = f"{ins.duration:.1f}", str(len(ins.moves))
-            networks = len(ins.networks)
-            backlash = ins.backlash.message if ins.backlash else ins.backlash_error
-        rows.append(f"<tr><td><a href=\"{escape(slug)}/index.html\">{escape(path.name)}</a>"
-                    f"</td><td class=\"num\">{duration}</td><td class=\"num\">"
-                    f"{moves}</td><td class=\"num\">{networks}</td><td>"
-                    f"{escape(backlash)}</td></tr>")
-    index = ("<h1>funcnet inspect — traces</h1><table><thead><tr><th>trace</th>"
-             "<th>duration [s]</th><th>moves</th><th>networks</th><th>backlash</th></tr>"
-             f"</thead><tbody>{''.join(rows)}</tbody></table>")
-    if repeated:
-        write_repetitions(repetitions_of(inspections, evidence_options), out)
-        index += "<p><a href=\"repeated.html\">The repetitions of the traces together</a></p>"
-    return write_text_atomic(out / "index.html", page("funcnet inspect", [index]))
+    inspections = inspect_files(*paths, channels=channels, axis=axis, signals=signals,
+                                parameters=parameters, evidence=evidence, progress=progress,
+                                evidence_options=evidence_options, repeated=repeated,
+                                **overrides)
+    return write_inspections(inspections, out_dir, progress=progress)

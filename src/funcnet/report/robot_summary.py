@@ -5,7 +5,8 @@ how often it moves and turns, its peak speed, torque (or current) and following 
 motion (or the bound below which the data cannot resolve it), the gear's parts where they are
 measured, and anything unusual. Every sentence that explains a cell is a numbered note said
 once, with the axes it applies to: a reason shared by several axes is not repeated per row.
-No cell holds a file path or "None".
+No cell holds a file path or "None". Below the robot network, :func:`scope_counts` and
+:func:`evidence_sentence` say its edges and their evidence in a sentence.
 """
 
 from __future__ import annotations
@@ -19,9 +20,11 @@ from typing import Any
 import pandas as pd
 
 from funcnet.inspection import TraceInspection
+from funcnet.inspection.robot import BETWEEN_AXES, WITHIN_AXIS
+from funcnet.report.html import escape
 from funcnet.report.inspect_text import lost_motion_cell
 
-__all__ = ["AxisFindings", "axis_findings"]
+__all__ = ["AxisFindings", "axis_findings", "scope_counts", "evidence_sentence"]
 
 
 @dataclass(frozen=True)
@@ -213,3 +216,37 @@ def axis_findings(axes: dict[int, TraceInspection], errors: dict[int, str],
         })
     return AxisFindings(table=_with_units(rows, linear),
                         notes=tuple((text, tuple(axes_)) for text, axes_ in notes.items()))
+
+
+def scope_counts(pairs: pd.DataFrame) -> str:
+    """How many edges a robot network has, within an axis and between axes, in words."""
+    edges = pairs[pairs["kind"].isin(["x->y", "y->x", "bidirectional"])]
+    if "degenerate" in edges:
+        edges = edges[~edges["degenerate"].astype(bool)]
+    within = int((edges["scope"] == WITHIN_AXIS).sum())
+    between = int((edges["scope"] == BETWEEN_AXES).sum())
+    return (f"{len(edges)} edges of {len(pairs)} pairs: {within} within an axis, {between} "
+            "between axes")
+
+
+def evidence_sentence(pairs: pd.DataFrame) -> str:
+    """What the evidence says of a robot network's pairs, in one sentence ("" without it)."""
+    if "evidence" not in pairs.columns:
+        return ""
+    counts = pairs["evidence"].value_counts()
+    said = ", ".join(f"{n} {label}" for label, n in counts.items())
+    blind = pairs[pairs["evidence"] == "untestable"]
+    why = ""
+    if len(blind):
+        reasons = blind["evidence_reason"].value_counts()
+        drawn = "c_diff_low" in blind and not blind["c_diff_low"].isna().all()
+        why = (f" Untestable: {reasons.index[0]}" + (" (the most common reason)"
+                                                     if len(reasons) > 1 else "")
+               + ("." if drawn else "; their asymmetry intervals are not drawn (--intervals "
+                  "all draws them)."))
+    tested = pairs[pairs["evidence"] != "untestable"]  # their own sentence: above
+    undrawn = int((tested["c_diff_low"].isna() & ~tested["coupled"].astype(bool)).sum())
+    if undrawn:
+        why += (f" The asymmetry intervals of the {undrawn} tested pairs without coupling are "
+                "not drawn (--intervals all draws them).")
+    return escape(f" Evidence: {said} of {len(pairs)} pairs.{why}")

@@ -1,7 +1,9 @@
 """Robot-axis controller traces: reading, preprocessing, phases and windows.
 
-Everything here sits below the numerical core and imports none of it: a trace becomes a
-:class:`Recording` (:func:`read_trace`, :func:`read_recording`), its phases and windows are
+Everything here sits below the numerical core and imports none of it: a trace file becomes a
+:class:`Recording` in :mod:`funcnet.robot.io`, the one place that reads files --
+:func:`read_trace` reads it as it is, :func:`read_recording` also makes it ready for analysis
+(angles in degrees, the derived signals the nodes need, one grid). Its phases and windows are
 tables and :class:`Window` lists. Networks per window are made by
 :func:`funcnet.window_networks` (:mod:`funcnet.pipeline`). The simulated axis lives in
 :mod:`funcnet.sim`, which this package never imports. Names are imported lazily.
@@ -19,11 +21,11 @@ from funcnet._lazy import attach
 
 _EXPORTS = {
     "Recording": "funcnet.robot.recording",
-    "read_trace": "funcnet.robot.recording",
-    "read_recording": "funcnet.robot.load",
-    "SignalInfo": "funcnet.robot.channels",
-    "ChannelMap": "funcnet.robot.channels",
-    "DEFAULT_CHANNEL_MAP": "funcnet.robot.channels",
+    "read_trace": "funcnet.robot.io.read",
+    "read_recording": "funcnet.robot.io.read",
+    "SignalInfo": "funcnet.robot.signals",
+    "ChannelMap": "funcnet.robot.io.channels",
+    "DEFAULT_CHANNEL_MAP": "funcnet.robot.io.channels",
     "velocity": "funcnet.robot.preprocess",
     "add_derived_signals": "funcnet.robot.preprocess",
     "trim": "funcnet.robot.preprocess",
@@ -31,7 +33,7 @@ _EXPORTS = {
     "PHASES": "funcnet.robot.phases",
     "detect_phases": "funcnet.robot.phases",
     "direction_changes": "funcnet.robot.phases",
-    "Turn": "funcnet.robot.phases",
+    "SetpointTurn": "funcnet.robot.phases",
     "phase_table": "funcnet.robot.phases",
     "PAPER_NODES": "funcnet.robot.windows",
     "paper_nodes": "funcnet.robot.windows",
@@ -46,4 +48,7 @@ _EXPORTS = {
     "find_repetitions": "funcnet.robot.repeats",
 }
 
-__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)
+# Renamed names, still given with a DeprecationWarning.
+_RENAMED = {"Turn": "SetpointTurn"}
+
+__getattr__, __dir__, __all__ = attach(__name__, _EXPORTS, deprecated=_RENAMED)

@@ -1,14 +1,13 @@
 """Type stub of funcnet.robot: the names its lazy table exports (:mod:`funcnet._lazy`)."""
 
-from funcnet.robot.channels import (
+from funcnet.robot.io.channels import (
     DEFAULT_CHANNEL_MAP as DEFAULT_CHANNEL_MAP,
     ChannelMap as ChannelMap,
-    SignalInfo as SignalInfo,
 )
-from funcnet.robot.load import read_recording as read_recording
+from funcnet.robot.io.read import read_recording as read_recording, read_trace as read_trace
 from funcnet.robot.phases import (
     PHASES as PHASES,
-    Turn as Turn,
+    SetpointTurn as SetpointTurn,
     detect_phases as detect_phases,
     direction_changes as direction_changes,
     phase_table as phase_table,
@@ -19,8 +18,9 @@ from funcnet.robot.preprocess import (
     trim as trim,
     velocity as velocity,
 )
-from funcnet.robot.recording import Recording as Recording, read_trace as read_trace
+from funcnet.robot.recording import Recording as Recording
 from funcnet.robot.repeats import Repetitions as Repetitions, find_repetitions as find_repetitions
+from funcnet.robot.signals import SignalInfo as SignalInfo
 from funcnet.robot.windows import (
     PAPER_NODES as PAPER_NODES,
     Window as Window,

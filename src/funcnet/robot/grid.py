@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from funcnet.errors import TraceFormatError
-from funcnet.robot.channels import SignalInfo
+from funcnet.robot.signals import SignalInfo
 
 __all__ = [
     "GridSignals", "time_grid", "place_on_grid", "find_gaps", "mask_runs", "segments_between",
@@ -68,7 +68,7 @@ class GridSignals:
         Column -> controller name for the columns with a role, with ``columns``.
     time_origin : float
         The file's clock at time 0 (seconds: controller uptime, Unix time), when the reader
-        read its time from the recording's start (:mod:`funcnet.robot.clock`).
+        read its time from the recording's start (:mod:`funcnet.robot.io.clock`).
     time_unit : str or None
         The unit the time column was read in (``"us"``, ``"ISO 8601"``); None: seconds, or a
         format whose time is its own (SINUMERIK).

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from funcnet._lazy import deprecated_names
 from funcnet.errors import ParameterError
 from funcnet.robot.grid import mask_runs
 from funcnet.robot.preprocess import reference_speed, velocity
@@ -28,7 +29,7 @@ from funcnet.robot.recording import Recording
 __all__ = [
     "MOVE_SPEED",
     "PHASES",
-    "Turn",
+    "SetpointTurn",
     "detect_phases",
     "direction_changes",
     "merge_runs",
@@ -120,8 +121,11 @@ def merge_runs(
 
 
 @dataclass(frozen=True)
-class Turn:
-    """One direction change of the reference motion (:func:`direction_changes`).
+class SetpointTurn:
+    """One direction change of the reference motion, as the set-point alone shows it: its turn.
+
+    The backlash diagnosis's view of the same change, between two moves and classified, is
+    :class:`funcnet.diagnosis.DirectionChange`. Formerly ``Turn`` (deprecated).
 
     Attributes
     ----------
@@ -197,7 +201,7 @@ def direction_changes(
     min_speed: float | None = None,
     relative: float = TURN_SPEED,
     standstill: float = 1e-4,
-) -> list[Turn]:
+) -> list[SetpointTurn]:
     """Where the reference motion changes direction, after a standstill or in continuous motion.
 
     With ``v`` the velocity of the reference (:func:`~funcnet.robot.preprocess.velocity`, Eq.
@@ -225,7 +229,7 @@ def direction_changes(
 
     Returns
     -------
-    list of Turn
+    list of SetpointTurn
         In time order; empty when the reference moves one way only or not at all.
 
     Raises
@@ -274,7 +278,7 @@ def direction_changes(
         rest = np.flatnonzero(resting[stop:start])
         dwell = (rest[-1] - rest[0] + 1) * dt if rest.size else 0.0
         turns.append(
-            Turn(
+            SetpointTurn(
                 time=round(t0 + turn * dt, 9),
                 stop=round(t0 + stop * dt, 9),
                 start=round(t0 + start * dt, 9),
@@ -585,3 +589,7 @@ def phase_table(
             "stop": np.array([r[2] for r in table], dtype=np.float64),
         }
     )
+
+
+# Renamed names, still given with a DeprecationWarning.
+__getattr__ = deprecated_names(__name__, {"Turn": "SetpointTurn"})

@@ -17,8 +17,8 @@ from dataclasses import replace
 import numpy as np
 
 from funcnet.errors import ChannelError, ParameterError, SignalError, StaircaseWarning
-from funcnet.robot.channels import SignalInfo
 from funcnet.robot.recording import Recording
+from funcnet.robot.signals import SignalInfo
 
 __all__ = [
     "velocity",

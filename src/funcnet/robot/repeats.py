@@ -41,16 +41,18 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from funcnet._lazy import deprecated_names
 from funcnet.errors import ParameterError, SignalError
 from funcnet.robot.phases import detect_phases
 from funcnet.robot.preprocess import velocity
 from funcnet.robot.recording import Recording
 from funcnet.robot.windows import _numbered
 
-__all__ = ["Repetitions", "find_repetitions", "POSITION_ROLES"]
+__all__ = ["Repetitions", "find_repetitions", "ABSOLUTE_POSITION_ROLES"]
 
-#: Roles whose values are positions: taken relative to the set-point at the start of the move.
-POSITION_ROLES = ("RP", "AP", "MP")
+#: Roles whose values are positions from the axis's zero (not differences of positions, as FE):
+#: taken relative to the set-point at the start of the move.
+ABSOLUTE_POSITION_ROLES = ("RP", "AP", "MP")
 
 
 @dataclass(frozen=True)
@@ -212,7 +214,7 @@ def _cut_windows(items: Sequence[Recording], group: Sequence[tuple[_Move, bool, 
                                   f"by {(start - move.first) * period:g} s leaves the recording")
             window = data[list(signals)].iloc[a:b].copy()
             for column in window.columns:
-                if column in POSITION_ROLES:
+                if column in ABSOLUTE_POSITION_ROLES:
                     window[column] = window[column] - origin
             window = window * sign
             window.index = pd.Index(np.round(np.arange(b - a) * period + phase.start, 9),
@@ -330,3 +332,7 @@ def find_repetitions(
     windows = _cut_windows(items, group, starts, relative, signals, reference)
     return Repetitions(moves=pd.DataFrame(rows), phases=relative, windows=windows,
                        others=len(moves) - len(group), left_out=left_out)
+
+
+# Renamed names, still given with a DeprecationWarning.
+__getattr__ = deprecated_names(__name__, {"POSITION_ROLES": "ABSOLUTE_POSITION_ROLES"})

@@ -19,7 +19,7 @@ the two, is an error naming the signal. A force (N) may stand where a current or
 
 Examples
 --------
->>> from funcnet.robot.channels import SignalInfo
+>>> from funcnet.robot.signals import SignalInfo
 >>> unit_of(SignalInfo("q_target(axis 1)", None, None, 0.008, "rad"))
 'rad'
 >>> unit_of(SignalInfo("measPos2 [u1, 7]", "posn", "double", 0.002))
@@ -40,21 +40,24 @@ import math
 import warnings
 from dataclasses import dataclass, replace
 
+from funcnet._lazy import deprecated_names
 from funcnet.errors import ChannelError, RecordingWarning
 from funcnet.robot.axes import split_qualified
-from funcnet.robot.channels import SignalInfo
 from funcnet.robot.recording import Recording
+from funcnet.robot.signals import SignalInfo
 
 __all__ = [
     "UNKNOWN", "unit_of", "to_degrees", "to_axis_unit", "in_axis_units", "in_degrees", "Units",
-    "POSITION_ROLES", "SPEED_ROLES", "AxisScale", "axis_scale", "position_unit",
+    "POSITION_UNIT_ROLES", "SPEED_UNIT_ROLES", "AxisScale", "axis_scale", "position_unit",
 ]
 
 #: The unit of a signal whose file and channel map state none.
 UNKNOWN = "unknown"
-#: Roles that hold a position (an angle on a rotary axis) and a speed.
-POSITION_ROLES = ("RP", "AP", "MP", "FE", "TORSION")
-SPEED_ROLES = ("V", "VM")
+#: Roles whose values are in a position's unit (an angle on a rotary axis, a length on a linear
+#: one): the positions and their differences, the following error and the torsion.
+POSITION_UNIT_ROLES = ("RP", "AP", "MP", "FE", "TORSION")
+#: Roles whose values are in a speed's unit (deg/s, mm/s).
+SPEED_UNIT_ROLES = ("V", "VM")
 
 # What a SINUMERIK unitsType means on the rotary axes the traces record.
 _FORMAT_UNITS = {"posn": "deg", "current": "A"}
@@ -292,7 +295,7 @@ def in_axis_units(recording: Recording, *, warn: bool = True) -> tuple[Recording
     kinds: dict[int | None, tuple[str, str]] = {}  # axis -> (unit kind, the column saying it)
     for column, info in recording.signals.items():
         number, role = split_qualified(column)
-        if role not in POSITION_ROLES + SPEED_ROLES:
+        if role not in POSITION_UNIT_ROLES + SPEED_UNIT_ROLES:
             continue
         if info.converted_from is not None:  # converted before: said again, not scaled again
             converted.append(f"{column} ({info.converted_from})")
@@ -303,9 +306,9 @@ def in_axis_units(recording: Recording, *, warn: bool = True) -> tuple[Recording
             unknown.append(column)
             continue
         found = to_axis_unit(unit)
-        wanted = ("an angle (deg, rad) or a length (mm, m, um)" if role in POSITION_ROLES
+        wanted = ("an angle (deg, rad) or a length (mm, m, um)" if role in POSITION_UNIT_ROLES
                   else "an angular speed (rad/s) or a linear one (mm/s)")
-        if found is None or ("/" not in found[1]) != (role in POSITION_ROLES):
+        if found is None or ("/" not in found[1]) != (role in POSITION_UNIT_ROLES):
             raise ChannelError(
                 recording.source or "<recording>",
                 f"{column} ({info.name}) holds {unit}; {wanted} belongs there",
@@ -351,7 +354,7 @@ def _same_kind(recording: Recording, kinds: dict[int | None, tuple[str, str]],
 def _summary(recording: Recording, converted: list[str], unknown: list[str],
              kinds: dict[int | None, tuple[str, str]]) -> Units:
     """:class:`Units` of the conversion, with its one line."""
-    positions = [c for c in recording.signals if split_qualified(c)[1] in POSITION_ROLES]
+    positions = [c for c in recording.signals if split_qualified(c)[1] in POSITION_UNIT_ROLES]
     linear = bool(kinds) and all(kind == "length" for kind, _ in kinds.values())
     position = (UNKNOWN if positions and all(c in unknown for c in positions)
                 else "mm" if linear else "deg")
@@ -368,3 +371,9 @@ def _summary(recording: Recording, converted: list[str], unknown: list[str],
         parts.append(f"no unit stated for {', '.join(unknown)}: computed as degrees (deg/s), "
                      "labelled unknown; a [units] table in the channel map states it")
     return Units(position, tuple(converted), tuple(unknown), "; ".join(parts))
+
+
+# Renamed names, still given with a DeprecationWarning.
+__getattr__ = deprecated_names(
+    __name__, {"POSITION_ROLES": "POSITION_UNIT_ROLES", "SPEED_ROLES": "SPEED_UNIT_ROLES"}
+)

@@ -30,7 +30,7 @@ from funcnet.errors import ParameterError, SignalError
 __all__ = ["write_trace", "role_names", "SIGNALS", "DEFAULT_START_TIME"]
 
 #: Role -> (SINUMERIK signal name without the ``[u1, axis]`` suffix, description, unitsType,
-#: dataType): the names the default channel map of :mod:`funcnet.robot.channels` assigns.
+#: dataType): the names the default channel map of :mod:`funcnet.robot.io.channels` assigns.
 SIGNALS: dict[str, tuple[str, str, str, str]] = {
     "RP": ("/Nck/!SD/nckServoDataCmdPos2ndEnc64", "Position setpoint (64 bit)", "posn", "double"),
     "AP": (

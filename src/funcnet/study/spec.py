@@ -399,7 +399,7 @@ def _study_from_document(doc: Mapping[str, Any], source: Path) -> Study:
     axis = table.get("axis")
     if axis is not None and (isinstance(axis, bool) or not isinstance(axis, int) or axis < 0):
         raise fail("recordings.axis", "must be a non-negative integer")
-    from funcnet.robot.load import RESAMPLE_METHODS
+    from funcnet.robot.prepare import RESAMPLE_METHODS
 
     resample = table.get("resample")
     if resample is not None and resample not in RESAMPLE_METHODS:

@@ -150,7 +150,7 @@ def read_run(task: RunTask) -> ReadRun:
     TraceError
         The run cannot be read.
     """
-    from funcnet.robot.recording import read_trace
+    from funcnet.robot.io.read import read_trace
     from funcnet.robot.units import in_degrees
 
     with warnings.catch_warnings():

@@ -40,8 +40,8 @@ import pandas as pd
 
 from funcnet.errors import FuncnetError, FuncnetWarning, SignalError
 from funcnet.robot.axes import qualified
-from funcnet.robot.channels import SignalInfo
 from funcnet.robot.recording import Recording
+from funcnet.robot.signals import SignalInfo
 
 __all__ = ["FIGURES", "AxisFigures", "axis_figures", "run_axes", "trace_columns",
            "as_recording", "departures", "recorded_units"]

@@ -40,8 +40,9 @@ from funcnet.diagnosis.indicators import (
 from funcnet.diagnosis.reversal_error import fit_gear, reversal_error
 from funcnet.diagnosis.reversals import find_direction_changes, motor_side_recording
 from funcnet.errors import ParameterError, TraceError
-from funcnet.robot.channels import SignalInfo
-from funcnet.robot.recording import Recording, read_trace
+from funcnet.robot.io.read import read_trace
+from funcnet.robot.recording import Recording
+from funcnet.robot.signals import SignalInfo
 from funcnet.sim.axis import (
     AxisParameters,
     SimulatedTrial,

@@ -1,12 +1,10 @@
-"""Controller signal names, their metadata, and the roles the paper gives them.
+"""The channel map: which of a file's signals is which role, and where each signal is.
 
-A SINUMERIK trace names a signal by a path, a name and an address, e.g.
-``/Nck/!SD/nckServoDataCmdPos2ndEnc64 [u1, 7]``: the path ``/Nck/!SD/``, the base name
-``nckServoDataCmdPos2ndEnc64`` and the suffix ``[u1, 7]`` whose second number is the axis. A
-:class:`ChannelMap` assigns roles (the paper's node names RP, AP, MP, RC, AC; section 3.2) to base
-names, so one map serves every axis. A signal without a role keeps its base name as column name
-(``nckServoDataFlwErr64``, ``aaStat``): short, a valid identifier, and what the controller's own
-documentation calls it.
+A :class:`ChannelMap` assigns roles (the paper's node names RP, AP, MP, RC, AC; section 3.2;
+:data:`funcnet.robot.signals.ROLES`) to base names
+(:func:`funcnet.robot.signals.parse_signal_name`), so one map serves every axis. A signal without
+a role keeps its base name as column name (``nckServoDataFlwErr64``, ``aaStat``): short, a valid
+identifier, and what the controller's own documentation calls it.
 
 An entry is written ``"signal name" = "ROLE"``. The paper's five roles are case-insensitive
 (``"rc"`` is ``RC``: columns are always named in capitals); any other role is an identifier kept
@@ -19,12 +17,11 @@ Files that store signals as named arrays (MATLAB, HDF5) name a signal by its pat
 field ``rec.ref_pos_deg``, a dataset ``/rec/ref_pos``. An entry names it by the whole path or by
 any tail of it (``ref_pos_deg``, ``"rec.ref_pos_deg"``; :func:`resolve_fields`). The role
 ``time`` marks the file's time signal; a ``[units]`` table gives units to signals whose file does
-not state them (``act_torque_abs_nm = "N m"``).
-
-Length: over 600 lines because one parser checks every table of a map ([signals], [layout],
-[units], [bag]) against the others.
+not state them (``act_torque_abs_nm = "N m"``); the ``[signals]``, ``[layout]`` and ``[bag]``
+tables say where a signal is in text files and ROS bags (:mod:`funcnet.robot.io.layout`,
+:mod:`funcnet.robot.io.topics`). One parser (:func:`channel_map`) checks every table of a map
+against the others.
 """
-
 from __future__ import annotations
 
 import functools
@@ -38,110 +35,23 @@ from types import MappingProxyType
 from typing import Any
 
 from funcnet.errors import ChannelError, ParameterError
-from funcnet.robot.layout import SignalFile, signal_files
-from funcnet.robot.topics import BagLayout, bag_layout
+from funcnet.robot.io.layout import SignalFile, signal_files
+from funcnet.robot.io.topics import BagLayout, bag_layout
+from funcnet.robot.signals import ROLES, parse_signal_name
 
 __all__ = [
-    "ROLES",
-    "SignalInfo",
-    "SignalName",
     "ChannelMap",
     "DEFAULT_CHANNEL_MAP",
-    "parse_signal_name",
     "channel_map",
     "check_entries",
-    "select_axis",
     "field_keys",
     "resolve_fields",
     "TIME_ROLE",
 ]
 
-#: The five signals the paper records (section 3.2), in the paper's order.
-ROLES = ("RP", "AP", "MP", "RC", "AC")
-
-_SIGNAL_NAME = re.compile(
-    r"^\s*(?P<path>.*/)?(?P<base>[^/\[\]]*?)\s*(?:\[\s*u(?P<unit>\d+)\s*,\s*(?P<axis>\d+)\s*\])?\s*$"
-)
 _ROLE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 #: The role of a file's time signal (seconds), in any case.
 TIME_ROLE = "time"
-
-
-@dataclass(frozen=True)
-class SignalInfo:
-    """What a trace says about one signal.
-
-    Attributes
-    ----------
-    name : str
-        The controller's full signal name (``/Nck/!SEMA/measPos2 [u1, 7]``), or for a derived
-        signal the expression it was computed from (``RP - AP``).
-    units_type : str or None
-        The trace's ``unitsType`` (``posn``, ``velo``, ``veloRot``, ``accel``, ``current``,
-        ``none``); None when the file does not say (CSV).
-    data_type : str or None
-        The trace's ``dataType`` (``double``, ``float``, ``uword``); values are held as float64.
-    interval : float
-        The native interval in seconds: a value can change at most this often. A signal whose
-        interval is coarser than the recording's grid is a staircase on that grid.
-    unit : str or None
-        The physical unit (``"deg"``, ``"N m"``) where the file or the channel map states it;
-        a torque standing in the role of the current AC shows its unit here.
-    converted_from : str or None
-        The unit the file holds, when the values were converted to ``unit``
-        (:func:`funcnet.robot.units.in_axis_units`: rad to deg, m to mm).
-    """
-
-    name: str
-    units_type: str | None
-    data_type: str | None
-    interval: float
-    unit: str | None = None
-    converted_from: str | None = None
-
-
-@dataclass(frozen=True)
-class SignalName:
-    """A controller signal name split into its parts (see :func:`parse_signal_name`)."""
-
-    full: str
-    path: str
-    base: str
-    unit: int | None
-    axis: int | None
-
-
-def parse_signal_name(name: str) -> SignalName:
-    """Split a SINUMERIK signal name into path, base name, unit and axis.
-
-    Parameters
-    ----------
-    name : str
-        E.g. ``/Nck/!SD/nckServoDataActCurr32 [u1, 7]``; the path and the ``[uU, N]`` suffix are
-        optional.
-
-    Returns
-    -------
-    SignalName
-        ``base`` is the name without path and suffix, ``axis`` is ``N`` (None without a suffix).
-
-    Examples
-    --------
-    >>> parse_signal_name("/Nck/!SD/nckServoDataActCurr32 [u1, 7]")
-    SignalName(full='/Nck/!SD/nckServoDataActCurr32 [u1, 7]', path='/Nck/!SD/', base='nckServoDataActCurr32', unit=1, axis=7)
-    >>> parse_signal_name("measPos2").axis is None
-    True
-    """  # noqa: E501
-    match = _SIGNAL_NAME.match(name)
-    if match is None or not match["base"]:
-        return SignalName(name, "", name.strip(), None, None)
-    return SignalName(
-        full=name,
-        path=match["path"] or "",
-        base=match["base"],
-        unit=None if match["unit"] is None else int(match["unit"]),
-        axis=None if match["axis"] is None else int(match["axis"]),
-    )
 
 
 @dataclass(frozen=True)
@@ -164,14 +74,14 @@ class ChannelMap:
         Signal name -> its unit, for files that do not state it; a list gives a signal of
         one column per axis a unit per axis (axis 1 first: ``["deg", "deg", "mm", "deg"]``).
         The time column's unit (``s``, ``ms``, ``us``, ``ns``) is given under its name or
-        under ``time`` (:mod:`funcnet.robot.clock`).
+        under ``time`` (:mod:`funcnet.robot.io.clock`).
     files : Mapping[str, SignalFile], optional
-        Signal name -> the text file and columns it is read from (:mod:`funcnet.robot.layout`):
+        Signal name -> the text file and columns it is read from (:mod:`funcnet.robot.io.layout`):
         a recording made of files, one per signal.
     axis_names : tuple of str, optional
         The axes' names, axis 1 first (``("base", "shoulder", ...)``), for pages.
     bag : BagLayout, optional
-        Signal name -> the topic and message field it is read from (:mod:`funcnet.robot.topics`):
+        Signal name -> the topic and message field it is read from (:mod:`funcnet.robot.io.topics`):
         a ROS bag.
 
     Examples
@@ -564,48 +474,3 @@ def resolve_fields(
     present = {key for options in keys.values() for key in options}
     _refuse_unmatched(cmap, present, names, path)
     return lookup(cmap.roles), lookup(cmap.units)
-
-
-def select_axis(
-    names: Iterable[str], axis: int | None, path: object
-) -> tuple[list[bool], int | None]:
-    """Choose the signals of one axis.
-
-    Parameters
-    ----------
-    names : iterable of str
-        Full controller signal names.
-    axis : int or None
-        The axis to keep. None is allowed when at most one axis is present.
-    path : path-like
-        The file, named in errors.
-
-    Returns
-    -------
-    keep : list of bool
-        Per name: it belongs to ``axis`` or names no axis at all.
-    axis : int or None
-        The axis read (the only one present when ``axis`` was None).
-
-    Raises
-    ------
-    ChannelError
-        Several axes and none chosen, or the chosen axis is absent; the message lists the axes.
-        (When no signal names an axis, every signal is kept whatever ``axis`` says.)
-
-    Examples
-    --------
-    >>> select_axis(["measPos2 [u1, 1]", "measPos2 [u1, 2]", "aaStop"], 2, "t.xml")
-    ([False, True, True], 2)
-    """
-    axes = [parse_signal_name(name).axis for name in names]
-    present = sorted({a for a in axes if a is not None})
-    if axis is None:
-        if len(present) > 1:
-            raise ChannelError(
-                path, f"the trace holds axes {present}; choose one with axis=<one of them>"
-            )
-        axis = present[0] if present else None
-    elif present and axis not in present:
-        raise ChannelError(path, f"axis {axis} is not in the trace; it holds axes {present}")
-    return [a is None or a == axis for a in axes], axis

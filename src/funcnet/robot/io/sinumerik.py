@@ -43,7 +43,7 @@ import numpy as np
 from lxml import etree
 
 from funcnet.errors import ChannelError, TraceFormatError
-from funcnet.robot.channels import SignalInfo, select_axis
+from funcnet.robot.signals import SignalInfo, select_axis
 
 __all__ = ["SinumerikTrace", "read_sinumerik", "GRID_BYTES_FLOOR", "GRID_BYTES_PER_FILE_BYTE"]
 

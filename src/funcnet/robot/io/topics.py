@@ -17,7 +17,7 @@ carries (``name`` of a ``sensor_msgs/msg/JointState``, ``joint_names`` of a
 
 An entry may give its own ``time``. The name of an entry is the signal's name: ``[channels]``
 gives it a role and ``[units]`` its unit, as for any other signal
-(:func:`funcnet.robot.rosbag.read_bag` says how the messages become a recording).
+(:func:`funcnet.robot.io.rosbag.read_bag` says how the messages become a recording).
 
 Examples
 --------

@@ -1,7 +1,7 @@
 """Recordings stored as tables: CSV, and Parquet files not written by funcnet.
 
 A table has a header row, a ``time`` column (seconds, or the unit the channel map states, or ISO
-8601 date-times: :mod:`funcnet.robot.clock`) and one column per signal (a SINUMERIK
+8601 date-times: :mod:`funcnet.robot.io.clock`) and one column per signal (a SINUMERIK
 name with its ``[u1, N]`` suffix, a role, or any name). How its cells are read:
 
 - A cell that is empty or says ``NaN``/``NA``/``null`` is a missing value: NaN. Before a
@@ -28,9 +28,10 @@ import numpy as np
 import pandas as pd
 
 from funcnet.errors import ChannelError, RecordingWarning, TraceFormatError, caller_stacklevel
-from funcnet.robot.channels import ROLES, ChannelMap, SignalInfo, select_axis
-from funcnet.robot.clock import clock_seconds
 from funcnet.robot.grid import GridSignals, place_on_grid, time_grid
+from funcnet.robot.io.channels import ChannelMap
+from funcnet.robot.io.clock import clock_seconds
+from funcnet.robot.signals import ROLES, SignalInfo, select_axis
 
 __all__ = ["read_csv_table", "table_signals", "MISSING_CELLS"]
 

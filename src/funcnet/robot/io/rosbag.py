@@ -3,7 +3,7 @@
 A bag is what ROS writes: a ROS 2 bag folder (``metadata.yaml`` beside its ``.mcap`` or ``.db3``
 files), one ``.mcap`` or ``.db3`` file of it, or a ROS 1 ``.bag`` file; it is read with
 ``rosbags`` (pure Python, no ROS install). A channel map's ``[bag]`` table names each signal's
-topic and message field and lists the joints in axis order (:mod:`funcnet.robot.topics`). How
+topic and message field and lists the joints in axis order (:mod:`funcnet.robot.io.topics`). How
 the messages become a recording:
 
 - **Message types** are read from the definitions the bag carries (a ROS 2 bag stores each
@@ -45,9 +45,10 @@ import numpy as np
 
 from funcnet.errors import ChannelError, RecordingWarning, TraceError, TraceFormatError
 from funcnet.robot.axes import qualified, split_qualified
-from funcnet.robot.channels import DEFAULT_CHANNEL_MAP, ChannelMap, SignalInfo
 from funcnet.robot.grid import GRID_TOLERANCE, GridSignals, time_grid
-from funcnet.robot.topics import BagLayout, TopicField
+from funcnet.robot.io.channels import DEFAULT_CHANNEL_MAP, ChannelMap
+from funcnet.robot.io.topics import BagLayout, TopicField
+from funcnet.robot.signals import SignalInfo
 
 __all__ = ["BAG_SUFFIXES", "is_bag", "read_bag", "REP103_UNITS"]
 
@@ -437,7 +438,7 @@ def read_bag(
         A ROS 2 bag folder (``metadata.yaml`` beside its storage files), one ``.mcap`` or
         ``.db3`` file, or a ROS 1 ``.bag`` file.
     cmap : ChannelMap
-        With its ``bag`` (:class:`funcnet.robot.topics.BagLayout`).
+        With its ``bag`` (:class:`funcnet.robot.io.topics.BagLayout`).
     axis : int or None
         The axis to read (from 1: the joint listed ``axis``-th); None reads every axis.
     off_grid : {"error", "interpolate"}

@@ -7,7 +7,7 @@ is read with :func:`scipy.io.loadmat`; MAT 7.3 is HDF5 underneath and read with 
 
 - **Time** is the variable the channel map gives the role ``time`` (``"rec.time_cont" =
   "time"``), else the one variable called ``time`` (in any case, on any path); seconds (or
-  the unit ``[units]`` states for it: :mod:`funcnet.robot.clock`), read from the first stamp,
+  the unit ``[units]`` states for it: :mod:`funcnet.robot.io.clock`), read from the first stamp,
   increasing, on a uniform grid of any period (:func:`funcnet.robot.grid.time_grid`).
 - **Signals** are the numeric variables beside the time (in the same struct or group), and any
   variable the channel map names, anywhere in the file, that have one sample per time stamp. A
@@ -37,9 +37,10 @@ import numpy as np
 
 from funcnet.errors import ChannelError, TraceFormatError
 from funcnet.robot.axes import qualified, split_qualified
-from funcnet.robot.channels import TIME_ROLE, ChannelMap, SignalInfo, field_keys, resolve_fields
-from funcnet.robot.clock import Clock, clock_seconds
 from funcnet.robot.grid import GridSignals, place_on_grid, time_grid
+from funcnet.robot.io.channels import TIME_ROLE, ChannelMap, field_keys, resolve_fields
+from funcnet.robot.io.clock import Clock, clock_seconds
+from funcnet.robot.signals import SignalInfo
 
 __all__ = ["ARRAY_SUFFIXES", "read_array_file", "StoredArray"]
 
@@ -192,7 +193,7 @@ def _rows(array: StoredArray, n_samples: int) -> np.ndarray | None:
 def _time_seconds(
     path: Path, time_array: StoredArray, units: Mapping[str, Any], cmap: ChannelMap
 ) -> tuple[Clock, Callable[[int], str]]:
-    """The time variable in seconds (:mod:`funcnet.robot.clock`), and where a sample is."""
+    """The time variable in seconds (:mod:`funcnet.robot.io.clock`), and where a sample is."""
     time = np.squeeze(time_array.values).astype(np.float64)
     if time.ndim != 1:
         raise TraceFormatError(

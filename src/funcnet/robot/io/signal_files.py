@@ -1,7 +1,7 @@
 """A recording made of text files: one file per signal (a run's folder), or one log file.
 
 A channel map's ``[signals]`` table names each signal's file and columns
-(:mod:`funcnet.robot.layout`); :func:`read_signal_files` reads them and joins them on their time
+(:mod:`funcnet.robot.io.layout`); :func:`read_signal_files` reads them and joins them on their time
 stamps. How:
 
 - Only the files the map names are read; any other file of the folder is ignored.
@@ -9,7 +9,7 @@ stamps. How:
   middle of a line: ``21.``): it is dropped. Every file with such a line is named in one
   :class:`~funcnet.RecordingWarning` (``problem="cut_line"``).
 - Time (seconds, or the unit ``[units]`` states for the time column, or ISO 8601 date-times;
-  an absolute clock read from the earliest file's first stamp: :mod:`funcnet.robot.clock`)
+  an absolute clock read from the earliest file's first stamp: :mod:`funcnet.robot.io.clock`)
   must increase on a uniform grid (:func:`funcnet.robot.grid.time_grid`), the same period in
   every file. The signals are joined on their time stamps: where the files cover
   different spans (each cut at its own end), the recording is their **common span**, and every
@@ -45,10 +45,11 @@ from funcnet.errors import (
     caller_stacklevel,
 )
 from funcnet.robot.axes import qualified, split_qualified
-from funcnet.robot.channels import DEFAULT_CHANNEL_MAP, TIME_ROLE, ChannelMap, SignalInfo
-from funcnet.robot.clock import Clock, clock_seconds
 from funcnet.robot.grid import GRID_TOLERANCE, GridSignals, time_grid
-from funcnet.robot.layout import SignalFile
+from funcnet.robot.io.channels import DEFAULT_CHANNEL_MAP, TIME_ROLE, ChannelMap
+from funcnet.robot.io.clock import Clock, clock_seconds
+from funcnet.robot.io.layout import SignalFile
+from funcnet.robot.signals import SignalInfo
 
 __all__ = ["read_signal_files", "FileTable"]
 
@@ -62,7 +63,7 @@ class FileTable:
     path : Path
     time : ndarray, shape (N,)
         Seconds (an absolute clock's from the earliest file's first stamp:
-        :mod:`funcnet.robot.clock`).
+        :mod:`funcnet.robot.io.clock`).
     columns : dict
         The column (position or header name) -> its values, float64 (NaN where a cell is empty).
     cut_line : str or None
@@ -265,8 +266,8 @@ def read_signal_files(
     Examples
     --------
     >>> import pathlib, tempfile, warnings
-    >>> from funcnet.robot.channels import ChannelMap
-    >>> from funcnet.robot.layout import signal_files
+    >>> from funcnet.robot.io.channels import ChannelMap
+    >>> from funcnet.robot.io.layout import signal_files
     >>> run = pathlib.Path(tempfile.mkdtemp())
     >>> _ = (run / "q.csv").write_text("0.000, 1.0, 2.0\\n0.008, 1.5, 2.5\\n0.016, 2.0, 3.0\\n")
     >>> _ = (run / "i.csv").write_text("0.000, 0.1, 0.2\\n0.008, 0.3, 0.4\\n0.0")
