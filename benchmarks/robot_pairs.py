@@ -32,7 +32,7 @@ def dump(recording_path: str, channels: str | None, out: Path) -> None:
     tables = {f"robot / {label}": net.pairs for label, net in found.networks.items()}
     for axis, one in getattr(found, "axes", {}).items():
         tables.update({f"axis {axis} / {label}": net.pairs for label, net in one.networks.items()})
-    # json writes floats by repr, which round-trips every float64 bit for bit (NaN as NaN)
+    # json writes floats by repr, which round-trips every float64 bit for bit (NaN as null)
     payload = {key: table.astype(object).where(table.notna(), None).to_dict(orient="split")
                for key, table in tables.items()}
     out.write_text(json.dumps(payload, default=str))

@@ -23,6 +23,7 @@ from funcnet.evidence.segment import (
 )
 from funcnet.inspection import inspect_robot, robot as robot_module
 from funcnet.parameters import EvidenceSettings, NetworkParameters
+from funcnet.report.robot_summary import evidence_sentence
 from funcnet.robot.recording import Recording, SignalInfo
 
 pytestmark = pytest.mark.filterwarnings("ignore::funcnet.errors.FuncnetWarning")
@@ -145,3 +146,29 @@ def test_a_long_segment_in_parts_finds_its_coupled_pairs_and_not_the_others(monk
                 assert not row.coupled and row.coupling_p >= 0.15, (label, pair)
             # the parts draw no interval
             assert np.isnan(row.c_diff_low)
+
+
+def test_a_node_constant_in_one_part_keeps_the_pairs_of_the_others(monkeypatch):
+    # A1.AP constant through part 1 only: part 1 leaves it out, part 2 keeps it. The segment's
+    # test must key each pair as every part does (the robot's order), not by first appearance
+    # (which would put A1.AP after A2.AP and key its pairs backwards).
+    recording = _two_axes()
+    data = recording.data.copy()
+    data.iloc[:300, data.columns.get_loc("A1.AP")] = 0.0
+    recording = dataclasses.replace(recording, data=data)
+    monkeypatch.setattr(robot_module, "ROBOT_MAX_STATES", 300)
+    found = inspect_robot(recording, backlash=False, delay=DELAY,
+                          evidence_options=EvidenceSettings(resamples=50))
+    assert not found.failures
+    first, second = list(found.pairs.values())[:2]
+    assert "A1.AP" not in set(first["x"]) | set(first["y"])
+    assert len(first) == 3 and len(second) == 6
+    assert "coupling test of each part is its whole segment's" in found.windows_note
+    # the other axis's coupled pair is read from the segment's test in both parts
+    for pairs in (first, second):
+        row = pairs[(pairs["x"] == "A2.RP") & (pairs["y"] == "A2.AP")].iloc[0]
+        assert row.coupled and set(pairs["surrogates"]) == {120}
+    # a part computes no interval: its page sentence points to no option that would draw one
+    assert found.networks[next(iter(found.pairs))].evidence["resamples"] == 0
+    assert "--intervals all" in evidence_sentence(second)
+    assert "--intervals all" not in evidence_sentence(second, intervals=False)

@@ -168,44 +168,55 @@ def _cut_segments(recording: Recording, windows: Sequence[Window],
 
 
 def _segment_tests(recording: Recording, networks: WindowNetworks, windows: Sequence[Window],
-                   p: NetworkParameters, settings: EvidenceSettings,
+                   nodes: Sequence[str], p: NetworkParameters, settings: EvidenceSettings,
                    ) -> tuple[dict[str, Mapping[tuple[str, str], Any]], str]:
     """The coupling test of each cut segment, run once on its thinned states
     (:func:`funcnet.evidence.segment.segment_tests`), by the label of each of its parts; and
-    the sentence for the page."""
+    the sentence for the page. A segment whose test fails leaves its parts to their own."""
+    from funcnet.errors import FuncnetError
+
     tests: dict[str, Mapping[tuple[str, str], Any]] = {}
-    said = []
+    said: list[str] = []
+    failed: list[str] = []
     for (a, b), labels in _cut_segments(recording, windows, p).items():
         labels = [label for label in labels if label in networks]
-        nodes = list(dict.fromkeys(n for label in labels for n in networks[label].nodes))
-        if len(nodes) < 2:
+        # in the robot's order, of which each part's nodes are a subsequence (a node left
+        # out of one part as constant may be in another): each pair keyed as its parts key it
+        kept = [n for n in nodes if any(n in networks[label].nodes for label in labels)]
+        if len(kept) < 2:
             continue
-        span = recording.window(a, b).data[nodes]
-        prepared = prepared_signals(span, None, None, p.normalize)
-        found, step = segment_tests(list(prepared.signals), names=list(prepared.names),
-                                    parameters=p, surrogates=settings.get("surrogates"),
-                                    alpha=settings.get("alpha", 0.05))
+        span = recording.window(a, b).data[kept]
+        try:
+            prepared = prepared_signals(span, None, None, p.normalize)
+            found, step = segment_tests(list(prepared.signals), names=list(prepared.names),
+                                        parameters=p, surrogates=settings.get("surrogates"),
+                                        alpha=settings.get("alpha", 0.05))
+        except FuncnetError as error:
+            failed.append(f"{a:g}-{b:g} s ({error})")
+            continue
         tests.update({label: found for label in labels})
         ks = [t.surrogates for t in found.values() if t is not None]
         said.append(f"{a:g}-{b:g} s: one state in {step} of its {len(span):,} samples, "
                     f"K = {min(ks, default=0)}-{max(ks, default=0)}")
+    unrun = (f" The test of a whole segment could not run, its parts test themselves: "
+             f"{'; '.join(failed)}.") if failed else ""
     if not said:
-        return tests, ""
+        return tests, unrun.lstrip()
     drawn = "" if settings.get("edge_rule", "paper") == "interval" else (
         " The parts' asymmetry intervals are not drawn (`funcnet network` on a window draws "
         "them).")
     return tests, ("The coupling test of each part is its whole segment's, run once on at most "
                    f"{SEGMENT_MAX_STATES:,} states taken evenly over it ({'; '.join(said)}): "
-                   f"a part alone holds too few surrogates to decide.{drawn}")
+                   f"a part alone holds too few surrogates to decide.{drawn}{unrun}")
 
 
 def _evidence(recording: Recording, networks: WindowNetworks, windows: Sequence[Window],
-              p: NetworkParameters, settings: EvidenceSettings,
+              nodes: Sequence[str], p: NetworkParameters, settings: EvidenceSettings,
               ) -> tuple[WindowNetworks, str]:
     """Each window's evidence; the parts of a cut segment read its segment's coupling test
     and, but under the interval rule, draw no interval (their cost is the page's)."""
     tests, note = ({}, "") if settings.get("surrogate_method", "shift") != "shift" else \
-        _segment_tests(recording, networks, windows, p, settings)
+        _segment_tests(recording, networks, windows, nodes, p, settings)
     own = WindowNetworks({k: v for k, v in networks.items() if k not in tests})
     cut = WindowNetworks({k: v for k, v in networks.items() if k in tests})
     found = window_evidence(recording, own, windows, errors="collect", **settings)
@@ -329,7 +340,7 @@ def inspect_robot(
                                constant="drop", errors="collect")
     failures = list(networks.failures)
     if evidence:
-        networks, tested = _evidence(recording, networks, windows, p,
+        networks, tested = _evidence(recording, networks, windows, nodes, p,
                                      evidence_options or EvidenceSettings())
         failures += networks.failures
         note = " ".join(filter(None, [note, tested]))

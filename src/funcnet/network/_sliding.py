@@ -319,7 +319,7 @@ _boundary_kernel = njit(cache=True)(_boundary)
 @njit(cache=True)
 def _slide(design: Any, n: int, block: int, norms: Any, p: int, limits: Any,
            screen: float, out: Any) -> None:  # pragma: no cover
-    """Every window's factor of a run (module notes) read into ``out`` (A, 3, lanes): the full
+    """Every window's factor of a run (module notes) read into ``out`` (W, 3, lanes): the full
     model's residual sum of squares, the improvement, and 1 where the screen passed."""
     rows, c, lanes = design.shape
     n_windows = rows - n + 1

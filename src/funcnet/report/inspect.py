@@ -401,8 +401,9 @@ def write_robot_inspection(
                    "independence. The rule's kinds are in the pairs tables.")
         network_parts.append(figure_html(out, f"robot-network-{k + 1}", _figure(ins, label),
                                          caption))
-        network_parts.append(f"<p>{escape(scope_counts(pairs))}.{evidence_sentence(pairs)}"
-                             "</p>")
+        drawn = (ins.networks[label].evidence or {}).get("resamples", 1) != 0
+        network_parts.append(f"<p>{escape(scope_counts(pairs))}."
+                             f"{evidence_sentence(pairs, intervals=drawn)}</p>")
         shown = pairs_table(pairs)
         scope = table(pairs[["x", "y", "axis_x", "axis_y", "scope", "kind", "weight"]])
         network_parts.append("<details><summary>pairs with their scope</summary>" + scope

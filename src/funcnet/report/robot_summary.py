@@ -229,8 +229,10 @@ def scope_counts(pairs: pd.DataFrame) -> str:
             "between axes")
 
 
-def evidence_sentence(pairs: pd.DataFrame) -> str:
-    """What the evidence says of a robot network's pairs, in one sentence ("" without it)."""
+def evidence_sentence(pairs: pd.DataFrame, *, intervals: bool = True) -> str:
+    """What the evidence says of a robot network's pairs, in one sentence ("" without it);
+    ``intervals=False``: the network computed none (the part of a cut segment), so no option
+    of the page draws them."""
     if "evidence" not in pairs.columns:
         return ""
     counts = pairs["evidence"].value_counts()
@@ -242,11 +244,11 @@ def evidence_sentence(pairs: pd.DataFrame) -> str:
         drawn = "c_diff_low" in blind and not blind["c_diff_low"].isna().all()
         why = (f" Untestable: {reasons.index[0]}" + (" (the most common reason)"
                                                      if len(reasons) > 1 else "")
-               + ("." if drawn else "; their asymmetry intervals are not drawn (--intervals "
-                  "all draws them)."))
+               + ("." if drawn or not intervals else "; their asymmetry intervals are not "
+                  "drawn (--intervals all draws them)."))
     tested = pairs[pairs["evidence"] != "untestable"]  # their own sentence: above
     undrawn = int((tested["c_diff_low"].isna() & ~tested["coupled"].astype(bool)).sum())
-    if undrawn:
+    if undrawn and intervals:
         why += (f" The asymmetry intervals of the {undrawn} tested pairs without coupling are "
                 "not drawn (--intervals all draws them).")
     return escape(f" Evidence: {said} of {len(pairs)} pairs.{why}")
