@@ -238,6 +238,7 @@ def window_networks(
     constant: str = "drop",
     errors: str = "raise",
     progress: Callable[[int, int, str], None] | None = None,
+    warn: bool = True,
     **overrides: Unpack[ParameterOverrides],
 ) -> WindowNetworks:
     """One functional network per window of a recording.
@@ -275,6 +276,9 @@ def window_networks(
         signal that is not a column, duplicate labels) are raised either way.
     progress : callable, optional
         Called as ``progress(done, total, label)`` after each window's network.
+    warn : bool
+        Emit the warnings below; False leaves the flags in the pairs tables alone (a caller
+        that reads them itself, without ``warnings.catch_warnings``, which threads share).
     **overrides
         Network parameters by name (``dim=2``, ``rr=0.1``, ...), applied to ``parameters``.
 
@@ -377,7 +381,7 @@ def window_networks(
             f"has {list(recording.data.columns)}",
         )
     staircase = staircase_warning(recording, signals, where)
-    if staircase is not None:
+    if staircase is not None and warn:
         warnings.warn(staircase, stacklevel=caller_stacklevel())
     drop = constant == "drop" and p.normalize is not None
     networks = WindowNetworks()
@@ -402,11 +406,11 @@ def window_networks(
     found += window_warnings({label: net for label, net in networks.items()
                               if label not in batched})
     found.sort(key=lambda warning: order.get(str(warning.window), -1))
-    for warning in _summarized(found, where, len(windows)):
+    for warning in _summarized(found, where, len(windows)) if warn else ():
         warnings.warn(warning, stacklevel=caller_stacklevel())
     left_out = constant_warning(where, {label: (net.window or {}).get("dropped", ())
                                         for label, net in networks.items()}, len(windows))
-    if left_out is not None:
+    if left_out is not None and warn:
         warnings.warn(left_out, stacklevel=caller_stacklevel())
     networks.failures = tuple(failures)
     return networks

@@ -642,11 +642,12 @@ def _batch_kernel(
 
 #: The kernel with its loops over the cores, and the same loops in the calling thread: a parallel
 #: region costs a wake-up of the other threads, which on a busy machine outweighs a small batch.
-batch_kernel = njit(cache=True, parallel=True)(_batch_kernel)
-batch_kernel_serial = njit(cache=True)(_batch_kernel)
+#: Both release the GIL, as :func:`pair_kernel` does: other threads compute meanwhile.
+batch_kernel = njit(cache=True, parallel=True, nogil=True)(_batch_kernel)
+batch_kernel_serial = njit(cache=True, nogil=True)(_batch_kernel)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def pair_kernel(
     x: Array, y: Array, cast32: bool, dim: int, delay: int, metric: int, theiler: int,
     strict: bool, rank_x: int, rank_y: int, rank_xy: int,

@@ -9,6 +9,9 @@ so both give the same bits. One row of keys at a time is held, never the distanc
 
 Recurrence rows are bit-packed: bit ``j`` of row ``i`` is word ``j // 64``, bit ``j % 64``.
 The cross-triangle kernel of Eq. 6-9 counts with popcounts over those words.
+
+Every kernel called from Python releases the GIL, so that threads compute side by side: the
+parallel ones while their region runs, the serial ones compiled ``nogil``.
 """
 
 from __future__ import annotations
@@ -314,7 +317,7 @@ def _collect_band(
                 )
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _compact_band(chunk_keys: Array, chunk_index: Array, filled: Array) -> int:
     """Move the filled part of every chunk to the front of the buffers (flattened), in chunk
     order, without a new array; return the number of band pairs."""
@@ -358,7 +361,7 @@ def _count_keys(a: Array, bt: Array, auto: bool, theiler: int, metric: int,
     return counts.sum(axis=0)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _add_band_bits(packed: Array, band_keys: Array, band_index: Array, bound: float) -> int:
     """Set the bits of the band pairs with key <= bound; return how many were set."""
     count = 0
@@ -426,7 +429,7 @@ def _row_popcounts(packed: Array) -> Array:
     return sums
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _unpack(packed: Array, n_cols: int) -> Array:
     dense = np.zeros((packed.shape[0], n_cols), dtype=np.bool_)
     for i in range(packed.shape[0]):

@@ -52,7 +52,6 @@ from __future__ import annotations
 
 import functools
 import math
-import warnings
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -68,7 +67,7 @@ from funcnet.diagnosis.two_encoder import (
     first_start,
     lost_motion,
 )
-from funcnet.errors import FuncnetError, FuncnetWarning, ParameterError
+from funcnet.errors import FuncnetError, ParameterError
 from funcnet.parameters import NetworkParameters
 from funcnet.robot.recording import Recording
 
@@ -212,20 +211,21 @@ def _networks(rec: Recording, starts: Sequence[float], nodes: Sequence[str],
         parts = [_part(rec, start, nodes) for start in starts]
     usable = [k for k, part in enumerate(parts) if part is not None]
     found: list[FunctionalNetwork | None] = [None] * len(starts)
-    with warnings.catch_warnings():  # flags stay in the pairs table; nothing to say here
-        warnings.simplefilter("ignore", FuncnetWarning)
-        try:
-            windows = [Window(str(k), starts[k], starts[k] + _WINDOW) for k in usable]
-            nets = window_networks(rec, windows, signals=list(nodes), parameters=parameters)
-            for k in usable:
-                found[k] = nets[str(k)]
-        except FuncnetError:
-            for k in usable:
-                part = rec.window(starts[k], starts[k] + _WINDOW).data[list(nodes)]
-                try:
-                    found[k] = functional_network(part, parameters=parameters, warn=False)
-                except FuncnetError:
-                    found[k] = None
+    # flags stay in the pairs table; nothing to say here (and no catch_warnings: the
+    # diagnosis runs in threads beside other computations)
+    try:
+        windows = [Window(str(k), starts[k], starts[k] + _WINDOW) for k in usable]
+        nets = window_networks(rec, windows, signals=list(nodes), parameters=parameters,
+                               warn=False)
+        for k in usable:
+            found[k] = nets[str(k)]
+    except FuncnetError:
+        for k in usable:
+            part = rec.window(starts[k], starts[k] + _WINDOW).data[list(nodes)]
+            try:
+                found[k] = functional_network(part, parameters=parameters, warn=False)
+            except FuncnetError:
+                found[k] = None
     return found
 
 

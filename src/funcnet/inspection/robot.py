@@ -25,7 +25,9 @@ from typing import Any, Unpack
 
 import pandas as pd
 
+from funcnet.errors import FuncnetError
 from funcnet.evidence.segment import SEGMENT_MAX_STATES, segment_tests
+from funcnet.inspection._threads import default_workers, run_in_order
 from funcnet.inspection.trace import TraceInspection, _step, inspect_recording
 from funcnet.network import FunctionalNetwork
 from funcnet.network._inputs import prepared_signals
@@ -233,6 +235,30 @@ def _evidence(recording: Recording, networks: WindowNetworks, windows: Sequence[
                           sorted(failures, key=lambda f: order.get(f.window, 0))), note
 
 
+def _ready(recording: Recording) -> None:
+    """The recording's time index with its lookup tables built, before threads share it:
+    pandas builds them on first use, which two threads must not do at once."""
+    index = recording.data.index
+    if len(index):
+        index.get_loc(index[0])
+        _ = index.is_monotonic_increasing, index.is_unique
+
+
+def _robot_network(recording: Recording, windows: Sequence[Window], nodes: Sequence[str],
+                   p: NetworkParameters, evidence: bool, settings: EvidenceSettings,
+                   ) -> tuple[WindowNetworks, list[WindowFailure], str]:
+    """The robot network of each window, with its evidence when asked: the networks, the
+    windows that failed, and the sentence of the evidence for the page."""
+    networks = window_networks(recording, windows, signals=nodes, parameters=p,
+                               constant="drop", errors="collect")
+    failures = list(networks.failures)
+    tested = ""
+    if evidence:
+        networks, tested = _evidence(recording, networks, windows, nodes, p, settings)
+        failures += networks.failures
+    return networks, failures, tested
+
+
 @dataclass(frozen=True)
 class RobotInspection:
     """What :func:`inspect_robot` found in a recording of several axes.
@@ -295,6 +321,7 @@ def inspect_robot(
     backlash: bool = True,
     progress: Callable[[int, int, str], None] | None = None,
     evidence_options: EvidenceSettings | None = None,
+    workers: int | None = None,
     **overrides: Unpack[ParameterOverrides],
 ) -> RobotInspection:
     """Inspect each axis of a recording of several axes, and the robot as one network.
@@ -311,7 +338,14 @@ def inspect_robot(
     parameters, evidence, backlash, evidence_options, **overrides
         As :func:`~funcnet.inspection.inspect_recording`, for every network.
     progress : callable, optional
-        ``progress(done, total, description)``.
+        ``progress(done, total, description)``, called in the calling thread.
+    workers : int, optional
+        Threads computing side by side: the robot network with its evidence and each axis's
+        inspection are independent, and their kernels release the GIL. Default the cores this
+        process may use, at most 4; 1 computes them one after the other in the calling thread.
+        The results are the same bit for bit, and so are the warnings and their order (each
+        computation's, in the order robot network, axis 1, axis 2, ...): those of the threads
+        are emitted once they are done. No callback may enter ``warnings.catch_warnings``.
 
     Returns
     -------
@@ -324,7 +358,7 @@ def inspect_robot(
     ChannelError
         A signal that is not in the recording.
     """
-    from funcnet.errors import FuncnetError, ParameterError
+    from funcnet.errors import ParameterError
 
     started = time.perf_counter()
     if not recording.axes:
@@ -334,31 +368,42 @@ def inspect_robot(
         check_evidence_settings(**(evidence_options or EvidenceSettings()))
     nodes = list(signals) if signals is not None else paper_nodes(recording.data.columns)
     windows, note = robot_windows(recording, p)
-    total = len(recording.axes) + 2
+    axes = list(recording.axes)
+    total = len(axes) + 2
     _step(progress, 0, total, "robot network")
-    networks = window_networks(recording, windows, signals=nodes, parameters=p,
-                               constant="drop", errors="collect")
-    failures = list(networks.failures)
-    if evidence:
-        networks, tested = _evidence(recording, networks, windows, nodes, p,
-                                     evidence_options or EvidenceSettings())
-        failures += networks.failures
-        note = " ".join(filter(None, [note, tested]))
-    axes: dict[int, TraceInspection] = {}
-    errors: dict[int, str] = {}
-    for k, axis in enumerate(recording.axes):
-        _step(progress, 1 + k, total, f"axis {axis}")
-        try:
-            axes[axis] = inspect_recording(
-                recording.for_axis(axis), parameters=p, evidence=evidence, backlash=backlash,
-                evidence_options=evidence_options)
-        except FuncnetError as error:
-            errors[axis] = str(error)
+
+    def robot() -> tuple[WindowNetworks, list[WindowFailure], str]:
+        return _robot_network(recording, windows, nodes, p, evidence,
+                              evidence_options or EvidenceSettings())
+
+    _ready(recording)
+    parts = {axis: recording.for_axis(axis) for axis in axes}
+
+    def axis_job(axis: int) -> Callable[[], TraceInspection | str]:
+        def job() -> TraceInspection | str:
+            try:
+                return inspect_recording(parts[axis], parameters=p,
+                                         evidence=evidence, backlash=backlash,
+                                         evidence_options=evidence_options)
+            except FuncnetError as error:
+                return str(error)
+        return job
+
+    def done(k: int) -> None:  # the steps of a loop over the jobs, in their order
+        if k < len(axes):
+            _step(progress, 1 + k, total, f"axis {axes[k]}")
+
+    found: list[Any] = run_in_order([robot, *map(axis_job, axes)],
+                                    default_workers() if workers is None else workers, done)
+    computed: tuple[WindowNetworks, list[WindowFailure], str] = found[0]
+    networks, failures, tested = computed
+    note = " ".join(filter(None, [note, tested]))
+    inspected = dict(zip(axes, found[1:], strict=True))
     _step(progress, total, total, "done")
     return RobotInspection(
         source=recording.source or "<recording>",
-        axes=axes,
-        axis_errors=errors,
+        axes={a: v for a, v in inspected.items() if isinstance(v, TraceInspection)},
+        axis_errors={a: v for a, v in inspected.items() if isinstance(v, str)},
         signals=tuple(nodes),
         windows=windows,
         networks=dict(networks),

@@ -1,0 +1,179 @@
+"""Independent computations side by side in threads, their results and warnings in a fixed
+order (private).
+
+The inspection of a robot is seven computations that share nothing but their inputs: the
+robot network with its evidence, and each axis's own inspection. Their hot kernels release
+the GIL (NumPy, BLAS, Numba's parallel kernels and those compiled ``nogil``), so threads of
+one process keep two cores busy. :func:`run_in_order` runs them and gives back what each
+returned, in the order given, whatever the scheduling.
+
+Warnings are the one shared state: the filters and ``warnings.showwarning`` belong to the
+process, and ``warnings.catch_warnings`` is not thread-safe (a thread entering it changes the
+filters of every thread). While the threads run, one capture set up by the calling thread
+records each warning beside the computation that raised it; once they are done, the warnings
+are emitted again in the calling thread, computation by computation in the order given, under
+the caller's own filters: what a caller catches or shows is what running the computations one
+after the other gives. No computation run here may enter ``warnings.catch_warnings`` itself.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import threading
+import warnings
+from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from typing import Any, TypeVar
+
+import numba
+
+__all__ = ["run_in_order", "default_workers"]
+
+T = TypeVar("T")
+
+
+@dataclass(frozen=True)
+class _Caught:
+    """One warning as ``warnings.warn_explicit`` takes it again."""
+
+    message: Warning | str
+    category: type[Warning]
+    filename: str
+    lineno: int
+    module: str | None
+    registry: dict[Any, Any] | None
+
+
+class _Sink(threading.local):
+    """The list the current thread's warnings go to (None: a thread not running a task)."""
+
+    caught: list[_Caught] | None = None
+
+
+_SINK = _Sink()
+
+
+def default_workers() -> int:
+    """The threads of a robot's inspection: the cores this process may use, at most 4.
+
+    Examples
+    --------
+    >>> 1 <= default_workers() <= 4
+    True
+    """
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # not on every platform
+        cores = os.cpu_count() or 1
+    return max(1, min(4, cores))
+
+
+def _origin(filename: str, lineno: int) -> tuple[str | None, dict[Any, Any] | None]:
+    """The module name and warning registry of the frame a warning is attributed to, as
+    ``warnings.warn`` finds them (found on the emitting thread's stack)."""
+    frame = sys._getframe(2)
+    while frame is not None:
+        if frame.f_code.co_filename == filename and frame.f_lineno == lineno:
+            registry = frame.f_globals.setdefault("__warningregistry__", {})
+            return frame.f_globals.get("__name__"), registry
+        frame = frame.f_back  # type: ignore[assignment]
+    return None, None
+
+
+def _record(stray: list[_Caught]) -> Callable[..., None]:
+    """The ``showwarning`` of the capture: each warning into its thread's sink."""
+
+    def show(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+             file: Any = None, line: str | None = None) -> None:
+        module, registry = _origin(filename, lineno)
+        caught = _SINK.caught if _SINK.caught is not None else stray
+        caught.append(_Caught(message, category, filename, lineno, module, registry))
+
+    return show
+
+
+def _replay(caught: Sequence[_Caught]) -> None:
+    """The warnings emitted again, in order, under the filters now in force."""
+    for w in caught:
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, module=w.module,
+                               registry=w.registry)
+
+
+def _task(job: Callable[[], T], numba_threads: int) -> tuple[list[_Caught], Any, bool]:
+    """Run ``job`` in this thread with its own sink: (its warnings, result or error, ok)."""
+    caught: list[_Caught] = []
+    _SINK.caught = caught
+    # Numba's thread count is per calling thread: the tasks share the cores between them.
+    numba.set_num_threads(numba_threads)
+    try:
+        return caught, job(), True
+    except BaseException as error:  # raised again in the caller's thread, in its turn
+        return caught, error, False
+    finally:
+        _SINK.caught = None
+
+
+def run_in_order(jobs: Sequence[Callable[[], T]], workers: int,
+                 done: Callable[[int], None] | None = None) -> list[T]:
+    """Each job's result, in the order of ``jobs``; up to ``workers`` jobs at a time.
+
+    Parameters
+    ----------
+    jobs : sequence of callable
+        Computations without arguments that share no mutable state.
+    workers : int
+        Threads; 1 runs every job in the calling thread, one after the other, as a loop would
+        (the warnings then go straight to the caller's filters).
+    done : callable, optional
+        ``done(k)`` in the calling thread once job ``k`` and those before it are done, in the
+        order of ``jobs`` (for a progress bar); not for a job that raised.
+
+    Returns
+    -------
+    list
+        The results in the order of ``jobs``. The first job (in that order) that raised
+        raises its error here, after the warnings of the jobs before it and its own.
+
+    Examples
+    --------
+    >>> def job(k):
+    ...     def run():
+    ...         warnings.warn(f"job {k}")
+    ...         return k * k
+    ...     return run
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     results = run_in_order([job(k) for k in range(4)], workers=2)
+    >>> results, [str(w.message) for w in caught]
+    ([0, 1, 4, 9], ['job 0', 'job 1', 'job 2', 'job 3'])
+    """
+    if workers <= 1 or len(jobs) <= 1:
+        results = []
+        for k, job in enumerate(jobs):
+            results.append(job())
+            if done is not None:
+                done(k)
+        return results
+    workers = min(workers, len(jobs))
+    share = max(1, numba.get_num_threads() // workers)
+    stray: list[_Caught] = []
+    outcomes = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")  # every warning recorded; the caller's filters decide
+        warnings.showwarning = _record(stray)  # type: ignore[assignment]
+        with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="funcnet") as pool:
+            futures = [pool.submit(_task, job, share) for job in jobs]
+            for k, future in enumerate(futures):
+                outcomes.append(future.result())
+                if done is not None and outcomes[-1][2]:
+                    done(k)
+    _replay(stray)
+    results = []
+    for caught, value, ok in outcomes:
+        _replay(caught)
+        if not ok:
+            raise value
+        results.append(value)
+    return results

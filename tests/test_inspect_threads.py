@@ -1,0 +1,150 @@
+"""A robot's inspection computed in threads: the same results, warnings and progress as one
+computation after the other, whatever the scheduling."""
+
+from __future__ import annotations
+
+import threading
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+import scipy.io
+
+from funcnet.errors import FuncnetWarning, RecordingWarning, ThresholdWarning
+from funcnet.inspection import inspect_robot
+from funcnet.inspection._threads import run_in_order
+from funcnet.robot import read_trace
+
+MAP = {"rec.t": "time", "rp": "RP", "ap": "AP", "mp": "MP", "tau": "AC"}
+
+
+@pytest.fixture(scope="module")
+def three_axes(tmp_path_factory) -> Path:
+    """Three axes at 250 Hz, moves out and back; axis 3's torque holds still while it rests,
+    so that windows leave it out (a warning), and the robot network flags pairs."""
+    t = np.arange(0, 4, 0.004)
+    rng = np.random.default_rng(11)
+    rp = np.vstack([10 * np.sin(np.pi * t / 4) ** 2, -6 * np.sin(np.pi * t / 2) ** 2,
+                    3 * np.clip(np.sin(np.pi * (t - 2) / 2), 0, None) ** 2])
+    mp = rp + 0.001 * rng.standard_normal(rp.shape)
+    ap = mp - 0.01 * np.gradient(rp, t, axis=1) + 0.0005 * rng.standard_normal(rp.shape)
+    tau = np.gradient(np.gradient(rp, t, axis=1), t, axis=1) + 0.05 * rng.standard_normal(
+        rp.shape)
+    tau[2, t < 2] = 0.0
+    path = tmp_path_factory.mktemp("robot") / "three-axes.mat"
+    scipy.io.savemat(path, {"rec": {"t": t, "rp": rp, "ap": ap, "mp": mp, "tau": tau}})
+    return path
+
+
+def _inspected(path: Path, workers: int) -> tuple[object, list[tuple], list[tuple]]:
+    """The inspection, the warnings it emitted (class, text, in order) and its progress."""
+    recording = read_trace(path, channels=MAP)
+    calls: list[tuple] = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        found = inspect_robot(recording, delay=5, workers=workers,
+                              evidence_options={"surrogates": 19, "resamples": 20},
+                              progress=lambda *a: calls.append(a))
+    return found, [(type(w.message), str(w.message)) for w in caught], calls
+
+
+def _same_table(a: pd.DataFrame, b: pd.DataFrame) -> None:
+    """Equal bit for bit: the same columns, dtypes and values (NaN where NaN)."""
+    assert list(a.columns) == list(b.columns)
+    for name in a.columns:
+        x, y = a[name].to_numpy(), b[name].to_numpy()
+        assert x.dtype == y.dtype, name
+        if x.dtype.kind == "f":
+            assert np.array_equal(x.view(np.int64), y.view(np.int64)), name
+        else:
+            assert x.tolist() == y.tolist(), name
+
+
+def test_threads_give_the_serial_inspection_bit_for_bit(three_axes):
+    serial, serial_warnings, serial_progress = _inspected(three_axes, workers=1)
+    threaded, threaded_warnings, threaded_progress = _inspected(three_axes, workers=2)
+    assert threaded.networks and list(threaded.networks) == list(serial.networks)
+    for label, net in serial.networks.items():
+        _same_table(threaded.networks[label].pairs, net.pairs)
+        _same_table(threaded.networks[label].edges, net.edges)
+    assert threaded.failures == serial.failures
+    assert threaded.windows_note == serial.windows_note
+    assert threaded.axis_errors == serial.axis_errors
+    assert list(threaded.axes) == list(serial.axes) == [1, 2, 3]
+    for axis, alone in serial.axes.items():
+        other = threaded.axes[axis]
+        assert list(other.networks) == list(alone.networks)
+        for label, net in alone.networks.items():
+            _same_table(other.networks[label].pairs, net.pairs)
+        assert other.failures == alone.failures
+        assert other.backlash_error == alone.backlash_error
+        assert (other.backlash is None) == (alone.backlash is None)
+        _same_table(other.moves, alone.moves)
+        _same_table(other.problems, alone.problems)
+    # the warnings of each computation, in the order of a loop over them, and the same steps
+    assert any(issubclass(kind, RecordingWarning) for kind, _ in serial_warnings)
+    assert threaded_warnings == serial_warnings
+    assert threaded_progress == serial_progress
+    assert serial_progress[0][2] == "robot network" and serial_progress[-1][2] == "done"
+
+
+def _emitting(name: str, barrier: threading.Barrier, category: type[Warning] = UserWarning):
+    """A job that waits for the other, then warns three times, yielding between warnings."""
+
+    def job() -> str:
+        barrier.wait(timeout=30)
+        for k in range(3):
+            warnings.warn(category(f"{name} {k}"))
+            time.sleep(0.01)  # the other thread warns meanwhile
+        return name
+
+    return job
+
+
+def test_the_warnings_of_two_concurrent_jobs_stay_apart_in_their_order():
+    for _ in range(5):  # schedulings differ from run to run; the result must not
+        barrier = threading.Barrier(2)
+        jobs = [_emitting("first", barrier), _emitting("second", barrier)]
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            seen_in = []
+            results = run_in_order(jobs, workers=2, done=seen_in.append)
+        assert results == ["first", "second"] and seen_in == [0, 1]
+        assert [str(w.message) for w in caught] == [
+            "first 0", "first 1", "first 2", "second 0", "second 1", "second 2"]
+        assert all(w.filename == __file__ for w in caught)  # where each was raised
+
+
+def test_the_callers_filters_decide_once_the_jobs_are_done():
+    barrier = threading.Barrier(2)
+    jobs = [_emitting("threshold", barrier, ThresholdWarning),
+            _emitting("user", barrier, UserWarning)]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        warnings.simplefilter("ignore", FuncnetWarning)
+        run_in_order(jobs, workers=2)
+    assert [str(w.message) for w in caught] == ["user 0", "user 1", "user 2"]
+    # the filters the caller set are in force again: the capture is gone
+    with warnings.catch_warnings(record=True) as after:
+        warnings.simplefilter("always")
+        warnings.warn("after")
+    assert [str(w.message) for w in after] == ["after"]
+
+
+def test_an_error_of_a_job_is_raised_after_the_warnings_before_it():
+    barrier = threading.Barrier(2)
+
+    def failing() -> str:
+        barrier.wait(timeout=30)
+        warnings.warn("about to fail")
+        raise ValueError("the second job failed")
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        with pytest.raises(ValueError, match="second job failed"):
+            run_in_order([_emitting("first", barrier), failing], workers=2)
+    assert [str(w.message) for w in caught] == ["first 0", "first 1", "first 2",
+                                               "about to fail"]
