@@ -105,7 +105,8 @@ def _task(job: Callable[[], T], numba_threads: int) -> tuple[list[_Caught], Any,
     """Run ``job`` in this thread with its own sink: (its warnings, result or error, ok)."""
     caught: list[_Caught] = []
     _SINK.caught = caught
-    # Numba's thread count is per calling thread: the tasks share the cores between them.
+    # Numba's thread count is per calling thread: each job has the caller's (a parallel
+    # region of the robot network, the longest job, keeps every core it can get).
     numba.set_num_threads(numba_threads)
     try:
         return caught, job(), True
@@ -157,7 +158,7 @@ def run_in_order(jobs: Sequence[Callable[[], T]], workers: int,
                 done(k)
         return results
     workers = min(workers, len(jobs))
-    share = max(1, numba.get_num_threads() // workers)
+    share = numba.get_num_threads()
     stray: list[_Caught] = []
     outcomes = []
     with warnings.catch_warnings():
