@@ -97,7 +97,7 @@ def _emitting(name: str, barrier: threading.Barrier, category: type[Warning] = U
     def job() -> str:
         barrier.wait(timeout=30)
         for k in range(3):
-            warnings.warn(category(f"{name} {k}"))
+            warnings.warn(category(f"{name} {k}"), stacklevel=1)
             time.sleep(0.01)  # the other thread warns meanwhile
         return name
 
@@ -130,7 +130,7 @@ def test_the_callers_filters_decide_once_the_jobs_are_done():
     # the filters the caller set are in force again: the capture is gone
     with warnings.catch_warnings(record=True) as after:
         warnings.simplefilter("always")
-        warnings.warn("after")
+        warnings.warn("after", stacklevel=1)
     assert [str(w.message) for w in after] == ["after"]
 
 
@@ -139,7 +139,7 @@ def test_an_error_of_a_job_is_raised_after_the_warnings_before_it():
 
     def failing() -> str:
         barrier.wait(timeout=30)
-        warnings.warn("about to fail")
+        warnings.warn("about to fail", stacklevel=1)
         raise ValueError("the second job failed")
 
     with warnings.catch_warnings(record=True) as caught:
