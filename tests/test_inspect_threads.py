@@ -40,7 +40,8 @@ def three_axes(tmp_path_factory) -> Path:
 
 
 def _inspected(path: Path, workers: int) -> tuple[object, list[tuple], list[tuple]]:
-    """The inspection, the warnings it emitted (class, text, in order) and its progress."""
+    """The inspection, the warnings it emitted (class, text, file, line, in order) and its
+    progress."""
     recording = read_trace(path, channels=MAP)
     calls: list[tuple] = []
     with warnings.catch_warnings(record=True) as caught:
@@ -48,7 +49,8 @@ def _inspected(path: Path, workers: int) -> tuple[object, list[tuple], list[tupl
         found = inspect_robot(recording, delay=5, workers=workers,
                               evidence_options={"surrogates": 19, "resamples": 20},
                               progress=lambda *a: calls.append(a))
-    return found, [(type(w.message), str(w.message)) for w in caught], calls
+    return found, [(type(w.message), str(w.message), w.filename, w.lineno)
+                   for w in caught], calls
 
 
 def _same_table(a: pd.DataFrame, b: pd.DataFrame) -> None:
@@ -85,7 +87,9 @@ def test_threads_give_the_serial_inspection_bit_for_bit(three_axes):
         _same_table(other.moves, alone.moves)
         _same_table(other.problems, alone.problems)
     # the warnings of each computation, in the order of a loop over them, and the same steps
-    assert any(issubclass(kind, RecordingWarning) for kind, _ in serial_warnings)
+    # (where each is attributed to too: the line that called inspect_robot)
+    assert any(issubclass(w[0], RecordingWarning) for w in serial_warnings)
+    assert __file__ in {w[2] for w in serial_warnings}
     assert threaded_warnings == serial_warnings
     assert threaded_progress == serial_progress
     assert serial_progress[0][2] == "robot network" and serial_progress[-1][2] == "done"

@@ -25,11 +25,15 @@ import warnings
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
+from types import FrameType
 from typing import Any, TypeVar
 
 import numba
 
 __all__ = ["run_in_order", "default_workers"]
+
+# funcnet's own files: a warning "at the first frame outside funcnet" skips them
+_PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__))) + os.sep
 
 T = TypeVar("T")
 
@@ -46,10 +50,18 @@ class _Caught:
     registry: dict[Any, Any] | None
 
 
+#: Where a warning is attributed to: file, line, module name, warning registry.
+_Place = tuple[str, int, "str | None", "dict[Any, Any] | None"]
+
+
 class _Sink(threading.local):
-    """The list the current thread's warnings go to (None: a thread not running a task)."""
+    """The list the current thread's warnings go to (None: a thread not running a task), the
+    frame of its task, and the caller's place, where the caller's thread would attribute a
+    warning given "at the first frame outside funcnet"."""
 
     caught: list[_Caught] | None = None
+    base: FrameType | None = None
+    outside: _Place | None = None
 
 
 _SINK = _Sink()
@@ -70,16 +82,31 @@ def default_workers() -> int:
     return max(1, min(4, cores))
 
 
-def _origin(filename: str, lineno: int) -> tuple[str | None, dict[Any, Any] | None]:
-    """The module name and warning registry of the frame a warning is attributed to, as
-    ``warnings.warn`` finds them (found on the emitting thread's stack)."""
-    frame = sys._getframe(2)
-    while frame is not None:
+def _place(frame: FrameType) -> _Place:
+    registry = frame.f_globals.setdefault("__warningregistry__", {})
+    return frame.f_code.co_filename, frame.f_lineno, frame.f_globals.get("__name__"), registry
+
+
+def _outside(frame: FrameType) -> _Place:
+    """The place of the first frame outside funcnet from ``frame`` up
+    (:func:`funcnet.errors.caller_stacklevel`)."""
+    while frame.f_back is not None and frame.f_code.co_filename.startswith(_PACKAGE_DIR):
+        frame = frame.f_back
+    return _place(frame)
+
+
+def _origin(filename: str, lineno: int) -> _Place:
+    """The place of a warning as ``warnings.warn`` found it, on the emitting thread's stack;
+    one attributed to the thread's own machinery (a warning of "the first frame outside
+    funcnet", seen from a task) is the caller's, as in the caller's thread."""
+    frame: FrameType | None = sys._getframe(2)
+    while frame is not None and frame is not _SINK.base:
         if frame.f_code.co_filename == filename and frame.f_lineno == lineno:
-            registry = frame.f_globals.setdefault("__warningregistry__", {})
-            return frame.f_globals.get("__name__"), registry
-        frame = frame.f_back  # type: ignore[assignment]
-    return None, None
+            return _place(frame)
+        frame = frame.f_back
+    if _SINK.base is not None and _SINK.outside is not None:
+        return _SINK.outside
+    return filename, lineno, None, None
 
 
 def _record(stray: list[_Caught]) -> Callable[..., None]:
@@ -87,9 +114,8 @@ def _record(stray: list[_Caught]) -> Callable[..., None]:
 
     def show(message: Warning | str, category: type[Warning], filename: str, lineno: int,
              file: Any = None, line: str | None = None) -> None:
-        module, registry = _origin(filename, lineno)
         caught = _SINK.caught if _SINK.caught is not None else stray
-        caught.append(_Caught(message, category, filename, lineno, module, registry))
+        caught.append(_Caught(message, category, *_origin(filename, lineno)))
 
     return show
 
@@ -101,10 +127,11 @@ def _replay(caught: Sequence[_Caught]) -> None:
                                registry=w.registry)
 
 
-def _task(job: Callable[[], T], numba_threads: int) -> tuple[list[_Caught], Any, bool]:
+def _task(job: Callable[[], T], numba_threads: int,
+          outside: _Place) -> tuple[list[_Caught], Any, bool]:
     """Run ``job`` in this thread with its own sink: (its warnings, result or error, ok)."""
     caught: list[_Caught] = []
-    _SINK.caught = caught
+    _SINK.caught, _SINK.base, _SINK.outside = caught, sys._getframe(), outside
     # Numba's thread count is per calling thread: each job has the caller's (a parallel
     # region of the robot network, the longest job, keeps every core it can get).
     numba.set_num_threads(numba_threads)
@@ -113,7 +140,7 @@ def _task(job: Callable[[], T], numba_threads: int) -> tuple[list[_Caught], Any,
     except BaseException as error:  # raised again in the caller's thread, in its turn
         return caught, error, False
     finally:
-        _SINK.caught = None
+        _SINK.caught, _SINK.base, _SINK.outside = None, None, None
 
 
 def run_in_order(jobs: Sequence[Callable[[], T]], workers: int,
@@ -165,7 +192,8 @@ def run_in_order(jobs: Sequence[Callable[[], T]], workers: int,
         warnings.simplefilter("always")  # every warning recorded; the caller's filters decide
         warnings.showwarning = _record(stray)  # type: ignore[assignment]
         with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="funcnet") as pool:
-            futures = [pool.submit(_task, job, share) for job in jobs]
+            outside = _outside(sys._getframe(1))
+            futures = [pool.submit(_task, job, share, outside) for job in jobs]
             for k, future in enumerate(futures):
                 outcomes.append(future.result())
                 if done is not None and outcomes[-1][2]:
