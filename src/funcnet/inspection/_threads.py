@@ -194,10 +194,15 @@ def run_in_order(jobs: Sequence[Callable[[], T]], workers: int,
         with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="funcnet") as pool:
             outside = _outside(sys._getframe(1))
             futures = [pool.submit(_task, job, share, outside) for job in jobs]
-            for k, future in enumerate(futures):
-                outcomes.append(future.result())
-                if done is not None and outcomes[-1][2]:
-                    done(k)
+            try:
+                for k, future in enumerate(futures):
+                    outcomes.append(future.result())
+                    if done is not None and outcomes[-1][2]:
+                        done(k)
+            except BaseException:  # an interrupt: the jobs not started yet are not run
+                for future in futures:
+                    future.cancel()
+                raise
     _replay(stray)
     results = []
     for caught, value, ok in outcomes:
