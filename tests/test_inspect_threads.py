@@ -152,3 +152,13 @@ def test_an_error_of_a_job_is_raised_after_the_warnings_before_it():
             run_in_order([_emitting("first", barrier), failing], workers=2)
     assert [str(w.message) for w in caught] == ["first 0", "first 1", "first 2",
                                                "about to fail"]
+
+
+def test_a_callers_own_thread_computes_in_one_thread():
+    from concurrent.futures import ThreadPoolExecutor
+
+    from funcnet.inspection._threads import default_workers
+
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        assert pool.submit(default_workers).result() == 1
+    assert 1 <= default_workers() <= 4

@@ -68,13 +68,17 @@ _SINK = _Sink()
 
 
 def default_workers() -> int:
-    """The threads of a robot's inspection: the cores this process may use, at most 4.
+    """The threads of a robot's inspection: the cores this process may use, at most 4; 1
+    outside the main thread (a caller's own threads may warn meanwhile: the capture of
+    :func:`run_in_order` would take their warnings).
 
     Examples
     --------
     >>> 1 <= default_workers() <= 4
     True
     """
+    if threading.current_thread() is not threading.main_thread():
+        return 1
     try:
         cores = len(os.sched_getaffinity(0))
     except AttributeError:  # not on every platform

@@ -342,7 +342,8 @@ def inspect_robot(
     workers : int, optional
         Threads computing side by side: the robot network with its evidence and each axis's
         inspection are independent, and their kernels release the GIL. Default the cores this
-        process may use, at most 4; 1 computes them one after the other in the calling thread.
+        process may use, at most 4, in the main thread (1 in any other); 1 computes them one
+        after the other in the calling thread.
         The results are the same bit for bit, and so are the warnings and their order (each
         computation's, in the order robot network, axis 1, axis 2, ...): those of the threads
         are emitted once they are done. No callback may enter ``warnings.catch_warnings``.
