@@ -666,8 +666,9 @@ def _window_tables(recording: Recording, windows: Sequence[Window], parts: Seque
     kept = edges_from_pairs(table.assign(x=rows, y=rows), degenerate=p.degenerate)
     ends = np.searchsorted(kept["source"].to_numpy(dtype=np.int64),
                            np.arange(len(windows) + 1) * n_pairs)
-    flagged = (~result["eps_ordered"] | result["rate_exceeded"] | result["degenerate"]).any(
-        axis=1).tolist()
+    # a window's warnings read its flagged pairs alone (threshold_warnings lists no other)
+    flags = ~result["eps_ordered"] | result["rate_exceeded"] | result["degenerate"]
+    flagged = [np.flatnonzero(row).tolist() for row in flags]
     networks, found = {}, []
     for w, window in enumerate(windows):
         # Slices with a fresh index, not reset_index: that copies every block of every slice.
@@ -677,7 +678,7 @@ def _window_tables(recording: Recording, windows: Sequence[Window], parts: Seque
         window_edges.index = pd.RangeIndex(ends[w + 1] - ends[w])
         if flagged[w]:  # else no warning: spare building the results
             found += [warning.located(str(window.label))
-                      for warning in threshold_warnings(result.measures(w))]
+                      for warning in threshold_warnings(result.measures(w, flagged[w]))]
         networks[str(window.label)] = FunctionalNetwork(
             nodes=result.names, pairs=pairs,
             edges=window_edges, parameters=p,
