@@ -22,6 +22,7 @@ import dataclasses
 import warnings
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Any, Unpack
 
@@ -47,7 +48,7 @@ from funcnet.network import (
     functional_network,
     pair_kinds,
 )
-from funcnet.network.direction import window_directions
+from funcnet.network.direction import window_directions, window_p_values
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.precision import logged_step, normalized_steps, single_spacing
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
@@ -589,21 +590,28 @@ def _batched_networks(
     # Long windows inside the batch go through the per-window path; none short: no batch.
     if not any(batch.applies(part.shape[0], p) for part in parts):
         return {}, []
-    try:
-        result = batch.batch_pairs(parts, names=[str(s) for s in signals], parameters=p)
-    except FuncnetError:
-        return {}, []
+    names = [str(s) for s in signals]
+    # normalized as functional_network's nodes are: the same bits, the same reading
+    normalized, node_steps = _normalized_parts(parts, names, p.normalize, steps)
+    origin = (values, np.array([bounds[k][0] for k in kept], dtype=np.int64))
+    # The direction's p-values need no cross measure: read in another thread while the
+    # kernels (which release the interpreter) compute those.
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        reading = pool.submit(window_p_values, normalized, p, node_steps, origin=origin)
+        try:
+            result = batch.batch_pairs(parts, names=names, parameters=p)
+        except FuncnetError:
+            return {}, []
+        p_values = reading.result()
     n_pairs, n_rows = len(result.pairs), len(windows) * len(result.pairs)
     columns: dict[str, list[Any]] = {"x": [x for x, _ in result.pairs] * len(windows),
                                      "y": [y for _, y in result.pairs] * len(windows)}
     columns.update({name: result[name].ravel().tolist() for name in RESULT_COLUMNS})
     columns.update({**dict.fromkeys(RULE_COLUMNS, [""] * n_rows), "weight": [0.0] * n_rows})
-    # normalized as functional_network's nodes are: the same bits, the same reading
-    normalized, node_steps = _normalized_parts(parts, result.names, p.normalize, steps)
     columns.update(window_directions(
         normalized, result.names, result.pairs,
         np.reshape(columns["degenerate"], (len(windows), n_pairs)), p, node_steps,
-        origin=(values, np.array([bounds[k][0] for k in kept], dtype=np.int64))))
+        origin=origin, p_values=p_values))
     table = pair_kinds(pairs_frame(columns), p)  # every window's rows, then sliced
     return _window_tables(recording, windows, parts, table, result, p)
 

@@ -642,8 +642,9 @@ def _batch_kernel(
 
 #: The kernel with its loops over the cores, and the same loops in the calling thread: a parallel
 #: region costs a wake-up of the other threads, which on a busy machine outweighs a small batch.
-batch_kernel = njit(cache=True, parallel=True)(_batch_kernel)
-batch_kernel_serial = njit(cache=True)(_batch_kernel)
+#: Both release the interpreter: a caller's other threads go on meanwhile.
+batch_kernel = njit(cache=True, parallel=True, nogil=True)(_batch_kernel)
+batch_kernel_serial = njit(cache=True, nogil=True)(_batch_kernel)
 
 
 @njit(cache=True)
