@@ -50,7 +50,7 @@ from funcnet.network import (
 )
 from funcnet.network.direction import window_directions, window_p_values
 from funcnet.network.edge_evidence import check_evidence_settings
-from funcnet.network.precision import logged_step, normalized_steps, single_spacing
+from funcnet.network.precision import logged_step, single_spacing
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.preprocess import staircase_warning
