@@ -300,3 +300,41 @@ def test_window_networks_of_different_lengths_and_a_long_window(
     single, single_warnings = _networks(False, monkeypatch, rec, windows, parameters=p)
     assert batched == single
     _same_warnings(batch_warnings, single_warnings)
+
+
+@pytest.mark.parametrize("method", ["minmax", "zscore", None])
+def test_stacked_normalization_and_steps_are_each_windows_own(method):
+    """The pipeline normalizes and reads the steps of windows of one length as one stack: the
+    same bits as the per-window functions (normalize, window_steps, normalized_steps), on
+    windows of two lengths, with float32-stored columns (their own spacing read)."""
+    from funcnet.core.normalization import normalize
+    from funcnet.network.precision import normalized_steps
+    from funcnet.pipeline import _normalized_parts, window_steps
+
+    rng = np.random.default_rng(7)
+    names = ["RP", "AP", "V"]
+    channel = {"RP": 1e-3, "AP": 0.0, "V": 2.0**-30}
+    parts = []
+    for w in range(12):
+        part = rng.normal(size=(150 + (w % 2), 3)).cumsum(axis=0) * 10.0 ** (w % 4)
+        part[:, 1] = np.float32(part[:, 1])  # stored in single precision
+        if w % 3 == 0:
+            part[:, 2] = np.float32(part[:, 2] * 1e-3)
+        parts.append(part)
+    normalized, steps = _normalized_parts(parts, names, method, channel)
+    for part, mine, found in zip(parts, normalized, steps, strict=True):
+        reference = normalize(part, method)
+        assert mine.tobytes() == reference.tobytes()
+        expected = normalized_steps(list(window_steps(part, names, channel).values()), part,
+                                    reference)
+        assert found.tobytes() == expected.tobytes()
+    assert (steps[:, 1] > 0).all()  # the float32 column's own spacing (its channel says 0)
+
+
+def test_measures_of_some_pairs_are_those_of_all():
+    rng = np.random.default_rng(3)
+    result = batch_pairs(np.stack([_random_window(rng, 150, 4) for _ in range(2)]))
+    every = result.measures(1)
+    some = result.measures(1, [4, 0, 2])
+    assert list(some) == [result.pairs[4], result.pairs[0], result.pairs[2]]
+    assert all(some[pair] == every[pair] for pair in some)

@@ -23,7 +23,7 @@ import pytest
 
 from funcnet.network import _sliding
 from funcnet.network._prediction import pair_p_values
-from funcnet.network.direction import DIRECTION_GAP, window_directions
+from funcnet.network.direction import DIRECTION_GAP, window_directions, window_p_values
 from funcnet.parameters import NetworkParameters
 from test_direction_kernels import _exact_p
 
@@ -150,3 +150,25 @@ def test_window_directions_read_the_same_through_the_recording_rows():
     alone = window_directions(windows, names, pairs, degenerate, parameters, steps)
     assert sliding["direction"] == alone["direction"]
     assert {"x->y", "none"} <= set(sliding["direction"])
+
+
+def test_runs_read_over_the_cores_are_read_as_one_by_one(monkeypatch):
+    """The runs of a timeline read in threads give the bits of a serial reading; the p-values
+    read apart and handed over give the same columns."""
+    values = _derived(700, 2)[:, [0, 1, 3]]
+    firsts = np.concatenate([np.arange(20, 140), np.arange(200, 260), np.arange(300, 420)])
+    windows = np.stack([_minmax(values[f : f + 150]) for f in firsts])
+    steps = np.zeros((len(windows), 3))
+    threads = _sliding.sliding_p_values(windows, values, firsts, 21, DIRECTION_GAP, steps)
+    monkeypatch.setattr(_sliding.os, "cpu_count", lambda: 1)
+    serial = _sliding.sliding_p_values(windows, values, firsts, 21, DIRECTION_GAP, steps)
+    assert threads[0].tobytes() == serial[0].tobytes()
+    assert threads[1].tobytes() == serial[1].tobytes()
+    names, parameters = ["RP", "AP", "AC"], NetworkParameters()
+    pairs = [("RP", "AP"), ("RP", "AC"), ("AP", "AC")]
+    degenerate = np.zeros((len(windows), 3), dtype=bool)
+    degenerate[5, 1] = True
+    found = window_p_values(list(windows), parameters, steps, origin=(values, firsts))
+    assert window_directions(list(windows), names, pairs, degenerate, parameters, steps,
+                             origin=(values, firsts), p_values=found) == window_directions(
+        list(windows), names, pairs, degenerate, parameters, steps, origin=(values, firsts))

@@ -125,6 +125,19 @@ def test_window_networks_refuses_bad_windows(real):
     assert np.isnan(real.data.at[0.0, "AP"])
 
 
+def test_recording_rows_are_the_rows_of_its_window(real):
+    """The batched path takes each window's rows from Recording.rows: those Recording.window
+    keeps, ticks on and off the grid, and its error for a window outside."""
+    times = real.data.index.to_numpy()
+    for start, stop in ((7.0, 7.3), (7.0011, 7.3009), (6.9991, 7.2999), (0.0, 0.002)):
+        first, last = real.rows(start, stop)
+        kept = real.window(start, stop).data.index.to_numpy()
+        assert kept.tolist() == times[first:last].tolist()
+        assert ((kept >= start - 1e-6) & (kept < stop)).all()
+    with pytest.raises(WindowError, match=r"window \[40, 50\) s is not inside"):
+        real.rows(40.0, 50.0)
+
+
 # --------------------------------------------------------------------------------------------
 # a small synthetic recording: RP and AP move throughout, AC is constant before 1 s
 

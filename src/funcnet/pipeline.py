@@ -22,6 +22,7 @@ import dataclasses
 import warnings
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Any, Unpack
 
@@ -47,9 +48,9 @@ from funcnet.network import (
     functional_network,
     pair_kinds,
 )
-from funcnet.network.direction import window_directions
+from funcnet.network.direction import window_directions, window_p_values
 from funcnet.network.edge_evidence import check_evidence_settings
-from funcnet.network.precision import logged_step, normalized_steps, single_spacing
+from funcnet.network.precision import logged_step, single_spacing
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.preprocess import staircase_warning
@@ -581,14 +582,11 @@ def _batched_networks(
     raises or drops what it does); nothing where the batch does not apply (no short window,
     explicit ``eps``, any error), and the per-window path computes every window."""
     values = recording.data[list(signals)].to_numpy(np.float64)
-    times = recording.data.index.to_numpy()
     try:  # the rows Recording.window selects (and its errors: then the per-window path's)
-        spans = [recording.window(w.start, w.stop).data.index[[0, -1]] for w in windows]
+        bounds = [recording.rows(w.start, w.stop) for w in windows]
     except FuncnetError:
         return {}, []
-    firsts = np.searchsorted(times, [span[0] for span in spans])
-    parts = [values[first : int(np.searchsorted(times, span[1])) + 1]
-             for first, span in zip(firsts.tolist(), spans, strict=True)]
+    parts = [values[first:last] for first, last in bounds]
     kept = [k for k, part in enumerate(parts) if np.isfinite(part).all()
             and not (p.normalize and (np.ptp(part, axis=0) == 0).any())]
     windows = [windows[k] for k in kept]
@@ -596,26 +594,83 @@ def _batched_networks(
     # Long windows inside the batch go through the per-window path; none short: no batch.
     if not any(batch.applies(part.shape[0], p) for part in parts):
         return {}, []
-    try:
-        result = batch.batch_pairs(parts, names=[str(s) for s in signals], parameters=p)
-    except FuncnetError:
-        return {}, []
+    names = [str(s) for s in signals]
+    # normalized as functional_network's nodes are: the same bits, the same reading
+    normalized, node_steps = _normalized_parts(parts, names, p.normalize, steps)
+    origin = (values, np.array([bounds[k][0] for k in kept], dtype=np.int64))
+    # The direction's p-values need no cross measure: read in another thread while the
+    # kernels (which release the interpreter) compute those.
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        reading = pool.submit(window_p_values, normalized, p, node_steps, origin=origin)
+        try:
+            result = batch.batch_pairs(parts, names=names, parameters=p)
+        except FuncnetError:
+            return {}, []
+        p_values = reading.result()
     n_pairs, n_rows = len(result.pairs), len(windows) * len(result.pairs)
     columns: dict[str, list[Any]] = {"x": [x for x, _ in result.pairs] * len(windows),
                                      "y": [y for _, y in result.pairs] * len(windows)}
     columns.update({name: result[name].ravel().tolist() for name in RESULT_COLUMNS})
     columns.update({**dict.fromkeys(RULE_COLUMNS, [""] * n_rows), "weight": [0.0] * n_rows})
-    # normalized as functional_network's nodes are: the same bits, the same reading
-    normalized = [normalize_signals(part, p.normalize) for part in parts]
     columns.update(window_directions(
         normalized, result.names, result.pairs,
-        np.reshape(columns["degenerate"], (len(windows), n_pairs)), p,
-        np.array([normalized_steps(list(window_steps(part, result.names, steps).values()),
-                                   part, scaled)
-                  for part, scaled in zip(parts, normalized, strict=True)]).reshape(
-            len(windows), len(result.names)),
-        origin=(values, firsts[kept])))
+        np.reshape(columns["degenerate"], (len(windows), n_pairs)), p, node_steps,
+        origin=origin, p_values=p_values))
     table = pair_kinds(pairs_frame(columns), p)  # every window's rows, then sliced
+    return _window_tables(recording, windows, parts, table, result, p)
+
+
+def _normalized_parts(parts: Sequence[np.ndarray], names: Sequence[str], method: str | None,
+                      channel: Mapping[str, float]) -> tuple[list[np.ndarray], np.ndarray]:
+    """Each window normalized as :func:`funcnet.network.functional_network` normalizes it (the
+    same bits), and its nodes' logged steps in that unit, shape ``(W, k)``
+    (:func:`window_steps`, :func:`~funcnet.network.precision.normalized_steps`).
+
+    Windows of one length are one stack: min-max and the steps are element-wise (and exact
+    extrema), hence the same bits as window by window; a z-score's mean and deviation are
+    NumPy's pairwise sums over each window, so z-scored windows are normalized one by one."""
+    normalized: list[np.ndarray] = [np.empty(0)] * len(parts)
+    found = np.zeros((len(parts), len(names)))
+    by_length: dict[int, list[int]] = {}
+    for w, part in enumerate(parts):
+        by_length.setdefault(part.shape[0], []).append(w)
+    logged = np.array([float(channel[name]) for name in names])
+    for members in by_length.values():
+        raw = np.stack([parts[w] for w in members])
+        if method == "minmax":
+            low = raw.min(axis=1, keepdims=True)
+            scaled = (raw - low) / (raw.max(axis=1, keepdims=True) - low)
+        else:
+            scaled = np.stack([normalize_signals(parts[w], method) for w in members])
+        normalized_members = list(scaled)
+        for slot, w in enumerate(members):
+            normalized[w] = normalized_members[slot]
+        found[members] = _stacked_steps(raw, scaled, logged)
+    return normalized, found
+
+
+def _stacked_steps(raw: np.ndarray, scaled: np.ndarray, logged: np.ndarray) -> np.ndarray:
+    """:func:`window_steps` then :func:`~funcnet.network.precision.normalized_steps` of each
+    window of a stack ``(W, N, k)`` (raw, and normalized), element-wise: shape ``(W, k)``."""
+    single = np.zeros(raw.shape[::2])
+    # single precision's spacing only where a column is float32 values (its own mean: as read)
+    stored = (raw.astype(np.float32).astype(np.float64) == raw).all(axis=1)
+    for w, k in zip(*np.nonzero(stored), strict=True):
+        single[w, k] = single_spacing(raw[w, :, k])
+    read = np.where((single > 0) & ((single < logged) | ~(logged > 0)), single,
+                    np.where(logged > 0, logged, 0.0))
+    spread = np.ptp(raw, axis=1)
+    scale = np.divide(np.ptp(scaled, axis=1), spread, out=np.zeros(spread.shape),
+                      where=spread > 0)
+    return read * scale
+
+
+def _window_tables(recording: Recording, windows: Sequence[Window], parts: Sequence[np.ndarray],
+                   table: pd.DataFrame, result: batch.BatchPairs, p: NetworkParameters,
+                   ) -> tuple[dict[str, FunctionalNetwork], list[FuncnetWarning]]:
+    """Each window's network from the rows of ``table`` (every window's pairs, in order), and
+    the warnings its flags call for."""
+    n_pairs, n_rows = len(result.pairs), len(table)
     # Edges of every window at once (the rule is row by row); rows named by their position
     # tell which rows became edges, hence where each window's edges start.
     edges = edges_from_pairs(table, degenerate=p.degenerate)
@@ -623,26 +678,28 @@ def _batched_networks(
     kept = edges_from_pairs(table.assign(x=rows, y=rows), degenerate=p.degenerate)
     ends = np.searchsorted(kept["source"].to_numpy(dtype=np.int64),
                            np.arange(len(windows) + 1) * n_pairs)
-    networks, found = [], []
+    # a window's warnings read its flagged pairs alone (threshold_warnings lists no other)
+    flags = ~result["eps_ordered"] | result["rate_exceeded"] | result["degenerate"]
+    flagged = [np.flatnonzero(row).tolist() for row in flags]
+    networks, found = {}, []
     for w, window in enumerate(windows):
         # Slices with a fresh index, not reset_index: that copies every block of every slice.
         pairs = table.iloc[w * n_pairs : (w + 1) * n_pairs]
         pairs.index = pd.RangeIndex(n_pairs)
         window_edges = edges.iloc[ends[w] : ends[w + 1]]
         window_edges.index = pd.RangeIndex(ends[w + 1] - ends[w])
-        flags = ~result["eps_ordered"][w] | result["rate_exceeded"][w] | result["degenerate"][w]
-        if flags.any():  # else no warning: spare building the results
+        if flagged[w]:  # else no warning: spare building the results
             found += [warning.located(str(window.label))
-                      for warning in threshold_warnings(result.measures(w))]
-        networks.append(FunctionalNetwork(
+                      for warning in threshold_warnings(result.measures(w, flagged[w]))]
+        networks[str(window.label)] = FunctionalNetwork(
             nodes=result.names, pairs=pairs,
             edges=window_edges, parameters=p,
             n_samples=int(parts[w].shape[0]), label=window.label,
             window={"label": window.label, "start": window.start, "stop": window.stop,
                     "phase": window.phase, "offset": window.offset,
                     "source": recording.source, "dropped": ()},
-        ))
-    return {str(w.label): net for w, net in zip(windows, networks, strict=True)}, found
+        )
+    return networks, found
 
 
 def _without(p: NetworkParameters, kept: Sequence[bool]) -> NetworkParameters:

@@ -110,7 +110,8 @@ class BatchPairs:
         """The ``(n_windows, n_pairs)`` array of one of :data:`RESULT_FIELDS`."""
         return self.values[name]
 
-    def measures(self, window: int) -> dict[tuple[str, str], CrossMeasures]:
+    def measures(self, window: int,
+                 only: Sequence[int] | None = None) -> dict[tuple[str, str], CrossMeasures]:
         """Window ``window``'s results as :func:`~funcnet.core.measures.pairwise_cross_measures`
         returns them with ``names``: ``{(x, y): CrossMeasures}``, equal field by field.
 
@@ -118,6 +119,8 @@ class BatchPairs:
         ----------
         window : int
             Position of the window.
+        only : sequence of int, optional
+            The positions (in :attr:`pairs`) of the pairs wanted, in order; default all.
 
         Returns
         -------
@@ -129,7 +132,8 @@ class BatchPairs:
         found = {}
         # Python values (as the per-window path stores them), one column at a time.
         columns = {name: self.values[name][window].tolist() for name in RESULT_FIELDS}
-        for q, (x, y) in enumerate(self.pairs):
+        for q in range(len(self.pairs)) if only is None else only:
+            x, y = self.pairs[q]
             fields = {name: columns[name][q] for name in RESULT_FIELDS}
             found[(x, y)] = CrossMeasures(
                 **fields, m_x=states, m_y=states,

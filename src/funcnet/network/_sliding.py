@@ -50,6 +50,8 @@ Where the inputs' rounding sets the reading
 from __future__ import annotations
 
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 import numpy as np
@@ -113,10 +115,24 @@ def sliding_p_values(windows: np.ndarray, values: np.ndarray, firsts: np.ndarray
     raw = np.lib.stride_tricks.sliding_window_view(np.asarray(values, dtype=np.float64),
                                                    n_samples, axis=0)
     spread_raw = raw[np.asarray(firsts)].std(axis=2)  # (W, k)
-    for start, stop in runs:
-        found, inside, ok = _run(windows[start:stop], values, int(firsts[start]), orders[start],
-                                 negligible[start:stop], norms[start:stop], spread_raw[start:stop],
-                                 p, span, np.asarray(steps, dtype=np.float64)[start:stop])
+    all_steps = np.asarray(steps, dtype=np.float64)
+
+    def read(run: tuple[int, int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        start, stop = run
+        return _run(windows[start:stop], values, int(firsts[start]), orders[start],
+                    negligible[start:stop], norms[start:stop], spread_raw[start:stop], p, span,
+                    all_steps[start:stop])
+
+    # Runs are independent: read over the cores (the factors release the interpreter), each
+    # with the same arithmetic as alone; the longest first, so that the cores end together.
+    workers = min(len(runs), os.cpu_count() or 1)
+    runs = sorted(runs, key=lambda run: run[0] - run[1])
+    if workers > 1:
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            readings = list(pool.map(read, runs))
+    else:
+        readings = [read(run) for run in runs]
+    for (start, stop), (found, inside, ok) in zip(runs, readings, strict=True):
         rows = np.arange(start, stop)[ok]
         out[rows], within[rows] = found[ok], inside[ok]
         left[rows] = False
@@ -316,7 +332,7 @@ def _boundary(lo: int, block: int, common: int) -> int:  # pragma: no cover
 _boundary_kernel = njit(cache=True)(_boundary)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _slide(design: Any, n: int, block: int, norms: Any, p: int, limits: Any,
            screen: float, out: Any) -> None:  # pragma: no cover
     """Every window's factor of a run (module notes) read into ``out`` (W, 3, lanes): the full

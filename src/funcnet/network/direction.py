@@ -101,7 +101,7 @@ from funcnet.network.precision import checked_steps, logged_step
 from funcnet.parameters import NetworkParameters
 
 __all__ = ["DIRECTIONS", "DIRECTION_ALPHA", "DIRECTION_GAP", "direction_lags", "prediction_p",
-           "read_direction", "direction_columns", "window_directions"]
+           "read_direction", "direction_columns", "window_directions", "window_p_values"]
 
 #: Values of the ``direction`` column.
 DIRECTIONS: tuple[str, ...] = ("x->y", "y->x", "none")
@@ -388,11 +388,58 @@ def _read_rows(p_values: list[list[float]], within: list[list[bool]],
         reasons.append(reading[1])
 
 
+def window_p_values(windows: Sequence[np.ndarray], parameters: NetworkParameters,
+                    steps: np.ndarray, *, origin: tuple[np.ndarray, np.ndarray] | None = None
+                    ) -> list[tuple[list[list[float]], list[list[bool]]]]:
+    """The p-values that :func:`window_directions` reads, each window's, computed apart: a
+    caller may compute them while it computes the windows' degenerate flags.
+
+    Parameters
+    ----------
+    windows, parameters, steps, origin
+        As :func:`window_directions`.
+
+    Returns
+    -------
+    list
+        Per window ``(p_values, within)``, plain nested lists ``k x k``: at ``[j][i]`` the
+        p-value of column ``i``'s past for column ``j``, and whether ``j``'s own past predicts
+        it to within its logged step; pass it as ``window_directions(..., p_values=...)``.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(1)
+    >>> x = rng.standard_normal(600)
+    >>> y = np.concatenate([[0.0, 0.0], x[:-2]]) + 0.5 * rng.standard_normal(600)
+    >>> found = window_p_values([np.column_stack([x, y])], NetworkParameters(delay=1),
+    ...                         np.zeros((1, 2)))
+    >>> bool(found[0][0][1][0] < 1e-6), found[0][1][1][0]
+    (True, False)
+    """
+    lags = direction_lags(parameters)
+    by_length: dict[int, list[int]] = {}
+    for w, part in enumerate(windows):
+        by_length.setdefault(part.shape[0], []).append(w)
+    found: list[Any] = [None] * len(windows)
+    all_steps = np.asarray(steps, dtype=np.float64)
+    for members in by_length.values():  # windows of one length: one stack
+        stack = np.stack([windows[w] for w in members])
+        if origin is None:
+            values, within = pair_p_values(stack, lags, DIRECTION_GAP, all_steps[members])
+        else:
+            values, within = sliding_p_values(stack, origin[0], np.asarray(origin[1])[members],
+                                              lags, DIRECTION_GAP, all_steps[members])
+        for slot, w in enumerate(members):  # plain lists: fast to walk
+            found[w] = (values[slot].tolist(), within[slot].tolist())
+    return found
+
+
 def window_directions(windows: Sequence[np.ndarray], names: Sequence[str],
                       pairs: Sequence[tuple[str, str]], degenerate: np.ndarray,
                       parameters: NetworkParameters, steps: np.ndarray,
                       alpha: float = DIRECTION_ALPHA, *,
-                      origin: tuple[np.ndarray, np.ndarray] | None = None
+                      origin: tuple[np.ndarray, np.ndarray] | None = None,
+                      p_values: list[tuple[list[list[float]], list[list[bool]]]] | None = None,
                       ) -> dict[str, list[str]]:
     """:func:`direction_columns` of many windows' pairs tables at once, one stacked pass.
 
@@ -419,6 +466,8 @@ def window_directions(windows: Sequence[np.ndarray], names: Sequence[str],
         Windows one row apart are then read by factors shared along their run
         (:mod:`funcnet.network._sliding`: the same p-values to a relative 1e-6 but where the
         inputs' rounding sets them).
+    p_values : list, optional
+        :func:`window_p_values` of the same windows, steps and origin, computed already.
 
     Returns
     -------
@@ -439,24 +488,12 @@ def window_directions(windows: Sequence[np.ndarray], names: Sequence[str],
     lags = direction_lags(parameters)
     if not 0.0 < alpha < 1.0:
         raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha!r}")
-    by_length: dict[int, list[int]] = {}
-    for w, part in enumerate(windows):
-        by_length.setdefault(part.shape[0], []).append(w)
-    found: list[Any] = [None] * len(windows)
-    all_steps = np.asarray(steps, dtype=np.float64)
-    for members in by_length.values():  # windows of one length: one stack
-        stack = np.stack([windows[w] for w in members])
-        if origin is None:
-            values, within = pair_p_values(stack, lags, DIRECTION_GAP, all_steps[members])
-        else:
-            values, within = sliding_p_values(stack, origin[0], np.asarray(origin[1])[members],
-                                              lags, DIRECTION_GAP, all_steps[members])
-        for slot, w in enumerate(members):  # plain lists: fast to walk
-            found[w] = (values[slot].tolist(), within[slot].tolist())
+    found = (window_p_values(windows, parameters, steps, origin=origin) if p_values is None
+             else p_values)
     column = {name: k for k, name in enumerate(names)}
     index = [(column[x], column[y], str(x), str(y)) for x, y in pairs]
     out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
     for w, flags in enumerate(np.asarray(degenerate, dtype=bool).tolist()):
-        p_values, within = found[w]
-        _read_rows(p_values, within, index, flags, windows[w].shape[0], lags, alpha, out)
+        values, within = found[w]
+        _read_rows(values, within, index, flags, windows[w].shape[0], lags, alpha, out)
     return out

@@ -218,6 +218,28 @@ class Recording:
         WindowError
             The window is empty or reaches outside the recording; the message names the file.
         """
+        first, last = self.rows(start, stop)
+        return replace(self, data=self.data.iloc[first:last])
+
+    def rows(self, start: float, stop: float) -> tuple[int, int]:
+        """The rows ``first, last`` of :meth:`window` (``data.iloc[first:last]``), without
+        building the recording: many windows' rows cost no table each.
+
+        Raises
+        ------
+        WindowError
+            As :meth:`window`.
+
+        Examples
+        --------
+        >>> import numpy as np, pandas as pd
+        >>> data = pd.DataFrame({"RP": np.arange(5.0)},
+        ...                     index=pd.Index(np.arange(5) * 0.5, name="time"))
+        >>> rec = Recording(data, {}, {"RP": SignalInfo("RP", None, None, 0.5)},
+        ...                 sample_period=0.5)
+        >>> rec.rows(0.5, 1.5)
+        (1, 3)
+        """
         index = self.data.index
         if len(index) == 0:
             raise WindowError(f"{self._where()}the recording is empty")
@@ -244,7 +266,7 @@ class Recording:
                 f"{self._where()}window [{start:g}, {stop:g}) s holds no tick of the "
                 f"{self.sample_period:g} s grid"
             )
-        return replace(self, data=self.data.iloc[first:last])
+        return first, last
 
     def to_parquet(self, path: str | os.PathLike[str]) -> Path:
         """Write the recording to a Parquet file (atomically), metadata included.
