@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from funcnet.inspection import TraceInspection
+from funcnet.report.figure_geometry import PT, extent, legend_extent, put, renderer_of
 from funcnet.robot import Window
 
 __all__ = ["figure_motion", "figure_networks", "figure_timeline", "figure_evidence",
@@ -183,7 +184,6 @@ def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> Non
     The heights first (they depend on no tick label's width), then the widths from the y tick
     labels, which are measured at the axes' final heights: an axis's ticks depend on its length.
     """
-    from funcnet.report.figure_geometry import PT, extent, legend_extent, put, renderer_of
 
     renderer = renderer_of(fig)
     width, height = fig.get_size_inches()
@@ -215,7 +215,6 @@ def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> Non
 
 def _ytick_width(ax: Any, renderer: Any) -> float:
     """The widest y tick label of axes as now placed (inches)."""
-    from funcnet.report.figure_geometry import extent
 
     return extent(ax.yaxis.get_majorticklabels(), renderer)[0]
 
@@ -308,7 +307,6 @@ def _network_canvas(rows: int, cols: int) -> tuple[Any, Any, float]:
 def _fit_networks(fig: Any, ax: Any, legend: Any, rows: int, cols: int) -> None:
     """The figure as tall as the cells and the legend below them; the axes and the legend
     placed (inches)."""
-    from funcnet.report.figure_geometry import legend_extent, put, renderer_of
 
     below = legend_extent(legend, renderer_of(fig))[1] + 0.15
     height = _CELL_HEIGHT * rows + 0.05 + below
@@ -384,8 +382,8 @@ def figure_timeline(inspection: TraceInspection) -> Any:
     from funcnet import plot
 
     labels = [w.label for w in inspection.windows if w.label in inspection.networks]
-    fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.5), 4.6), layout="constrained")
-    ax = fig.add_subplot()
+    fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.5), 4.6))
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
     by_label = {w.label: w for w in inspection.windows}
     plot.shade_spans(ax, [(str(by_label[label].phase), k - 0.5, k + 0.5)
                           for k, label in enumerate(labels)], alpha=0.8)
@@ -394,7 +392,35 @@ def figure_timeline(inspection: TraceInspection) -> Any:
     ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
     ax.set_xlim(-0.5, len(labels) - 0.5)
     ax.set_xlabel("window (time order)", fontsize=9)
+
+    from matplotlib.legend import Legend
+
+    renderer = renderer_of(fig)  # the two legends beside the axes, at its right
+    widest = max(legend_extent(legend, renderer)[0] for legend in ax.get_children()
+                 if isinstance(legend, Legend))
+    _place_single(fig, ax, right=4.5 * PT + widest + 4 * PT)
     return fig
+
+
+def _place_single(fig: Any, ax: Any, *, right: float, top: float = 8 * PT) -> None:
+    """Put a figure's one axes where its texts leave room (inches): the y label and tick
+    labels at its left, the x label and (rotated) tick labels below, ``right`` and ``top``
+    given. The first x tick label, rotated, may reach left of the axes: room for it too."""
+
+    renderer = renderer_of(fig)
+    width, height = fig.get_size_inches()
+    xticks = [t for t in ax.get_xticklabels() if t.get_text()]
+    xtick = extent(xticks, renderer)[1]
+    left = (6 * PT + extent([ax.yaxis.label], renderer)[0] + 4 * PT
+            + extent(ax.get_yticklabels(), renderer)[0] + 7 * PT)
+    bottom = (4 * PT + extent([ax.xaxis.label], renderer)[1] + 4 * PT + xtick + 7 * PT)
+    if xticks:  # the first label ends at its tick, half a column in (rotated, ha="right")
+        lo, hi = ax.get_xlim()
+        first = extent(xticks[:1], renderer)[0]
+        for _ in range(2):  # the column's width depends on the axes' width
+            half = (width - left - right) * 0.5 / max(abs(hi - lo), 1.0)
+            left = max(left, first - half + 6 * PT)
+    put(ax, left, bottom, width - left - right, height - bottom - top)
 
 
 def figure_evidence(inspection: TraceInspection) -> Any:
@@ -421,9 +447,8 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     signals = list(inspection.signals)
     pairs = [(a, b) for i, a in enumerate(signals) for b in signals[i + 1:]]
     image = np.ones((len(pairs), len(labels), 3))
-    fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.0), 0.36 * len(pairs) + 2.8),
-                 layout="constrained")
-    ax = fig.add_subplot()
+    fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.0), 0.36 * len(pairs) + 2.8))
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
     used: dict[str, str] = {}
     for c, label in enumerate(labels):
         readings = _cell_readings(inspection.networks[label].pairs)
@@ -447,8 +472,15 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     ax.set_ylabel("pair X–Y (arrow: → X drives Y in the rule's sense)", fontsize=9)
     handles = [Patch(facecolor=colour, edgecolor="0.5", label=_EVIDENCE_LEGEND.get(key, key))
                for key, colour in used.items()]
-    fig.legend(handles=handles, loc="outside right upper", fontsize=9, frameon=False,
-               title="evidence" if inspection.evidence else "edge kind", title_fontsize=9)
+    legend = fig.legend(handles=handles, loc="upper left", fontsize=9, frameon=False,
+                        title="evidence" if inspection.evidence else "edge kind",
+                        title_fontsize=9, borderaxespad=0.0)
+
+    right = 8 * PT + legend_extent(legend, renderer_of(fig))[0] + 4 * PT
+    _place_single(fig, ax, right=right)
+    width, height = fig.get_size_inches()
+    legend.set_bbox_to_anchor((1.0 - (right - 8 * PT) / width, 1.0 - 8 * PT / height),
+                              transform=fig.transFigure)
     return fig
 
 
@@ -495,7 +527,7 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
     changes = result.reversals[:_MAX_MOVE_COLUMNS]
     rest = inspection.reversal_residual
     scale = _fine_scale(inspection)
-    fig = Figure(figsize=(max(6.0, 3.6 * len(changes)), 3.6), layout="constrained")
+    fig = Figure(figsize=(max(6.0, 3.6 * len(changes)), 3.6))
     t_all = data.index.to_numpy(dtype=float)
     for k, reversal in enumerate(changes):
         change = reversal.change
@@ -505,7 +537,7 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
               (change.stop if change.kind == "reversal" else change.start) - 0.15)  # fmt: skip
         hi = change.start + (WINDOW + 0.1 if continuous else 0.3)
         inside = (t_all >= lo) & (t_all <= hi)
-        ax = fig.add_subplot(1, len(changes), k + 1)
+        ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
         plot.shade_spans(ax, inspection.phases, alpha=0.8, within=(lo, hi))
         if continuous:
             y = np.asarray(rest, dtype=float) * scale[0]
@@ -531,4 +563,26 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
         if k == 0:
             ax.set_ylabel("MP − AP" + (" unexplained" if continuous else "") + f" [{scale[1]}]",
                           fontsize=9)  # fmt: skip
+    _place_row(fig, fig.axes)
     return fig
+
+
+def _place_row(fig: Any, row: list[Any]) -> None:
+    """Put a row of axes, each with its own y ticks, where their texts leave room (inches):
+    the heights first, then the widths from the y tick labels measured at those heights."""
+    renderer = renderer_of(fig)
+    width, height = fig.get_size_inches()
+    title = extent([ax.title for ax in row], renderer)[1]
+    xtick_width, xtick = extent([t for ax in row for t in ax.get_xticklabels()], renderer)
+    bottom = 4 * PT + extent([row[0].xaxis.label], renderer)[1] + 4 * PT + xtick + 7 * PT
+    size = height - bottom - (4 * PT + title + 6 * PT)
+    for ax in row:
+        put(ax, 0.0, bottom, width, size)
+    ticks = [extent(ax.get_yticklabels(), renderer)[0] for ax in row]
+    left = 6 * PT + extent([row[0].yaxis.label], renderer)[0] + 4 * PT + ticks[0] + 7 * PT
+    # between two axes: the next one's tick labels and half a time label of this one
+    gap = max(ticks[1:], default=0.0) + 7 * PT + xtick_width / 2 + 6 * PT
+    right = xtick_width / 2 + 4 * PT
+    column = (width - left - right - (len(row) - 1) * gap) / len(row)
+    for k, ax in enumerate(row):
+        put(ax, left + k * (column + gap), bottom, column, size)
