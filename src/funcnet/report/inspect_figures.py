@@ -469,7 +469,7 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     ax.imshow(image, aspect="auto", interpolation="nearest")
     ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
     ax.set_yticks(range(len(pairs)), [f"{a}–{b}" for a, b in pairs], fontsize=9)
-    ax.set_ylabel("pair X–Y (arrow: → X drives Y in the rule's sense)", fontsize=9)
+    ax.set_ylabel("pair X–Y\n(arrow: → X drives Y in the rule's sense)", fontsize=9)
     handles = [Patch(facecolor=colour, edgecolor="0.5", label=_EVIDENCE_LEGEND.get(key, key))
                for key, colour in used.items()]
     legend = fig.legend(handles=handles, loc="upper left", fontsize=9, frameon=False,
