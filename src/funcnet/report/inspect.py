@@ -45,6 +45,7 @@ from funcnet.report.html import (
     figure_html,
     mapping_table,
     page,
+    page_processes,
     pairs_table,
     provenance,
     setpoint_html,
@@ -378,7 +379,7 @@ def write_robot_inspection(
 
     pages = [(one, out / f"axis-{axis}", axis_label(axis) if axis_names else None)
              for axis, one in ins.axes.items()]
-    with _page_writers(len(pages)) as pool:
+    with page_processes(len(pages)) as pool:
         # the axes' pages drawn beside this one (each page's figures are its own)
         written = [pool.submit(write_inspection, one, folder, axis_label=label)
                    for one, folder, label in pages] if pool is not None else []
@@ -390,30 +391,6 @@ def write_robot_inspection(
             page.result()
             step(progress, k + 1, len(written), "axis pages")
     return robot
-
-
-def _page_writers(pages: int) -> Any:
-    """Processes that draw a robot's axis pages while this one draws the robot's page: at most
-    :data:`PAGE_WORKERS`, one per page, none where fewer than two CPUs are this process's.
-
-    Forked, not spawned: a spawned worker would import matplotlib, pandas and funcnet again (a
-    few seconds each), more than a page costs. A forked child only draws (matplotlib, pandas,
-    no compiled kernel of funcnet's and no thread pool of its own); the computation that used
-    threads is over before the first page is drawn.
-    """
-    import contextlib
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-
-    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    workers = min(PAGE_WORKERS, pages, (cpus or 1))
-    if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
-        return contextlib.nullcontext(None)
-    return ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
-
-
-#: The most processes that draw a robot's axis pages at once.
-PAGE_WORKERS = 2
 
 
 def _write_robot_page(ins: RobotInspection, out: Path, axis_names: tuple[str, ...]) -> Path:
