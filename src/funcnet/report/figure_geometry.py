@@ -14,7 +14,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import Any
 
-__all__ = ["PT", "renderer_of", "extent", "tick_extent", "put", "legend_extent"]
+__all__ = ["PT", "renderer_of", "extent", "put", "legend_extent"]
 
 #: One point in inches.
 PT = 1.0 / 72.0
@@ -57,24 +57,13 @@ def extent(artists: Iterable[Any], renderer: Any) -> tuple[float, float]:
         box = artist.get_window_extent(renderer)
         width, height = max(width, box.width), max(height, box.height)
     dpi = renderer.dpi
-    return width / dpi, height / dpi
-
-
-def tick_extent(axis: Any, renderer: Any) -> tuple[float, float]:
-    """The largest tick label of an axis (inches, width and height), as it is now placed."""
-    if not axis.get_visible():
-        return 0.0, 0.0
-    labels = axis.get_majorticklabels()
-    ticks = axis.get_major_ticks()
-    if not ticks or not (ticks[0].label1.get_visible() or ticks[0].label2.get_visible()):
-        return 0.0, 0.0
-    return extent(labels, renderer)
+    return float(width / dpi), float(height / dpi)
 
 
 def legend_extent(legend: Any, renderer: Any) -> tuple[float, float]:
     """A legend's width and height in inches."""
     box = legend.get_window_extent(renderer)
-    return box.width / renderer.dpi, box.height / renderer.dpi
+    return float(box.width / renderer.dpi), float(box.height / renderer.dpi)
 
 
 def put(ax: Any, left: float, bottom: float, width: float, height: float) -> None:
