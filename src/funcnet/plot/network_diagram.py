@@ -431,8 +431,8 @@ def plot_network(
         if placed:
             middle = float(np.mean(placed))
             ax.text(cx + 1.2 * np.cos(middle), cy + 1.2 * np.sin(middle), str(group),
-                    ha="center",
-                    va="center", fontsize=fontsize + 1, fontweight="bold", gid=f"group:{group}")
+                    ha="center", va="center", fontsize=fontsize + 1, fontweight="bold",
+                    gid=f"group:{group}")
     if arrows not in ARROWS:
         raise ParameterError.of("arrows", f"must be one of {list(ARROWS)}, got {arrows!r}")
     edges = network_edges(net) if arrows == "rule" else direction_edges(net)
