@@ -17,12 +17,15 @@ wall time is inflated by the load, the CPU time much less (the load average is p
 and after). With ``--against DIR`` another checkout's ``src`` is timed as well, alternating
 with this one (a copy of another commit: ``git worktree add DIR COMMIT``); the ratio columns
 compare each code with this checkout. ``--every-interval`` adds this code drawing every pair's
-intervals (``--intervals all``: minutes on UR5 No5).
+intervals (``--intervals all``: minutes on UR5 No5). Each checkout's ``src`` is byte-compiled
+first, as an installed package is: where ``PYTHONDONTWRITEBYTECODE`` is set, a source tree is
+otherwise compiled again by every process (about a second of start-up).
 """
 
 from __future__ import annotations
 
 import argparse
+import compileall
 import os
 import statistics
 import subprocess
@@ -127,6 +130,8 @@ def main(argv: list[str] | None = None) -> None:
     if args.every_interval:
         runs["every interval (--intervals all)"] = (ROOT, ["--intervals", "all"])
     cases = _cases(args.cases)
+    for source in {source for source, _ in runs.values()}:
+        compileall.compile_dir(source / "src", quiet=1)
     print("## funcnet inspect, end to end (one process per run)\n")
     print(f"- {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {os.cpu_count()} CPUs, "
           f"load average before: {os.getloadavg()[0]:.2f} (1 min)\n")

@@ -72,38 +72,135 @@ def _one_move():
     return Recording(data, {}, info, source="synthetic.csv", sample_period=0.002)
 
 
+def drawn_texts(fig) -> list[tuple[object, object]]:
+    """Every text the figure draws (those outside an axis's view are not drawn) with its box
+    in pixels, and each legend with its box: the figure drawn as :func:`save_figure` draws it."""
+    from unittest import mock
+
+    from matplotlib.legend import Legend
+    from matplotlib.text import Text
+
+    from funcnet.report.figure_geometry import renderer_of
+    from funcnet.report.html import _settle_layout
+
+    _settle_layout(fig, 100)
+    renderer = renderer_of(fig)
+    found: list[tuple[object, object]] = []
+    draw_text, draw_legend = Text.draw, Legend.draw
+
+    def text(self, r):
+        draw_text(self, r)
+        if self.get_visible() and self.get_text():
+            found.append((self, self.get_window_extent(r)))
+
+    def legend(self, r):
+        draw_legend(self, r)
+        found.append((self, self.get_window_extent(r)))
+
+    with mock.patch.object(Text, "draw", text), mock.patch.object(Legend, "draw", legend):
+        fig.canvas.draw()
+    assert renderer is fig.canvas.get_renderer()
+    return found
+
+
+def layout_faults(fig) -> list[str]:
+    """What a reader would stumble on: a text or legend (partly) outside the canvas, two texts
+    on each other, a text under a legend it is not part of. Rotated texts (the slanted tick
+    labels, whose boxes are wider than their letters) are not compared with each other."""
+    from matplotlib.legend import Legend
+
+    found = drawn_texts(fig)
+    canvas = fig.bbox
+    faults = [f"outside the canvas: {a!r}" for a, box in found
+              if box.x0 < canvas.x0 - 1 or box.x1 > canvas.x1 + 1 or box.y0 < canvas.y0 - 1
+              or box.y1 > canvas.y1 + 1]
+    legends = [a for a, _ in found if isinstance(a, Legend)]
+
+    def owner(artist):
+        return next((g for g in legends if artist in g.texts or artist is g.get_title()), None)
+
+    for k, (a, box_a) in enumerate(found):
+        for b, box_b in found[k + 1:]:
+            if isinstance(a, Legend) and isinstance(b, Legend):
+                pass
+            elif isinstance(a, Legend) or isinstance(b, Legend):
+                legend, other = (a, b) if isinstance(a, Legend) else (b, a)
+                if owner(other) is legend:
+                    continue
+            elif owner(a) is not None or owner(b) is not None:
+                continue  # a legend's own texts: laid out by the legend
+            elif a.get_rotation() and b.get_rotation():
+                continue
+            inter_w = min(box_a.x1, box_b.x1) - max(box_a.x0, box_b.x0)
+            inter_h = min(box_a.y1, box_b.y1) - max(box_a.y0, box_b.y0)
+            if inter_w > 1 and inter_h > 1:
+                faults.append(f"overlap: {a!r} and {b!r}")
+    return faults
+
+
+def test_the_layout_check_sees_a_label_outside_and_two_texts_on_each_other():
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(4, 3))
+    ax = fig.add_axes((0.0, 0.1, 0.9, 0.8))  # no room left for the y tick labels
+    ax.plot([0, 1], [0, 1000])
+    assert any(f.startswith("outside") for f in layout_faults(fig))
+    fig = Figure(figsize=(4, 3))
+    fig.text(0.5, 0.5, "one text")
+    fig.text(0.52, 0.5, "another")
+    assert any(f.startswith("overlap") for f in layout_faults(fig))
+    fig = Figure(figsize=(4, 3))
+    fig.add_axes((0.2, 0.2, 0.7, 0.7)).plot([0, 1], label="a line")
+    fig.legend(loc="center")
+    fig.text(0.5, 0.5, "under the legend")
+    assert any(f.startswith("overlap") for f in layout_faults(fig))
+
+
 def test_network_panels_keep_their_frame_and_everything_inside_the_canvas():
-    """Each phase's panel: its frame in the phase's colour, no axis (no tick, no label) for the
-    layout; after the layout every title, node name and the legend lie inside the figure."""
+    """Each phase's panel: a framed square in the phase's colour under its network, its title
+    above; every title, node name and the legend inside the figure, none on another."""
     import warnings
 
     from matplotlib.colors import to_hex
 
     from funcnet.inspection import inspect_recording
     from funcnet.plot import phase_color
-    from funcnet.report.html import _settle_layout
     from funcnet.report.inspect_figures import figure_networks
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         ins = inspect_recording(_one_move(), evidence=False, backlash=False)
     fig = figure_networks(ins)
-    panels = [ax for ax in fig.axes if ax.get_title()]
-    assert len(panels) == len(ins.networks) >= 2
+    (ax,) = fig.axes
+    squares = {p.get_gid().removeprefix("panel:"): p for p in ax.patches
+               if str(p.get_gid()).startswith("panel:")}
+    assert set(squares) == set(ins.networks) and len(squares) >= 2
     by_label = {w.label: w for w in ins.windows}
-    for ax in panels:
-        assert ax.axison and all(spine.get_visible() for spine in ax.spines.values())
-        assert not ax.xaxis.get_visible() and not ax.yaxis.get_visible()
-        label = ax.get_title().split("\n")[0]
-        assert to_hex(ax.get_facecolor()) == to_hex(phase_color(by_label[label].phase))
-    _settle_layout(fig, 100)
-    fig.canvas.draw()  # as saved: titles take their place when drawn
-    renderer = fig.canvas.get_renderer()
-    canvas = fig.bbox
-    texts = [t for ax in panels for t in (ax.title, *ax.texts)]
-    legends = fig.legends
-    assert legends
-    for artist in [*texts, *legends]:
-        box = artist.get_window_extent(renderer)
-        assert (box.x0 >= canvas.x0 - 1 and box.x1 <= canvas.x1 + 1
-                and box.y0 >= canvas.y0 - 1 and box.y1 <= canvas.y1 + 1), artist
+    for label, square in squares.items():
+        assert to_hex(square.get_facecolor()) == to_hex(phase_color(by_label[label].phase))
+        assert square.get_linewidth() > 0  # framed
+        nodes = [p for p in ax.patches if str(p.get_gid()).startswith("node:")
+                 and square.contains_point(ax.transData.transform(p.center))]
+        assert len(nodes) == len(ins.signals)  # each network inside its own square
+    titles = {t.get_gid().removeprefix("title:") for t in ax.texts
+              if str(t.get_gid()).startswith("title:")}
+    assert titles == {w.label for w in ins.windows}
+    assert fig.legends
+    assert layout_faults(fig) == []
+
+
+def test_every_figure_of_a_page_keeps_its_texts_inside_and_apart():
+    """The figures placed without a layout engine: motion, timeline, evidence (and the
+    networks above) of a synthetic move, and of a trace at rest."""
+    import warnings
+
+    from funcnet.inspection import inspect_recording
+    from funcnet.report import inspect_figures
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ins = inspect_recording(_one_move(), evidence=False, backlash=False)
+    for name in ("motion", "timeline", "evidence"):
+        fig = getattr(inspect_figures, f"figure_{name}")(ins)
+        assert fig.get_layout_engine() is None
+        assert layout_faults(fig) == [], name

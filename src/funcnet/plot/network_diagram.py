@@ -327,6 +327,7 @@ def plot_network(
     legend: bool = True,
     groups: Mapping[str, Sequence[str]] | None = None,
     arrows: str = "rule",
+    at: tuple[float, float] | None = None,
 ) -> Axes:
     """Draw a functional network in a circular layout (paper section 3.4, Fig. 9-11).
 
@@ -369,6 +370,10 @@ def plot_network(
         ``"direction"``: the ``direction`` reading's (:func:`direction_edges`): an arrow where
         one past improves the other's prediction, a thin pale line (gid
         ``edge:X->Y:none``) where undecided.
+    at : (float, float), optional
+        Draw the network centred there, in the data coordinates of ``ax``, and leave the axes'
+        limits, aspect, frame and title alone: several networks in one axes (of equal aspect),
+        each a circle of radius 1 around its centre, far cheaper than an axes each.
 
     Returns
     -------
@@ -417,15 +422,17 @@ def plot_network(
     # Clockwise from the top, as networkx.circular_layout places them in the paper's figures.
     angle = {name: np.pi / 2 - 2 * np.pi * k / max(len(slots), 1)
              for k, name in enumerate(slots) if name is not None}
-    position = {name: (np.cos(angle[name]), np.sin(angle[name])) for name in nodes}
+    cx, cy = (0.0, 0.0) if at is None else (float(at[0]), float(at[1]))
+    position = {name: (cx + np.cos(angle[name]), cy + np.sin(angle[name])) for name in nodes}
     radius = {name: _node_radius(label.get(name, str(name)), node_size) for name in nodes}
     _draw_nodes(ax, nodes, present, label, position, radius, node_color, fontsize)
     for group, members in (groups or {}).items():
         placed = [angle[m] for m in members if m in angle]
         if placed:
             middle = float(np.mean(placed))
-            ax.text(1.2 * np.cos(middle), 1.2 * np.sin(middle), str(group), ha="center",
-                    va="center", fontsize=fontsize + 1, fontweight="bold", gid=f"group:{group}")
+            ax.text(cx + 1.2 * np.cos(middle), cy + 1.2 * np.sin(middle), str(group),
+                    ha="center", va="center", fontsize=fontsize + 1, fontweight="bold",
+                    gid=f"group:{group}")
     if arrows not in ARROWS:
         raise ParameterError.of("arrows", f"must be one of {list(ARROWS)}, got {arrows!r}")
     edges = network_edges(net) if arrows == "rule" else direction_edges(net)
@@ -433,6 +440,8 @@ def plot_network(
     for k, edge in enumerate(edges.itertuples(index=False)):
         _draw_edge(ax, edge, "" if readings is None else readings[k], position, radius,
                    width_scale, min_width, fontsize)
+    if at is not None:
+        return ax
     ax.set_xlim(-1.3, 1.3)
     ax.set_ylim(-1.3, 1.3)
     ax.set_aspect("equal")

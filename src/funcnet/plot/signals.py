@@ -10,6 +10,7 @@ import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
+from matplotlib.patches import Rectangle
 
 from funcnet.plot.style import _new_axes, phase_color, signal_color
 
@@ -53,8 +54,12 @@ def shade_spans(ax: Axes, spans: Any, *, prefix: str | None = "phase", alpha: fl
             if not (stop > within[0] and start < within[1]):
                 continue
             start, stop = max(start, within[0]), min(stop, within[1])
-        patch = ax.axvspan(start, stop, color=color or phase_color(name, k), alpha=alpha,
-                           zorder=0, linewidth=0)
+        # a rectangle in (data, axes) coordinates, as axvspan draws, without its cost: the
+        # 100-step path axvspan gives a rectangle (for polar axes) and the autoscaling request
+        patch = Rectangle((start, 0.0), stop - start, 1.0, transform=ax.get_xaxis_transform(),
+                          color=color or phase_color(name, k), alpha=alpha, zorder=0,
+                          linewidth=0)
+        ax.add_patch(patch)
         if prefix is not None:
             patch.set_gid(f"{prefix}:{name}")
         if names:

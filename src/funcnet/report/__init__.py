@@ -14,6 +14,7 @@ module                what it holds
 ``inspect``           :func:`write_inspections`: the engineer's report of one or several traces
                       (:func:`inspect_trace`: the inspection and the report in one call)
 ``inspect_figures``   its figures
+``figure_geometry``   their fixed layouts: axes placed where their measured texts leave room
 ``inspect_text``      its words: the summary of a trace (its gaps, moves, turns, windows)
 ``backlash_page``     :func:`write_backlash_page`: the backlash diagnoses of several traces
 ``repetitions_page``  the repetitions' page (``inspect --repeated``)

@@ -25,7 +25,7 @@ from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS
 
 __all__ = ["Progress", "PACKAGES", "save_figure", "escape", "table", "mapping_table",
            "provenance", "pairs_table", "figure_html", "page", "step", "contents",
-           "repeated_texts"]
+           "repeated_texts", "page_processes", "PAGE_WORKERS"]
 
 Progress = Callable[[int, int, str], None] | None
 _HYPHENATED = re.compile(r"(\S*-\S*)")
@@ -102,6 +102,38 @@ def _settle_layout(fig: Any, dpi: int) -> None:
     with matplotlib.rc_context({"figure.autolayout": False,
                                 "figure.constrained_layout.use": False}):
         fig.set_layout_engine(None)
+
+
+def page_processes(pages: int) -> Any:
+    """Processes that write pages beside this one (a robot's axis pages while this one writes
+    the robot's): a :class:`~concurrent.futures.ProcessPoolExecutor` of at most
+    :data:`PAGE_WORKERS` processes, one per page; ``contextlib.nullcontext(None)`` (no pool:
+    write them here) where fewer than two CPUs are this process's or processes cannot fork.
+
+    Forked, not spawned: a spawned worker would import matplotlib, pandas and funcnet again (a
+    few seconds each), more than a page costs. A forked child only draws (matplotlib, pandas,
+    no compiled kernel of funcnet's and no thread pool of its own); the computation that used
+    threads is over before the first page is drawn.
+
+    Examples
+    --------
+    >>> with page_processes(1) as pool:  # one page: written here
+    ...     print(pool)
+    None
+    """
+    import contextlib
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    workers = min(PAGE_WORKERS, pages, (cpus or 1))
+    if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        return contextlib.nullcontext(None)
+    return ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
+
+
+#: The most processes that draw a robot's axis pages at once.
+PAGE_WORKERS = 2
 
 
 def escape(value: Any) -> str:

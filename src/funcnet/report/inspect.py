@@ -45,6 +45,7 @@ from funcnet.report.html import (
     figure_html,
     mapping_table,
     page,
+    page_processes,
     pairs_table,
     provenance,
     setpoint_html,
@@ -376,9 +377,24 @@ def write_robot_inspection(
     def axis_label(axis: int) -> str:
         return f"axis {axis}" + (f" ({axis_names[axis - 1]})" if axis <= len(axis_names) else "")
 
-    for axis, one in ins.axes.items():
-        write_inspection(one, out / f"axis-{axis}", progress=progress,
-                         axis_label=axis_label(axis) if axis_names else None)
+    pages = [(one, out / f"axis-{axis}", axis_label(axis) if axis_names else None)
+             for axis, one in ins.axes.items()]
+    with page_processes(len(pages)) as pool:
+        # the axes' pages drawn beside this one (each page's figures are its own)
+        written = [pool.submit(write_inspection, one, folder, axis_label=label)
+                   for one, folder, label in pages] if pool is not None else []
+        robot = _write_robot_page(ins, out, axis_names)
+        if pool is None:
+            for one, folder, label in pages:
+                write_inspection(one, folder, progress=progress, axis_label=label)
+        for k, page in enumerate(written):
+            page.result()
+            step(progress, k + 1, len(written), "axis pages")
+    return robot
+
+
+def _write_robot_page(ins: RobotInspection, out: Path, axis_names: tuple[str, ...]) -> Path:
+    """The robot's own page (``out/index.html``): its axes' findings and its network."""
     findings = _findings_html(ins, axis_names)
     gaps = gaps_sentence(ins.recording.gaps, ins.recording.segments)
     gaps += " The robot network is one per segment." if gaps else ""

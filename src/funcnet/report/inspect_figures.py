@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from funcnet.inspection import TraceInspection
+from funcnet.report.figure_geometry import PT, extent, legend_extent, put, renderer_of
 from funcnet.robot import Window
 
 __all__ = ["figure_motion", "figure_networks", "figure_timeline", "figure_evidence",
@@ -57,7 +58,7 @@ def _shown_unit(signals: dict, column: str, default: str) -> str:
         return "unit unknown"
     return {"deg": "°"}.get(unit, unit)
 
-def _phase_legend(fig: Any, kinds: Sequence[str], gaps: bool = False) -> None:
+def _phase_legend(fig: Any, kinds: Sequence[str], gaps: bool = False) -> Any:
     from matplotlib.patches import Patch
 
     from funcnet import plot
@@ -66,9 +67,11 @@ def _phase_legend(fig: Any, kinds: Sequence[str], gaps: bool = False) -> None:
     if gaps:
         handles.append(Patch(facecolor=plot.GAP_COLOR, edgecolor="0.6", alpha=0.8,
                              label="gap (values missing)"))
-    legend = fig.legend(handles=handles, loc="outside upper center", ncol=len(handles),
-                        fontsize=9, frameon=False, title="phase (shading)", title_fontsize=9)
+    legend = fig.legend(handles=handles, loc="upper center", ncol=len(handles),
+                        fontsize=9, frameon=False, title="phase (shading)", title_fontsize=9,
+                        borderaxespad=0.0)
     legend.set_gid("legend:phases")
+    return legend
 
 
 def figure_motion(inspection: TraceInspection) -> Any:
@@ -85,7 +88,8 @@ def figure_motion(inspection: TraceInspection) -> Any:
         an axis that never moves: one column, the whole trace at rest): positions, V, AC and
         the following error RP - AP, the phases shaded in the colours of
         :data:`funcnet.plot.PHASE_COLORS` and the gaps (values missing) in
-        :data:`funcnet.plot.GAP_COLOR`.
+        :data:`funcnet.plot.GAP_COLOR`. The rows of a column share its time axis, labelled
+        below the last. The axes are placed by :func:`_place_motion` (no layout engine).
     """
     from matplotlib.figure import Figure
 
@@ -94,19 +98,10 @@ def figure_motion(inspection: TraceInspection) -> Any:
     data = inspection.recording.data
     phases = inspection.phases
     moves = inspection.moves.head(_MAX_MOVE_COLUMNS)
-    signals = inspection.recording.signals
-    deg = _shown_unit(signals, "RP", "°")
-    panels = [(f"position [{deg}]", [c for c in ("RP", "AP", "MP") if c in data])]
-    if "V" in data:
-        panels.append((f"V [{deg}/s]" if deg != "unit unknown" else "V [unit unknown]", ["V"]))
-    if "AC" in data:
-        panels.append((f"AC [{_shown_unit(signals, 'AC', 'A')}]", ["AC"]))
-    if "AP" in data:  # a linear axis's following error in um, as the page states it
-        panels.append(("RP − AP [um]" if deg == "mm" else f"RP − AP [{deg}]", ["FE"]))
-    cols = max(len(moves), 1)
-    fig = Figure(figsize=(11.0, 2.2 + 1.9 * len(panels)), layout="constrained")
-    grid = fig.add_gridspec(1 + len(panels), cols, height_ratios=[1.0] + [1.0] * len(panels))
-    top = fig.add_subplot(grid[0, :])
+    deg = _shown_unit(inspection.recording.signals, "RP", "°")
+    panels = _motion_panels(inspection, deg)
+    fig = Figure(figsize=(11.0, 2.2 + 1.9 * len(panels)))
+    top = fig.add_axes((0.0, 0.0, 1.0, 1.0))
     t = data.index.to_numpy(dtype=float)
     plot.shade_spans(top, phases, alpha=0.8, within=(t[0], t[-1]))
     _shade_gaps(top, inspection, (t[0], t[-1]))
@@ -124,33 +119,104 @@ def figure_motion(inspection: TraceInspection) -> Any:
               move.stop + 0.15 * (move.stop - move.start)) for move in moves.itertuples()]
     if not spans:
         spans = [(f"(b) no move: at rest over {t[0]:.2f}–{t[-1]:.2f} s", t[0], t[-1])]
-    for k, (title, lo, hi) in enumerate(spans):
-        part = data.loc[(data.index >= lo) & (data.index <= hi)]
-        tt = part.index.to_numpy(dtype=float)
-        for row, (ylabel, columns) in enumerate(panels, start=1):
-            ax = fig.add_subplot(grid[row, k])
-            plot.shade_spans(ax, phases, alpha=0.8, within=(lo, hi))
-            _shade_gaps(ax, inspection, (lo, hi))
-            for column in columns:
-                values = (fe.loc[part.index] if column == "FE" and fe is not None
-                          else part[column]).to_numpy(dtype=float)
-                ax.plot(tt, values, color=plot.signal_color(column), linewidth=1,
-                        label=column)
-            ax.tick_params(labelsize=9)
-            if not len(moves):  # jitter at rest: the values themselves, not "+3.437e1" above
-                ax.ticklabel_format(axis="y", useOffset=False)
-            if k == 0:
-                ax.set_ylabel(ylabel, fontsize=9)
-            if row == 1:
-                ax.set_title(title, fontsize=10, loc="left")
-                if k == 0 and len(columns) > 1:
-                    ax.legend(fontsize=9, frameon=False, loc="best")
-            if row == len(panels):
-                ax.set_xlabel("time [s]", fontsize=9)
+    grid = [[_motion_panel(fig, inspection, panels, fe, span, k, row, bool(len(moves)))
+             for row in range(len(panels))] for k, span in enumerate(spans)]
     top.tick_params(labelsize=9)
-    _phase_legend(fig, [k for k in plot.PHASE_COLORS if k in set(phases["phase"])],
-                  gaps=bool(inspection.gaps))
+    legend = _phase_legend(fig, [k for k in plot.PHASE_COLORS if k in set(phases["phase"])],
+                           gaps=bool(inspection.gaps))
+    _place_motion(fig, top, grid, legend)
     return fig
+
+
+def _motion_panels(inspection: TraceInspection, deg: str) -> list[tuple[str, list[str]]]:
+    """The rows of the zoomed moves: (y label, columns drawn), those the recording has."""
+    data = inspection.recording.data
+    panels = [(f"position [{deg}]", [c for c in ("RP", "AP", "MP") if c in data])]
+    if "V" in data:
+        panels.append((f"V [{deg}/s]" if deg != "unit unknown" else "V [unit unknown]", ["V"]))
+    if "AC" in data:
+        panels.append((f"AC [{_shown_unit(inspection.recording.signals, 'AC', 'A')}]",
+                       ["AC"]))
+    if "AP" in data:  # a linear axis's following error in um, as the page states it
+        panels.append(("RP − AP [um]" if deg == "mm" else f"RP − AP [{deg}]", ["FE"]))
+    return panels
+
+
+def _motion_panel(fig: Any, inspection: TraceInspection, panels: list[tuple[str, list[str]]],
+                  fe: Any, span: tuple[str, float, float], k: int, row: int,
+                  moving: bool) -> Any:
+    """One zoomed panel: move (column) ``k``, signal row ``row`` (1 the first below the top)."""
+    from funcnet import plot
+
+    title, lo, hi = span
+    data = inspection.recording.data
+    part = data.loc[(data.index >= lo) & (data.index <= hi)]
+    tt = part.index.to_numpy(dtype=float)
+    ylabel, columns = panels[row]
+    above = fig.axes[-1] if row else None  # the column's rows share its time axis
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0), sharex=above)
+    plot.shade_spans(ax, inspection.phases, alpha=0.8, within=(lo, hi))
+    _shade_gaps(ax, inspection, (lo, hi))
+    for column in columns:
+        values = (fe.loc[part.index] if column == "FE" and fe is not None
+                  else part[column]).to_numpy(dtype=float)
+        ax.plot(tt, values, color=plot.signal_color(column), linewidth=1, label=column)
+    ax.tick_params(labelsize=9)
+    if not moving:  # jitter at rest: the values themselves, not "+3.437e1" above
+        ax.ticklabel_format(axis="y", useOffset=False)
+    if k == 0:
+        ax.set_ylabel(ylabel, fontsize=9)
+    if row == 0:
+        ax.set_title(title, fontsize=10, loc="left")
+        if k == 0 and len(columns) > 1:
+            ax.legend(fontsize=9, frameon=False, loc="best")
+    if row == len(panels) - 1:
+        ax.set_xlabel("time [s]", fontsize=9)
+    else:  # the time is read below the column's last row
+        ax.tick_params(labelbottom=False)
+    return ax
+
+
+def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> None:
+    """Put the motion figure's axes where its texts leave room: the phase legend at the top,
+    the whole trace below it, the zoomed columns under that (:mod:`.figure_geometry`).
+
+    The heights first (they depend on no tick label's width), then the widths from the y tick
+    labels, which are measured at the axes' final heights: an axis's ticks depend on its length.
+    """
+
+    renderer = renderer_of(fig)
+    width, height = fig.get_size_inches()
+    rows, cols = len(grid[0]), len(grid)
+    text = extent([top.xaxis.label, top.title], renderer)[1]  # one line of 9-10 pt
+    title = max(extent([grid[k][0].title for k in range(cols)], renderer)[1], text)
+    xtick = extent([fig.text(0, 0, "0123456789−.", fontsize=9, visible=True)], renderer)[1]
+    fig.texts.pop()
+    head = 4 * PT + legend_extent(legend, renderer)[1] + 4 * PT + title + 16 * PT
+    below_top = 7 * PT + xtick + 4 * PT + text + 10 * PT + title + 6 * PT + text
+    between = 8 * PT + text  # room for an offset ("1e-5") above a panel
+    size = (height - head - below_top - (rows - 1) * between
+            - (7 * PT + xtick + 4 * PT + text + 4 * PT)) / (rows + 1)
+    tops = [height - head - size] + [height - head - below_top - size - r * (size + between)
+                                     - size for r in range(rows)]
+    for k, ax in enumerate([top, *(ax for column in grid for ax in column)]):
+        put(ax, 0.0, tops[0 if k == 0 else 1 + (k - 1) % rows], width, size)
+    ticks = {ax: _ytick_width(ax, renderer) for column in grid for ax in [top, *column]}
+    left = 4 * PT + text + 4 * PT + 7 * PT + max(ticks[ax] for ax in [top, *grid[0]])
+    gap = 17 * PT + max((ticks[ax] for column in grid[1:] for ax in column), default=0.0)
+    right = 0.2  # half a time label past the end of the axis
+    put(top, left, tops[0], width - left - right, size)
+    column = (width - left - right - (cols - 1) * gap) / cols
+    for k in range(cols):
+        for r in range(rows):
+            put(grid[k][r], left + k * (column + gap), tops[1 + r], column, size)
+    legend.set_bbox_to_anchor((0.5, 1.0 - 4 * PT / height), transform=fig.transFigure)
+
+
+def _ytick_width(ax: Any, renderer: Any) -> float:
+    """The widest y tick label of axes as now placed (inches)."""
+
+    return extent(ax.yaxis.get_majorticklabels(), renderer)[0]
 
 
 def _shade_gaps(ax: Any, inspection: TraceInspection, within: tuple[float, float]) -> None:
@@ -168,6 +234,11 @@ def _kinds_present(windows: Sequence[Window]) -> list[str]:
     return [k for k in PHASES if k in present]
 
 
+#: A network panel's cell (inches: its title above a square of the circle's ±1.3 units).
+_CELL_WIDTH, _CELL_HEIGHT, _TITLE_ROOM = 2.6, 2.7, 0.45
+_SQUARE = min(_CELL_WIDTH - 0.2, _CELL_HEIGHT - _TITLE_ROOM - 0.03)
+
+
 def figure_networks(inspection: TraceInspection) -> Any:
     """One network per phase (columns, in the order of a move) and move (rows).
 
@@ -179,42 +250,79 @@ def figure_networks(inspection: TraceInspection) -> Any:
     -------
     matplotlib.figure.Figure
         Every node at the same place in every panel; a node left out of a window (constant
-        there) dashed; each panel's background the colour of its phase.
+        there) dashed; each panel's square the colour of its phase (a rectangle of gid
+        ``panel:LABEL``, its title a text of gid ``title:LABEL``). The panels share one axes
+        (an axes each cost more than the networks): in its data units each network is a
+        circle of radius 1 around its panel's centre.
     """
-    from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
 
     from funcnet import plot
 
     cells, rows, cols = _panels(inspection)
-    fig = Figure(figsize=(2.6 * cols + 0.6, 2.7 * rows + 1.0), layout="constrained")
+    fig, ax, scale = _network_canvas(rows, cols)
     degenerate = dropped = with_evidence = False
     for w, (r, c) in zip(inspection.windows, cells, strict=True):
-        ax = fig.add_subplot(rows, cols, r * cols + c + 1)
-        title = f"{w.label}\n{w.start:.2f}–{w.stop:.2f} s"
+        centre = ((c + 0.5) * _CELL_WIDTH / scale,
+                  ((rows - r) * _CELL_HEIGHT - _TITLE_ROOM - _SQUARE / 2) / scale)
+        ax.annotate(f"{w.label}\n{w.start:.2f}–{w.stop:.2f} s", (centre[0], centre[1] + 1.3),
+                    xytext=(0, 4), textcoords="offset points", ha="center", va="bottom",
+                    fontsize=11, gid=f"title:{w.label}")
         net = inspection.networks.get(w.label)
         if net is None:
-            plot.plot_no_network(ax, title, fontsize=11)  # as plot_network's titles
+            ax.text(*centre, "no network", ha="center", va="center", gid=f"none:{w.label}")
             continue
-        plot.plot_network(net, ax, nodes=list(inspection.signals), title=title, legend=False,
-                          arrows="direction")
-        ax.set_facecolor(plot.phase_color(w.phase))
-        ax.set_axis_on()  # the frame around the phase's colour; no ticks, no axis to lay out
-        ax.xaxis.set_visible(False)
-        ax.yaxis.set_visible(False)
+        ax.add_patch(_panel_square(centre, plot.phase_color(w.phase), w.label))
+        plot.plot_network(net, ax, nodes=list(inspection.signals), legend=False,
+                          arrows="direction", at=centre)
         degenerate |= bool(plot.network_edges(net)["degenerate"].any())
         dropped |= bool(net.window and net.window.get("dropped"))
         with_evidence |= "evidence" in net.pairs.columns
-    legend = plot.add_network_legend(fig, degenerate=degenerate, evidence=with_evidence)
+    handles = plot.network_legend_handles(degenerate=degenerate, evidence=with_evidence)
     if dropped:
-        legend.remove()
-        handles = [*plot.network_legend_handles(degenerate=degenerate, evidence=with_evidence),
-                   Line2D([], [], color="0.2", linestyle="--", marker="o", markersize=9,
-                          markerfacecolor="white", linewidth=0,
-                          label="dashed node: left out (constant in the window)")]
-        fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=9,
-                   frameon=False).set_gid("legend:network")
+        handles.append(Line2D([], [], color="0.2", linestyle="--", marker="o", markersize=9,
+                              markerfacecolor="white", linewidth=0,
+                              label="dashed node: left out (constant in the window)"))
+    legend = fig.legend(handles=handles, loc="upper center", ncol=3, fontsize=9,
+                        frameon=False, handlelength=2.5, borderaxespad=0.0)
+    legend.set_gid("legend:network")
+    _fit_networks(fig, ax, legend, rows, cols)
     return fig
+
+
+def _network_canvas(rows: int, cols: int) -> tuple[Any, Any, float]:
+    """The networks' figure and its one axes over the panels' cells; the axes' data units are
+    ``scale`` inches each way."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(_CELL_WIDTH * cols + 0.6, _CELL_HEIGHT * rows + 1.0))
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
+    scale = _SQUARE / 2.6  # inches per unit: the square holds the circle's ±1.3
+    ax.set_xlim(0.0, _CELL_WIDTH * cols / scale)
+    ax.set_ylim(0.0, _CELL_HEIGHT * rows / scale)
+    ax.set_axis_off()
+    return fig, ax, scale
+
+
+def _fit_networks(fig: Any, ax: Any, legend: Any, rows: int, cols: int) -> None:
+    """The figure as tall as the cells and the legend below them; the axes and the legend
+    placed (inches)."""
+
+    below = legend_extent(legend, renderer_of(fig))[1] + 0.15
+    height = _CELL_HEIGHT * rows + 0.05 + below
+    fig.set_size_inches(_CELL_WIDTH * cols + 0.6, height)
+    put(ax, 0.3, below, _CELL_WIDTH * cols, _CELL_HEIGHT * rows)
+    legend.set_bbox_to_anchor((0.5, (below - 0.05) / height), transform=fig.transFigure)
+
+
+def _panel_square(centre: tuple[float, float], colour: str, label: str) -> Any:
+    """A network panel's square in its phase's colour, framed."""
+    from matplotlib.patches import Rectangle
+
+    square = Rectangle((centre[0] - 1.3, centre[1] - 1.3), 2.6, 2.6, facecolor=colour,
+                       edgecolor="black", linewidth=0.8, zorder=0)
+    square.set_gid(f"panel:{label}")
+    return square
 
 
 def _panels(inspection: TraceInspection) -> tuple[list[tuple[int, int]], int, int]:
@@ -274,8 +382,8 @@ def figure_timeline(inspection: TraceInspection) -> Any:
     from funcnet import plot
 
     labels = [w.label for w in inspection.windows if w.label in inspection.networks]
-    fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.5), 4.6), layout="constrained")
-    ax = fig.add_subplot()
+    fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.5), 4.6))
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
     by_label = {w.label: w for w in inspection.windows}
     plot.shade_spans(ax, [(str(by_label[label].phase), k - 0.5, k + 0.5)
                           for k, label in enumerate(labels)], alpha=0.8)
@@ -284,7 +392,35 @@ def figure_timeline(inspection: TraceInspection) -> Any:
     ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
     ax.set_xlim(-0.5, len(labels) - 0.5)
     ax.set_xlabel("window (time order)", fontsize=9)
+
+    from matplotlib.legend import Legend
+
+    renderer = renderer_of(fig)  # the two legends beside the axes, at its right
+    widest = max(legend_extent(legend, renderer)[0] for legend in ax.get_children()
+                 if isinstance(legend, Legend))
+    _place_single(fig, ax, right=4.5 * PT + widest + 4 * PT)
     return fig
+
+
+def _place_single(fig: Any, ax: Any, *, right: float, top: float = 8 * PT) -> None:
+    """Put a figure's one axes where its texts leave room (inches): the y label and tick
+    labels at its left, the x label and (rotated) tick labels below, ``right`` and ``top``
+    given. The first x tick label, rotated, may reach left of the axes: room for it too."""
+
+    renderer = renderer_of(fig)
+    width, height = fig.get_size_inches()
+    xticks = [t for t in ax.get_xticklabels() if t.get_text()]
+    xtick = extent(xticks, renderer)[1]
+    left = (6 * PT + extent([ax.yaxis.label], renderer)[0] + 4 * PT
+            + extent(ax.get_yticklabels(), renderer)[0] + 7 * PT)
+    bottom = (4 * PT + extent([ax.xaxis.label], renderer)[1] + 4 * PT + xtick + 7 * PT)
+    if xticks:  # the first label ends at its tick, half a column in (rotated, ha="right")
+        lo, hi = ax.get_xlim()
+        first = extent(xticks[:1], renderer)[0]
+        for _ in range(2):  # the column's width depends on the axes' width
+            half = (width - left - right) * 0.5 / max(abs(hi - lo), 1.0)
+            left = max(left, first - half + 6 * PT)
+    put(ax, left, bottom, width - left - right, height - bottom - top)
 
 
 def figure_evidence(inspection: TraceInspection) -> Any:
@@ -311,9 +447,8 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     signals = list(inspection.signals)
     pairs = [(a, b) for i, a in enumerate(signals) for b in signals[i + 1:]]
     image = np.ones((len(pairs), len(labels), 3))
-    fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.0), 0.36 * len(pairs) + 2.8),
-                 layout="constrained")
-    ax = fig.add_subplot()
+    fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.0), 0.36 * len(pairs) + 2.8))
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
     used: dict[str, str] = {}
     for c, label in enumerate(labels):
         readings = _cell_readings(inspection.networks[label].pairs)
@@ -334,11 +469,18 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     ax.imshow(image, aspect="auto", interpolation="nearest")
     ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
     ax.set_yticks(range(len(pairs)), [f"{a}–{b}" for a, b in pairs], fontsize=9)
-    ax.set_ylabel("pair X–Y (arrow: → X drives Y in the rule's sense)", fontsize=9)
+    ax.set_ylabel("pair X–Y\n(arrow: → X drives Y in the rule's sense)", fontsize=9)
     handles = [Patch(facecolor=colour, edgecolor="0.5", label=_EVIDENCE_LEGEND.get(key, key))
                for key, colour in used.items()]
-    fig.legend(handles=handles, loc="outside right upper", fontsize=9, frameon=False,
-               title="evidence" if inspection.evidence else "edge kind", title_fontsize=9)
+    legend = fig.legend(handles=handles, loc="upper left", fontsize=9, frameon=False,
+                        title="evidence" if inspection.evidence else "edge kind",
+                        title_fontsize=9, borderaxespad=0.0)
+
+    right = 8 * PT + legend_extent(legend, renderer_of(fig))[0] + 4 * PT
+    _place_single(fig, ax, right=right)
+    width, height = fig.get_size_inches()
+    legend.set_bbox_to_anchor((1.0 - (right - 8 * PT) / width, 1.0 - 8 * PT / height),
+                              transform=fig.transFigure)
     return fig
 
 
@@ -385,7 +527,7 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
     changes = result.reversals[:_MAX_MOVE_COLUMNS]
     rest = inspection.reversal_residual
     scale = _fine_scale(inspection)
-    fig = Figure(figsize=(max(6.0, 3.6 * len(changes)), 3.6), layout="constrained")
+    fig = Figure(figsize=(max(6.0, 3.6 * len(changes)), 3.6))
     t_all = data.index.to_numpy(dtype=float)
     for k, reversal in enumerate(changes):
         change = reversal.change
@@ -395,7 +537,7 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
               (change.stop if change.kind == "reversal" else change.start) - 0.15)  # fmt: skip
         hi = change.start + (WINDOW + 0.1 if continuous else 0.3)
         inside = (t_all >= lo) & (t_all <= hi)
-        ax = fig.add_subplot(1, len(changes), k + 1)
+        ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
         plot.shade_spans(ax, inspection.phases, alpha=0.8, within=(lo, hi))
         if continuous:
             y = np.asarray(rest, dtype=float) * scale[0]
@@ -421,4 +563,26 @@ def figure_lost_motion(inspection: TraceInspection) -> Any | None:
         if k == 0:
             ax.set_ylabel("MP − AP" + (" unexplained" if continuous else "") + f" [{scale[1]}]",
                           fontsize=9)  # fmt: skip
+    _place_row(fig, fig.axes)
     return fig
+
+
+def _place_row(fig: Any, row: list[Any]) -> None:
+    """Put a row of axes, each with its own y ticks, where their texts leave room (inches):
+    the heights first, then the widths from the y tick labels measured at those heights."""
+    renderer = renderer_of(fig)
+    width, height = fig.get_size_inches()
+    title = extent([ax.title for ax in row], renderer)[1]
+    xtick_width, xtick = extent([t for ax in row for t in ax.get_xticklabels()], renderer)
+    bottom = 4 * PT + extent([row[0].xaxis.label], renderer)[1] + 4 * PT + xtick + 7 * PT
+    size = height - bottom - (4 * PT + title + 6 * PT)
+    for ax in row:
+        put(ax, 0.0, bottom, width, size)
+    ticks = [extent(ax.get_yticklabels(), renderer)[0] for ax in row]
+    left = 6 * PT + extent([row[0].yaxis.label], renderer)[0] + 4 * PT + ticks[0] + 7 * PT
+    # between two axes: the next one's tick labels and half a time label of this one
+    gap = max(ticks[1:], default=0.0) + 7 * PT + xtick_width / 2 + 6 * PT
+    right = xtick_width / 2 + 4 * PT
+    column = (width - left - right - (len(row) - 1) * gap) / len(row)
+    for k, ax in enumerate(row):
+        put(ax, left + k * (column + gap), bottom, column, size)

@@ -1,0 +1,124 @@
+"""Benchmark of the drawing step of `funcnet inspect`: the pages of inspections computed once.
+
+Run from the repository root::
+
+    python -m benchmarks.bench_figures [--against DIR] [--rounds N] [--cases NAME ...]
+
+The end-to-end benchmark (:mod:`benchmarks.bench_inspect`) times the computation and the drawing
+together; on a machine shared with other work the computation's CPU time varies by more than the
+drawing costs. Here each recording (the cases of :mod:`benchmarks.bench_inspect`; ``--cases``
+picks them by the start of their names) is inspected once, by this checkout, and kept in a
+pickle; then each code (this checkout, and with ``--against DIR`` another checkout's ``src``,
+alternating) writes its pages from that pickle in a process of its own: the seconds to start
+(importing the report and the inspection) and to write the pages (every figure, table and
+page), wall and CPU, the CPU of the processes that drew pages beside it included.
+"""
+
+from __future__ import annotations
+
+import argparse
+import compileall
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from benchmarks.bench_inspect import CASES, ROOT, _cases
+
+# One process: load the pickle, write the pages, print the seconds as JSON.
+_DRAW = """
+import json, pickle, resource, sys, time
+wall, cpu = time.perf_counter(), time.process_time()
+from funcnet.inspection.run import inspect_file  # noqa: F401  (what `inspect` imports)
+from funcnet.report.inspect import write_inspection, write_robot_inspection
+from funcnet.inspection.robot import RobotInspection
+with open(sys.argv[1], "rb") as f:
+    found, names = pickle.load(f)
+start = (time.perf_counter() - wall, time.process_time() - cpu)
+wall, cpu = time.perf_counter(), time.process_time()
+if isinstance(found, RobotInspection):
+    write_robot_inspection(found, sys.argv[2], axis_names=names)
+else:
+    write_inspection(found, sys.argv[2])
+children = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(json.dumps({"start_wall": start[0], "start_cpu": start[1],
+                  "draw_wall": time.perf_counter() - wall,
+                  "draw_cpu": time.process_time() - cpu + children.ru_utime
+                  + children.ru_stime}))
+"""
+
+_INSPECT = """
+import pickle, sys
+from funcnet.inspection.run import inspect_file
+from funcnet.robot.io.channels import channel_map
+arguments = sys.argv[2:]
+channels = arguments[arguments.index("--channels") + 1] if "--channels" in arguments else None
+found = inspect_file(arguments[0], channels=channels)
+with open(sys.argv[1], "wb") as f:
+    pickle.dump((found, channel_map(channels).axis_names if channels else ()), f)
+"""
+
+
+def _environment(source: Path) -> dict[str, str]:
+    return dict(os.environ, PYTHONPATH=str(source / "src"), OMP_WAIT_POLICY="PASSIVE")
+
+
+def draw(source: Path, pickled: Path) -> dict[str, float]:
+    """One process of ``source``'s code writing the pages of ``pickled``: its seconds."""
+    with tempfile.TemporaryDirectory() as out:
+        done = subprocess.run([sys.executable, "-c", _DRAW, str(pickled), out], cwd=ROOT,
+                              env=_environment(source), capture_output=True, text=True)
+    if done.returncode != 0:
+        raise RuntimeError(f"drawing {pickled} with {source} failed:\n{done.stderr}")
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Print the table: one row per recording and code."""
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    parser.add_argument("--against", type=Path, default=None,
+                        help="another checkout (its src/ is imported) to compare with")
+    parser.add_argument("--rounds", type=int, default=1)
+    parser.add_argument("--cases", nargs="*", default=None,
+                        help="recordings to run (the start of a name each: KUKA, UR5 No8)")
+    args = parser.parse_args(argv)
+    codes = {"this checkout": ROOT}
+    if args.against is not None:
+        codes = {"before (--against)": args.against.resolve(), **codes}
+    for source in codes.values():  # as installed: no source compiled again by every process
+        compileall.compile_dir(source / "src", quiet=1)
+    print("## funcnet inspect, the pages drawn from a computed inspection\n")
+    print(f"- {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {os.cpu_count()} CPUs, "
+          f"load average before: {os.getloadavg()[0]:.2f} (1 min)\n")
+    print("| recording | code | start wall / CPU [s] | pages wall [s], median (rounds) | "
+          "pages CPU [s] | CPU / this |")
+    print("|---|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory() as scratch:
+        for case, arguments in _cases(args.cases).items():
+            pickled = Path(scratch) / "inspection.pickle"
+            subprocess.run([sys.executable, "-c", _INSPECT, str(pickled), *arguments],
+                           cwd=ROOT, env=_environment(ROOT), check=True,
+                           stderr=subprocess.DEVNULL)
+            found: dict[str, list[dict[str, float]]] = {name: [] for name in codes}
+            for _ in range(args.rounds):
+                for name, source in codes.items():
+                    found[name].append(draw(source, pickled))
+            mine = statistics.median(r["draw_cpu"] for r in found["this checkout"])
+            for name, runs in found.items():
+                def median(key: str, runs: list[dict[str, float]] = runs) -> float:
+                    return statistics.median(r[key] for r in runs)
+                rounds = ", ".join(f"{r['draw_wall']:.1f}" for r in runs)
+                print(f"| {case} | {name} | {median('start_wall'):.1f} / "
+                      f"{median('start_cpu'):.1f} | **{median('draw_wall'):.1f}** ({rounds}) | "
+                      f"{median('draw_cpu'):.1f} | {median('draw_cpu') / mine:.2f} |",
+                      flush=True)
+    print(f"\nload average after: {os.getloadavg()[0]:.2f} (1 min)")
+
+
+if __name__ == "__main__":
+    assert CASES  # the recordings are bench_inspect's
+    main()
