@@ -3,20 +3,39 @@
 Recurrence matrices arrive dense, as ``uint8`` arrays (a window holds at most a few thousand
 states, and every surrogate or resample reads them at arbitrary offsets, which dense rows make
 a plain index). Surrogates never copy or recompute a matrix: a time offset of Y against X is a
-shift of the indices at which ``A_Y`` is read.
+shift of the indices at which ``A_Y`` is read. A shift lattice packs each matrix's listed pairs
+once per test into rows of bits and counts a window by popcounts of its rows
+(:func:`_window_bits`): the integer counts of the scan of every listed pair, in ``length / 64``
+words per state (docs/validation/evidence.md, section 9).
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numba import njit, prange
-
-from funcnet.core._isrn_kernels import _popcount
+from numba import njit, prange, types
+from numba.extending import intrinsic
 
 Array = np.ndarray
 Int = int | np.integer[Any]
+
+
+if TYPE_CHECKING:  # what the intrinsic computes, as mypy should see it
+
+    def _popcount(word: Any) -> Any: ...
+
+else:
+
+    @intrinsic
+    def _popcount(typingctx: Any, word: Any) -> Any:
+        """Number of set bits of a uint64 (LLVM ``ctpop``; the core keeps its own, private)."""
+        signature = types.uint64(types.uint64)
+
+        def codegen(context: Any, builder: Any, sig: Any, args: Any) -> Any:
+            return builder.ctpop(args[0])
+
+        return signature, codegen
 
 
 @njit(cache=True, inline="always")
