@@ -3,18 +3,39 @@
 Recurrence matrices arrive dense, as ``uint8`` arrays (a window holds at most a few thousand
 states, and every surrogate or resample reads them at arbitrary offsets, which dense rows make
 a plain index). Surrogates never copy or recompute a matrix: a time offset of Y against X is a
-shift of the indices at which ``A_Y`` is read.
+shift of the indices at which ``A_Y`` is read. A shift lattice packs each matrix's listed pairs
+once per test into rows of bits and counts a window by popcounts of its rows
+(:func:`_window_bits`): the integer counts of the scan of every listed pair, in ``length / 64``
+words per state (docs/validation/evidence.md, section 9).
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numba import njit, prange
+from numba import njit, prange, types
+from numba.extending import intrinsic
 
 Array = np.ndarray
 Int = int | np.integer[Any]
+
+
+if TYPE_CHECKING:  # what the intrinsic computes, as mypy should see it
+
+    def _popcount(word: Any) -> Any: ...
+
+else:
+
+    @intrinsic
+    def _popcount(typingctx: Any, word: Any) -> Any:
+        """Number of set bits of a uint64 (LLVM ``ctpop``; the core keeps its own, private)."""
+        signature = types.uint64(types.uint64)
+
+        def codegen(context: Any, builder: Any, sig: Any, args: Any) -> Any:
+            return builder.ctpop(args[0])
+
+        return signature, codegen
 
 
 @njit(cache=True, inline="always")
@@ -90,16 +111,152 @@ def _window_counts(a_y: Array, pairs_x: Array, pairs_y: Array, start_x: Int, sta
     return _statistics(n_x, n_y, n_xy, row_x, row_y, row_xy, length, theiler)
 
 
+@njit(cache=True)
+def _upper_pairs(a: Array) -> Array:
+    """The pairs ``(i, j)``, ``i < j``, of the non-zero cells of a matrix, in row order, then
+    column order: ``np.argwhere(np.triu(a, 1))`` without the matrix's copy."""
+    m, n = a.shape
+    count = 0
+    for i in range(m):
+        for j in range(i + 1, n):
+            if a[i, j]:
+                count += 1
+    out = np.empty((count, 2), dtype=np.int64)
+    k = 0
+    for i in range(m):
+        for j in range(i + 1, n):
+            if a[i, j]:
+                out[k, 0] = i
+                out[k, 1] = j
+                k += 1
+    return out
+
+
+@njit(cache=True)
+def _sorted_upper(pairs: Array, m: Int) -> bool:
+    """Whether ``pairs`` lists distinct pairs ``0 <= i < j < m`` in row order, then column
+    order (as :func:`~funcnet.evidence.dependence.recurrent_pairs` gives them)."""
+    for k in range(pairs.shape[0]):
+        i = pairs[k, 0]
+        j = pairs[k, 1]
+        if i < 0 or j <= i or j >= m:
+            return False
+        if k > 0:
+            h = pairs[k - 1, 0]
+            if i < h or (i == h and j <= pairs[k - 1, 1]):
+                return False
+    return True
+
+
+@njit(cache=True)
+def _packed_rows(pairs: Array, m: Int) -> Array:
+    """The symmetric matrix of the pairs ``(i, j)`` as bits: row ``i``, bit ``j & 63`` of word
+    ``j >> 6``; shape (m, words), one spare word per row so that a read of 64 bits at any
+    offset inside the row has the word after it. ``m * (m / 8 + 8)`` bytes."""
+    words = (m + 63) // 64 + 1
+    bits = np.zeros((m, words), dtype=np.uint64)
+    one = np.uint64(1)
+    for k in range(pairs.shape[0]):
+        i = pairs[k, 0]
+        j = pairs[k, 1]
+        bits[i, j >> 6] |= one << np.uint64(j & 63)
+        bits[j, i >> 6] |= one << np.uint64(i & 63)
+    return bits
+
+
+@njit(cache=True, inline="always")
+def _word(bits: Array, row: Int, word: Int, shift: np.uint64, back: np.uint64) -> np.uint64:
+    """64 bits of ``bits[row]`` from bit ``64 word + shift`` on, ``back = 63 - shift``
+    (the second shift in two steps: no shift by 64 when ``shift`` is 0)."""
+    return (bits[row, word] >> shift) | ((bits[row, word + 1] << np.uint64(1)) << back)
+
+
+@njit(cache=True, inline="always")
+def _bit(bits: Array, row: Int, column: Int) -> int:
+    return int((bits[row, column >> 6] >> np.uint64(column & 63)) & np.uint64(1))
+
+
+@njit(cache=True)
+def _window_bits(bits_x: Array, bits_y: Array, start_x: Int, start_y: Int, length: Int,
+                 theiler: Int) -> tuple[float, float, float]:
+    """:func:`_window_counts` from the matrices as bits (:func:`_packed_rows`).
+
+    State ``u`` of the window counts its X-, Y- and joint neighbours in the window as
+    popcounts of its two rows read from ``start_x`` and ``start_y`` (64 states a word), less
+    the ``theiler`` band (the diagonal is empty). Each pair is counted at both its states, so
+    ``n_x`` is half the sum of ``row_x``: the integer counts of :func:`_window_counts`, and the
+    statistics the same numbers, bit for bit.
+    """
+    row_x = np.zeros(length, dtype=np.int64)
+    row_y = np.zeros(length, dtype=np.int64)
+    row_xy = np.zeros(length, dtype=np.int64)
+    words = (length + 63) >> 6
+    rest = length & 63
+    last = ~np.uint64(0) if rest == 0 else (np.uint64(1) << np.uint64(rest)) - np.uint64(1)
+    word_x, shift_x = start_x >> 6, np.uint64(start_x & 63)
+    word_y, shift_y = start_y >> 6, np.uint64(start_y & 63)
+    back_x, back_y = np.uint64(63) - shift_x, np.uint64(63) - shift_y
+    for u in range(length):
+        r_x = start_x + u
+        r_y = start_y + u
+        cx = np.uint64(0)
+        cy = np.uint64(0)
+        cxy = np.uint64(0)
+        for w in range(words - 1):
+            xw = _word(bits_x, r_x, word_x + w, shift_x, back_x)
+            yw = _word(bits_y, r_y, word_y + w, shift_y, back_y)
+            cx += _popcount(xw)
+            cy += _popcount(yw)
+            cxy += _popcount(xw & yw)
+        xw = _word(bits_x, r_x, word_x + words - 1, shift_x, back_x) & last
+        yw = _word(bits_y, r_y, word_y + words - 1, shift_y, back_y) & last
+        cx += _popcount(xw)
+        cy += _popcount(yw)
+        cxy += _popcount(xw & yw)
+        nx, ny, nxy = np.int64(cx), np.int64(cy), np.int64(cxy)
+        for v in range(max(0, u - theiler), min(length, u + theiler + 1)):
+            if v != u:
+                bx = _bit(bits_x, r_x, start_x + v)
+                by = _bit(bits_y, r_y, start_y + v)
+                nx -= bx
+                ny -= by
+                nxy -= bx & by
+        row_x[u] = nx
+        row_y[u] = ny
+        row_xy[u] = nxy
+    n_x = np.int64(row_x.sum() // 2)
+    n_y = np.int64(row_y.sum() // 2)
+    n_xy = np.int64(row_xy.sum() // 2)
+    return _statistics(n_x, n_y, n_xy, row_x, row_y, row_xy, length, theiler)
+
+
 @njit(cache=True, parallel=True)
 def _windows(a_y: Array, pairs_x: Array, pairs_y: Array, starts_x: Array, starts_y: Array,
              length: Int, theiler: Int) -> Array:
-    """:func:`_window_counts` of every window ``(starts_x[k], starts_y[k])``: shape (K, 3)."""
+    """:func:`_window_counts` of every window ``(starts_x[k], starts_y[k])``: shape (K, 3).
+
+    Pairs lists as :func:`~funcnet.evidence.dependence.recurrent_pairs` gives them (distinct,
+    ``i < j``, sorted) are turned into bits once (:func:`_packed_rows`, two matrices of
+    ``M**2 / 8`` bytes) and every window counts by popcounts (:func:`_window_bits`, about
+    ``length**2 / 20`` word operations instead of a visit of every listed pair): the same
+    numbers. Other lists are scanned whole for each window, reading Y's pairs in ``a_y``.
+    """
     n = starts_x.size
+    m = a_y.shape[0]
     out = np.empty((n, 3), dtype=np.float64)
+    if _sorted_upper(pairs_x, m) and _sorted_upper(pairs_y, m):
+        bits_x = _packed_rows(pairs_x, m)
+        bits_y = _packed_rows(pairs_y, m)
+        for k in prange(n):
+            phi, xy, yx = _window_bits(bits_x, bits_y, starts_x[k], starts_y[k], length,
+                                       theiler)
+            out[k, 0] = phi
+            out[k, 1] = xy
+            out[k, 2] = yx
+        return out
     for k in prange(n):
-        phi, xy, yx = _window_counts(
-            a_y, pairs_x, pairs_y, starts_x[k], starts_y[k], length, theiler
-        )
+        phi, xy, yx = _window_counts(a_y, pairs_x, pairs_y, starts_x[k], starts_y[k], length,
+                                     theiler)
         out[k, 0] = phi
         out[k, 1] = xy
         out[k, 2] = yx

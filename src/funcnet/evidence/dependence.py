@@ -78,7 +78,7 @@ from typing import Any
 import numpy as np
 
 from funcnet.errors import ParameterError
-from funcnet.evidence._kernels import _index_windows, _windows
+from funcnet.evidence._kernels import _index_windows, _upper_pairs, _windows
 from funcnet.evidence.surrogates import TwinPlan, twin_plan
 
 __all__ = [
@@ -375,7 +375,11 @@ def recurrent_pairs(a: np.ndarray) -> np.ndarray:
     >>> recurrent_pairs(np.array([[0, 1, 1], [1, 0, 0], [1, 0, 0]], dtype=np.uint8)).tolist()
     [[0, 1], [0, 2]]
     """
-    return np.argwhere(np.triu(a, 1)).astype(np.int64)
+    # np.argwhere(np.triu(a, 1)), without copying a uint8 matrix (other types: their
+    # non-zero cells as uint8, one compiled kernel)
+    a = np.asarray(a)
+    cells = a if a.dtype == np.uint8 else (a != 0).view(np.uint8)
+    return _upper_pairs(np.ascontiguousarray(cells))
 
 
 def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan | TwinPlan, *,
