@@ -162,3 +162,15 @@ def test_a_callers_own_thread_computes_in_one_thread():
     with ThreadPoolExecutor(max_workers=1) as pool:
         assert pool.submit(default_workers).result() == 1
     assert 1 <= default_workers() <= 4
+
+
+def test_a_layer_that_cannot_take_two_threads_runs_the_jobs_in_the_callers_thread(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    # Numba's workqueue layer stops the process when two threads enter parallel regions.
+    from funcnet.inspection import _threads
+
+    monkeypatch.setattr(_threads, "threadsafe_layer", lambda: False)
+    names = _threads.run_in_order([threading.current_thread] * 3, workers=2)
+    assert names == [threading.main_thread()] * 3
+    assert _threads.default_workers() == 1
+

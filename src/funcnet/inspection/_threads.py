@@ -18,6 +18,7 @@ after the other gives. No computation run here may enter ``warnings.catch_warnin
 
 from __future__ import annotations
 
+import functools
 import os
 import sys
 import threading
@@ -77,13 +78,38 @@ def default_workers() -> int:
     >>> 1 <= default_workers() <= 4
     True
     """
-    if threading.current_thread() is not threading.main_thread():
+    if threading.current_thread() is not threading.main_thread() or not threadsafe_layer():
         return 1
     try:
         cores = len(os.sched_getaffinity(0))
     except AttributeError:  # not on every platform
         cores = os.cpu_count() or 1
     return max(1, min(4, cores))
+
+
+@numba.njit(parallel=True, cache=True)
+def _one_region(n: int) -> int:  # pragma: no cover - compiled
+    total = 0
+    for k in numba.prange(n):
+        total += k
+    return total
+
+
+@functools.cache
+def threadsafe_layer() -> bool:
+    """Whether two threads may enter Numba's parallel regions at once: its OpenMP and TBB
+    threading layers allow it; its fallback, the workqueue (a machine without libgomp or
+    TBB), stops the process when they do.
+
+    Numba chooses its layer at the first parallel region, so one tiny region runs first.
+
+    Examples
+    --------
+    >>> threadsafe_layer() in (True, False)
+    True
+    """
+    _one_region(2)
+    return numba.threading_layer() in ("omp", "tbb")
 
 
 def _place(frame: FrameType) -> _Place:
@@ -181,7 +207,7 @@ def run_in_order(jobs: Sequence[Callable[[], T]], workers: int,
     >>> results, [str(w.message) for w in caught]
     ([0, 1, 4, 9], ['job 0', 'job 1', 'job 2', 'job 3'])
     """
-    if workers <= 1 or len(jobs) <= 1:
+    if workers <= 1 or len(jobs) <= 1 or not threadsafe_layer():
         results = []
         for k, job in enumerate(jobs):
             results.append(job())
