@@ -15,7 +15,7 @@ from fractions import Fraction
 import numba
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import example, given, settings, strategies as st
 
 import funcnet.core._keys as _keys
 import funcnet.core.thresholds as order_statistic
@@ -347,6 +347,8 @@ def _compiled_key_bound(eps, strict, metric):
 
 
 @settings(max_examples=300, deadline=None)
+@example(eps=5e-324, ulps=-2, strict=False, metric=1)  # a negative eps: no key, as at 0 strict
+@example(eps=5e-324, ulps=-1, strict=True, metric=2)
 @given(
     eps=st.one_of(st.floats(5e-324, 1e300), st.floats(1e-6, 1e3).map(lambda v: v * v)),
     ulps=st.integers(-3, 3),
@@ -368,7 +370,7 @@ def test_key_bound_at_zero():
     assert order_statistic._key_bound(0.0, True, 0) == -math.inf
     for metric in (1, 2):
         assert order_statistic._key_bound(0.0, False, metric) == 0.0
-        assert order_statistic._key_bound(0.0, True, metric) < 0.0  # no key >= 0 is within
+        assert order_statistic._key_bound(0.0, True, metric) == -math.inf  # no key is within
 
 
 def test_rate_times_pairs_a_hair_above_an_integer_takes_no_extra_pair():

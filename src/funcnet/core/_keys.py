@@ -54,7 +54,8 @@ def key_bound(eps: float, strict: bool, metric: int) -> float:
     True
     """
     if metric != 0:
-        return next_down(eps) if strict else eps
+        bound = next_down(eps) if strict else eps
+        return bound if bound >= 0 else -np.inf  # a distance is never negative
     if math.isinf(eps):
         return eps
     key = eps * eps if eps > 0 else 0.0
