@@ -521,8 +521,10 @@ def reversal_error(
     old = -change.direction
 
     def step(c: float, skew: float, b: np.ndarray, a: np.ndarray) -> float:
-        rest = _unexplained(d, torque, vm, c, skew)
-        return float(old * (rest[b].mean() - rest[a].mean()))
+        # the two stretches' samples alone, not the whole recording's (each resample reads
+        # them): the same values, at a cost that does not grow with the recording
+        return float(old * (_unexplained(d[b], torque[b], vm[b], c, skew).mean()
+                            - _unexplained(d[a], torque[a], vm[a], c, skew).mean()))
 
     point = step(gear.compliance, gear.skew, before, after)
     fitted = _fit_rows(vm, d, torque, gear.min_speed)
