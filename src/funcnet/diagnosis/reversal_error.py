@@ -412,13 +412,19 @@ def _blocks(
     sample as likely as any other, the ends included); with ``firsts`` (the index each segment
     starts at, 0 first) a block wraps round within the segment it starts in."""
     size = max(1, min(size, n))
-    starts = rng.integers(0, n, size=-(-n // size))
+    starts = _draw_blocks(rng, n, size)
     if firsts is None:
         return ((starts[:, None] + np.arange(size)[None, :]) % n).ravel()[:n]
     bounds = np.append(firsts, n)
     k = np.searchsorted(bounds, starts, side="right") - 1
     lo, length = bounds[k][:, None], (bounds[k + 1] - bounds[k])[:, None]
     return (lo + (starts[:, None] - lo + np.arange(size)[None, :]) % length).ravel()[:n]
+
+
+def _draw_blocks(rng: np.random.Generator, n: int, size: int) -> np.ndarray:
+    """The blocks' starts of :func:`_blocks` (the generator's one draw)."""
+    size = max(1, min(size, n))
+    return rng.integers(0, n, size=-(-n // size))
 
 
 def _firsts(rec: Recording, rows: np.ndarray) -> np.ndarray | None:
@@ -435,6 +441,7 @@ def reversal_error(
     rec: Recording, change: DirectionChange, gear: GearFit | None = None, *,
     window: float = WINDOW, resamples: int = 400, level: float = 0.95, seed: int = 0,
     motor_inertia: float = 0.0, traversed: bool | None = None,
+    refits: dict[tuple[int, ...], list[np.ndarray]] | None = None,
 ) -> ReversalError:  # fmt: skip
     """The lost motion at a direction change in continuous motion, with an interval.
 
@@ -469,6 +476,11 @@ def reversal_error(
     traversed : bool, optional
         :func:`torque_traversed` at ``change`` with this ``motor_inertia`` and ``window``
         (computed here when omitted).
+    refits : dict, optional
+        The bootstrap's gear refits, shared by the calls on one recording with one ``gear``
+        (a caller's empty dict, filled here): a refit costs the recording's moving samples,
+        and the changes of one recording whose stretches hold as many samples draw the same
+        ones. The values are those of a call without it.
 
     Returns
     -------
@@ -531,12 +543,23 @@ def reversal_error(
     firsts = _firsts(rec, fitted)
     rng = np.random.default_rng(seed)
     block = max(1, round(_BLOCK / rec.sample_period))
+    # the gear refitted on each resample depends on the generator's state alone, which the
+    # stretches' sizes set: the changes of one recording share their refits
+    key = (seed, resamples, block, before.size, after.size)
+    known = refits.get(key) if refits is not None else None
+    coefs = []
     draws = []
-    for _ in range(resamples):
-        rows = fitted[_blocks(rng, fitted.size, block, firsts)]
-        coef = _solve(_design(torque[rows], vm[rows]), d[rows])
+    for r in range(resamples):
+        if known is None:
+            rows = fitted[_blocks(rng, fitted.size, block, firsts)]
+            coefs.append(_solve(_design(torque[rows], vm[rows]), d[rows]))
+        else:  # the same draw, for the generator's state; its refit is known
+            _draw_blocks(rng, fitted.size, block)
+        coef = coefs[r] if known is None else known[r]
         draws.append(step(coef[1], coef[2], before[_blocks(rng, before.size, block)],
                           after[_blocks(rng, after.size, block)]))  # fmt: skip
+    if refits is not None and known is None:
+        refits[key] = coefs
     # the stretches hold a few blocks each, so the bootstrap's spread is itself uncertain: a
     # t quantile with as many degrees of freedom as blocks in both less two (as batch means)
     dof = max(1, -(-before.size // block) + -(-after.size // block) - 2)
