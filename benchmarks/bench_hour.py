@@ -2,7 +2,8 @@
 
 Run from the repository root::
 
-    OMP_WAIT_POLICY=PASSIVE python -m benchmarks.bench_hour [--minutes M] [--keep FILE.mat] [--profile OUT]
+    OMP_WAIT_POLICY=PASSIVE python -m benchmarks.bench_hour [--minutes M] [--keep FILE.mat] \
+        [--profile OUT]
 
 The recording: each of six simulated axes (:func:`funcnet.sim.axis.simulate_trial`, the model
 axis of ``funcnet simulate``) runs a work cycle every ``CYCLE`` s for an hour: one move out
@@ -72,7 +73,7 @@ def write_hour(path: Path, seconds: float = HOUR) -> Path:
     import scipy.io
 
     cycles = max(1, int(round(seconds / CYCLE)))
-    signals = {name: [] for name in FIELDS}
+    signals: dict[str, list[np.ndarray]] = {name: [] for name in FIELDS}
     for axis in range(len(AXES)):
         parts = [_cycle(axis, c) for c in range(cycles)]
         for name in FIELDS:
@@ -109,7 +110,8 @@ def main(argv: list[str] | None = None) -> None:
         subprocess.run(command, check=True, cwd=ROOT, env=environment)
         wall = time.perf_counter() - start
         usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    print(f"{args.minutes:g} min, six axes: wall {wall:.1f} s, CPU {usage.ru_utime + usage.ru_stime:.1f} s, "
+    cpu = usage.ru_utime + usage.ru_stime
+    print(f"{args.minutes:g} min, six axes: wall {wall:.1f} s, CPU {cpu:.1f} s, "
           f"peak RSS {usage.ru_maxrss / 1024:.0f} MiB (load {os.getloadavg()[0]:.1f})")
 
 
