@@ -412,19 +412,13 @@ def _blocks(
     sample as likely as any other, the ends included); with ``firsts`` (the index each segment
     starts at, 0 first) a block wraps round within the segment it starts in."""
     size = max(1, min(size, n))
-    starts = _draw_blocks(rng, n, size)
+    starts = rng.integers(0, n, size=-(-n // size))
     if firsts is None:
         return ((starts[:, None] + np.arange(size)[None, :]) % n).ravel()[:n]
     bounds = np.append(firsts, n)
     k = np.searchsorted(bounds, starts, side="right") - 1
     lo, length = bounds[k][:, None], (bounds[k + 1] - bounds[k])[:, None]
     return (lo + (starts[:, None] - lo + np.arange(size)[None, :]) % length).ravel()[:n]
-
-
-def _draw_blocks(rng: np.random.Generator, n: int, size: int) -> np.ndarray:
-    """The blocks' starts of :func:`_blocks` (the generator's one draw)."""
-    size = max(1, min(size, n))
-    return rng.integers(0, n, size=-(-n // size))
 
 
 def _firsts(rec: Recording, rows: np.ndarray) -> np.ndarray | None:
@@ -477,10 +471,7 @@ def reversal_error(
         :func:`torque_traversed` at ``change`` with this ``motor_inertia`` and ``window``
         (computed here when omitted).
     refits : dict, optional
-        The bootstrap's gear refits, shared by the calls on one recording with one ``gear``
-        (a caller's empty dict, filled here): a refit costs the recording's moving samples,
-        and the changes of one recording whose stretches hold as many samples draw the same
-        ones. The values are those of a call without it.
+        The bootstrap's gear refits, shared by the calls on one recording and ``gear``; same values.
 
     Returns
     -------
@@ -533,8 +524,6 @@ def reversal_error(
     old = -change.direction
 
     def step(c: float, skew: float, b: np.ndarray, a: np.ndarray) -> float:
-        # the two stretches' samples alone, not the whole recording's (each resample reads
-        # them): the same values, at a cost that does not grow with the recording
         return float(old * (_unexplained(d[b], torque[b], vm[b], c, skew).mean()
                             - _unexplained(d[a], torque[a], vm[a], c, skew).mean()))
 
@@ -543,22 +532,19 @@ def reversal_error(
     firsts = _firsts(rec, fitted)
     rng = np.random.default_rng(seed)
     block = max(1, round(_BLOCK / rec.sample_period))
-    # the gear refitted on each resample depends on the generator's state alone, which the
-    # stretches' sizes set: the changes of one recording share their refits
-    key = (seed, resamples, block, before.size, after.size)
+    key = (seed, resamples, block, before.size, after.size)  # sets the generator's states
     known = refits.get(key) if refits is not None else None
-    coefs = []
+    coefs = known if known is not None else []
     draws = []
     for r in range(resamples):
         if known is None:
             rows = fitted[_blocks(rng, fitted.size, block, firsts)]
             coefs.append(_solve(_design(torque[rows], vm[rows]), d[rows]))
-        else:  # the same draw, for the generator's state; its refit is known
-            _draw_blocks(rng, fitted.size, block)
-        coef = coefs[r] if known is None else known[r]
-        draws.append(step(coef[1], coef[2], before[_blocks(rng, before.size, block)],
+        else:  # the same draw (the generator's state), its refit known
+            rng.integers(0, fitted.size, size=-(-fitted.size // max(1, min(block, fitted.size))))
+        draws.append(step(coefs[r][1], coefs[r][2], before[_blocks(rng, before.size, block)],
                           after[_blocks(rng, after.size, block)]))  # fmt: skip
-    if refits is not None and known is None:
+    if refits is not None:
         refits[key] = coefs
     # the stretches hold a few blocks each, so the bootstrap's spread is itself uncertain: a
     # t quantile with as many degrees of freedom as blocks in both less two (as batch means)
