@@ -2,12 +2,14 @@
 
 Run from the repository root::
 
-    OMP_WAIT_POLICY=PASSIVE python -m benchmarks.bench_hour [--keep FILE.mat] [--profile OUT]
+    OMP_WAIT_POLICY=PASSIVE python -m benchmarks.bench_hour [--minutes M] [--keep FILE.mat] \
+        [--profile OUT]
 
 The recording: each of six simulated axes (:func:`funcnet.sim.axis.simulate_trial`, the model
 axis of ``funcnet simulate``) runs a work cycle every ``CYCLE`` s for an hour: one move out
 and back (its own speed, step and TCP distance per axis, each cycle its own noise seed),
-then rests until the next cycle. The rest after a trial's own settling is filled by the
+then rests until the next cycle (``--minutes`` makes it shorter, a whole number of
+cycles, to see what grows with the length). The rest after a trial's own settling is filled by the
 axis at rest: the set-point held, every measured signal its trial's last value plus Gaussian
 noise of the spread of its trial's last second. The 2 ms log is kept every other sample
 (4 ms, 250 Hz, the KUKA KR 300 runs' rate: 900,000 samples per signal) and written as a
@@ -66,12 +68,12 @@ def _cycle(axis: int, cycle: int) -> dict[str, np.ndarray]:
     return out
 
 
-def write_hour(path: Path) -> Path:
-    """Write the one-hour six-axis recording as a MATLAB file in the KUKA layout."""
+def write_hour(path: Path, seconds: float = HOUR) -> Path:
+    """Write the six-axis recording (one hour unless told) as a MATLAB file in the KUKA layout."""
     import scipy.io
 
-    cycles = int(round(HOUR / CYCLE))
-    signals = {name: [] for name in FIELDS}
+    cycles = max(1, int(round(seconds / CYCLE)))
+    signals: dict[str, list[np.ndarray]] = {name: [] for name in FIELDS}
     for axis in range(len(AXES)):
         parts = [_cycle(axis, c) for c in range(cycles)]
         for name in FIELDS:
@@ -85,14 +87,17 @@ def write_hour(path: Path) -> Path:
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    parser.add_argument("--keep", type=Path, default=None, help="write the recording here")
+    parser.add_argument("--minutes", type=float, default=HOUR / 60,
+                        help="length of the recording (whole cycles of 5 min); default 60")
+    parser.add_argument("--keep", type=Path, default=None,
+                        help="write the recording here (or read it, when it exists)")
     parser.add_argument("--profile", type=Path, default=None, help="cProfile output file")
     parser.add_argument("--no-evidence", action="store_true")
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory() as scratch:
         path = args.keep or Path(scratch) / "hour.mat"
         if not path.exists():
-            write_hour(path)
+            write_hour(path, 60 * args.minutes)
         environment = dict(os.environ, PYTHONPATH=str(ROOT / "src"),
                            OMP_WAIT_POLICY="PASSIVE")
         prefix = [sys.executable]
@@ -105,7 +110,8 @@ def main(argv: list[str] | None = None) -> None:
         subprocess.run(command, check=True, cwd=ROOT, env=environment)
         wall = time.perf_counter() - start
         usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    print(f"one hour, six axes: wall {wall:.1f} s, CPU {usage.ru_utime + usage.ru_stime:.1f} s, "
+    cpu = usage.ru_utime + usage.ru_stime
+    print(f"{args.minutes:g} min, six axes: wall {wall:.1f} s, CPU {cpu:.1f} s, "
           f"peak RSS {usage.ru_maxrss / 1024:.0f} MiB (load {os.getloadavg()[0]:.1f})")
 
 

@@ -294,3 +294,21 @@ def test_the_command_line_says_why_there_is_no_lost_motion(tmp_path):
     result = CliRunner().invoke(app, ["backlash", str(path)])
     assert result.exit_code == 0, result.output
     assert "lost_motion none (no direction change)" in result.output
+
+
+def test_changes_sharing_the_gear_refits_read_what_each_reads_alone():
+    # the refits are shared only where the generator's state is the same: the second change
+    # reuses the first one's refits and its interval is bit for bit its own
+    rec, _ = _synthetic_gear(0.02, 3)
+    gear = fit_gear(rec)
+    changes = find_direction_changes(rec)
+    refits: dict = {}
+    shared = [reversal_error(rec, c, gear, resamples=60, seed=5, refits=refits) for c in changes]
+    alone = [reversal_error(rec, c, gear, resamples=60, seed=5) for c in changes]
+    assert shared == alone
+    assert len(refits) == 1 and len(next(iter(refits.values()))) == 60  # one draw for both
+    # a stale entry under the key would change the reading: the key is what is read
+    key = next(iter(refits))
+    refits[key] = [np.array([0.0, 0.5, 0.0, 0.0])] * 60
+    again = reversal_error(rec, changes[0], gear, resamples=60, seed=5, refits=refits)
+    assert again.noise != alone[0].noise

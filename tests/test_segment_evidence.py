@@ -172,3 +172,62 @@ def test_a_node_constant_in_one_part_keeps_the_pairs_of_the_others(monkeypatch):
     assert found.networks[next(iter(found.pairs))].evidence["resamples"] == 0
     assert "--intervals all" in evidence_sentence(second)
     assert "--intervals all" not in evidence_sentence(second, intervals=False)
+
+
+def _symmetric(rng: np.random.Generator, m: int, rate: float) -> np.ndarray:
+    upper = np.triu((rng.random((m, m)) < rate).astype(np.uint8), 1)
+    return upper + upper.T
+
+
+@pytest.mark.parametrize("theiler", [0, 4])
+def test_a_signal_read_through_its_complement_gives_the_same_counts(theiler):
+    from funcnet.evidence._kernels import _flipped_windows, _windows
+    from funcnet.evidence.dependence import recurrent_pairs
+    from funcnet.evidence.segment import _complement
+
+    rng = np.random.default_rng(3)
+    plan = shift_plan(300, 30, min_shift=3)
+    starts_x = np.concatenate([[plan.observed], plan.starts_x]).astype(np.int64)
+    starts_y = np.concatenate([[plan.observed], plan.starts_y]).astype(np.int64)
+    for rate_x, rate_y in [(0.05, 0.05), (0.95, 0.05), (0.05, 0.9), (0.95, 0.9)]:
+        a_x, a_y = _symmetric(rng, 300, rate_x), _symmetric(rng, 300, rate_y)
+        plain = _windows(a_y, recurrent_pairs(a_x), recurrent_pairs(a_y), starts_x, starts_y,
+                         plan.length, theiler)
+        flip_x, flip_y = rate_x > 0.5, rate_y > 0.5
+        e_x = _complement(a_x, theiler) if flip_x else a_x
+        e_y = _complement(a_y, theiler) if flip_y else a_y
+        flipped = _flipped_windows(e_y, recurrent_pairs(e_x), recurrent_pairs(e_y), starts_x,
+                                   starts_y, plan.length, theiler, flip_x, flip_y)
+        assert np.array_equal(plain, flipped)  # bit for bit: the same integer counts
+
+
+def test_a_set_point_at_rest_is_tested_as_the_plain_test_reads_it():
+    # a set-point that rests but for one move: its thinned states tie at 0 on most pairs, so
+    # the segment's test reads it through its complement; the result is the plain test's
+    import warnings
+
+    from funcnet.core.embedding import signal_states
+    from funcnet.core.recurrence import auto_recurrence
+    from funcnet.evidence.dependence import decorrelation_time
+    from funcnet.evidence.segment import _mostly_recurrent
+
+    rng = np.random.default_rng(2)
+    t = np.arange(3000)
+    x = np.where((t >= 1400) & (t < 1700), np.sin(np.pi * (t - 1400) / 300), 0.0)  # out, back
+    y = np.roll(x, 2) + 0.05 * rng.standard_normal(3000)
+    p = NetworkParameters(delay=DELAY)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        tests, step = segment_tests([x, y], names=["x", "y"], parameters=p, max_states=700,
+                                    surrogates=40)
+        dense = [auto_recurrence(signal_states(s, parameters=p)[::step], rr=0.05,
+                                 parameters=p).to_dense().astype(np.uint8) for s in (x, y)]
+    assert _mostly_recurrent(dense[0], 0) and not _mostly_recurrent(dense[1], 0)
+    s0 = math.ceil(max(decorrelation_time(x), decorrelation_time(y), 2 * DELAY + 1) / step)
+    reference = dependence_test(dense[0], dense[1], shift_plan(dense[0].shape[0], 40,
+                                                                min_shift=s0))
+    found = tests[("x", "y")]
+    assert (found.statistic, found.p_value, found.direction_index, found.surrogates) == (
+        reference.statistic, reference.p_value, reference.direction_index,
+        reference.surrogates)
+    assert np.array_equal(found.null_statistics, reference.null_statistics)

@@ -363,6 +363,8 @@ class _Axis:
     gear: GearFit | None
     quantum: float
     fine: tuple[float, str]  # how a bound is said: arcmin from deg, um from mm
+    # the reversal errors' bootstrap refits of the gear, shared by the axis's changes
+    refits: dict[tuple[int, ...], list[np.ndarray]] = field(default_factory=dict)
 
 
 def _change_result(
@@ -389,7 +391,8 @@ def _change_result(
     elif change.kind == "continuous":
         # the motor-side score is calibrated on reversals where the arm rests at the turn
         if axis.has_ap:
-            error = reversal_error(rec, change, axis.gear, traversed=traversed)
+            error = reversal_error(rec, change, axis.gear, traversed=traversed,
+                                   refits=axis.refits)
             lost, low, high = _none(error.lost_motion), _none(error.low), _none(error.high)
             terms = error.terms
     else:

@@ -435,6 +435,7 @@ def reversal_error(
     rec: Recording, change: DirectionChange, gear: GearFit | None = None, *,
     window: float = WINDOW, resamples: int = 400, level: float = 0.95, seed: int = 0,
     motor_inertia: float = 0.0, traversed: bool | None = None,
+    refits: dict[tuple[int, ...], list[np.ndarray]] | None = None,
 ) -> ReversalError:  # fmt: skip
     """The lost motion at a direction change in continuous motion, with an interval.
 
@@ -469,6 +470,8 @@ def reversal_error(
     traversed : bool, optional
         :func:`torque_traversed` at ``change`` with this ``motor_inertia`` and ``window``
         (computed here when omitted).
+    refits : dict, optional
+        The bootstrap's gear refits, shared by the calls on one recording and ``gear``; same values.
 
     Returns
     -------
@@ -521,20 +524,28 @@ def reversal_error(
     old = -change.direction
 
     def step(c: float, skew: float, b: np.ndarray, a: np.ndarray) -> float:
-        rest = _unexplained(d, torque, vm, c, skew)
-        return float(old * (rest[b].mean() - rest[a].mean()))
+        return float(old * (_unexplained(d[b], torque[b], vm[b], c, skew).mean()
+                            - _unexplained(d[a], torque[a], vm[a], c, skew).mean()))
 
     point = step(gear.compliance, gear.skew, before, after)
     fitted = _fit_rows(vm, d, torque, gear.min_speed)
     firsts = _firsts(rec, fitted)
     rng = np.random.default_rng(seed)
     block = max(1, round(_BLOCK / rec.sample_period))
+    key = (seed, resamples, block, before.size, after.size)  # sets the generator's states
+    known = refits.get(key) if refits is not None else None
+    coefs = known if known is not None else []
     draws = []
-    for _ in range(resamples):
-        rows = fitted[_blocks(rng, fitted.size, block, firsts)]
-        coef = _solve(_design(torque[rows], vm[rows]), d[rows])
-        draws.append(step(coef[1], coef[2], before[_blocks(rng, before.size, block)],
+    for r in range(resamples):
+        if known is None:
+            rows = fitted[_blocks(rng, fitted.size, block, firsts)]
+            coefs.append(_solve(_design(torque[rows], vm[rows]), d[rows]))
+        else:  # the same draw (the generator's state), its refit known
+            rng.integers(0, fitted.size, size=-(-fitted.size // max(1, min(block, fitted.size))))
+        draws.append(step(coefs[r][1], coefs[r][2], before[_blocks(rng, before.size, block)],
                           after[_blocks(rng, after.size, block)]))  # fmt: skip
+    if refits is not None:
+        refits[key] = coefs
     # the stretches hold a few blocks each, so the bootstrap's spread is itself uncertain: a
     # t quantile with as many degrees of freedom as blocks in both less two (as batch means)
     dof = max(1, -(-before.size // block) + -(-after.size // block) - 2)

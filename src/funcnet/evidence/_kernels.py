@@ -363,3 +363,78 @@ def _repetition_counts(a_y: Array, pairs_x: Array, offsets_x: Array, pairs_y: Ar
         out[i, j, 1] = xy
         out[i, j, 2] = yx
     return out
+
+
+@njit(cache=True, parallel=True)
+def _flipped_windows(a_y: Array, pairs_x: Array, pairs_y: Array, starts_x: Array,
+                     starts_y: Array, length: Int, theiler: Int, flip_x: bool,
+                     flip_y: bool) -> Array:
+    """:func:`_windows` of X and Y given by their complements where ``flip_x`` (``flip_y``).
+
+    A flipped signal's ``pairs`` list its candidate pairs that are *not* recurrent (and
+    ``a_y`` is Y's complement when ``flip_y``): a signal recurrent almost everywhere (a
+    set-point at rest, tied at distance 0) is visited through its few non-recurrent pairs.
+    Its counts are the window's candidates less its complement's; the joint counts follow by
+    inclusion-exclusion. The same integer counts as :func:`_windows` of the matrices
+    themselves, so the same statistics.
+    """
+    n = starts_x.size
+    out = np.empty((n, 3), dtype=np.float64)
+    cand = np.empty(length, dtype=np.int64)
+    for u in range(length):
+        cand[u] = max(0, u - theiler) + max(0, length - 1 - u - theiler)
+    total = cand.sum() // 2
+    for k in prange(n):
+        row_a = np.zeros(length, dtype=np.int64)
+        row_b = np.zeros(length, dtype=np.int64)
+        row_ab = np.zeros(length, dtype=np.int64)
+        n_a = 0
+        n_b = 0
+        n_ab = 0
+        start_x = starts_x[k]
+        start_y = starts_y[k]
+        stop_x = start_x + length
+        for q in range(pairs_x.shape[0]):
+            i = pairs_x[q, 0]
+            j = pairs_x[q, 1]
+            if i < start_x or j >= stop_x or j - i <= theiler:
+                continue
+            u = i - start_x
+            v = j - start_x
+            n_a += 1
+            row_a[u] += 1
+            row_a[v] += 1
+            if a_y[start_y + u, start_y + v]:
+                n_ab += 1
+                row_ab[u] += 1
+                row_ab[v] += 1
+        stop_y = start_y + length
+        for q in range(pairs_y.shape[0]):
+            i = pairs_y[q, 0]
+            j = pairs_y[q, 1]
+            if i < start_y or j >= stop_y or j - i <= theiler:
+                continue
+            n_b += 1
+            row_b[i - start_y] += 1
+            row_b[j - start_y] += 1
+        row_x = cand - row_a if flip_x else row_a
+        row_y = cand - row_b if flip_y else row_b
+        n_x = total - n_a if flip_x else n_a
+        n_y = total - n_b if flip_y else n_b
+        if flip_x and flip_y:
+            row_xy = cand - row_a - row_b + row_ab
+            n_xy = total - n_a - n_b + n_ab
+        elif flip_x:
+            row_xy = row_b - row_ab
+            n_xy = n_b - n_ab
+        elif flip_y:
+            row_xy = row_a - row_ab
+            n_xy = n_a - n_ab
+        else:
+            row_xy = row_ab
+            n_xy = n_ab
+        phi, xy, yx = _statistics(n_x, n_y, n_xy, row_x, row_y, row_xy, length, theiler)
+        out[k, 0] = phi
+        out[k, 1] = xy
+        out[k, 2] = yx
+    return out

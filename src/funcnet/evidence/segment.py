@@ -41,8 +41,10 @@ from funcnet.core.embedding import signal_states
 from funcnet.core.recurrence import auto_recurrence
 from funcnet.core.thresholds import signal_thresholds
 from funcnet.errors import ParameterError
+from funcnet.evidence._kernels import _flipped_windows
 from funcnet.evidence.dependence import (
     DependenceResult,
+    _result,
     decorrelation_time,
     default_surrogates,
     dependence_test,
@@ -163,7 +165,11 @@ def segment_tests(signals: Sequence[Any], *, names: Sequence[str],
         kept = _kept_states(signal, p, step, repr(str(name)))
         dense.append(auto_recurrence(kept, rr=rate, eps=eps, parameters=p.replace(
             theiler=theiler), name=repr(str(name))).to_dense().astype(np.uint8))
-    recurrent = [recurrent_pairs(a) for a in dense]
+    # a signal recurrent on most of its candidate pairs (a set-point at rest: its thinned
+    # states tie at distance 0) is visited through its complement, the few pairs it lacks
+    flipped = [_mostly_recurrent(a, theiler) for a in dense]
+    recurrent = [recurrent_pairs(_complement(a, theiler) if flip else a)
+                 for a, flip in zip(dense, flipped, strict=True)]
     decorrelation = [decorrelation_time(s) for s in signals]
     span = (p.dim - 1) * p.delay + 1
     out: dict[tuple[str, str], DependenceResult | None] = {}
@@ -175,7 +181,37 @@ def segment_tests(signals: Sequence[Any], *, names: Sequence[str],
             except ParameterError:
                 out[(names[i], names[j])] = None
                 continue
-            out[(names[i], names[j])] = dependence_test(
-                dense[i], dense[j], plan, theiler=theiler,
-                recurrent=(recurrent[i], recurrent[j]))
+            if not (flipped[i] or flipped[j]):
+                out[(names[i], names[j])] = dependence_test(
+                    dense[i], dense[j], plan, theiler=theiler,
+                    recurrent=(recurrent[i], recurrent[j]))
+                continue
+            out[(names[i], names[j])] = _flipped_test(
+                dense[j], recurrent[i], recurrent[j], plan, theiler, flipped[i], flipped[j])
     return out, step
+
+
+def _mostly_recurrent(a: np.ndarray, theiler: int) -> bool:
+    """Whether more than half of a matrix's candidate pairs (beyond the Theiler band) recur."""
+    m = a.shape[0]
+    candidates = max(0, m - theiler - 1) * max(0, m - theiler) // 2
+    return bool(np.count_nonzero(np.triu(a, theiler + 1)) * 2 > candidates)
+
+
+def _complement(a: np.ndarray, theiler: int) -> np.ndarray:
+    """The candidate pairs (beyond the Theiler band) that do not recur, as a dense matrix."""
+    out = np.triu(1 - a, theiler + 1).astype(np.uint8)
+    return out + out.T
+
+
+def _flipped_test(a_y: np.ndarray, pairs_x: np.ndarray, pairs_y: np.ndarray, plan: Any,
+                  theiler: int, flip_x: bool, flip_y: bool) -> DependenceResult:
+    """:func:`~funcnet.evidence.dependence.dependence_test` on the shift lattice with X or Y
+    read through its complement (:func:`funcnet.evidence._kernels._flipped_windows`): the same
+    counts, so the same result, at the cost of the sparser lists."""
+    starts_x = np.concatenate([[plan.observed], plan.starts_x]).astype(np.int64)
+    starts_y = np.concatenate([[plan.observed], plan.starts_y]).astype(np.int64)
+    y = _complement(a_y, theiler) if flip_y else np.ascontiguousarray(a_y, dtype=np.uint8)
+    values = _flipped_windows(y, pairs_x, pairs_y, starts_x, starts_y, plan.length,
+                              int(theiler), flip_x, flip_y)
+    return _result(values, plan.surrogates)

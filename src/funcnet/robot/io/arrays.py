@@ -305,7 +305,7 @@ def read_array_file(
                     f"signals: {origin[column]!r} and {name!r}"
                 )
             origin[column] = name
-            row = row.astype(np.float64)
+            row = row.astype(np.float64, copy=False)  # a view: the table below is the copy
             if np.isinf(row).any():
                 sample = int(np.argmax(np.isinf(row)))
                 raise TraceFormatError(
@@ -320,9 +320,9 @@ def read_array_file(
                 role_of[column] = name
     # Grouped per axis (signals common to all first), in the file's order within an axis.
     order = sorted(range(len(columns)), key=lambda j: split_qualified(columns[j])[0] or 0)
-    table = place_on_grid(
-        time, np.column_stack([values[j] for j in order]), period, ticks, left_out="gap"
-    )
+    ordered = [values[j] for j in order]
+    table = (place_on_grid(time, np.column_stack(ordered), period, ticks, left_out="gap")
+             if ticks is None else _on_grid(ordered, ticks))
     return GridSignals(
         signals=tuple(infos[j] for j in order),
         values=table,
@@ -335,6 +335,21 @@ def read_array_file(
         time_origin=clock.origin,
         time_unit=None if clock.unit == "s" else clock.unit,
     )
+
+
+def _on_grid(rows: list[np.ndarray], ticks: np.ndarray) -> np.ndarray:
+    """The rows as the columns of a table on the grid, NaN at a tick no stamp falls on (as
+    :func:`~funcnet.robot.grid.place_on_grid` with ``left_out="gap"``), written in place: the
+    signals are copied once, not stacked first (a long recording's peak memory)."""
+    n_ticks = int(ticks[-1]) + 1
+    whole = len(ticks) == n_ticks
+    out = np.empty((n_ticks, len(rows))) if whole else np.full((n_ticks, len(rows)), np.nan)
+    for j, row in enumerate(rows):
+        if whole:
+            out[:, j] = row
+        else:
+            out[ticks, j] = row
+    return out
 
 
 def _axis_unit(unit: str | tuple[str, ...] | None, axis: int | None) -> str | None:
