@@ -20,8 +20,11 @@ CONSTRAINTS := constraints.txt
 PIP := $(BIN)/python -m pip install -q -c $(CONSTRAINTS)
 
 # The demo needs no Dask: studies run on local processes unless a scheduler is named.
+# An editable install leaves the sources uncompiled: each command would compile every module
+# again where bytecode is not written (PYTHONDONTWRITEBYTECODE), about 1,200 compilations.
 $(VENV)/.installed: pyproject.toml $(CONSTRAINTS) | $(BIN)/python
 	$(PIP) -e .
+	$(BIN)/python -m compileall -q src/funcnet
 	touch $@
 
 $(VENV)/.installed-test: pyproject.toml $(CONSTRAINTS) $(VENV)/.installed
