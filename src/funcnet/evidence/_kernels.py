@@ -68,16 +68,10 @@ def _statistics(n_x: Int, n_y: Int, n_xy: Int, row_x: Array, row_y: Array, row_x
 
 
 @njit(cache=True)
-def _window_counts(a_y: Array, pairs_x: Array, pairs_y: Array, start_x: Int, start_y: Int,
-                   length: Int, theiler: Int) -> tuple[float, float, float]:
-    """``(phi, mcr(x|y), mcr(y|x))`` of the window pairing ``x[start_x + i]``, ``y[start_y + i]``.
-
-    ``phi`` is the correlation of the indicators ``A_X[i, j]`` and ``A_Y[i, j]`` over the
-    window's pairs ``i < j``, ``j - i > theiler``; ``mcr(x|y)`` the mean over the window's states
-    of ``sum_j JR_ij / sum_j A_Y[i, j]`` (states without a Y-neighbour left out). ``pairs_x``
-    and ``pairs_y`` list the recurrent pairs ``(i, j)``, ``i < j``, of each whole matrix: a
-    window visits them, not its ``L^2`` cells.
-    """
+def _scan(a_y: Array, pairs_x: Array, pairs_y: Array, start_x: Int, start_y: Int, length: Int,
+          theiler: Int) -> tuple[int, int, int, Array, Array, Array]:
+    """The window's counts ``(n_x, n_y, n_xy, row_x, row_y, row_xy)``: recurrent pairs of X, of
+    Y, of both, and each state's share of them (:func:`_window_counts`)."""
     row_x = np.zeros(length, dtype=np.int64)
     row_y = np.zeros(length, dtype=np.int64)
     row_xy = np.zeros(length, dtype=np.int64)
@@ -108,6 +102,22 @@ def _window_counts(a_y: Array, pairs_x: Array, pairs_y: Array, start_x: Int, sta
         n_y += 1
         row_y[i - start_y] += 1
         row_y[j - start_y] += 1
+    return n_x, n_y, n_xy, row_x, row_y, row_xy
+
+
+@njit(cache=True)
+def _window_counts(a_y: Array, pairs_x: Array, pairs_y: Array, start_x: Int, start_y: Int,
+                   length: Int, theiler: Int) -> tuple[float, float, float]:
+    """``(phi, mcr(x|y), mcr(y|x))`` of the window pairing ``x[start_x + i]``, ``y[start_y + i]``.
+
+    ``phi`` is the correlation of the indicators ``A_X[i, j]`` and ``A_Y[i, j]`` over the
+    window's pairs ``i < j``, ``j - i > theiler``; ``mcr(x|y)`` the mean over the window's states
+    of ``sum_j JR_ij / sum_j A_Y[i, j]`` (states without a Y-neighbour left out). ``pairs_x``
+    and ``pairs_y`` list the recurrent pairs ``(i, j)``, ``i < j``, of each whole matrix: a
+    window visits them, not its ``L^2`` cells.
+    """
+    n_x, n_y, n_xy, row_x, row_y, row_xy = _scan(a_y, pairs_x, pairs_y, start_x, start_y,
+                                                  length, theiler)
     return _statistics(n_x, n_y, n_xy, row_x, row_y, row_xy, length, theiler)
 
 
@@ -385,38 +395,8 @@ def _flipped_windows(a_y: Array, pairs_x: Array, pairs_y: Array, starts_x: Array
         cand[u] = max(0, u - theiler) + max(0, length - 1 - u - theiler)
     total = cand.sum() // 2
     for k in prange(n):
-        row_a = np.zeros(length, dtype=np.int64)
-        row_b = np.zeros(length, dtype=np.int64)
-        row_ab = np.zeros(length, dtype=np.int64)
-        n_a = 0
-        n_b = 0
-        n_ab = 0
-        start_x = starts_x[k]
-        start_y = starts_y[k]
-        stop_x = start_x + length
-        for q in range(pairs_x.shape[0]):
-            i = pairs_x[q, 0]
-            j = pairs_x[q, 1]
-            if i < start_x or j >= stop_x or j - i <= theiler:
-                continue
-            u = i - start_x
-            v = j - start_x
-            n_a += 1
-            row_a[u] += 1
-            row_a[v] += 1
-            if a_y[start_y + u, start_y + v]:
-                n_ab += 1
-                row_ab[u] += 1
-                row_ab[v] += 1
-        stop_y = start_y + length
-        for q in range(pairs_y.shape[0]):
-            i = pairs_y[q, 0]
-            j = pairs_y[q, 1]
-            if i < start_y or j >= stop_y or j - i <= theiler:
-                continue
-            n_b += 1
-            row_b[i - start_y] += 1
-            row_b[j - start_y] += 1
+        n_a, n_b, n_ab, row_a, row_b, row_ab = _scan(a_y, pairs_x, pairs_y, starts_x[k],
+                                                     starts_y[k], length, theiler)
         row_x = cand - row_a if flip_x else row_a
         row_y = cand - row_b if flip_y else row_b
         n_x = total - n_a if flip_x else n_a
