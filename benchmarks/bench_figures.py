@@ -27,7 +27,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from benchmarks.bench_inspect import CASES, ROOT, _cases
+from benchmarks.bench_inspect import CASES, ROOT, _cases, add_common_arguments
 
 # One process: load the pickle, write the pages, print the seconds as JSON.
 _DRAW = """
@@ -80,11 +80,7 @@ def draw(source: Path, pickled: Path) -> dict[str, float]:
 def main(argv: list[str] | None = None) -> None:
     """Print the table: one row per recording and code."""
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    parser.add_argument("--against", type=Path, default=None,
-                        help="another checkout (its src/ is imported) to compare with")
-    parser.add_argument("--rounds", type=int, default=1)
-    parser.add_argument("--cases", nargs="*", default=None,
-                        help="recordings to run (the start of a name each: KUKA, UR5 No8)")
+    add_common_arguments(parser)
     args = parser.parse_args(argv)
     codes = {"this checkout": ROOT}
     if args.against is not None:

@@ -113,14 +113,19 @@ def _row(case: str, name: str, runs: list[Run], mine: Run) -> str:
             f"{'' if target is None else f'{target:.0f}'} |")
 
 
-def main(argv: list[str] | None = None) -> None:
-    """Print the table: one row per recording and code."""
-    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+def add_common_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--against``, ``--rounds``, ``--cases``: what this benchmark and bench_figures share."""
     parser.add_argument("--against", type=Path, default=None,
                         help="another checkout (its src/ is imported) to compare with")
     parser.add_argument("--rounds", type=int, default=1)
     parser.add_argument("--cases", nargs="*", default=None,
                         help="recordings to run (the start of a name each: KUKA, UR5 No8)")
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Print the table: one row per recording and code."""
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    add_common_arguments(parser)
     parser.add_argument("--every-interval", action="store_true",
                         help="also this code drawing every pair's intervals (--intervals all)")
     args = parser.parse_args(argv)
