@@ -240,6 +240,7 @@ def window_networks(
     errors: str = "raise",
     progress: Callable[[int, int, str], None] | None = None,
     warn: bool = True,
+    max_states: int | None = None,
     **overrides: Unpack[ParameterOverrides],
 ) -> WindowNetworks:
     """One functional network per window of a recording.
@@ -280,6 +281,10 @@ def window_networks(
     warn : bool
         Emit the warnings below; False leaves the flags in the pairs tables alone (a caller
         that reads them itself, without ``warnings.catch_warnings``, which threads share).
+    max_states : int, optional
+        Most states of a window's network: a longer window's measures and evidence read every
+        ``d``-th state (:func:`funcnet.network.functional_network`; its ``state_step``).
+        Default every state.
     **overrides
         Network parameters by name (``dim=2``, ``rr=0.1``, ...), applied to ``parameters``.
 
@@ -388,14 +393,14 @@ def window_networks(
     networks = WindowNetworks()
     failures = []
     steps = channel_steps(recording.data, signals)
-    batched, found = _batched_networks(recording, windows, signals, p, steps)
+    batched, found = _batched_networks(recording, windows, signals, p, steps, max_states)
     for done, window in enumerate(windows, start=1):
         if window.label in batched:
             networks[window.label] = batched[window.label]
         else:
             try:
                 networks[window.label] = _window_network(recording, window, signals, p, drop,
-                                                         where, steps)
+                                                         where, steps, max_states)
             except FuncnetError as error:
                 if not collect or isinstance(error, ParameterError):
                     raise
@@ -536,7 +541,8 @@ def window_steps(values: np.ndarray, signals: Sequence[str],
 
 def _window_network(recording: Recording, window: Window, signals: Sequence[str],
                     p: NetworkParameters, drop: bool, where: str,
-                    steps: Mapping[str, float]) -> FunctionalNetwork:
+                    steps: Mapping[str, float], max_states: int | None = None,
+                    ) -> FunctionalNetwork:
     """The network of one window, located (errors name the window; the network records it)."""
     part = recording.window(window.start, window.stop).data[list(signals)]
     values = part.to_numpy(dtype=np.float64)
@@ -552,6 +558,7 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
     try:
         network = functional_network(
             part.drop(columns=list(dropped)), parameters=p, label=window.label, warn=False,
+            max_states=max_states,
             steps={name: step for name, step in window_steps(
                 values, list(signals), steps).items() if name not in dropped})
     except FuncnetError as error:
@@ -573,7 +580,7 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
 
 def _batched_networks(
     recording: Recording, windows: Sequence[Window], signals: Sequence[str], p: NetworkParameters,
-    steps: Mapping[str, float],
+    steps: Mapping[str, float], max_states: int | None = None,
 ) -> tuple[dict[str, FunctionalNetwork], list[FuncnetWarning]]:
     """The windows' networks through the batched engine (:func:`funcnet.core.batch.batch_pairs`),
     equal (``==``) to :func:`_window_network`'s, by label, and their :func:`window_warnings`.
@@ -587,8 +594,10 @@ def _batched_networks(
     except FuncnetError:
         return {}, []
     parts = [values[first:last] for first, last in bounds]
+    lag = (p.dim - 1) * p.delay  # a window to be thinned (max_states) is not batched
     kept = [k for k, part in enumerate(parts) if np.isfinite(part).all()
-            and not (p.normalize and (np.ptp(part, axis=0) == 0).any())]
+            and not (p.normalize and (np.ptp(part, axis=0) == 0).any())
+            and (max_states is None or part.shape[0] - lag <= max_states)]
     windows = [windows[k] for k in kept]
     parts = [parts[k] for k in kept]
     # Long windows inside the batch go through the per-window path; none short: no batch.

@@ -34,6 +34,8 @@ __all__ = [
     "min_samples",
     "embed",
     "signal_states",
+    "thinning",
+    "thinned",
     "estimate_delay",
     "estimate_dimension",
 ]
@@ -163,11 +165,40 @@ def embed(x: Any, dim: int, delay: int) -> np.ndarray:
     return _delay_rows(signal, dim, delay, _n_states(signal.size, dim, delay, "x", 1))
 
 
+def thinning(n_states: int, max_states: int) -> int:
+    """``d``: keep every ``d``-th of ``n_states`` states so that at most ``max_states`` are kept.
+
+    Examples
+    --------
+    >>> thinning(5306, 1500), thinning(1500, 1500), thinning(899_980, 1500)
+    (4, 1, 600)
+    """
+    if max_states < 1:
+        raise ParameterError.of("max_states", f"must be >= 1, got {max_states}")
+    return max(1, math.ceil(n_states / max_states))
+
+
+def thinned(parameters: NetworkParameters, step: int) -> NetworkParameters:
+    """The parameters on every ``step``-th state: the Theiler window, in samples, spans
+    ``ceil(theiler / step)`` thinned states.
+
+    Examples
+    --------
+    >>> thinned(NetworkParameters(theiler=5), 2).theiler
+    3
+    """
+    step = check_int(step, "step", 1)
+    if step == 1 or parameters.theiler == 0:
+        return parameters
+    return parameters.replace(theiler=math.ceil(parameters.theiler / step))
+
+
 def signal_states(
     x: Any,
     *,
     parameters: NetworkParameters | None = None,
     name: str = "x",
+    step: int = 1,
     **overrides: Unpack[ParameterOverrides],
 ) -> np.ndarray:
     """Validated embedded states of one node, as the measures use them.
@@ -186,13 +217,17 @@ def signal_states(
         Uses ``dim``, ``delay`` and ``rule``; defaults from :class:`NetworkParameters`.
     name : str
         How error messages call the signal.
+    step : int
+        Keep every ``step``-th state (the first included): a long window thinned to a bounded
+        number of states (:func:`thinning`), each state embedded at the full rate.
     **overrides
         ``dim``, ``delay``, ``rule``: replace those of ``parameters``.
 
     Returns
     -------
     ndarray, shape (M, c * dim), float64, C-contiguous
-        ``M = N - (dim - 1) * delay >= MIN_STATES``.
+        ``M = ceil((N - (dim - 1) * delay) / step)``; the states before thinning number at
+        least ``MIN_STATES``.
 
     Raises
     ------
@@ -212,8 +247,19 @@ def signal_states(
     0.10000000149011612
     >>> signal_states(np.arange(20.0).reshape(10, 2), dim=2, delay=3)[0]
     array([0., 6., 1., 7.])
+    >>> signal_states(np.arange(10.0), dim=2, delay=3, step=3)
+    array([[0., 3.],
+           [3., 6.],
+           [6., 9.]])
     """
-    p = resolve(parameters, overrides, allowed=("dim", "delay", "rule"))
+    step = check_int(step, "step", 1)
+    states = _signal_states(x, resolve(parameters, overrides, allowed=("dim", "delay", "rule")),
+                            name)
+    return states if step == 1 else np.ascontiguousarray(states[::step])
+
+
+def _signal_states(x: Any, p: NetworkParameters, name: str) -> np.ndarray:
+    """:func:`signal_states` of every state."""
     node = _check_node(x, name)
     if p.rule == "pyunicorn":
         with np.errstate(over="ignore"):  # reported just below

@@ -58,7 +58,7 @@ from funcnet.core._isrn_kernels import (
     _cross_triangles_both,
     _transpose_packed,
 )
-from funcnet.core.embedding import MIN_STATES, signal_states
+from funcnet.core.embedding import MIN_STATES, signal_states, thinned
 from funcnet.core.recurrence import (
     PackedRecurrence,
     _check_channels,
@@ -625,6 +625,7 @@ def pairwise_cross_measures(
     names: Sequence[str] | None = None,
     parameters: NetworkParameters | None = None,
     warn: bool = True,
+    step: int = 1,
     **overrides: Unpack[ParameterOverrides],
 ) -> dict[tuple[Any, Any], CrossMeasures]:
     """Cross measures of every pair ``i < j`` of equally long signals (a functional network).
@@ -652,6 +653,10 @@ def pairwise_cross_measures(
     warn : bool
         Emit :func:`threshold_warnings` of the results (default True); with False nothing is
         emitted (collect them from the results, e.g. in threads).
+    step : int
+        Every ``step``-th state of each signal (:func:`~funcnet.core.embedding.signal_states`):
+        a long window's network on a bounded number of states, each embedded at the full rate;
+        the Theiler window, in samples, becomes ``ceil(theiler / step)`` thinned states.
     **overrides
         Fields of ``parameters``, as in :func:`cross_measures`.
 
@@ -708,9 +713,9 @@ def pairwise_cross_measures(
         keys = labels
     p = resolve(parameters, overrides, allowed=PAIR_FIELDS)
     thresholds, (cr, cross_eps) = signal_thresholds(p, n)
-    states = [
-        signal_states(s, parameters=p, name=name) for s, name in zip(signals, called, strict=True)
-    ]
+    states = [signal_states(s, parameters=p, name=name, step=step)
+              for s, name in zip(signals, called, strict=True)]
+    p = thinned(p, step)
     _check_channels(states, called, p.dim)
     for i in range(1, n):
         if np.shape(signals[i])[0] != np.shape(signals[0])[0]:

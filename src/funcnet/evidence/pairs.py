@@ -34,7 +34,7 @@ from typing import Any, Unpack
 
 import numpy as np
 
-from funcnet.core.embedding import signal_states
+from funcnet.core.embedding import signal_states, thinned
 from funcnet.core.measures import isrn_measures
 from funcnet.core.recurrence import PackedRecurrence, auto_recurrence, cross_recurrence
 from funcnet.core.thresholds import signal_thresholds
@@ -203,6 +203,7 @@ def pairwise_evidence(
     intervals: str = "coupled",
     observed: Mapping[tuple[Any, Any], tuple[float, float]] | None = None,
     tests: Mapping[tuple[Any, Any], DependenceResult | None] | None = None,
+    step: int = 1,
     **overrides: Unpack[ParameterOverrides],
 ) -> dict[tuple[Any, Any], PairEvidence]:
     """Coupling test, intervals and direction of every pair ``i < j`` of equally long signals.
@@ -253,6 +254,11 @@ def pairwise_evidence(
         into parts, :func:`funcnet.evidence.segment.segment_tests`; None: not testable).
         Given, no test and no dense recurrence is computed here; the adjustment across the
         pairs, the readings and the intervals are as without it.
+    step : int
+        Every ``step``-th state, as the network's measures took them
+        (:func:`funcnet.core.measures.pairwise_cross_measures`): the test, its shift lattice
+        (spaced by the decorrelation time in thinned states, as
+        :func:`funcnet.evidence.segment.segment_tests`) and the intervals read those states.
     **overrides
         Fields of ``parameters`` (pair fields only).
 
@@ -308,7 +314,8 @@ def pairwise_evidence(
     n_pairs = n * (n - 1) // 2
     k = default_surrogates(n_pairs, alpha) if surrogates is None else surrogates
     prepared = _prepare(signals, p, called, surrogate_method, test=tests is None,
-                        autos=observed is None)
+                        autos=observed is None, step=step)
+    p = thinned(p, step)
     raw = [_test_pair(prepared, p, i, j, k, keys=keys, seed=seed,
                       surrogate_method=surrogate_method, observed=observed, tests=tests)
            for i in range(n) for j in range(i + 1, n)]
@@ -347,10 +354,11 @@ class _Prepared:
     span: int
     cr: float
     cross_eps: float | None
+    step: int = 1
 
     def min_shift(self, i: int, j: int) -> int:
-        """``s0`` of the pair's shift lattice."""
-        return max(self.decorrelation[i], self.decorrelation[j], self.span)
+        """``s0`` of the pair's shift lattice, in (thinned) states."""
+        return -(-max(self.decorrelation[i], self.decorrelation[j], self.span) // self.step)
 
 
 def _signal_names(signals: list[Any], names: Sequence[str] | None) -> tuple[list[Any], list[str]]:
@@ -369,14 +377,18 @@ def _signal_names(signals: list[Any], names: Sequence[str] | None) -> tuple[list
 
 
 def _prepare(signals: list[Any], p: NetworkParameters, called: list[str],
-             surrogate_method: str, *, test: bool = True, autos: bool = True) -> _Prepared:
-    """Embed each signal and compute its recurrence once, at the network's thresholds.
+             surrogate_method: str, *, test: bool = True, autos: bool = True,
+             step: int = 1) -> _Prepared:
+    """Embed each signal and compute its recurrence once, at the network's thresholds, on
+    every ``step``-th state.
 
     Without ``test`` (the tests given) no dense matrix is made, and without ``autos`` (the
     differences given too) no recurrence: the states are what the intervals read.
     """
     thresholds, (cr, cross_eps) = signal_thresholds(p, len(signals))
-    states = [signal_states(s, parameters=p, name=c) for s, c in zip(signals, called, strict=True)]
+    states = [signal_states(s, parameters=p, name=c, step=step)
+              for s, c in zip(signals, called, strict=True)]
+    p = thinned(p, step)
     packed = [
         auto_recurrence(s, rr=rate, eps=eps, parameters=p, name=c)
         for s, (rate, eps), c in zip(states, thresholds, called, strict=True)
@@ -387,7 +399,7 @@ def _prepare(signals: list[Any], p: NetworkParameters, called: list[str],
     decorrelation = [decorrelation_time(s) for s in signals] if test else []
     return _Prepared(called=called, states=states, autos=packed, dense=dense,
                      recurrent=recurrent, decorrelation=decorrelation,
-                     span=(p.dim - 1) * p.delay + 1, cr=cr, cross_eps=cross_eps)
+                     span=(p.dim - 1) * p.delay + 1, cr=cr, cross_eps=cross_eps, step=step)
 
 
 def _can_reach(prepared: _Prepared, surrogate_method: str, k: int, alpha: float,

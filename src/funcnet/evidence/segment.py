@@ -37,7 +37,7 @@ from typing import Any
 
 import numpy as np
 
-from funcnet.core.embedding import signal_states
+from funcnet.core.embedding import signal_states, thinned, thinning
 from funcnet.core.recurrence import auto_recurrence
 from funcnet.core.thresholds import signal_thresholds
 from funcnet.errors import ParameterError
@@ -72,19 +72,6 @@ BYTES_PER_SAMPLE = 128
 BYTES_PER_KEPT_CELL = 24
 
 
-def thinning(n_states: int, max_states: int = SEGMENT_MAX_STATES) -> int:
-    """``d``: keep every ``d``-th of ``n_states`` states so that at most ``max_states`` are kept.
-
-    Examples
-    --------
-    >>> thinning(5306), thinning(1500), thinning(899_980)
-    (4, 1, 600)
-    """
-    if max_states < 1:
-        raise ParameterError.of("max_states", f"must be >= 1, got {max_states}")
-    return max(1, math.ceil(n_states / max_states))
-
-
 def segment_test_bytes(n_signals: int, n_samples: int,
                        max_states: int = SEGMENT_MAX_STATES) -> int:
     """Bytes the largest arrays of :func:`segment_tests` hold at once, an upper bound.
@@ -106,11 +93,6 @@ def segment_test_bytes(n_signals: int, n_samples: int,
     dense = n_signals * kept * kept
     recurrent = n_signals * (kept * kept // 2 // 5) * 16 // 8
     return dense + recurrent + kept * kept * BYTES_PER_KEPT_CELL + n_samples * BYTES_PER_SAMPLE
-
-
-def _kept_states(signal: Any, p: NetworkParameters, step: int, name: str) -> np.ndarray:
-    """Every ``step``-th embedded state of one signal (its whole states freed on return)."""
-    return np.ascontiguousarray(signal_states(signal, parameters=p, name=name)[::step])
 
 
 def segment_tests(signals: Sequence[Any], *, names: Sequence[str],
@@ -159,12 +141,12 @@ def segment_tests(signals: Sequence[Any], *, names: Sequence[str],
     asked = default_surrogates(n * (n - 1) // 2, alpha) if surrogates is None else surrogates
     k = min(int(asked), int(max_surrogates))
     thresholds, _ = signal_thresholds(p, n)
-    theiler = math.ceil(p.theiler / step)
+    theiler = thinned(p, step).theiler
     dense = []
     for signal, name, (rate, eps) in zip(signals, names, thresholds, strict=True):
-        kept = _kept_states(signal, p, step, repr(str(name)))
-        dense.append(auto_recurrence(kept, rr=rate, eps=eps, parameters=p.replace(
-            theiler=theiler), name=repr(str(name))).to_dense().astype(np.uint8))
+        kept = signal_states(signal, parameters=p, name=repr(str(name)), step=step)
+        dense.append(auto_recurrence(kept, rr=rate, eps=eps, parameters=thinned(p, step),
+                                     name=repr(str(name))).to_dense().astype(np.uint8))
     # a signal recurrent on most of its candidate pairs (a set-point at rest: its thinned
     # states tie at distance 0) is visited through its complement, the few pairs it lacks
     flipped = [_mostly_recurrent(a, theiler) for a in dense]

@@ -90,7 +90,7 @@ def check_evidence_settings(**settings: Unpack[EvidenceSettings]) -> None:
 def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkParameters, *,
                      surrogates: int | None, alpha: float, seed: int, resamples: int,
                      surrogate_method: str, edge_rule: str, intervals: str = "coupled",
-                     tests: Mapping[tuple[str, str], Any] | None = None,
+                     tests: Mapping[tuple[str, str], Any] | None = None, step: int = 1,
                      ) -> tuple[pd.DataFrame, dict[str, Any]]:
     """A plain pairs table with the evidence columns, and the settings that made them.
 
@@ -110,6 +110,8 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
         As in :func:`funcnet.network.functional_network` (checked by the caller).
     tests : mapping, optional
         The pairs' coupling tests already run (:func:`funcnet.evidence.pairwise_evidence`).
+    step : int
+        The network's ``state_step``: the evidence reads the states its measures read.
 
     Returns
     -------
@@ -124,7 +126,7 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
     found = pairwise_evidence(
         list(prepared.signals), names=list(prepared.names), parameters=p, surrogates=surrogates,
         alpha=alpha, seed=seed, resamples=resamples, surrogate_method=surrogate_method,
-        intervals=intervals, observed=observed, tests=tests,
+        intervals=intervals, observed=observed, tests=tests, step=step,
     )
     settings = {"surrogates": surrogates, "alpha": float(alpha), "seed": int(seed),
                 "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule,
@@ -288,7 +290,7 @@ def add_evidence(network: FunctionalNetwork, data: Any, *, surrogates: int | Non
     pairs, settings = evidence_columns(
         network.pairs, prepared, network.parameters, surrogates=surrogates, alpha=alpha,
         seed=seed, resamples=resamples, surrogate_method=surrogate_method, edge_rule=edge_rule,
-        intervals=intervals, tests=tests,
+        intervals=intervals, tests=tests, step=network.state_step,
     )
     edges = edges_from_pairs(pairs, degenerate=network.parameters.degenerate)
     return dataclasses.replace(network, pairs=pairs, edges=edges, evidence=settings)

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any, Unpack
 
 import pandas as pd
 
+from funcnet.core.embedding import MIN_STATES, thinning
 from funcnet.core.measures import pairwise_cross_measures
 from funcnet.evidence import check_evidence_arguments
 from funcnet.network import readwrite
@@ -32,7 +33,7 @@ from funcnet.network.direction import direction_columns
 from funcnet.network.edge_evidence import check_edge_rule, evidence_columns
 from funcnet.network.rule import edges_from_pairs, pair_kinds
 from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
-from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
+from funcnet.parameters import NetworkParameters, ParameterOverrides, check_int, resolve
 
 if TYPE_CHECKING:
     import networkx as nx
@@ -77,6 +78,9 @@ class FunctionalNetwork:
         With ``evidence=True``: the settings of the evidence (``surrogates`` asked, ``alpha``,
         ``seed``, ``resamples``, ``level``, ``edge_rule``), and the pairs table has the
         :data:`~funcnet.network.schema.EVIDENCE_COLUMNS`; None otherwise.
+    state_step : int
+        The measures and the evidence read every ``state_step``-th embedded state (1: every
+        state; more when ``max_states`` bounded a long window).
 
     Notes
     -----
@@ -96,6 +100,7 @@ class FunctionalNetwork:
     window: Mapping[str, Any] | None = None
     channels: Mapping[str, tuple[str, ...]] | None = None
     evidence: Mapping[str, Any] | None = None
+    state_step: int = 1
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, FunctionalNetwork):
@@ -105,6 +110,7 @@ class FunctionalNetwork:
             and self.label == other.label
             and self.parameters == other.parameters
             and self.n_samples == other.n_samples
+            and self.state_step == other.state_step
             and _plain(self.window) == _plain(other.window)
             and _plain(self.channels) == _plain(other.channels)
             and _plain(self.evidence) == _plain(other.evidence)
@@ -404,6 +410,7 @@ def functional_network(
     edge_rule: str = "paper",
     intervals: str = "coupled",
     steps: Mapping[str, float] | None = None,
+    max_states: int | None = None,
     **overrides: Unpack[ParameterOverrides],
 ) -> FunctionalNetwork:
     """Functional network of simultaneously sampled signals (section 2.3-2.4, 3.4).
@@ -472,6 +479,12 @@ def functional_network(
         (:func:`~funcnet.network.precision.logged_step` of the whole channel, when ``data`` is
         a window of it); a column not named: read from ``data``. The direction shows no
         improvement of a signal its own past predicts to within its step.
+    max_states : int, optional
+        Most embedded states the measures and the evidence read: a longer window keeps every
+        ``d``-th state, ``d = ceil(M / max_states)`` (:func:`funcnet.core.embedding.thinning`;
+        the network's ``state_step``), each still embedded at the full rate, with the rates
+        and thresholds taken on the kept states; the direction reading keeps every sample.
+        The measures' cost grows about as the cube of the states. Default: every state.
     **overrides
         Any parameter by name, applied to ``parameters`` (``delay=1``).
 
@@ -532,9 +545,13 @@ def functional_network(
     check_edge_rule(edge_rule, evidence)
     if evidence:
         check_evidence_arguments(surrogates, alpha, resamples, surrogate_method, intervals)
+    if max_states is not None:
+        check_int(max_states, "max_states", MIN_STATES)
     prepared = prepared_signals(data, names, nodes, p.normalize, steps)
+    step = 1 if max_states is None else thinning(
+        max(1, prepared.n_samples - (p.dim - 1) * p.delay), max_states)
     results = pairwise_cross_measures(list(prepared.signals), names=list(prepared.names),
-                                      parameters=p, warn=warn)
+                                      parameters=p, warn=warn, step=step)
     pairs = _pairs_table(results, p, dict(zip(prepared.names, prepared.signals, strict=True)),
                          dict(zip(prepared.names, prepared.steps, strict=True)))
     settings = None
@@ -542,7 +559,7 @@ def functional_network(
         pairs, settings = evidence_columns(
             pairs, prepared, p, surrogates=surrogates, alpha=alpha, seed=seed,
             resamples=resamples, surrogate_method=surrogate_method, edge_rule=edge_rule,
-            intervals=intervals,
+            intervals=intervals, step=step,
         )
     channels = None if nodes is None else {
         name: tuple(prepared.columns[i] for i in group)
@@ -557,6 +574,7 @@ def functional_network(
         label=None if label is None else str(label),
         channels=channels,
         evidence=settings,
+        state_step=step,
     )
 
 

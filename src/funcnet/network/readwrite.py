@@ -87,6 +87,7 @@ def to_json(network: FunctionalNetwork) -> str:
         },
         "parameters": network.parameters.to_dict(),
         "n_samples": network.n_samples,
+        **({} if network.state_step == 1 else {"state_step": network.state_step}),
         "window": None if network.window is None else dict(network.window),
         **({} if network.evidence is None else {"evidence": dict(network.evidence)}),
         "pairs": {str(name): network.pairs[name].tolist() for name in network.pairs.columns},
@@ -175,6 +176,7 @@ def fields_from_json(text: str) -> dict[str, Any]:
             "edges": edges_frame(document["edges"]),
             "parameters": NetworkParameters.from_mapping(document["parameters"]),
             "n_samples": int(document["n_samples"]),
+            "state_step": int(document.get("state_step", 1)),
             "label": document["label"],
             "window": None if window is None else _tuples(window),
             "channels": None if channels is None else {
