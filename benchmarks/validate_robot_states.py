@@ -78,13 +78,14 @@ def compare(name: str, bounds: list[int]) -> None:
         thinned, seconds = _network(recording, nodes, bound)
         b = thinned.pairs.set_index(["x", "y"])
         same = a["kind"] == b["kind"]
+        decided = (a["coupled"] == b["coupled"]).mean()
         arrows, readings = _into_setpoint(thinned.pairs)
         print(f"  at most {bound:,} states (one in {thinned.state_step}): {seconds:.1f} CPU s; "
               f"same kind {same.mean():.3f} (clear pairs {same[clear].mean():.3f} of "
               f"{int(clear.sum())}); corr c_diff {np.corrcoef(a['c_diff'], b['c_diff'])[0, 1]:.4f}"
               f" t_diff {np.corrcoef(a['t_diff'], b['t_diff'])[0, 1]:.4f}; median |change| "
               f"c_diff {(a['c_diff'] - b['c_diff']).abs().median():.4f}; coupled "
-              f"{int(b['coupled'].sum())} (same decision {(a['coupled'] == b['coupled']).mean():.3f})"
+              f"{int(b['coupled'].sum())} (same decision {decided:.3f})"
               f"; into a set-point: {arrows} arrows, {readings} readings")
 
 

@@ -18,8 +18,7 @@ from funcnet.core.measures import pairwise_cross_measures
 from funcnet.errors import ParameterError
 from funcnet.evidence.segment import segment_tests
 from funcnet.inspection import inspect_robot, robot as robot_module
-from funcnet.network import functional_network
-from funcnet.network import FunctionalNetwork
+from funcnet.network import FunctionalNetwork, functional_network
 from funcnet.network.readwrite import to_json
 from funcnet.parameters import EvidenceSettings, NetworkParameters
 from funcnet.report.inspect import write_robot_inspection
