@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings, strategies as st
 
 from funcnet.core.embedding import embed
 from funcnet.core.measures import cross_measures
@@ -79,6 +80,21 @@ def test_benjamini_hochberg_matches_the_step_up_rule():
     np.testing.assert_allclose(adjusted[:m][order], expected)
     assert np.isnan(adjusted[-1])
     assert (benjamini_hochberg(p[:m]) >= p[:m]).all()
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.one_of(st.floats(0.0, 1.0), st.sampled_from([0.0, 1.0, 0.05, np.nan])),
+                max_size=60))
+def test_benjamini_hochberg_is_scipys_bit_for_bit(values):
+    from scipy.stats import false_discovery_control
+
+    p = np.asarray(values, dtype=np.float64)
+    adjusted = benjamini_hochberg(p)
+    valid = ~np.isnan(p)
+    assert np.isnan(adjusted[~valid]).all()
+    if valid.any():
+        expected = false_discovery_control(p[valid], method="bh")
+        assert np.array_equal(adjusted[valid], np.asarray(expected, dtype=np.float64))
 
 
 def test_shift_plan_windows_stay_inside_and_form_a_lattice():

@@ -33,7 +33,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.stats import t as student_t
+from scipy import special  # stdtrit is scipy.stats.t.ppf, without its import
 
 from funcnet.diagnosis.reversals import DirectionChange
 from funcnet.errors import ChannelError, ParameterError
@@ -549,7 +549,7 @@ def reversal_error(
     # the stretches hold a few blocks each, so the bootstrap's spread is itself uncertain: a
     # t quantile with as many degrees of freedom as blocks in both less two (as batch means)
     dof = max(1, -(-before.size // block) + -(-after.size // block) - 2)
-    half = float(student_t.ppf((1 + level) / 2, dof) * np.std(draws)) if draws else 0.0
+    half = float(special.stdtrit(dof, (1 + level) / 2) * np.std(draws)) if draws else 0.0
     bias = friction_bias(t, torque, gear.compliance, before, after, change)
     upper = point + half + (bias if math.isfinite(bias) else 0.0)
     return ReversalError(point, point - half, upper, traversed, half, bias)

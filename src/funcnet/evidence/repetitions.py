@@ -77,7 +77,7 @@ from typing import Any, Unpack
 
 import numpy as np
 import pandas as pd
-from scipy.stats import t as student_t
+from scipy import special  # stdtrit is scipy.stats.t.ppf, without its import
 
 from funcnet.core.batch import batch_pairs
 from funcnet.core.embedding import signal_states
@@ -276,7 +276,7 @@ def _interval(values: np.ndarray, level: float) -> tuple[np.ndarray, np.ndarray,
     """Mean and Student-t interval of the mean over the repetitions (axis 0), per pair."""
     r = values.shape[0]
     mean = values.mean(axis=0)
-    half = student_t.ppf((1 + level) / 2, r - 1) * values.std(axis=0, ddof=1) / math.sqrt(r)
+    half = special.stdtrit(r - 1, (1 + level) / 2) * values.std(axis=0, ddof=1) / math.sqrt(r)
     return mean, mean - half, mean + half
 
 
