@@ -379,6 +379,7 @@ def test_calls_pairwise_once_with_the_parameters(fake_measures):
                 dim=4, delay=2, rr=0.1, cr=0.03, metric="supremum", rule="funcnet", theiler=1
             ),
             warn=True,
+            step=1,  # every state: no max_states
         )
     ]
 

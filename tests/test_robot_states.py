@@ -144,3 +144,25 @@ def test_the_robot_page_says_which_windows_read_fewer_states(monkeypatch, tmp_pa
     assert next(iter(whole.networks.values())).state_step == 1
     assert "one in" not in whole.windows_note
     assert dataclasses.replace(network, state_step=1) != network
+
+
+@pytest.mark.parametrize("rule", ["funcnet", "pyunicorn"])
+def test_the_evidence_builds_each_recurrence_at_the_networks_threshold(rule):
+    """Given the thresholds the rates found, the same matrices: the same evidence, bit for bit
+    (quantized signals: ties at the thresholds)."""
+    from funcnet.evidence.pairs import pairwise_evidence
+
+    data = (_signals(500, seed=2) * 40).round() / 40
+    signals = [data[c].to_numpy() for c in data]
+    network = functional_network(data, warn=False, rule=rule, delay=4, normalize=None)
+    pairs = network.pairs
+    eps = [float(pairs.loc[pairs["x"] == "x", "eps_x"].iloc[0]),
+           float(pairs.loc[pairs["x"] == "y", "eps_x"].iloc[0]),
+           float(pairs.loc[pairs["y"] == "z", "eps_y"].iloc[0])]
+    settings = dict(names=list(data), rule=rule, delay=4, resamples=20, intervals="all")
+    searched = pairwise_evidence(signals, **settings)
+    given = pairwise_evidence(signals, auto_eps=eps, **settings)
+    assert list(given) == list(searched)
+    pd.testing.assert_frame_equal(
+        pd.DataFrame([dataclasses.asdict(e) for e in given.values()]),
+        pd.DataFrame([dataclasses.asdict(e) for e in searched.values()]))

@@ -204,6 +204,7 @@ def pairwise_evidence(
     observed: Mapping[tuple[Any, Any], tuple[float, float]] | None = None,
     tests: Mapping[tuple[Any, Any], DependenceResult | None] | None = None,
     step: int = 1,
+    auto_eps: Sequence[float] | None = None,
     **overrides: Unpack[ParameterOverrides],
 ) -> dict[tuple[Any, Any], PairEvidence]:
     """Coupling test, intervals and direction of every pair ``i < j`` of equally long signals.
@@ -259,6 +260,11 @@ def pairwise_evidence(
         (:func:`funcnet.core.measures.pairwise_cross_measures`): the test, its shift lattice
         (spaced by the decorrelation time in thinned states, as
         :func:`funcnet.evidence.segment.segment_tests`) and the intervals read those states.
+    auto_eps : sequence of float, optional
+        Each signal's recurrence threshold as the network's measures found it (its pairs
+        table's ``eps_x``, ``eps_y``): its recurrence is built at that threshold, the same
+        matrix as the rate gives, without searching for it again. The intervals' resamples
+        still threshold by rate.
     **overrides
         Fields of ``parameters`` (pair fields only).
 
@@ -314,7 +320,7 @@ def pairwise_evidence(
     n_pairs = n * (n - 1) // 2
     k = default_surrogates(n_pairs, alpha) if surrogates is None else surrogates
     prepared = _prepare(signals, p, called, surrogate_method, test=tests is None,
-                        autos=observed is None, step=step)
+                        autos=observed is None, step=step, auto_eps=auto_eps)
     p = thinned(p, step)
     raw = [_test_pair(prepared, p, i, j, k, keys=keys, seed=seed,
                       surrogate_method=surrogate_method, observed=observed, tests=tests)
@@ -378,14 +384,16 @@ def _signal_names(signals: list[Any], names: Sequence[str] | None) -> tuple[list
 
 def _prepare(signals: list[Any], p: NetworkParameters, called: list[str],
              surrogate_method: str, *, test: bool = True, autos: bool = True,
-             step: int = 1) -> _Prepared:
-    """Embed each signal and compute its recurrence once, at the network's thresholds, on
-    every ``step``-th state.
+             step: int = 1, auto_eps: Sequence[float] | None = None) -> _Prepared:
+    """Embed each signal and compute its recurrence once, at the network's thresholds (its
+    rates, or ``auto_eps`` found by them), on every ``step``-th state.
 
     Without ``test`` (the tests given) no dense matrix is made, and without ``autos`` (the
     differences given too) no recurrence: the states are what the intervals read.
     """
     thresholds, (cr, cross_eps) = signal_thresholds(p, len(signals))
+    if auto_eps is not None:
+        thresholds = [(None, float(eps)) for eps in auto_eps]
     states = [signal_states(s, parameters=p, name=c, step=step)
               for s, c in zip(signals, called, strict=True)]
     p = thinned(p, step)

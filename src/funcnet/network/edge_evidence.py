@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import dataclasses
 import inspect
-from collections.abc import Mapping
+import math
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Unpack
 
 import pandas as pd
@@ -127,11 +128,20 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
         list(prepared.signals), names=list(prepared.names), parameters=p, surrogates=surrogates,
         alpha=alpha, seed=seed, resamples=resamples, surrogate_method=surrogate_method,
         intervals=intervals, observed=observed, tests=tests, step=step,
+        auto_eps=_auto_eps(pairs, prepared.names),
     )
     settings = {"surrogates": surrogates, "alpha": float(alpha), "seed": int(seed),
                 "resamples": int(resamples), "level": 0.95, "edge_rule": edge_rule,
                 "surrogate_method": surrogate_method, "intervals": intervals}
     return _with_evidence(pairs, found, p, edge_rule, float(alpha)), settings
+
+
+def _auto_eps(pairs: pd.DataFrame, names: Sequence[str]) -> list[float] | None:
+    """Each node's recurrence threshold from the pairs table (None if one is not there)."""
+    found = dict(zip(pairs["y"], pairs["eps_y"], strict=True))
+    found.update(zip(pairs["x"], pairs["eps_x"], strict=True))
+    eps = [found.get(name, math.nan) for name in names]
+    return None if any(not math.isfinite(e) for e in eps) else [float(e) for e in eps]
 
 
 def _with_evidence(pairs: pd.DataFrame, found: Mapping[tuple[str, str], PairEvidence],
