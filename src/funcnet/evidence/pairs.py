@@ -393,7 +393,8 @@ def _prepare(signals: list[Any], p: NetworkParameters, called: list[str],
     """
     thresholds, (cr, cross_eps) = signal_thresholds(p, len(signals))
     if auto_eps is not None:
-        thresholds = [(None, float(eps)) for eps in auto_eps]
+        thresholds = [(rate, float(eps))  # an eps overrides the rate
+                      for (rate, _), eps in zip(thresholds, auto_eps, strict=True)]
     states = [signal_states(s, parameters=p, name=c, step=step)
               for s, c in zip(signals, called, strict=True)]
     p = thinned(p, step)
