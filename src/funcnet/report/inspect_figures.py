@@ -450,22 +450,21 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.0), 0.36 * len(pairs) + 2.8))
     ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
     used: dict[str, str] = {}
+    cells: dict[tuple[str, float, str], list[tuple[int, int]]] = {}  # (glyph, size, colour)
     for c, label in enumerate(labels):
         readings = _cell_readings(inspection.networks[label].pairs)
         for r, (a, b) in enumerate(pairs):
             if (a, b) not in readings:
                 used["left out"] = _EVIDENCE_COLORS["left out"]
-                ax.text(c, r, "–", ha="center", va="center", fontsize=9, color="0.4",
-                        in_layout=False)
+                cells.setdefault(("–", 9.0, "0.4"), []).append((c, r))
                 continue
             key, kind = readings[(a, b)]
             colour = _EVIDENCE_COLORS.get(key, plot.KIND_COLORS.get(key, "0.8"))
             used[key] = colour
             image[r, c] = to_rgb(colour)
-            # in_layout=False: a cell's arrow lies inside the image, nothing for the layout
-            ax.text(c, r, ARROWS.get(kind, "?"), ha="center", va="center",
-                    fontsize=10, color="0.55" if key == "untestable" else "black",
-                    in_layout=False)
+            cells.setdefault((ARROWS.get(kind, "?"), 10.0,
+                              "0.55" if key == "untestable" else "black"), []).append((c, r))
+    _draw_glyphs(ax, cells)
     ax.imshow(image, aspect="auto", interpolation="nearest")
     ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
     ax.set_yticks(range(len(pairs)), [f"{a}–{b}" for a, b in pairs], fontsize=9)
@@ -482,6 +481,30 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     legend.set_bbox_to_anchor((1.0 - (right - 8 * PT) / width, 1.0 - 8 * PT / height),
                               transform=fig.transFigure)
     return fig
+
+
+def _draw_glyphs(ax: Any, cells: dict[tuple[str, float, str], list[tuple[int, int]]]) -> None:
+    """Each cell's arrow or dash, centred on it: one marker line per glyph, size and colour
+    (gid ``cell:GLYPH``) whose marker is the glyph's outline at that font size.
+
+    A text per cell cost more than the rest of the figure (a page's pairs × windows, some
+    three thousand on a six-axis robot); the outlines are the font's, the same shapes.
+    """
+    from matplotlib.markers import MarkerStyle
+    from matplotlib.path import Path
+    from matplotlib.textpath import TextPath
+
+    for (glyph, size, colour), where in cells.items():
+        outline = TextPath((0.0, 0.0), glyph, size=size)  # points, from the font's DejaVu Sans
+        box = outline.get_extents()  # the ink's box, centred on the cell
+        centred = Path(outline.vertices - [(box.x0 + box.x1) / 2, (box.y0 + box.y1) / 2],
+                       outline.codes)
+        # a path marker is scaled to half its size at its farthest vertex: the glyph's own size
+        reach = float(np.abs(centred.vertices).max())
+        columns, rows = zip(*where, strict=True)
+        ax.plot(columns, rows, linestyle="", marker=MarkerStyle(centred), markersize=2 * reach,
+                markerfacecolor=colour, markeredgewidth=0.0, gid=f"cell:{glyph}",
+                scalex=False, scaley=False)
 
 
 def _cell_readings(pairs: Any) -> dict[tuple[str, str], tuple[str, str]]:
