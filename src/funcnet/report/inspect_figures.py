@@ -34,9 +34,6 @@ _MAX_MOVE_COLUMNS = 6  # the motion figure zooms into at most this many moves
 _MAX_NETWORK_COLUMNS = 6  # networks per row where a move holds several cycles
 
 
-
-
-
 def _fine_scale(inspection: Any) -> tuple[float, str]:
     """The factor and unit of a small position difference: arcsec, or um on a linear axis."""
     from funcnet.robot.units import axis_scale, position_unit
@@ -256,28 +253,32 @@ def figure_networks(inspection: TraceInspection) -> Any:
         circle of radius 1 around its panel's centre.
     """
     from matplotlib.lines import Line2D
+    from matplotlib.transforms import ScaledTranslation
 
     from funcnet import plot
 
     cells, rows, cols = _panels(inspection)
     fig, ax, scale = _network_canvas(rows, cols)
     degenerate = dropped = with_evidence = False
+    names: dict[tuple[str, float, str], list[Any]] = {}  # every panel's node names, drawn once
+    # 4 pt above the square: a text in data units shifted, cheaper to draw than an annotation
+    above = ax.transData + ScaledTranslation(0.0, 4 * PT, fig.dpi_scale_trans)
     for w, (r, c) in zip(inspection.windows, cells, strict=True):
         centre = ((c + 0.5) * _CELL_WIDTH / scale,
                   ((rows - r) * _CELL_HEIGHT - _TITLE_ROOM - _SQUARE / 2) / scale)
-        ax.annotate(f"{w.label}\n{w.start:.2f}–{w.stop:.2f} s", (centre[0], centre[1] + 1.3),
-                    xytext=(0, 4), textcoords="offset points", ha="center", va="bottom",
-                    fontsize=11, gid=f"title:{w.label}")
+        ax.text(centre[0], centre[1] + 1.3, f"{w.label}\n{w.start:.2f}–{w.stop:.2f} s",
+                transform=above, ha="center", va="bottom", fontsize=11, gid=f"title:{w.label}")
         net = inspection.networks.get(w.label)
         if net is None:
             ax.text(*centre, "no network", ha="center", va="center", gid=f"none:{w.label}")
             continue
         ax.add_patch(_panel_square(centre, plot.phase_color(w.phase), w.label))
         plot.plot_network(net, ax, nodes=list(inspection.signals), legend=False,
-                          arrows="direction", at=centre)
+                          arrows="direction", at=centre, names=names)
         degenerate |= bool(plot.network_edges(net)["degenerate"].any())
         dropped |= bool(net.window and net.window.get("dropped"))
         with_evidence |= "evidence" in net.pairs.columns
+    plot.glyph_markers(ax, names, prefix="name")
     handles = plot.network_legend_handles(degenerate=degenerate, evidence=with_evidence)
     if dropped:
         handles.append(Line2D([], [], color="0.2", linestyle="--", marker="o", markersize=9,
@@ -464,7 +465,7 @@ def figure_evidence(inspection: TraceInspection) -> Any:
             image[r, c] = to_rgb(colour)
             cells.setdefault((ARROWS.get(kind, "?"), 10.0,
                               "0.55" if key == "untestable" else "black"), []).append((c, r))
-    _draw_glyphs(ax, cells)
+    plot.glyph_markers(ax, cells)
     ax.imshow(image, aspect="auto", interpolation="nearest")
     ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
     ax.set_yticks(range(len(pairs)), [f"{a}–{b}" for a, b in pairs], fontsize=9)
@@ -481,30 +482,6 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     legend.set_bbox_to_anchor((1.0 - (right - 8 * PT) / width, 1.0 - 8 * PT / height),
                               transform=fig.transFigure)
     return fig
-
-
-def _draw_glyphs(ax: Any, cells: dict[tuple[str, float, str], list[tuple[int, int]]]) -> None:
-    """Each cell's arrow or dash, centred on it: one marker line per glyph, size and colour
-    (gid ``cell:GLYPH``) whose marker is the glyph's outline at that font size.
-
-    A text per cell cost more than the rest of the figure (a page's pairs × windows, some
-    three thousand on a six-axis robot); the outlines are the font's, the same shapes.
-    """
-    from matplotlib.markers import MarkerStyle
-    from matplotlib.path import Path
-    from matplotlib.textpath import TextPath
-
-    for (glyph, size, colour), where in cells.items():
-        outline = TextPath((0.0, 0.0), glyph, size=size)  # points, from the font's DejaVu Sans
-        box = outline.get_extents()  # the ink's box, centred on the cell
-        centred = Path(outline.vertices - [(box.x0 + box.x1) / 2, (box.y0 + box.y1) / 2],
-                       outline.codes)
-        # a path marker is scaled to half its size at its farthest vertex: the glyph's own size
-        reach = float(np.abs(centred.vertices).max())
-        columns, rows = zip(*where, strict=True)
-        ax.plot(columns, rows, linestyle="", marker=MarkerStyle(centred), markersize=2 * reach,
-                markerfacecolor=colour, markeredgewidth=0.0, gid=f"cell:{glyph}",
-                scalex=False, scaley=False)
 
 
 def _cell_readings(pairs: Any) -> dict[tuple[str, str], tuple[str, str]]:
