@@ -201,13 +201,28 @@ def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> Non
     ticks = {ax: _ytick_width(ax, renderer) for column in grid for ax in [top, *column]}
     left = 4 * PT + text + 4 * PT + 7 * PT + max(ticks[ax] for ax in [top, *grid[0]])
     gap = 17 * PT + max((ticks[ax] for column in grid[1:] for ax in column), default=0.0)
-    right = 0.2  # half a time label past the end of the axis
+    last = fig.text(0, 0, grid[-1][0].get_title(loc="left"), fontsize=10)  # measured only
+    right = _motion_right(width - left - (cols - 1) * gap, cols, extent([last], renderer)[0])
+    last.remove()
     put(top, left, tops[0], width - left - right, size)
     column = (width - left - right - (cols - 1) * gap) / cols
     for k in range(cols):
         for r in range(rows):
             put(grid[k][r], left + k * (column + gap), tops[1 + r], column, size)
     legend.set_bbox_to_anchor((0.5, 1.0 - 4 * PT / height), transform=fig.transFigure)
+
+
+def _motion_right(room: float, cols: int, title: float) -> float:
+    """The margin right of the zoomed columns (inches): half a time label past the end of the
+    axis, or what the last column's title (``title`` wide, from its left end) needs beyond it.
+
+    ``room`` is the width of the columns and the margin together. A column is
+    ``(room - right) / cols`` wide, so its title ends inside the canvas when
+    ``(room - right) / cols + right >= title`` (with 2 pt to spare).
+    """
+    if cols < 2:
+        return 0.2
+    return max(0.2, (title + 2 * PT - room / cols) / (1.0 - 1.0 / cols))
 
 
 def _ytick_width(ax: Any, renderer: Any) -> float:
