@@ -186,10 +186,11 @@ def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> Non
     width, height = fig.get_size_inches()
     rows, cols = len(grid[0]), len(grid)
     text = extent([top.xaxis.label, top.title], renderer)[1]  # one line of 9-10 pt
-    title = max(extent([grid[k][0].title for k in range(cols)], renderer)[1], text)
+    title, last_title = _motion_titles(fig, grid, renderer)
+    title = max(title, text)
     xtick = extent([fig.text(0, 0, "0123456789−.", fontsize=9, visible=True)], renderer)[1]
     fig.texts.pop()
-    head = 4 * PT + legend_extent(legend, renderer)[1] + 4 * PT + title + 16 * PT
+    head = 4 * PT + legend_extent(legend, renderer)[1] + 4 * PT + text + 16 * PT
     below_top = 7 * PT + xtick + 4 * PT + text + 10 * PT + title + 6 * PT + text
     between = 8 * PT + text  # room for an offset ("1e-5") above a panel
     size = (height - head - below_top - (rows - 1) * between
@@ -201,15 +202,34 @@ def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> Non
     ticks = {ax: _ytick_width(ax, renderer) for column in grid for ax in [top, *column]}
     left = 4 * PT + text + 4 * PT + 7 * PT + max(ticks[ax] for ax in [top, *grid[0]])
     gap = 17 * PT + max((ticks[ax] for column in grid[1:] for ax in column), default=0.0)
-    last = fig.text(0, 0, grid[-1][0].get_title(loc="left"), fontsize=10)  # measured only
-    right = _motion_right(width - left - (cols - 1) * gap, cols, extent([last], renderer)[0])
-    last.remove()
+    right = _motion_right(width - left - (cols - 1) * gap, cols, last_title)
     put(top, left, tops[0], width - left - right, size)
     column = (width - left - right - (cols - 1) * gap) / cols
     for k in range(cols):
         for r in range(rows):
             put(grid[k][r], left + k * (column + gap), tops[1 + r], column, size)
     legend.set_bbox_to_anchor((0.5, 1.0 - 4 * PT / height), transform=fig.transFigure)
+
+
+def _motion_titles(fig: Any, grid: list[list[Any]], renderer: Any) -> tuple[float, float]:
+    """The zoomed columns' titles, on two lines ("(b) move 5:" above its times) where one line
+    is wider than a column leaves them; their height and the last one's width (inches).
+
+    A column and its gap take about a ``cols``-th of the figure's width less its margins
+    (an inch); titles wider than that ran into the next column's.
+    """
+    cols = len(grid)
+    titles = [column[0].get_title(loc="left") for column in grid]
+    probe = fig.text(0, 0, "\n".join(titles), fontsize=10)  # measured only: the widest line
+    widest = extent([probe], renderer)[0]
+    if widest + 6 * PT > (fig.get_figwidth() - 1.0) / cols:
+        titles = [t.replace(": ", ":\n", 1) for t in titles]
+        for column, t in zip(grid, titles, strict=True):
+            column[0].set_title(t, fontsize=10, loc="left")
+    probe.set_text(titles[-1])
+    last = extent([probe], renderer)
+    probe.remove()
+    return last[1], last[0]
 
 
 def _motion_right(room: float, cols: int, title: float) -> float:
