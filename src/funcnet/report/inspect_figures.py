@@ -305,7 +305,7 @@ def figure_networks(inspection: TraceInspection) -> Any:
                 transform=above, ha="center", va="bottom", fontsize=11, gid=f"title:{w.label}")
         net = inspection.networks.get(w.label)
         if net is None:
-            ax.text(*centre, "no network", ha="center", va="center", gid=f"none:{w.label}")
+            names.setdefault(("no network", 10.0, "black"), []).append(centre)
             continue
         ax.add_patch(_panel_square(centre, plot.phase_color(w.phase), w.label))
         plot.plot_network(net, ax, nodes=list(inspection.signals), legend=False,
