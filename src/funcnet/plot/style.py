@@ -6,8 +6,10 @@ One colour per signal role and one shade per phase kind, the same in every figur
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from typing import Any
 
+import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
@@ -126,7 +128,8 @@ def signal_color(name: Any) -> str:
 
 
 
-def glyph_markers(ax: Axes, glyphs: dict[tuple[str, float, str], list[tuple[float, float]]],
+def glyph_markers(ax: Axes,
+                  glyphs: Mapping[tuple[str, float, str], Sequence[tuple[float, float]]],
                   prefix: str = "cell") -> None:
     """Short texts drawn many times (a cell's arrow, a node's name) as markers of their outline.
 
@@ -137,7 +140,7 @@ def glyph_markers(ax: Axes, glyphs: dict[tuple[str, float, str], list[tuple[floa
     Parameters
     ----------
     ax : matplotlib.axes.Axes
-    glyphs : dict of (text, size in points, colour) to list of (x, y)
+    glyphs : mapping of (text, size in points, colour) to sequence of (x, y)
         Where each text goes, in data coordinates.
     prefix : str
         Each marker line's gid is ``{prefix}:{text}``.
@@ -156,10 +159,11 @@ def glyph_markers(ax: Axes, glyphs: dict[tuple[str, float, str], list[tuple[floa
     for (text, size, colour), where in glyphs.items():
         outline = TextPath((0.0, 0.0), text, size=size)  # in points
         box = outline.get_extents()
-        centred = Path(outline.vertices - [(box.x0 + box.x1) / 2, (box.y0 + box.y1) / 2],
-                       outline.codes)
+        vertices = np.asarray(outline.vertices, dtype=float) - [(box.x0 + box.x1) / 2,
+                                                                  (box.y0 + box.y1) / 2]
+        centred = Path(vertices, outline.codes)
         # a path marker is scaled to half its size at its farthest vertex: the text's own size
-        reach = float(abs(centred.vertices).max())
+        reach = float(np.abs(vertices).max())
         xs, ys = zip(*where, strict=True)
         ax.plot(xs, ys, linestyle="", marker=MarkerStyle(centred), markersize=2 * reach,
                 markerfacecolor=colour, markeredgewidth=0.0, gid=f"{prefix}:{text}",
