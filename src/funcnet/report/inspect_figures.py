@@ -5,6 +5,9 @@ Each takes a :class:`~funcnet.inspection.TraceInspection` and returns a matplotl
 (or None when the trace lacks what it draws); phases are shaded in
 :data:`funcnet.plot.PHASE_COLORS`, the same colour for the same kind of phase everywhere; every
 text is at least 9 pt at the figure's native size (100 dpi), the size the report shows.
+
+Length: just over 600 lines; the five figures of a page and the placing of their texts belong
+together.
 """
 
 from __future__ import annotations
