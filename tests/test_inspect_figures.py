@@ -50,7 +50,9 @@ def test_the_figure_draws_each_pairs_arrow_and_a_dash_where_a_pair_is_left_out()
     inspection = SimpleNamespace(windows=windows, networks=networks, evidence=True,
                                  signals={"RP": None, "AP": None, "AC": None})
     fig = figure_evidence(inspection)
-    texts = sorted((t.get_position(), t.get_text()) for t in fig.axes[0].texts)
+    # each cell's glyph: a marker at the cell, one line of markers per glyph (gid cell:GLYPH)
+    texts = sorted(((x, y), line.get_gid().removeprefix("cell:")) for line in fig.axes[0].lines
+                   for x, y in zip(line.get_xdata(), line.get_ydata(), strict=True))
     # pairs in signal order: RP–AP (row 0), RP–AC (row 1), AP–AC (row 2); windows as columns
     assert texts == sorted([((0, 0), ARROWS["x->y"]), ((0, 1), ARROWS["bidirectional"]),
                             ((0, 2), ARROWS["y->x"]), ((1, 0), ARROWS["x->y"]),

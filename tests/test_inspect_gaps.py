@@ -111,14 +111,16 @@ def test_the_overview_figure_shades_the_gap(tmp_path):
     ins = inspect_recording(read_trace(csv), evidence=False, backlash=False)
     fig = figure_motion(ins)
     top = fig.axes[0]
-    shaded = [p for p in top.patches if p.get_gid() == "gap:gap"]
+    shaded = [c for c in top.collections if c.get_gid() == "gap:gap"]
     assert len(shaded) == 1
-    (patch,) = shaded
-    assert (patch.get_x(), patch.get_x() + patch.get_width()) == pytest.approx(gap)
+    (rectangle,) = shaded[0].get_paths()  # in (time, axes fraction)
+    xs, ys = rectangle.vertices[:, 0], rectangle.vertices[:, 1]
+    assert (xs.min(), xs.max()) == pytest.approx(gap)
+    assert (ys.min(), ys.max()) == (0.0, 1.0)
     labels = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
     assert "gap (values missing)" in labels
     # no move touches a gap at rest: no zoomed panel shades it
-    assert not any(p.get_gid() == "gap:gap" for ax in fig.axes[1:] for p in ax.patches)
+    assert not any(c.get_gid() == "gap:gap" for ax in fig.axes[1:] for c in ax.collections)
 
 
 def test_a_gap_at_rest_leaves_the_moves_as_without_it(tmp_path):

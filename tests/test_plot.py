@@ -34,7 +34,9 @@ def net_of(pairs, **parameters):
 
 
 def gids(ax, prefix):
-    return sorted(p.get_gid() for p in ax.patches if (p.get_gid() or "").startswith(prefix))
+    """The gids of the axes' patches (nodes, edges) and collections (shaded spans)."""
+    return sorted(p.get_gid() for p in [*ax.patches, *ax.collections]
+                  if (p.get_gid() or "").startswith(prefix))
 
 
 def edge_patches(ax):

@@ -22,11 +22,32 @@ def _figure() -> Figure:
     return fig
 
 
+def _pixels(path):
+    from PIL import Image
+
+    with Image.open(path) as image:
+        return image.mode, np.asarray(image)
+
+
 def test_saved_pixels_equal_matplotlibs_two_pass_save(tmp_path):
     ours = save_figure(_figure(), tmp_path / "ours.png")
     reference = tmp_path / "reference.png"
-    _figure().savefig(reference, format="png", dpi=100, pil_kwargs={"compress_level": 3})
-    assert ours.read_bytes() == reference.read_bytes()
+    _figure().savefig(reference, format="png", dpi=100)
+    mode, pixels = _pixels(ours)
+    reference_mode, expected = _pixels(reference)
+    # every pixel opaque: saved without the alpha channel, the same colours
+    assert (mode, reference_mode) == ("RGB", "RGBA")
+    assert (expected[..., 3] == 255).all()
+    np.testing.assert_array_equal(pixels, expected[..., :3])
+
+
+def test_a_figure_with_transparent_pixels_keeps_its_alpha(tmp_path):
+    fig = Figure(figsize=(2.0, 2.0))
+    fig.patch.set_alpha(0.0)
+    fig.add_axes((0.2, 0.2, 0.6, 0.6)).plot([0, 1], [0, 1])
+    mode, pixels = _pixels(save_figure(fig, tmp_path / "clear.png"))
+    assert mode == "RGBA"
+    assert pixels[0, 0, 3] == 0 and (pixels[..., 3] == 255).any()
 
 
 def test_a_figure_at_another_dpi_keeps_its_layout_engine(tmp_path):

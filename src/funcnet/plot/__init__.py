@@ -50,6 +50,7 @@ _EXPORTS = {
     "GAP_COLOR": "funcnet.plot.style",
     "signal_color": "funcnet.plot.style",
     "phase_color": "funcnet.plot.style",
+    "glyph_markers": "funcnet.plot.style",
     "network_edges": "funcnet.plot.network_diagram",
     "network_nodes": "funcnet.plot.network_diagram",
     "network_legend_handles": "funcnet.plot.network_diagram",

@@ -31,6 +31,7 @@ from funcnet.plot.style import (
     PHASE_COLORS as PHASE_COLORS,
     SIGNAL_COLORS as SIGNAL_COLORS,
     SPAN_TITLE_PAD as SPAN_TITLE_PAD,
+    glyph_markers as glyph_markers,
     phase_color as phase_color,
     signal_color as signal_color,
 )

@@ -300,8 +300,10 @@ def _draw_edge(ax: Axes, edge: Any, reading: str, position: Mapping[Any, tuple[f
 
 def _draw_nodes(ax: Axes, nodes: Sequence[Any], present: Sequence[Any],
                 label: Mapping[Any, str], position: Mapping[Any, tuple[float, float]],
-                radius: Mapping[Any, float], node_color: str, fontsize: float) -> None:
-    """The nodes of :func:`plot_network`: a circle and a name each, dashed when absent."""
+                radius: Mapping[Any, float], node_color: str, fontsize: float,
+                names: dict[tuple[str, float, str], list[Any]] | None = None) -> None:
+    """The nodes of :func:`plot_network`: a circle and a name each, dashed when absent; the
+    names collected in ``names`` instead of drawn, where given."""
     for name in nodes:
         circle = Circle(position[name], radius[name], facecolor=node_color, edgecolor="0.2",
                         linewidth=0.8, zorder=3,
@@ -309,8 +311,12 @@ def _draw_nodes(ax: Axes, nodes: Sequence[Any], present: Sequence[Any],
         circle.set_gid(f"node:{name}")
         ax.add_artist(circle)  # not add_patch, names not in the layout: inside fixed limits
         text = label.get(name, str(name))
-        ax.text(*position[name], text, ha="center", va="center", zorder=4,
-                fontsize=fontsize * min(1.0, 4.0 / max(len(text), 1)) ** 0.5, in_layout=False)
+        size = fontsize * min(1.0, 4.0 / max(len(text), 1)) ** 0.5
+        if names is not None:
+            names.setdefault((text, size, "black"), []).append(position[name])
+            continue
+        ax.text(*position[name], text, ha="center", va="center", zorder=4, fontsize=size,
+                in_layout=False)
 
 
 def plot_network(
@@ -328,6 +334,7 @@ def plot_network(
     groups: Mapping[str, Sequence[str]] | None = None,
     arrows: str = "rule",
     at: tuple[float, float] | None = None,
+    names: dict[tuple[str, float, str], list[Any]] | None = None,
 ) -> Axes:
     """Draw a functional network in a circular layout (paper section 3.4, Fig. 9-11).
 
@@ -374,6 +381,10 @@ def plot_network(
         Draw the network centred there, in the data coordinates of ``ax``, and leave the axes'
         limits, aspect, frame and title alone: several networks in one axes (of equal aspect),
         each a circle of radius 1 around its centre, far cheaper than an axes each.
+    names : dict, optional
+        Collect the node names here instead of drawing them: ``(name, font size, colour)`` to
+        the places it goes, for :func:`funcnet.plot.glyph_markers` to draw each name once over
+        many networks.
 
     Returns
     -------
@@ -425,7 +436,7 @@ def plot_network(
     cx, cy = (0.0, 0.0) if at is None else (float(at[0]), float(at[1]))
     position = {name: (cx + np.cos(angle[name]), cy + np.sin(angle[name])) for name in nodes}
     radius = {name: _node_radius(label.get(name, str(name)), node_size) for name in nodes}
-    _draw_nodes(ax, nodes, present, label, position, radius, node_color, fontsize)
+    _draw_nodes(ax, nodes, present, label, position, radius, node_color, fontsize, names)
     for group, members in (groups or {}).items():
         placed = [angle[m] for m in members if m in angle]
         if placed:

@@ -8,9 +8,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
+from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
-from matplotlib.patches import Rectangle
 
 from funcnet.plot.style import _new_axes, phase_color, signal_color
 
@@ -29,7 +29,8 @@ def shade_spans(ax: Axes, spans: Any, *, prefix: str | None = "phase", alpha: fl
         A phase table (``phase, start, stop``: each row shaded as its phase), windows (each
         shaded as its label names it) or explicit triples.
     prefix : str or None
-        Each patch's gid is ``{prefix}:{name}``; None sets none.
+        The spans of one name are one :class:`~matplotlib.collections.PolyCollection` of
+        rectangles, its gid ``{prefix}:{name}``; None sets none.
     alpha : float
         Opacity of the shading.
     names : bool
@@ -46,26 +47,30 @@ def shade_spans(ax: Axes, spans: Any, *, prefix: str | None = "phase", alpha: fl
     >>> ax = Figure().add_subplot()
     >>> spans = [("cruise", 0.0, 1.0), ("braking", 1.0, 2.0), ("cruise 2", 2.0, 3.0)]
     >>> shade_spans(ax, spans, within=(0.5, 1.5))
-    >>> [p.get_gid() for p in ax.patches]
-    ['phase:cruise', 'phase:braking']
+    >>> [(c.get_gid(), len(c.get_paths())) for c in ax.collections]
+    [('phase:cruise', 1), ('phase:braking', 1)]
     """
+    # One collection of rectangles per kind of span (in data x, axes y, as axvspan draws):
+    # a patch per span cost more than the rest of a panel where an axis moves often.
+    groups: dict[tuple[str, str], list[Any]] = {}
     for k, (name, start, stop) in enumerate(_spans(spans)):
         if within is not None:
             if not (stop > within[0] and start < within[1]):
                 continue
             start, stop = max(start, within[0]), min(stop, within[1])
-        # a rectangle in (data, axes) coordinates, as axvspan draws, without its cost: the
-        # 100-step path axvspan gives a rectangle (for polar axes) and the autoscaling request
-        patch = Rectangle((start, 0.0), stop - start, 1.0, transform=ax.get_xaxis_transform(),
-                          color=color or phase_color(name, k), alpha=alpha, zorder=0,
-                          linewidth=0)
-        ax.add_patch(patch)
-        if prefix is not None:
-            patch.set_gid(f"{prefix}:{name}")
+        groups.setdefault((name, color or phase_color(name, k)), []).append(
+            [(start, 0.0), (stop, 0.0), (stop, 1.0), (start, 1.0)])
         if names:
             ax.annotate(str(name), ((start + stop) / 2, 1.0), xycoords=ax.get_xaxis_transform(),
                         xytext=(0, 2 + 11 * (k % 2)), textcoords="offset points", fontsize=9,
                         ha="center", va="bottom")
+    for (name, colour), rectangles in groups.items():
+        shading = PolyCollection(rectangles, transform=ax.get_xaxis_transform(),
+                                 facecolors=colour, alpha=alpha, zorder=0, linewidths=0,
+                                 edgecolors="none")
+        if prefix is not None:
+            shading.set_gid(f"{prefix}:{name}")
+        ax.add_collection(shading, autolim=False)
 
 
 def _spans(phases: Any) -> list[tuple[str, float, float]]:

@@ -6,8 +6,10 @@ One colour per signal role and one shade per phase kind, the same in every figur
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from typing import Any
 
+import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
@@ -24,6 +26,7 @@ __all__ = [
     "GAP_COLOR",
     "signal_color",
     "phase_color",
+    "glyph_markers",
 ]
 
 DIRECTED_COLOR = "black"
@@ -123,3 +126,45 @@ def signal_color(name: Any) -> str:
     # A stable (not hash-randomized) choice, so that a figure looks the same on every run.
     return _OTHER_COLORS[sum(map(ord, name)) % len(_OTHER_COLORS)]
 
+
+
+def glyph_markers(ax: Axes,
+                  glyphs: Mapping[tuple[str, float, str], Sequence[tuple[float, float]]],
+                  prefix: str = "cell") -> None:
+    """Short texts drawn many times (a cell's arrow, a node's name) as markers of their outline.
+
+    Each text is then one path, drawn at all its places at once: a text each cost more than
+    the rest of a figure of thousands of them. The outline is the font's (DejaVu Sans), at the
+    size given, centred on each place (the centre of its ink, not of its line box).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    glyphs : mapping of (text, size in points, colour) to sequence of (x, y)
+        Where each text goes, in data coordinates.
+    prefix : str
+        Each marker line's gid is ``{prefix}:{text}``.
+
+    Examples
+    --------
+    >>> ax = Figure().add_subplot()
+    >>> glyph_markers(ax, {("→", 10.0, "black"): [(0, 0), (1, 0)], ("RP", 9.0, "0.4"): [(0, 1)]})
+    >>> [(line.get_gid(), len(line.get_xdata())) for line in ax.lines]
+    [('cell:→', 2), ('cell:RP', 1)]
+    """
+    from matplotlib.markers import MarkerStyle
+    from matplotlib.path import Path
+    from matplotlib.textpath import TextPath
+
+    for (text, size, colour), where in glyphs.items():
+        outline = TextPath((0.0, 0.0), text, size=size)  # in points
+        box = outline.get_extents()
+        vertices = np.asarray(outline.vertices, dtype=float) - [(box.x0 + box.x1) / 2,
+                                                                  (box.y0 + box.y1) / 2]
+        centred = Path(vertices, outline.codes)
+        # a path marker is scaled to half its size at its farthest vertex: the text's own size
+        reach = float(np.abs(vertices).max())
+        xs, ys = zip(*where, strict=True)
+        ax.plot(xs, ys, linestyle="", marker=MarkerStyle(centred), markersize=2 * reach,
+                markerfacecolor=colour, markeredgewidth=0.0, gid=f"{prefix}:{text}",
+                scalex=False, scaley=False, zorder=4)  # over patches, as texts are

@@ -5,6 +5,9 @@ Each takes a :class:`~funcnet.inspection.TraceInspection` and returns a matplotl
 (or None when the trace lacks what it draws); phases are shaded in
 :data:`funcnet.plot.PHASE_COLORS`, the same colour for the same kind of phase everywhere; every
 text is at least 9 pt at the figure's native size (100 dpi), the size the report shows.
+
+Length: just over 600 lines; the five figures of a page and the placing of their texts belong
+together.
 """
 
 from __future__ import annotations
@@ -32,9 +35,6 @@ _EVIDENCE_LEGEND = {"asymmetry-only": "asymmetry-only (tested, not coupled)",
                     "untestable": "untestable (too few surrogates)"}
 _MAX_MOVE_COLUMNS = 6  # the motion figure zooms into at most this many moves
 _MAX_NETWORK_COLUMNS = 6  # networks per row where a move holds several cycles
-
-
-
 
 
 def _fine_scale(inspection: Any) -> tuple[float, str]:
@@ -189,10 +189,11 @@ def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> Non
     width, height = fig.get_size_inches()
     rows, cols = len(grid[0]), len(grid)
     text = extent([top.xaxis.label, top.title], renderer)[1]  # one line of 9-10 pt
-    title = max(extent([grid[k][0].title for k in range(cols)], renderer)[1], text)
+    title, last_title = _motion_titles(fig, grid, renderer)
+    title = max(title, text)
     xtick = extent([fig.text(0, 0, "0123456789−.", fontsize=9, visible=True)], renderer)[1]
     fig.texts.pop()
-    head = 4 * PT + legend_extent(legend, renderer)[1] + 4 * PT + title + 16 * PT
+    head = 4 * PT + legend_extent(legend, renderer)[1] + 4 * PT + text + 16 * PT
     below_top = 7 * PT + xtick + 4 * PT + text + 10 * PT + title + 6 * PT + text
     between = 8 * PT + text  # room for an offset ("1e-5") above a panel
     size = (height - head - below_top - (rows - 1) * between
@@ -204,13 +205,47 @@ def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> Non
     ticks = {ax: _ytick_width(ax, renderer) for column in grid for ax in [top, *column]}
     left = 4 * PT + text + 4 * PT + 7 * PT + max(ticks[ax] for ax in [top, *grid[0]])
     gap = 17 * PT + max((ticks[ax] for column in grid[1:] for ax in column), default=0.0)
-    right = 0.2  # half a time label past the end of the axis
+    right = _motion_right(width - left - (cols - 1) * gap, cols, last_title)
     put(top, left, tops[0], width - left - right, size)
     column = (width - left - right - (cols - 1) * gap) / cols
     for k in range(cols):
         for r in range(rows):
             put(grid[k][r], left + k * (column + gap), tops[1 + r], column, size)
     legend.set_bbox_to_anchor((0.5, 1.0 - 4 * PT / height), transform=fig.transFigure)
+
+
+def _motion_titles(fig: Any, grid: list[list[Any]], renderer: Any) -> tuple[float, float]:
+    """The zoomed columns' titles, on two lines ("(b) move 5:" above its times) where one line
+    is wider than a column leaves them; their height and the last one's width (inches).
+
+    A column and its gap take about a ``cols``-th of the figure's width less its margins
+    (an inch); titles wider than that ran into the next column's.
+    """
+    cols = len(grid)
+    titles = [column[0].get_title(loc="left") for column in grid]
+    probe = fig.text(0, 0, "\n".join(titles), fontsize=10)  # measured only: the widest line
+    widest = extent([probe], renderer)[0]
+    if widest + 6 * PT > (fig.get_figwidth() - 1.0) / cols:
+        titles = [t.replace(": ", ":\n", 1) for t in titles]
+        for column, t in zip(grid, titles, strict=True):
+            column[0].set_title(t, fontsize=10, loc="left")
+    probe.set_text(titles[-1])
+    last = extent([probe], renderer)
+    probe.remove()
+    return last[1], last[0]
+
+
+def _motion_right(room: float, cols: int, title: float) -> float:
+    """The margin right of the zoomed columns (inches): half a time label past the end of the
+    axis, or what the last column's title (``title`` wide, from its left end) needs beyond it.
+
+    ``room`` is the width of the columns and the margin together. A column is
+    ``(room - right) / cols`` wide, so its title ends inside the canvas when
+    ``(room - right) / cols + right >= title`` (with 2 pt to spare).
+    """
+    if cols < 2:
+        return 0.2
+    return max(0.2, (title + 2 * PT - room / cols) / (1.0 - 1.0 / cols))
 
 
 def _ytick_width(ax: Any, renderer: Any) -> float:
@@ -256,28 +291,32 @@ def figure_networks(inspection: TraceInspection) -> Any:
         circle of radius 1 around its panel's centre.
     """
     from matplotlib.lines import Line2D
+    from matplotlib.transforms import ScaledTranslation
 
     from funcnet import plot
 
     cells, rows, cols = _panels(inspection)
     fig, ax, scale = _network_canvas(rows, cols)
     degenerate = dropped = with_evidence = False
+    names: dict[tuple[str, float, str], list[Any]] = {}  # every panel's node names, drawn once
+    # 4 pt above the square: a text in data units shifted, cheaper to draw than an annotation
+    above = ax.transData + ScaledTranslation(0.0, 4 * PT, fig.dpi_scale_trans)
     for w, (r, c) in zip(inspection.windows, cells, strict=True):
         centre = ((c + 0.5) * _CELL_WIDTH / scale,
                   ((rows - r) * _CELL_HEIGHT - _TITLE_ROOM - _SQUARE / 2) / scale)
-        ax.annotate(f"{w.label}\n{w.start:.2f}–{w.stop:.2f} s", (centre[0], centre[1] + 1.3),
-                    xytext=(0, 4), textcoords="offset points", ha="center", va="bottom",
-                    fontsize=11, gid=f"title:{w.label}")
+        ax.text(centre[0], centre[1] + 1.3, f"{w.label}\n{w.start:.2f}–{w.stop:.2f} s",
+                transform=above, ha="center", va="bottom", fontsize=11, gid=f"title:{w.label}")
         net = inspection.networks.get(w.label)
         if net is None:
-            ax.text(*centre, "no network", ha="center", va="center", gid=f"none:{w.label}")
+            names.setdefault(("no network", 10.0, "black"), []).append(centre)
             continue
         ax.add_patch(_panel_square(centre, plot.phase_color(w.phase), w.label))
         plot.plot_network(net, ax, nodes=list(inspection.signals), legend=False,
-                          arrows="direction", at=centre)
+                          arrows="direction", at=centre, names=names)
         degenerate |= bool(plot.network_edges(net)["degenerate"].any())
         dropped |= bool(net.window and net.window.get("dropped"))
         with_evidence |= "evidence" in net.pairs.columns
+    plot.glyph_markers(ax, names, prefix="name")
     handles = plot.network_legend_handles(degenerate=degenerate, evidence=with_evidence)
     if dropped:
         handles.append(Line2D([], [], color="0.2", linestyle="--", marker="o", markersize=9,
@@ -450,22 +489,21 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.0), 0.36 * len(pairs) + 2.8))
     ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
     used: dict[str, str] = {}
+    cells: dict[tuple[str, float, str], list[tuple[int, int]]] = {}  # (glyph, size, colour)
     for c, label in enumerate(labels):
         readings = _cell_readings(inspection.networks[label].pairs)
         for r, (a, b) in enumerate(pairs):
             if (a, b) not in readings:
                 used["left out"] = _EVIDENCE_COLORS["left out"]
-                ax.text(c, r, "–", ha="center", va="center", fontsize=9, color="0.4",
-                        in_layout=False)
+                cells.setdefault(("–", 9.0, "0.4"), []).append((c, r))
                 continue
             key, kind = readings[(a, b)]
             colour = _EVIDENCE_COLORS.get(key, plot.KIND_COLORS.get(key, "0.8"))
             used[key] = colour
             image[r, c] = to_rgb(colour)
-            # in_layout=False: a cell's arrow lies inside the image, nothing for the layout
-            ax.text(c, r, ARROWS.get(kind, "?"), ha="center", va="center",
-                    fontsize=10, color="0.55" if key == "untestable" else "black",
-                    in_layout=False)
+            cells.setdefault((ARROWS.get(kind, "?"), 10.0,
+                              "0.55" if key == "untestable" else "black"), []).append((c, r))
+    plot.glyph_markers(ax, cells)
     ax.imshow(image, aspect="auto", interpolation="nearest")
     ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
     ax.set_yticks(range(len(pairs)), [f"{a}–{b}" for a, b in pairs], fontsize=9)
