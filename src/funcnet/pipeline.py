@@ -46,12 +46,12 @@ from funcnet.network import (
     add_evidence,
     edges_from_pairs,
     functional_network,
-    pair_kinds,
 )
 from funcnet.network.direction import window_directions, window_p_values
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.precision import logged_step, single_spacing
-from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
+from funcnet.network.rule import rule_columns
+from funcnet.network.schema import RESULT_COLUMNS, pairs_frame
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.preprocess import staircase_warning
 from funcnet.robot.recording import Recording
@@ -607,16 +607,18 @@ def _batched_networks(
         except FuncnetError:
             return {}, []
         p_values = reading.result()
-    n_pairs, n_rows = len(result.pairs), len(windows) * len(result.pairs)
-    columns: dict[str, list[Any]] = {"x": [x for x, _ in result.pairs] * len(windows),
-                                     "y": [y for _, y in result.pairs] * len(windows)}
-    columns.update({name: result[name].ravel().tolist() for name in RESULT_COLUMNS})
-    columns.update({**dict.fromkeys(RULE_COLUMNS, [""] * n_rows), "weight": [0.0] * n_rows})
+    n_pairs = len(result.pairs)
+    # every window's rows, then sliced; each column an array, the table made once
+    columns: dict[str, Any] = {"x": [x for x, _ in result.pairs] * len(windows),
+                               "y": [y for _, y in result.pairs] * len(windows)}
+    columns.update({name: result[name].ravel() for name in RESULT_COLUMNS})
+    columns.update(rule_columns(columns["c_diff"].astype(np.float64),
+                                columns["t_diff"].astype(np.float64), p))
     columns.update(window_directions(
         normalized, result.names, result.pairs,
         np.reshape(columns["degenerate"], (len(windows), n_pairs)), p, node_steps,
         origin=origin, p_values=p_values))
-    table = pair_kinds(pairs_frame(columns), p)  # every window's rows, then sliced
+    table = pairs_frame(columns)
     return _window_tables(recording, windows, parts, table, result, p)
 
 
