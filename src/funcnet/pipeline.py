@@ -720,7 +720,9 @@ def _without(p: NetworkParameters, kept: Sequence[bool]) -> NetworkParameters:
 
 
 def _pair_results(network: FunctionalNetwork) -> dict[tuple[str, str], CrossMeasures]:
-    """The pairs table's rows as the cross measures they were made from."""
+    """The pairs table's flagged rows (the only ones
+    :func:`~funcnet.core.measures.threshold_warnings` names) as the cross measures they were
+    made from."""
     p = network.parameters
     states = network.n_samples - (p.dim - 1) * p.delay  # not used by the warnings
     # column by column: to_dict("records") over every column of a table with evidence was
@@ -729,6 +731,9 @@ def _pair_results(network: FunctionalNetwork) -> dict[tuple[str, str], CrossMeas
     results = {}
     for k, (x, y) in enumerate(zip(map(str, columns["x"]), map(str, columns["y"]),
                                    strict=True)):
+        if columns["eps_ordered"][k] and not (columns["rate_exceeded"][k]
+                                              or columns["degenerate"][k]):
+            continue  # no flag: threshold_warnings would not name the pair
         results[(x, y)] = CrossMeasures(
             **{name: columns[name][k] for name in RESULT_COLUMNS},
             m_x=states,
