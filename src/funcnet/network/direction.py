@@ -344,7 +344,7 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
                            signals, parameters, alpha, steps=steps)
 
 
-def _direction_rows(first: Sequence[Any], second: Sequence[Any], tested: Sequence[bool],
+def _direction_rows(first: Sequence[Any], second: Sequence[Any], tested: list[bool],
                     signals: Mapping[str, Any], parameters: NetworkParameters,
                     alpha: float = DIRECTION_ALPHA, *,
                     steps: Mapping[str, float] | None = None) -> dict[str, list[str]]:
