@@ -551,7 +551,8 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
         p = _without(p, [name not in dropped for name in signals])
     try:
         network = functional_network(
-            part.drop(columns=list(dropped)), parameters=p, label=window.label, warn=False,
+            part.drop(columns=list(dropped)) if dropped else part, parameters=p,
+            label=window.label, warn=False,
             steps={name: step for name, step in window_steps(
                 values, list(signals), steps).items() if name not in dropped})
     except FuncnetError as error:

@@ -56,7 +56,9 @@ def float_columns(data: Any, used: Sequence[int], columns: Sequence[str]) -> np.
         if all(isinstance(kinds[i], np.dtype) and kinds[i].kind in "biuf" for i in used):
             # plain NumPy columns: converted in one step, element by element as one by one
             # (a fresh C-ordered array, as below: the frame's may be a read-only view)
-            return np.array(data.iloc[:, list(used)].to_numpy(dtype=np.float64), order="C")
+            whole = list(used) == list(range(len(kinds)))
+            table = data if whole else data.iloc[:, list(used)]
+            return np.array(table.to_numpy(dtype=np.float64), order="C")
         values = np.empty((data.shape[0], len(used)), dtype=np.float64)
         for k, i in enumerate(used):
             try:
