@@ -21,6 +21,7 @@ from funcnet.network.schema import (
     EDGE_COLUMNS,
     EDGE_DTYPES,
     EDGE_KINDS,
+    EVIDENCE_DTYPES,
     MEASURE_KINDS,
     PAIR_COLUMNS,
     PAIR_DTYPES,
@@ -31,6 +32,7 @@ from funcnet.network.schema import (
     empty_edges,
     empty_pairs,
     pairs_frame,
+    typed_frame,
 )
 from funcnet.parameters import NetworkParameters
 
@@ -127,6 +129,90 @@ def test_check_pairs_names_the_first_difference():
             edges_frame({"source": ["A"], "target": ["B"], "weight": [0.1],
                          "kind": ["forward"], "degenerate": [False]})
         )
+
+
+def series_built(columns, dtypes, index=None):
+    """A table as one Series per column makes it: the reference the typed frames must equal."""
+    frame = pd.DataFrame({name: pd.Series(list(columns[name]), dtype=dtype)
+                          for name, dtype in dtypes.items()})
+    if index is not None:
+        frame.index = index
+    return frame
+
+
+def assert_identical(found, expected):
+    """Equal cell for cell (floats bit for bit, -0.0 apart from 0.0), dtypes, columns, index."""
+    pd.testing.assert_frame_equal(found, expected, check_exact=True)
+    assert list(found.dtypes) == list(expected.dtypes)
+    assert found.columns.dtype == expected.columns.dtype
+    assert type(found.index) is type(expected.index) and found.index.equals(expected.index)
+    for name in found.columns:
+        if found[name].dtype == np.float64:
+            assert found[name].to_numpy().tobytes() == expected[name].to_numpy().tobytes(), name
+
+
+def mixed_columns(n, rng):
+    """Every column of the pairs and evidence schema, each given another way: NumPy arrays of
+    the column's dtype, object and unicode strings, lists, Series, ints for floats."""
+    dtypes = {**PAIR_DTYPES, **EVIDENCE_DTYPES}
+    columns = {}
+    for k, (name, dtype) in enumerate(dtypes.items()):
+        if dtype == "float64":
+            values = rng.normal(size=n)
+            values[::3] = [-0.0, np.nan, 0.0, np.inf][: len(values[::3])] if n >= 9 else -0.0
+            columns[name] = [values, values.tolist(), pd.Series(values),
+                             np.arange(n)][k % 4]
+        elif dtype == "bool":
+            flags = rng.random(n) < 0.5
+            columns[name] = [flags, flags.tolist()][k % 2]
+        elif dtype == "int64":
+            columns[name] = rng.integers(0, 99, n)
+        else:
+            words = [f"w{i % 3}" for i in range(n)]
+            columns[name] = [np.array(words, dtype=object), np.array(words), words,
+                             pd.Series(words, dtype="str"), pd.Series(words, dtype=object)][k % 5]
+    return columns, dtypes
+
+
+def test_typed_frames_equal_the_ones_built_series_by_series():
+    rng = np.random.default_rng(5)
+    for n in (0, 1, 12):
+        columns, dtypes = mixed_columns(n, rng)
+        assert_identical(pairs_frame(columns), series_built(columns, dtypes))
+        plain = {name: columns[name] for name in PAIR_COLUMNS}
+        assert_identical(pairs_frame(plain), series_built(plain, PAIR_DTYPES))
+        index = pd.RangeIndex(7, 7 + n)
+        assert_identical(typed_frame(columns, dtypes, index=index),
+                         series_built(columns, dtypes, index))
+    # a string column with a missing value, a float column with one, from lists
+    edges = {"source": ["A", None], "target": np.array(["B", None], dtype=object),
+             "weight": [0.1, None], "kind": ["directed"] * 2, "degenerate": [False, True]}
+    assert_identical(edges_frame(edges), series_built(edges, EDGE_DTYPES))
+    with pytest.raises(ParameterError, match="edges must have equally long columns.*weight 1"):
+        edges_frame({**edges, "weight": [0.1]})
+
+
+def test_pair_kinds_converts_column_by_column_as_astype_does():
+    """The rule's table, built at once, equals the old way: the columns set on a copy, then
+    the schema's order and dtypes by ``astype`` (object columns, a shifted index, attrs)."""
+    rng = np.random.default_rng(8)
+    pairs = hand_pairs([("A", "B", c, t) for c, t in rng.normal(scale=0.1, size=(9, 2))])
+    pairs = pairs.astype({"x": object, "c_xy": object, "degenerate": object, "weight": object})
+    pairs.index = pd.RangeIndex(3, 12)
+    pairs.attrs["source"] = "hand"
+    for measure in ("both", "clustering"):
+        p = NetworkParameters(mu=0.05, measure=measure)
+        expected = pairs.copy()
+        for name in ("c", "t"):
+            expected[f"{name}_kind"] = pd.Series(
+                [edge_kind(float(d), 0.05) for d in pairs[f"{name}_diff"]], index=pairs.index,
+                dtype="str")
+        expected["kind"] = kinds_for(expected, measure)
+        expected["weight"] = (pairs["c_diff"].abs() + pairs["t_diff"].abs()) / 2
+        expected = expected[list(PAIR_COLUMNS)].astype(dict(PAIR_DTYPES))
+        found = pair_kinds(pairs, p)
+        assert_identical(found, expected)
+        assert found.attrs == {"source": "hand"}
 
 
 # --- the rule, closed form ----------------------------------------------------------------

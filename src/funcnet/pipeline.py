@@ -46,12 +46,12 @@ from funcnet.network import (
     add_evidence,
     edges_from_pairs,
     functional_network,
-    pair_kinds,
 )
 from funcnet.network.direction import window_directions, window_p_values
 from funcnet.network.edge_evidence import check_evidence_settings
 from funcnet.network.precision import logged_step, single_spacing
-from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
+from funcnet.network.rule import rule_columns
+from funcnet.network.schema import RESULT_COLUMNS, pairs_frame
 from funcnet.parameters import EvidenceSettings, NetworkParameters, ParameterOverrides, resolve
 from funcnet.robot.preprocess import staircase_warning
 from funcnet.robot.recording import Recording
@@ -557,8 +557,8 @@ def _window_network(recording: Recording, window: Window, signals: Sequence[str]
         p = _without(p, [name not in dropped for name in signals])
     try:
         network = functional_network(
-            part.drop(columns=list(dropped)), parameters=p, label=window.label, warn=False,
-            max_states=max_states,
+            part.drop(columns=list(dropped)) if dropped else part, parameters=p,
+            label=window.label, warn=False, max_states=max_states,
             steps={name: step for name, step in window_steps(
                 values, list(signals), steps).items() if name not in dropped})
     except FuncnetError as error:
@@ -616,16 +616,18 @@ def _batched_networks(
         except FuncnetError:
             return {}, []
         p_values = reading.result()
-    n_pairs, n_rows = len(result.pairs), len(windows) * len(result.pairs)
-    columns: dict[str, list[Any]] = {"x": [x for x, _ in result.pairs] * len(windows),
-                                     "y": [y for _, y in result.pairs] * len(windows)}
-    columns.update({name: result[name].ravel().tolist() for name in RESULT_COLUMNS})
-    columns.update({**dict.fromkeys(RULE_COLUMNS, [""] * n_rows), "weight": [0.0] * n_rows})
+    n_pairs = len(result.pairs)
+    # every window's rows, then sliced; each column an array, the table made once
+    columns: dict[str, Any] = {"x": [x for x, _ in result.pairs] * len(windows),
+                               "y": [y for _, y in result.pairs] * len(windows)}
+    columns.update({name: result[name].ravel() for name in RESULT_COLUMNS})
+    columns.update(rule_columns(columns["c_diff"].astype(np.float64),
+                                columns["t_diff"].astype(np.float64), p))
     columns.update(window_directions(
         normalized, result.names, result.pairs,
         np.reshape(columns["degenerate"], (len(windows), n_pairs)), p, node_steps,
         origin=origin, p_values=p_values))
-    table = pair_kinds(pairs_frame(columns), p)  # every window's rows, then sliced
+    table = pairs_frame(columns)
     return _window_tables(recording, windows, parts, table, result, p)
 
 
@@ -727,7 +729,9 @@ def _without(p: NetworkParameters, kept: Sequence[bool]) -> NetworkParameters:
 
 
 def _pair_results(network: FunctionalNetwork) -> dict[tuple[str, str], CrossMeasures]:
-    """The pairs table's rows as the cross measures they were made from."""
+    """The pairs table's flagged rows (the only ones
+    :func:`~funcnet.core.measures.threshold_warnings` names) as the cross measures they were
+    made from."""
     p = network.parameters
     states = network.n_samples - (p.dim - 1) * p.delay  # not used by the warnings
     # column by column: to_dict("records") over every column of a table with evidence was
@@ -736,6 +740,9 @@ def _pair_results(network: FunctionalNetwork) -> dict[tuple[str, str], CrossMeas
     results = {}
     for k, (x, y) in enumerate(zip(map(str, columns["x"]), map(str, columns["y"]),
                                    strict=True)):
+        if columns["eps_ordered"][k] and not (columns["rate_exceeded"][k]
+                                              or columns["degenerate"][k]):
+            continue  # no flag: threshold_warnings would not name the pair
         results[(x, y)] = CrossMeasures(
             **{name: columns[name][k] for name in RESULT_COLUMNS},
             m_x=states,

@@ -402,7 +402,8 @@ def _prepare(signals: list[Any], p: NetworkParameters, called: list[str],
         auto_recurrence(s, rr=rate, eps=eps, parameters=p, name=c)
         for s, (rate, eps), c in zip(states, thresholds, called, strict=True)
     ] if test or autos else []
-    dense = [a.to_dense().astype(np.uint8) for a in packed] if test else []
+    # the dense matrices' bytes read as uint8: 0 and 1, as a copy to uint8 would hold them
+    dense = [a.to_dense().view(np.uint8) for a in packed] if test else []
     recurrent = ([recurrent_pairs(d) for d in dense] if test and surrogate_method == "shift"
                  else None)
     decorrelation = [decorrelation_time(s) for s in signals] if test else []

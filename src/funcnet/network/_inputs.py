@@ -52,6 +52,13 @@ def column_names(data: Any, names: Any) -> list[str]:
 def float_columns(data: Any, used: Sequence[int], columns: Sequence[str]) -> np.ndarray:
     """The columns ``used`` of ``data`` as one float64 array (time x columns)."""
     if isinstance(data, pd.DataFrame):
+        kinds = data.dtypes.tolist()
+        if all(isinstance(kinds[i], np.dtype) and kinds[i].kind in "biuf" for i in used):
+            # plain NumPy columns: converted in one step, element by element as one by one
+            # (a fresh C-ordered array, as below: the frame's may be a read-only view)
+            whole = list(used) == list(range(len(kinds)))
+            table = data if whole else data.iloc[:, list(used)]
+            return np.array(table.to_numpy(dtype=np.float64), order="C")
         values = np.empty((data.shape[0], len(used)), dtype=np.float64)
         for k, i in enumerate(used):
             try:

@@ -338,12 +338,23 @@ def direction_columns(pairs: pd.DataFrame, signals: Mapping[str, Any],
     >>> direction_columns(pairs, {"A": x, "B": y}, NetworkParameters(delay=1))["direction"]
     ['x->y']
     """
+    # plain lists: fast to walk
+    return _direction_rows(pairs["x"].tolist(), pairs["y"].tolist(),
+                           [bool(flagged) for flagged in pairs["degenerate"].tolist()],
+                           signals, parameters, alpha, steps=steps)
+
+
+def _direction_rows(first: Sequence[Any], second: Sequence[Any], tested: list[bool],
+                    signals: Mapping[str, Any], parameters: NetworkParameters,
+                    alpha: float = DIRECTION_ALPHA, *,
+                    steps: Mapping[str, float] | None = None) -> dict[str, list[str]]:
+    """:func:`direction_columns` of the table whose columns ``x``, ``y`` and ``degenerate``
+    are ``first``, ``second`` and ``tested`` (plain lists, as a caller building the table has
+    them), without making the table."""
     lags = direction_lags(parameters)
     if not 0.0 < alpha < 1.0:
         raise ParameterError.of("alpha", f"must be in (0, 1), got {alpha!r}")
     out: dict[str, list[str]] = {"direction": [], "direction_reason": []}
-    tested = [bool(flagged) for flagged in pairs["degenerate"].tolist()]
-    first, second = pairs["x"].tolist(), pairs["y"].tolist()  # plain lists: fast to walk
     # every node of the table, tested or not (a degenerate pair's where given): the same
     # columns whichever pairs a window flags, as in :func:`window_directions`
     names = list(dict.fromkeys(name for x, y, flagged in zip(first, second, tested,

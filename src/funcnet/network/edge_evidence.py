@@ -14,6 +14,7 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Unpack
 
+import numpy as np
 import pandas as pd
 
 from funcnet.errors import ParameterError
@@ -27,7 +28,12 @@ from funcnet.evidence import (
 from funcnet.evidence.pairs import PairEvidence
 from funcnet.network._inputs import PreparedSignals, prepared_signals
 from funcnet.network.rule import edges_from_pairs, kinds_for
-from funcnet.network.schema import EVIDENCE_COLUMNS, PAIR_COLUMNS, pairs_frame
+from funcnet.network.schema import (
+    EVIDENCE_COLUMNS,
+    EVIDENCE_DTYPES,
+    PAIR_COLUMNS,
+    pairs_frame,
+)
 from funcnet.parameters import EvidenceSettings, NetworkParameters
 
 if TYPE_CHECKING:
@@ -123,7 +129,8 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
         intervals = "all"
     # the table's own differences: the measures are not computed again
     observed = {(str(x), str(y)): (float(c), float(t)) for x, y, c, t in zip(
-        pairs["x"], pairs["y"], pairs["c_diff"], pairs["t_diff"], strict=True)}
+        pairs["x"].tolist(), pairs["y"].tolist(), pairs["c_diff"].tolist(),
+        pairs["t_diff"].tolist(), strict=True)}
     found = pairwise_evidence(
         list(prepared.signals), names=list(prepared.names), parameters=p, surrogates=surrogates,
         alpha=alpha, seed=seed, resamples=resamples, surrogate_method=surrogate_method,
@@ -146,8 +153,10 @@ def _auto_eps(pairs: pd.DataFrame, names: Sequence[str]) -> list[float] | None:
 
 def _with_evidence(pairs: pd.DataFrame, found: Mapping[tuple[str, str], PairEvidence],
                    p: NetworkParameters, edge_rule: str, alpha: float) -> pd.DataFrame:
-    columns: dict[str, list[Any]] = {name: pairs[name].tolist() for name in PAIR_COLUMNS}
-    rows = [found[(x, y)] for x, y in zip(columns["x"], columns["y"], strict=True)]
+    # the plain columns as the table holds them (no round trip through Python lists)
+    columns: dict[str, Any] = {name: pairs[name] for name in PAIR_COLUMNS}
+    rows = [found[(x, y)] for x, y in zip(pairs["x"].tolist(), pairs["y"].tolist(),
+                                          strict=True)]
     if edge_rule == "interval":
         c_kinds = [interval_kind(e.c_diff, e.c_diff_low, e.c_diff_high, p.mu_clustering)
                    for e in rows]
@@ -155,12 +164,14 @@ def _with_evidence(pairs: pd.DataFrame, found: Mapping[tuple[str, str], PairEvid
                    for e in rows]
         kinds = kinds_for(pd.DataFrame({"c_kind": c_kinds, "t_kind": t_kinds}), p.measure)
         columns.update(c_kind=c_kinds, t_kind=t_kinds, kind=kinds.tolist())
-    for name in EVIDENCE_COLUMNS:
-        if name not in _READING_COLUMNS:
-            columns[name] = [getattr(e, name) for e in rows]
+    tested = {name: [getattr(e, name) for e in rows]
+              for name in EVIDENCE_COLUMNS if name not in _READING_COLUMNS}
+    kind = columns["kind"] if edge_rule == "interval" else pairs["kind"].tolist()
     columns["evidence"], columns["evidence_reason"] = evidence_readings(
-        columns["coupled"], columns["coupling_p"], columns["surrogates"],
-        _directed(columns["direction"]), columns["kind"], alpha)
+        tested["coupled"], tested["coupling_p"], tested["surrogates"],
+        _directed(pairs["direction"].tolist()), kind, alpha)
+    for name, values in tested.items():  # each column an array of its dtype
+        columns[name] = np.array(values, dtype=EVIDENCE_DTYPES[name])
     return pairs_frame(columns)
 
 

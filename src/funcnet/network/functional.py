@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Unpack
 
+import numpy as np
 import pandas as pd
 
 from funcnet.core.embedding import MIN_STATES, thinning
@@ -29,10 +30,10 @@ from funcnet.core.measures import pairwise_cross_measures
 from funcnet.evidence import check_evidence_arguments
 from funcnet.network import readwrite
 from funcnet.network._inputs import prepared_signals
-from funcnet.network.direction import direction_columns
+from funcnet.network.direction import _direction_rows
 from funcnet.network.edge_evidence import check_edge_rule, evidence_columns
-from funcnet.network.rule import edges_from_pairs, pair_kinds
-from funcnet.network.schema import RESULT_COLUMNS, RULE_COLUMNS, pairs_frame
+from funcnet.network.rule import edges_from_pairs, rule_columns
+from funcnet.network.schema import PAIR_DTYPES, RESULT_COLUMNS, pairs_frame
 from funcnet.parameters import NetworkParameters, ParameterOverrides, check_int, resolve
 
 if TYPE_CHECKING:
@@ -581,19 +582,22 @@ def functional_network(
 def _pairs_table(results: Mapping[tuple[str, str], Any], parameters: NetworkParameters,
                  signals: Mapping[str, Any], steps: Mapping[str, float]) -> pd.DataFrame:
     """The pairs table of pairwise results (keyed by node names), the rule applied and the
-    direction read from the nodes' ``signals`` (logged with ``steps``)."""
-    measures = list(results.values())
-    columns: dict[str, list[Any]] = {
-        "x": [str(x) for x, _ in results],
-        "y": [str(y) for _, y in results],
-    }
-    for name in RESULT_COLUMNS:
-        columns[name] = [getattr(r, name) for r in measures]
-    columns["degenerate"] = [bool(flag) for flag in columns["degenerate"]]
-    columns.update(dict.fromkeys(RULE_COLUMNS, [""] * len(measures)))
-    columns["weight"] = [0.0] * len(measures)  # set by the rule
-    columns.update(direction_columns(pd.DataFrame(
-        {name: columns[name] for name in ("x", "y", "degenerate")}), signals, parameters,
-        steps=steps))
-    return pair_kinds(pairs_frame(columns), parameters)
+    direction read from the nodes' ``signals`` (logged with ``steps``): each column an array
+    of its dtype, the table made once."""
+    first = [str(x) for x, _ in results]
+    second = [str(y) for _, y in results]
+    columns: dict[str, Any] = {"x": first, "y": second,
+                               **_result_arrays(list(results.values()))}
+    columns.update(rule_columns(columns["c_diff"], columns["t_diff"], parameters))
+    columns.update(_direction_rows(first, second, columns["degenerate"].tolist(), signals,
+                                   parameters, steps=steps))
+    return pairs_frame(columns)
 
+
+def _result_arrays(measures: Sequence[Any]) -> dict[str, np.ndarray]:
+    """The :data:`~funcnet.network.schema.RESULT_COLUMNS` of a list of cross measures
+    (:class:`~funcnet.core.measures.CrossMeasures`), one array per column in its dtype:
+    float64, bool, and str as objects (what the pairs table's columns hold)."""
+    return {name: np.array([getattr(r, name) for r in measures],
+                           dtype=object if PAIR_DTYPES[name] == "str" else PAIR_DTYPES[name])
+            for name in RESULT_COLUMNS}

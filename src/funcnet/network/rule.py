@@ -29,6 +29,7 @@ any pair, but :func:`edges_from_pairs` leaves them out unless asked to keep them
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Iterable
 from typing import Any, Unpack
 
@@ -37,10 +38,11 @@ import pandas as pd
 
 from funcnet.core.kinds import combine_kinds, combined_kinds, edge_kind, measure_kinds
 from funcnet.errors import ParameterError
-from funcnet.network.schema import PAIR_COLUMNS, PAIR_DTYPES, edges_frame
+from funcnet.network.schema import PAIR_COLUMNS, PAIR_DTYPES, edges_frame, typed_frame
 from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
 
-__all__ = ["edge_kind", "combine_kinds", "pair_kinds", "kinds_for", "edges_from_pairs"]
+__all__ = ["edge_kind", "combine_kinds", "pair_kinds", "rule_columns", "kinds_for",
+           "edges_from_pairs"]
 
 #: The parameters the rule depends on (what :func:`pair_kinds` accepts as overrides).
 RULE_FIELDS = ("mu", "mu_c", "mu_t", "measure")
@@ -146,16 +148,56 @@ def pair_kinds(pairs: pd.DataFrame, parameters: NetworkParameters | None = None,
     """
     p = resolve(parameters, overrides, allowed=RULE_FIELDS)
     _require(pairs, ("c_diff", "t_diff"), "the edge rule")
-    c_diff = pairs["c_diff"].to_numpy(dtype=np.float64)
-    t_diff = pairs["t_diff"].to_numpy(dtype=np.float64)
-    c_kinds, t_kinds, kinds = measure_kinds(c_diff, t_diff, p)
+    rule = rule_columns(pairs["c_diff"].to_numpy(dtype=np.float64),
+                        pairs["t_diff"].to_numpy(dtype=np.float64), p)
+    if set(PAIR_COLUMNS) <= set(pairs.columns):
+        return _in_schema(pairs, rule)
     out = pairs.copy()
-    for name, values in (("c_kind", c_kinds), ("t_kind", t_kinds), ("kind", kinds)):
-        out[name] = pd.Series(values, index=pairs.index, dtype="str")
+    for name in ("c_kind", "t_kind", "kind"):
+        out[name] = pd.Series(rule[name], index=pairs.index, dtype="str")
+    out["weight"] = pd.Series(rule["weight"], index=pairs.index)
+    return out
+
+
+def rule_columns(c_diff: np.ndarray, t_diff: np.ndarray,
+                 parameters: NetworkParameters) -> dict[str, np.ndarray]:
+    """The rule's columns of :func:`pair_kinds` from the differences alone, as arrays.
+
+    Parameters
+    ----------
+    c_diff, t_diff : ndarray of float64
+        ``C_diff`` and ``T_diff`` of each pair (Eq. 10).
+    parameters : NetworkParameters
+        Its thresholds and ``measure``, as :func:`pair_kinds` reads them.
+
+    Returns
+    -------
+    dict
+        ``c_kind``, ``t_kind``, ``kind`` (object arrays of str) and ``weight`` (float64).
+
+    Examples
+    --------
+    >>> found = rule_columns(np.array([-0.08]), np.array([0.02]), NetworkParameters(mu=0.01))
+    >>> [found[name].tolist() for name in ("c_kind", "t_kind", "kind", "weight")]
+    [['x->y'], ['y->x'], ['conflict'], [0.05]]
+    """
+    c_kinds, t_kinds, kinds = measure_kinds(c_diff, t_diff, parameters)
     # abs is exact and /2 too: the same bits as (|c| + |t|) / 2 in Python floats.
-    out["weight"] = pd.Series((np.abs(c_diff) + np.abs(t_diff)) / 2, index=pairs.index)
-    if set(PAIR_COLUMNS) <= set(out.columns):
-        out = out[list(PAIR_COLUMNS)].astype(dict(PAIR_DTYPES))
+    weight = (np.abs(c_diff) + np.abs(t_diff)) / 2
+    return {"c_kind": c_kinds, "t_kind": t_kinds, "kind": kinds, "weight": weight}
+
+
+def _in_schema(pairs: pd.DataFrame, rule: dict[str, np.ndarray]) -> pd.DataFrame:
+    """``pairs`` with the ``rule`` columns, its schema's columns in order and dtypes, built
+    once: a column already of its dtype is taken as it is, another converted alone."""
+    arrays: dict[str, Any] = {}
+    for name, dtype in PAIR_DTYPES.items():
+        column = rule[name] if name in rule else pairs[name]
+        if isinstance(column, pd.Series) and column.dtype != pd.api.types.pandas_dtype(dtype):
+            column = column.astype(dtype)
+        arrays[name] = column
+    out = typed_frame(arrays, PAIR_DTYPES, index=pairs.index)
+    out.attrs = copy.deepcopy(pairs.attrs)
     return out
 
 

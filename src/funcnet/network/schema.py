@@ -76,6 +76,7 @@ from collections.abc import Mapping, Sequence
 from types import MappingProxyType
 from typing import Any
 
+import numpy as np
 import pandas as pd
 
 from funcnet.errors import ParameterError
@@ -103,6 +104,7 @@ __all__ = [
     "edges_frame",
     "check_pairs",
     "check_edges",
+    "typed_frame",
 ]
 
 #: Kinds of a pair (the ``kind`` column of the pairs table).
@@ -202,9 +204,77 @@ def _frame(columns: Mapping[str, Sequence[Any]], dtypes: Mapping[str, str],
             + (f"; missing: {', '.join(missing)}" if missing else "")
             + (f"; unknown: {', '.join(extra)}" if extra else ""),
         )
-    return pd.DataFrame(
-        {name: pd.Series(list(columns[name]), dtype=dtype) for name, dtype in dtypes.items()}
-    )
+    given = {name: _sized(columns[name]) for name in dtypes}
+    lengths = {name: len(values) for name, values in given.items()}
+    if len(set(lengths.values())) > 1:
+        raise ParameterError.of(
+            table, "must have equally long columns, got "
+            + ", ".join(f"{name} {n}" for name, n in lengths.items()))
+    return typed_frame(given, dtypes)
+
+
+def typed_frame(columns: Mapping[str, Any], dtypes: Mapping[str, str],
+                index: pd.Index | None = None) -> pd.DataFrame:
+    """The table of ``columns`` in the order and dtypes of ``dtypes``, built in one step.
+
+    Each column becomes one array of its dtype before the frame is made (no Series to align,
+    no conversion after), the array ``pd.Series(list(values), dtype=dtype)`` would hold: a
+    1-d NumPy array already of its dtype as it is (the frame copies it), a string column
+    straight to a string array; any other sequence through that Series.
+
+    Parameters
+    ----------
+    columns : mapping of str to sequence
+        At least the columns of ``dtypes``, equally long (not checked here: the callers of
+        :func:`pairs_frame` and :func:`edges_frame` are checked there).
+    dtypes : mapping of str to str
+        Column name -> dtype (:data:`PAIR_DTYPES`, :data:`EVIDENCE_DTYPES`,
+        :data:`EDGE_DTYPES`).
+    index : pandas.Index, optional
+        The rows' index (default a range).
+
+    Returns
+    -------
+    pandas.DataFrame
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> table = typed_frame({"source": np.array(["A"], dtype=object), "target": ["B"],
+    ...                      "weight": np.array([0.2]), "kind": np.array(["directed"]),
+    ...                      "degenerate": np.array([False])}, EDGE_DTYPES)
+    >>> table.dtypes.astype(str).tolist()
+    ['str', 'str', 'float64', 'str', 'bool']
+    """
+    return pd.DataFrame({name: _column(columns[name], dtype) for name, dtype in dtypes.items()},
+                        index=index)
+
+
+def _sized(values: Any) -> Any:
+    return values if hasattr(values, "__len__") else list(values)
+
+
+#: The NumPy dtype of each non-string dtype of the schema.
+_NUMPY = {"float64": np.dtype(np.float64), "bool": np.dtype(np.bool_),
+          "int64": np.dtype(np.int64)}
+_STR = pd.api.types.pandas_dtype("str")
+
+
+def _column(values: Any, dtype: str) -> Any:
+    """The array ``pd.Series(list(values), dtype=dtype)`` holds, without the Series where it
+    can: a 1-d NumPy array of the column's dtype as it is (the frame copies it), a string
+    array as it is, other strings straight to a string array (the same conversion); any other
+    sequence through the Series."""
+    if isinstance(values, pd.Series):
+        values = values.array if dtype == "str" else values.to_numpy()
+    if dtype == "str":
+        if isinstance(values, pd.api.extensions.ExtensionArray) and values.dtype == _STR:
+            return values
+        plain = isinstance(values, list) or isinstance(values, np.ndarray) and values.ndim == 1
+        return pd.array(values if plain else list(values), dtype=_STR)
+    if isinstance(values, np.ndarray) and values.ndim == 1 and values.dtype == _NUMPY[dtype]:
+        return values
+    return pd.Series(list(values), dtype=dtype).to_numpy()
 
 
 def pairs_frame(columns: Mapping[str, Sequence[Any]]) -> pd.DataFrame:

@@ -1,0 +1,94 @@
+"""Benchmark of what `funcnet inspect` computes, without the page: the networks and evidence.
+
+Run from the repository root::
+
+    python -m benchmarks.bench_compute [--against DIR] [--rounds N] [--cases NAME ...]
+
+Times the computation of a robot page alone -- reading, phases, the robot network and each
+axis's networks with their evidence, the warnings: the iteration of
+:func:`funcnet.inspection.inspect_files`, with its default settings -- and not the figures and
+page drawn after it (:mod:`benchmarks.bench_figures` times those). One process per run, on the
+recordings of :mod:`benchmarks.bench_inspect` (``--cases`` picks them by the start of their
+names: ``KUKA run A``, ``UR5 No5 with``). Each run gives the span's wall seconds and the CPU
+seconds of the process over it (every thread's), and the peak resident memory of the process.
+With ``--against DIR`` another checkout's ``src`` is timed too, alternating with this one
+(``git worktree add DIR COMMIT``); the ratio column compares each code's CPU with this
+checkout's. The load average is printed before and after: CPU seconds are the figure to compare
+on a shared machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+import compileall
+import json
+import os
+import statistics
+import subprocess
+import sys
+from pathlib import Path
+
+from benchmarks.bench_inspect import ROOT, _cases, add_common_arguments
+
+# The child: the span of the iteration alone (imports and the page left out), as JSON.
+CHILD = """
+import json, resource, sys, time, warnings
+from funcnet.inspection import inspect_files
+warnings.simplefilter("ignore")
+arguments = sys.argv[1:]
+channels = arguments[arguments.index("--channels") + 1] if "--channels" in arguments else None
+found = inspect_files(arguments[0], channels=channels)
+wall, cpu = time.perf_counter(), time.process_time()
+list(iter(found))
+wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+print(json.dumps({"wall": wall, "cpu": cpu, "peak": peak}))
+"""
+
+
+def time_compute(source: Path, arguments: list[str]) -> dict[str, float]:
+    """One process importing ``source/src``: the computation's wall and CPU seconds, the peak
+    memory in MiB."""
+    environment = dict(os.environ, PYTHONPATH=str(source / "src"), OMP_WAIT_POLICY="PASSIVE")
+    done = subprocess.run([sys.executable, "-c", CHILD, *arguments], cwd=ROOT, env=environment,
+                          capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        raise RuntimeError(f"inspecting {' '.join(arguments)} failed:\n{done.stderr}")
+    return dict(json.loads(done.stdout.strip().splitlines()[-1]))
+
+
+def _load() -> str:
+    return "load {:.1f} {:.1f} {:.1f}".format(*os.getloadavg())
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Print the table: one row per recording and code."""
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    add_common_arguments(parser)
+    args = parser.parse_args(argv)
+    codes = {"this checkout": ROOT}
+    if args.against is not None:
+        codes = {"before (--against)": args.against.resolve(), **codes}
+    for source in set(codes.values()):
+        compileall.compile_dir(source / "src", quiet=1)
+    cases = _cases(args.cases)
+    print(f"## funcnet inspect, the computation alone (one process per run; {_load()})\n")
+    print("| recording | code | CPU [s] (each round) | wall [s] | peak [MiB] | CPU / this |")
+    print("|---|---|---|---|---|---|")
+    for case, arguments in cases.items():
+        runs: dict[str, list[dict[str, float]]] = {name: [] for name in codes}
+        for _ in range(args.rounds):
+            for name, source in codes.items():  # alternating: the load falls on both alike
+                runs[name].append(time_compute(source, arguments))
+        mine = statistics.median(r["cpu"] for r in runs["this checkout"])
+        for name, found in runs.items():
+            cpu = statistics.median(r["cpu"] for r in found)
+            rounds = ", ".join(f"{r['cpu']:.1f}" for r in found)
+            print(f"| {case} | {name} | **{cpu:.1f}** ({rounds}) | "
+                  f"{statistics.median(r['wall'] for r in found):.1f} | "
+                  f"{max(r['peak'] for r in found):.0f} | {cpu / mine:.2f} |", flush=True)
+    print(f"\n{_load()}")
+
+
+if __name__ == "__main__":
+    main()
