@@ -166,3 +166,16 @@ def test_the_evidence_builds_each_recurrence_at_the_networks_threshold(rule):
     pd.testing.assert_frame_equal(
         pd.DataFrame([dataclasses.asdict(e) for e in given.values()]),
         pd.DataFrame([dataclasses.asdict(e) for e in searched.values()]))
+
+
+def test_a_node_with_a_zero_threshold_keeps_its_evidence():
+    """A signal whose rate falls on tied zero distances (a set-point holding still for most of
+    the window) has eps 0, which no explicit threshold can be: its rate is searched again."""
+    data = _signals(400, seed=3)
+    data["x"] = np.where(np.arange(400) < 300, 0.0, data["x"])
+    network = functional_network(data, warn=False, evidence=True, resamples=0)
+    assert (network.pairs.loc[network.pairs["x"] == "x", "eps_x"] == 0).all()
+    assert network.pairs["coupling_p"].notna().all()
+    plain = functional_network(data, warn=False)
+    from funcnet.network import add_evidence
+    pd.testing.assert_frame_equal(add_evidence(plain, data, resamples=0).pairs, network.pairs)

@@ -144,11 +144,13 @@ def evidence_columns(pairs: pd.DataFrame, prepared: PreparedSignals, p: NetworkP
 
 
 def _auto_eps(pairs: pd.DataFrame, names: Sequence[str]) -> list[float] | None:
-    """Each node's recurrence threshold from the pairs table (None if one is not there)."""
+    """Each node's recurrence threshold from the pairs table; None if one is not there or not
+    a threshold an explicit ``eps`` can be (0: a node whose rate falls on tied zero distances,
+    whose rate search is then run again)."""
     found = dict(zip(pairs["y"], pairs["eps_y"], strict=True))
     found.update(zip(pairs["x"], pairs["eps_x"], strict=True))
-    eps = [found.get(name, math.nan) for name in names]
-    return None if any(not math.isfinite(e) for e in eps) else [float(e) for e in eps]
+    eps = [float(found.get(name, math.nan)) for name in names]
+    return None if any(not (math.isfinite(e) and e > 0) for e in eps) else eps
 
 
 def _with_evidence(pairs: pd.DataFrame, found: Mapping[tuple[str, str], PairEvidence],
