@@ -165,17 +165,18 @@ def embed(x: Any, dim: int, delay: int) -> np.ndarray:
     return _delay_rows(signal, dim, delay, _n_states(signal.size, dim, delay, "x", 1))
 
 
-def thinning(n_states: int, max_states: int) -> int:
-    """``d``: keep every ``d``-th of ``n_states`` states so that at most ``max_states`` are kept.
+def thinning(n_states: int, max_states: int | None) -> int:
+    """``d``: keep every ``d``-th of ``n_states`` states so that at most ``max_states`` are kept
+    (every state when ``max_states`` is None); ``max_states`` is at least :data:`MIN_STATES`.
 
     Examples
     --------
-    >>> thinning(5306, 1500), thinning(1500, 1500), thinning(899_980, 1500)
-    (4, 1, 600)
+    >>> thinning(5306, 1500), thinning(1500, 1500), thinning(899_980, 1500), thinning(80, None)
+    (4, 1, 600, 1)
     """
-    if max_states < 1:
-        raise ParameterError.of("max_states", f"must be >= 1, got {max_states}")
-    return max(1, math.ceil(n_states / max_states))
+    if max_states is None:
+        return 1
+    return max(1, math.ceil(n_states / check_int(max_states, "max_states", MIN_STATES)))
 
 
 def thinned(parameters: NetworkParameters, step: int) -> NetworkParameters:

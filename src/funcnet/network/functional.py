@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any, Unpack
 import numpy as np
 import pandas as pd
 
-from funcnet.core.embedding import MIN_STATES, thinning
+from funcnet.core.embedding import thinning
 from funcnet.core.measures import pairwise_cross_measures
 from funcnet.evidence import check_evidence_arguments
 from funcnet.network import readwrite
@@ -34,7 +34,7 @@ from funcnet.network.direction import _direction_rows
 from funcnet.network.edge_evidence import check_edge_rule, evidence_columns
 from funcnet.network.rule import edges_from_pairs, rule_columns
 from funcnet.network.schema import PAIR_DTYPES, RESULT_COLUMNS, pairs_frame
-from funcnet.parameters import NetworkParameters, ParameterOverrides, check_int, resolve
+from funcnet.parameters import NetworkParameters, ParameterOverrides, resolve
 
 if TYPE_CHECKING:
     import networkx as nx
@@ -80,8 +80,7 @@ class FunctionalNetwork:
         ``seed``, ``resamples``, ``level``, ``edge_rule``), and the pairs table has the
         :data:`~funcnet.network.schema.EVIDENCE_COLUMNS`; None otherwise.
     state_step : int
-        The measures and the evidence read every ``state_step``-th embedded state (1: every
-        state; more when ``max_states`` bounded a long window).
+        The measures and the evidence read every ``state_step``-th state (``max_states``).
 
     Notes
     -----
@@ -481,11 +480,10 @@ def functional_network(
         a window of it); a column not named: read from ``data``. The direction shows no
         improvement of a signal its own past predicts to within its step.
     max_states : int, optional
-        Most embedded states the measures and the evidence read: a longer window keeps every
-        ``d``-th state, ``d = ceil(M / max_states)`` (:func:`funcnet.core.embedding.thinning`;
-        the network's ``state_step``), each still embedded at the full rate, with the rates
-        and thresholds taken on the kept states; the direction reading keeps every sample.
-        The measures' cost grows about as the cube of the states. Default: every state.
+        Most embedded states the measures and the evidence read (their cost grows about as
+        the cube of the states): a longer window keeps every ``d``-th state, each embedded at
+        the full rate (:func:`funcnet.core.embedding.thinning`; the network's ``state_step``);
+        the direction reading keeps every sample. Default: every state.
     **overrides
         Any parameter by name, applied to ``parameters`` (``delay=1``).
 
@@ -546,11 +544,9 @@ def functional_network(
     check_edge_rule(edge_rule, evidence)
     if evidence:
         check_evidence_arguments(surrogates, alpha, resamples, surrogate_method, intervals)
-    if max_states is not None:
-        check_int(max_states, "max_states", MIN_STATES)
+    thinning(1, max_states)  # checked before the data is read
     prepared = prepared_signals(data, names, nodes, p.normalize, steps)
-    step = 1 if max_states is None else thinning(
-        max(1, prepared.n_samples - (p.dim - 1) * p.delay), max_states)
+    step = thinning(prepared.n_samples - (p.dim - 1) * p.delay, max_states)
     results = pairwise_cross_measures(list(prepared.signals), names=list(prepared.names),
                                       parameters=p, warn=warn, step=step)
     pairs = _pairs_table(results, p, dict(zip(prepared.names, prepared.signals, strict=True)),
