@@ -20,7 +20,6 @@ on a shared machine.
 from __future__ import annotations
 
 import argparse
-import compileall
 import json
 import os
 import statistics
@@ -28,7 +27,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from benchmarks.bench_inspect import ROOT, _cases, add_common_arguments
+from benchmarks.bench_inspect import ROOT, _cases, add_common_arguments, checkouts
 
 # The child: the span of the iteration alone (imports and the page left out), as JSON.
 CHILD = """
@@ -66,11 +65,7 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     add_common_arguments(parser)
     args = parser.parse_args(argv)
-    codes = {"this checkout": ROOT}
-    if args.against is not None:
-        codes = {"before (--against)": args.against.resolve(), **codes}
-    for source in set(codes.values()):
-        compileall.compile_dir(source / "src", quiet=1)
+    codes = checkouts(args)
     cases = _cases(args.cases)
     print(f"## funcnet inspect, the computation alone (one process per run; {_load()})\n")
     print("| recording | code | CPU [s] (each round) | wall [s] | peak [MiB] | CPU / this |")

@@ -17,7 +17,6 @@ page), wall and CPU, the CPU of the processes that drew pages beside it included
 from __future__ import annotations
 
 import argparse
-import compileall
 import json
 import os
 import statistics
@@ -27,7 +26,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from benchmarks.bench_inspect import CASES, ROOT, _cases, add_common_arguments
+from benchmarks.bench_inspect import CASES, ROOT, _cases, add_common_arguments, checkouts
 
 # One process: load the pickle, write the pages, print the seconds as JSON.
 _DRAW = """
@@ -82,11 +81,7 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     add_common_arguments(parser)
     args = parser.parse_args(argv)
-    codes = {"this checkout": ROOT}
-    if args.against is not None:
-        codes = {"before (--against)": args.against.resolve(), **codes}
-    for source in codes.values():  # as installed: no source compiled again by every process
-        compileall.compile_dir(source / "src", quiet=1)
+    codes = checkouts(args)
     print("## funcnet inspect, the pages drawn from a computed inspection\n")
     print(f"- {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {os.cpu_count()} CPUs, "
           f"load average before: {os.getloadavg()[0]:.2f} (1 min)\n")

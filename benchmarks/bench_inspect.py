@@ -122,6 +122,17 @@ def add_common_arguments(parser: argparse.ArgumentParser) -> None:
                         help="recordings to run (the start of a name each: KUKA, UR5 No8)")
 
 
+def checkouts(args: argparse.Namespace) -> dict[str, Path]:
+    """This checkout, after the one ``--against`` names, each byte-compiled as installed (no
+    process compiles the sources again)."""
+    codes = {"this checkout": ROOT}
+    if args.against is not None:
+        codes = {"before (--against)": args.against.resolve(), **codes}
+    for source in set(codes.values()):
+        compileall.compile_dir(source / "src", quiet=1)
+    return codes
+
+
 def main(argv: list[str] | None = None) -> None:
     """Print the table: one row per recording and code."""
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
