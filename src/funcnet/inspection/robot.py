@@ -56,9 +56,10 @@ ROBOT_MAX_STATES = 4500
 #: Most states a robot network reads: a longer window's measures and evidence read every
 #: ``d``-th state, ``d = ceil(M / ROBOT_NETWORK_STATES)``, each still embedded at the full rate
 #: (the direction reading keeps every sample). The measures cost about the cube of the
-#: states: UR5 run No5 with disturbance (4,012 states, 30 nodes) took 46 CPU s whole and 12
-#: at half its states, with 99.3 % of its pairs of the same kind. Every state of a window of
-#: up to 2,000 (UR5 No8, the MCS500 cycles) is read.
+#: states: the network of UR5 run No5 with disturbance (4,012 states, 30 nodes) with its
+#: evidence took 60 CPU s on every state and 8 on one in three, 97.7 % of its pairs (all
+#: those with a clear asymmetry) of the same kind (docs/validation/evidence.md section 10).
+#: Every state of a window of up to 2,000 (UR5 No8, the MCS500 cycles) is read.
 ROBOT_NETWORK_STATES = 2000
 #: Most robot-network windows of one page: a recording that needs more parts (at the default
 #: embedding, over about 12 x 4,520 samples) gets this many, spread evenly over it, and the
