@@ -141,11 +141,12 @@ def segment_tests(signals: Sequence[Any], *, names: Sequence[str],
     asked = default_surrogates(n * (n - 1) // 2, alpha) if surrogates is None else surrogates
     k = min(int(asked), int(max_surrogates))
     thresholds, _ = signal_thresholds(p, n)
-    theiler = thinned(p, step).theiler
+    on_kept = thinned(p, step)
+    theiler = on_kept.theiler
     dense = []
     for signal, name, (rate, eps) in zip(signals, names, thresholds, strict=True):
         kept = signal_states(signal, parameters=p, name=repr(str(name)), step=step)
-        dense.append(auto_recurrence(kept, rr=rate, eps=eps, parameters=thinned(p, step),
+        dense.append(auto_recurrence(kept, rr=rate, eps=eps, parameters=on_kept,
                                      name=repr(str(name))).to_dense().astype(np.uint8))
     # a signal recurrent on most of its candidate pairs (a set-point at rest: its thinned
     # states tie at distance 0) is visited through its complement, the few pairs it lacks
