@@ -27,7 +27,7 @@ import pandas as pd
 
 from funcnet.errors import FuncnetError
 from funcnet.evidence.segment import SEGMENT_MAX_STATES, segment_tests
-from funcnet.inspection._threads import default_workers, run_in_order
+from funcnet.inspection._side_by_side import default_workers, run_in_order
 from funcnet.inspection.trace import TraceInspection, _step, inspect_recording
 from funcnet.network import FunctionalNetwork
 from funcnet.network._inputs import prepared_signals
@@ -362,12 +362,14 @@ def inspect_robot(
     progress : callable, optional
         ``progress(done, total, description)``, called in the calling thread.
     workers : int, optional
-        Threads computing side by side: the robot network with its evidence and each axis's
-        inspection are independent, and their kernels release the GIL. Default the cores this
-        process may use, at most 4, in the main thread (1 in any other); 1 computes them one
-        after the other in the calling thread.
+        Computations side by side: the robot network with its evidence and each axis's
+        inspection are independent. In forked processes where this process may fork (Numba's
+        thread pool not started here yet, as in a command that reads a recording and inspects
+        it), in threads otherwise. Default the cores this process may use, at most 4, in the
+        main thread (1 in any other); 1 computes them one after the other in the calling
+        thread.
         The results are the same bit for bit, and so are the warnings and their order (each
-        computation's, in the order robot network, axis 1, axis 2, ...): those of the threads
+        computation's, in the order robot network, axis 1, axis 2, ...): those of the others
         are emitted once they are done. No callback may enter ``warnings.catch_warnings``.
 
     Returns
