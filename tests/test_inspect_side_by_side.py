@@ -18,8 +18,7 @@ import pytest
 import scipy.io
 
 from funcnet.errors import FuncnetWarning, RecordingWarning, ThresholdWarning
-from funcnet.inspection import inspect_robot
-from funcnet.inspection import _side_by_side
+from funcnet.inspection import _side_by_side, inspect_robot
 from funcnet.inspection._side_by_side import run_in_order
 from funcnet.robot import read_trace
 
