@@ -246,9 +246,10 @@ def _in_processes(jobs: Sequence[Callable[[], T]], workers: int, outside: _Place
     from concurrent.futures import ProcessPoolExecutor
 
     call = next(_CALLS)
-    # numba.get_num_threads() would start the pool here: its configured count instead
+    # Each child keeps every core (the longest job, a robot network, runs alone at the end);
+    # numba.get_num_threads() would start the pool here: the configured count instead.
     threads = numba.config.NUMBA_NUM_THREADS  # type: ignore[attr-defined]
-    _FORKED[call] = (jobs, max(1, threads // workers), outside)
+    _FORKED[call] = (jobs, threads, outside)
     try:
         with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
             with warnings.catch_warnings():
