@@ -380,9 +380,11 @@ def write_robot_inspection(
     pages = [(one, out / f"axis-{axis}", axis_label(axis) if axis_names else None)
              for axis, one in ins.axes.items()]
     with page_processes(len(pages)) as pool:
-        # the axes' pages drawn beside this one (each page's figures are its own)
+        # the axes' pages drawn beside this one (each page's figures are its own), the most
+        # windows first: the last page to start is a short one
         written = [pool.submit(write_inspection, one, folder, axis_label=label)
-                   for one, folder, label in pages] if pool is not None else []
+                   for one, folder, label in sorted(pages, key=lambda page: -len(page[0].networks))
+                   ] if pool is not None else []
         robot = _write_robot_page(ins, out, axis_names)
         if pool is None:
             for one, folder, label in pages:
