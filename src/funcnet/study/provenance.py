@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import platform
 import sys
 from collections.abc import Iterable, Sequence
@@ -37,18 +38,23 @@ def package_versions(packages: Iterable[str]) -> dict[str, str | None]:
     >>> list(versions), versions["no-such-distribution"]
     (['python', 'funcnet', 'numpy', 'no-such-distribution'], None)
     """
-    from importlib.metadata import PackageNotFoundError, version
-
     versions: dict[str, str | None] = {
         "python": platform.python_version(),
         "funcnet": __version__,
     }
-    for package in packages:
-        try:
-            versions[package] = version(package)
-        except PackageNotFoundError:
-            versions[package] = None
+    versions.update({package: _installed_version(package) for package in packages})
     return versions
+
+
+@functools.cache
+def _installed_version(package: str) -> str | None:
+    """A distribution's version, read once per process (its metadata is parsed each read)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version(package)
+    except PackageNotFoundError:
+        return None
 
 
 def provenance(study: Study, sources: Sequence[Source]) -> dict[str, Any]:
