@@ -179,12 +179,12 @@ def _format(value: Any) -> str:
     return str(value)
 
 
-def _cells(column: Any, values: pd.Series, css: Callable[[Any], str] | None) -> list[str]:
-    """The ``<td>`` elements of one column (formatted and escaped column-wise: fast)."""
-    items = values.tolist()
+def _cells(column: Any, items: list[Any], css: Callable[[Any], str] | None) -> list[str]:
+    """The ``<td>`` elements of one column's values."""
+    texts = [escape(_format(v)) for v in items]
     # A hyphen is a break opportunity: "4.1-early-rp-drives" would wrap inside the word.
-    texts = [_HYPHENATED.sub(r'<span class="nb">\1</span>', escape(_format(v)))
-             if "-" in str(v) else escape(_format(v)) for v in items]
+    texts = [_HYPHENATED.sub(r'<span class="nb">\1</span>', t) if "-" in t else t
+             for t in texts]
     if css is not None:
         return [f'<td class="{css(v)}">{t}</td>' if css(v) else f"<td>{t}</td>"
                 for v, t in zip(items, texts, strict=True)]
@@ -206,7 +206,9 @@ def table(frame: pd.DataFrame, *, classes: Mapping[str, Callable[[Any], str]] | 
     """
     classes = classes or {}
     head = "".join(f"<th>{escape(c)}</th>" for c in frame.columns)
-    columns = [_cells(c, frame.iloc[:, k], classes.get(c)) for k, c in enumerate(frame.columns)]
+    # every column's values as Python objects at once (a Series per column costs more)
+    values = frame.to_numpy(object).T.tolist() if len(frame) else [[] for _ in frame.columns]
+    columns = [_cells(c, v, classes.get(c)) for c, v in zip(frame.columns, values, strict=True)]
     rows = "".join("<tr>" + "".join(cells) + "</tr>" for cells in zip(*columns, strict=True))
     return f"<table><thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>"
 
