@@ -80,8 +80,8 @@ def figure_robot_matrix(network: FunctionalNetwork, title: str = "", *,
         else:
             image[i, j] = colormaps[_DIRECTED](level)
     size = max(6.0, 0.34 * n + 2.6)
-    fig = Figure(figsize=(size + 1.2, size), layout="constrained")
-    ax = fig.add_subplot()
+    fig = Figure(figsize=(size + 1.2, size))
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))  # placed once its texts are known
     ax.imshow(image, interpolation="nearest")
     if "evidence" in network.pairs.columns:
         coupled = network.pairs[network.pairs["evidence"].isin(_COUPLED)]
@@ -120,10 +120,38 @@ def figure_robot_matrix(network: FunctionalNetwork, title: str = "", *,
                   + _TEXT_WIDTH * 11 * max(len(m) for m in names) + 6)
     if title:
         ax.set_title(title, fontsize=10)
-    _legend(fig, arrows, top)
+    _place(fig, ax, _legend(fig, arrows, top), beside)
     return fig
 
-def _legend(fig: Any, arrows: str, top: float) -> None:
+
+def _place(fig: Any, ax: Any, legend: Any, beside: float) -> None:
+    """The matrix put where its texts leave room: the roles above and beside it, the axes'
+    names ``beside`` points left of it, "source X" beyond them, the title on top; "target Y"
+    and the legend below."""
+    import matplotlib
+
+    from funcnet.report.figure_geometry import PT, extent, legend_extent, put, renderer_of
+
+    renderer = renderer_of(fig)
+    width, height = fig.get_size_inches()
+    gap = 4 * PT
+    pad = matplotlib.rcParams["ytick.major.pad"] * PT
+    roles_wide = extent(ax.get_yticklabels(), renderer)[0]
+    roles_high = extent(ax.get_xticklabels(), renderer)[1]
+    names = [t for t in ax.texts if t.get_ha() == "right"]
+    label_wide = extent([ax.yaxis.label], renderer)[0]
+    left = gap + max(beside * PT + extent(names, renderer)[0],
+                     roles_wide + pad + ax.yaxis.labelpad * PT + label_wide)
+    title_high = extent([ax.title], renderer)[1]
+    top = gap + roles_high + pad + (title_high + matplotlib.rcParams["axes.titlepad"] * PT
+                                    if title_high else 0.0)
+    legend_high = legend_extent(legend, renderer)[1]
+    legend.set_bbox_to_anchor((0.5, gap / height), transform=fig.transFigure)
+    bottom = 2 * gap + legend_high + extent([ax.xaxis.label], renderer)[1] \
+        + ax.xaxis.labelpad * PT
+    put(ax, left, bottom, width - left - 3 * gap, height - bottom - top)
+
+def _legend(fig: Any, arrows: str, top: float) -> Any:
     """The matrix's legend below it: the cell colours, the dot, the weight's scale."""
     from matplotlib import colormaps
     from matplotlib.lines import Line2D
@@ -139,7 +167,7 @@ def _legend(fig: Any, arrows: str, top: float) -> None:
                       label="coupled (the test rejects independence)")]
     # two columns where they fit the figure's width, else one: a small robot's legend was cut
     widest = _TEXT_WIDTH * 9 * max(len(str(h.get_label())) for h in handles) + 40
-    fig.legend(handles=handles, loc="outside lower center",
-               ncol=2 if 2 * widest <= 72 * fig.get_figwidth() else 1, fontsize=9,
-               frameon=False, title=f"darker: heavier (weight up to {top:.2g}, Eq. 13)",
-               title_fontsize=9)
+    return fig.legend(handles=handles, loc="lower center",
+                      ncol=2 if 2 * widest <= 72 * fig.get_figwidth() else 1, fontsize=9,
+                      frameon=False, title=f"darker: heavier (weight up to {top:.2g}, Eq. 13)",
+                      title_fontsize=9, borderaxespad=0.0)
