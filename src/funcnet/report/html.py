@@ -155,7 +155,22 @@ def page_processes(pages: int) -> Any:
     workers = min(PAGE_WORKERS, pages, (cpus or 1))
     if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
         return contextlib.nullcontext(None)
+    _drawing_imported()
     return ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
+
+
+def _drawing_imported() -> None:
+    """The modules a page draws with, imported here before the children fork: each child
+    would import them again (half a second each)."""
+    import matplotlib.backends.backend_agg  # noqa: F401
+    import matplotlib.figure  # noqa: F401
+    import PIL.PngImagePlugin  # noqa: F401
+
+    import funcnet.network.setpoint  # noqa: F401
+    import funcnet.plot.network_diagram  # noqa: F401
+    import funcnet.plot.signals  # noqa: F401
+    import funcnet.plot.timeline  # noqa: F401
+    import funcnet.study.provenance  # noqa: F401
 
 
 #: The most processes that draw a robot's axis pages at once.
