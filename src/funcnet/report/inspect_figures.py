@@ -18,7 +18,15 @@ from typing import Any
 import numpy as np
 
 from funcnet.inspection import TraceInspection
-from funcnet.report.figure_geometry import PT, extent, legend_extent, put, renderer_of
+from funcnet.report.figure_geometry import (
+    PT,
+    axis_ticks,
+    extent,
+    fix_ticks,
+    legend_extent,
+    put,
+    renderer_of,
+)
 from funcnet.robot import Window
 
 __all__ = ["figure_motion", "figure_networks", "figure_timeline", "figure_evidence",
@@ -200,9 +208,11 @@ def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> Non
             - (7 * PT + xtick + 4 * PT + text + 4 * PT)) / (rows + 1)
     tops = [height - head - size] + [height - head - below_top - size - r * (size + between)
                                      - size for r in range(rows)]
-    for k, ax in enumerate([top, *(ax for column in grid for ax in column)]):
+    every = [top, *(ax for column in grid for ax in column)]
+    for k, ax in enumerate(every):
         put(ax, 0.0, tops[0 if k == 0 else 1 + (k - 1) % rows], width, size)
-    ticks = {ax: _ytick_width(ax, renderer) for column in grid for ax in [top, *column]}
+    yticks = {ax: axis_ticks(ax, "y") for ax in every}  # at the final heights, as drawn
+    ticks = {ax: extent(yticks[ax].labels, renderer)[0] for ax in every}
     left = 4 * PT + text + 4 * PT + 7 * PT + max(ticks[ax] for ax in [top, *grid[0]])
     gap = 17 * PT + max((ticks[ax] for column in grid[1:] for ax in column), default=0.0)
     right = _motion_right(width - left - (cols - 1) * gap, cols, last_title)
@@ -212,6 +222,12 @@ def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> Non
         for r in range(rows):
             put(grid[k][r], left + k * (column + gap), tops[1 + r], column, size)
     legend.set_bbox_to_anchor((0.5, 1.0 - 4 * PT / height), transform=fig.transFigure)
+    # the time ticks at the final widths, every axis's before any is fixed (a column's rows
+    # share their ticker); labelled under the whole trace and each column's last row
+    xticks = {ax: axis_ticks(ax, "x", labels=ax is top or ax is rows_of[-1])
+              for rows_of in [[top], *grid] for ax in rows_of}
+    for ax in every:
+        fix_ticks(ax, xticks[ax], yticks[ax], renderer)
 
 
 def _motion_titles(fig: Any, grid: list[list[Any]], renderer: Any) -> tuple[float, float]:
@@ -246,12 +262,6 @@ def _motion_right(room: float, cols: int, title: float) -> float:
     if cols < 2:
         return 0.2
     return max(0.2, (title + 2 * PT - room / cols) / (1.0 - 1.0 / cols))
-
-
-def _ytick_width(ax: Any, renderer: Any) -> float:
-    """The widest y tick label of axes as now placed (inches)."""
-
-    return extent(ax.yaxis.get_majorticklabels(), renderer)[0]
 
 
 def _shade_gaps(ax: Any, inspection: TraceInspection, within: tuple[float, float]) -> None:
