@@ -178,12 +178,26 @@ def test_network_panels_keep_their_frame_and_everything_inside_the_canvas():
                if str(p.get_gid()).startswith("panel:")}
     assert set(squares) == set(ins.networks) and len(squares) >= 2
     by_label = {w.label: w for w in ins.windows}
+    # every panel's nodes: one collection of circles in data units (one path each)
+    (collection,) = [c for c in ax.collections if c.get_gid() == "nodes"]
+    centres = [path.get_extents().get_points().mean(axis=0) for path in collection.get_paths()]
+    assert len(centres) == len(squares) * len(ins.signals)
     for label, square in squares.items():
         assert to_hex(square.get_facecolor()) == to_hex(phase_color(by_label[label].phase))
         assert square.get_linewidth() > 0  # framed
-        nodes = [p for p in ax.patches if str(p.get_gid()).startswith("node:")
-                 and square.contains_point(ax.transData.transform(p.center))]
+        nodes = [c for c in centres if square.contains_point(ax.transData.transform(c))]
         assert len(nodes) == len(ins.signals)  # each network inside its own square
+    # every undecided pair a line (one subpath of one path), every decided one an arrow
+    from matplotlib.path import Path
+
+    from funcnet.plot.network_diagram import direction_edges
+
+    edges = pd.concat([direction_edges(net) for net in ins.networks.values()])
+    lines = [p.get_path() for p in ax.patches if p.get_gid() == "edges:none"]
+    starts = sum(int((path.codes == Path.MOVETO).sum()) for path in lines)
+    assert starts == int((edges["kind"] == "none").sum())
+    arrows = [p for p in ax.patches if str(p.get_gid()).startswith("edge:")]
+    assert len(arrows) == int((edges["kind"] == "directed").sum())
     titles = {t.get_gid().removeprefix("title:") for t in ax.texts
               if str(t.get_gid()).startswith("title:")}
     assert titles == {w.label for w in ins.windows}

@@ -140,16 +140,17 @@ def fix_ticks(ax: Any, x: Ticks, y: Ticks, renderer: Any) -> None:
     them. Call it once the axes' place and limits are final (the marks and labels follow
     the axes, but the ticks chosen do not)."""
     from matplotlib import lines, ticker
+    from matplotlib.markers import TICKDOWN, TICKLEFT
     from matplotlib.transforms import ScaledTranslation
 
     fig = ax.get_figure(root=True)
     gap = ScaledTranslation(0.0, -(_TICK + _TICK_PAD) * PT, fig.dpi_scale_trans)
-    for ticks, transform, marker in ((x, ax.get_xaxis_transform(), lines.TICKDOWN),
-                                     (y, ax.get_yaxis_transform(), lines.TICKLEFT)):
+    for ticks, transform, marker in ((x, ax.get_xaxis_transform(), TICKDOWN),
+                                     (y, ax.get_yaxis_transform(), TICKLEFT)):
         if not len(ticks.locations):
             continue
         flat = np.zeros(len(ticks.locations))
-        places = (ticks.locations, flat) if marker == lines.TICKDOWN else (flat,
+        places = (ticks.locations, flat) if marker == TICKDOWN else (flat,
                                                                            ticks.locations)
         fig.add_artist(lines.Line2D(*places, transform=transform, linestyle="none",
                                     marker=marker, markersize=_TICK, color="black",

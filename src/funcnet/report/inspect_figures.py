@@ -309,6 +309,7 @@ def figure_networks(inspection: TraceInspection) -> Any:
     fig, ax, scale = _network_canvas(rows, cols)
     degenerate = dropped = with_evidence = False
     names: dict[tuple[str, float, str], list[Any]] = {}  # every panel's node names, drawn once
+    pieces = plot.NetworkPieces()  # and its nodes and undecided lines
     # 4 pt above the square: a text in data units shifted, cheaper to draw than an annotation
     above = ax.transData + ScaledTranslation(0.0, 4 * PT, fig.dpi_scale_trans)
     for w, (r, c) in zip(inspection.windows, cells, strict=True):
@@ -322,10 +323,11 @@ def figure_networks(inspection: TraceInspection) -> Any:
             continue
         ax.add_patch(_panel_square(centre, plot.phase_color(w.phase), w.label))
         plot.plot_network(net, ax, nodes=list(inspection.signals), legend=False,
-                          arrows="direction", at=centre, names=names)
+                          arrows="direction", at=centre, names=names, pieces=pieces)
         degenerate |= bool(plot.network_edges(net)["degenerate"].any())
         dropped |= bool(net.window and net.window.get("dropped"))
         with_evidence |= "evidence" in net.pairs.columns
+    pieces.draw(ax)
     plot.glyph_markers(ax, names, prefix="name")
     handles = plot.network_legend_handles(degenerate=degenerate, evidence=with_evidence)
     if dropped:
@@ -382,7 +384,7 @@ def _panels(inspection: TraceInspection) -> tuple[list[tuple[int, int]], int, in
     windows wrapped at :data:`_MAX_NETWORK_COLUMNS` columns: never two networks in one panel.
     """
     windows = inspection.windows
-    moves = [_move_of(inspection, w) for w in windows]
+    moves = _moves_of(inspection, windows)
     kinds = _kinds_present(windows)
     if len(set(zip(moves, (str(w.phase) for w in windows), strict=True))) == len(windows):
         order = sorted(set(moves)) or [0]
@@ -406,10 +408,17 @@ def _panels(inspection: TraceInspection) -> tuple[list[tuple[int, int]], int, in
     return cells, row, cols
 
 
-def _move_of(inspection: TraceInspection, window: Window) -> int:
-    rows = inspection.phases[(inspection.phases["start"] <= window.start)
-                             & (inspection.phases["stop"] > window.start)]
-    return int(rows["move"].iloc[0]) if len(rows) else 0
+def _moves_of(inspection: TraceInspection, windows: Sequence[Window]) -> list[int]:
+    """Each window's move: that of the first phase holding its start (0 where none does);
+    the phase table read once as arrays, not filtered per window."""
+    phases = inspection.phases
+    start, stop = (phases[c].to_numpy(dtype=float) for c in ("start", "stop"))
+    moves = phases["move"].to_numpy()
+    found = []
+    for window in windows:
+        holding = np.flatnonzero((start <= window.start) & (stop > window.start))
+        found.append(int(moves[holding[0]]) if len(holding) else 0)
+    return found
 
 
 def figure_timeline(inspection: TraceInspection) -> Any:
