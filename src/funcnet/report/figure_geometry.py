@@ -125,8 +125,9 @@ def axis_ticks(ax: Any, which: str, *, labels: bool = True, fontsize: float = 9.
         fig = ax.get_figure(root=True)
         for location, text in zip(locations[inside], np.asarray(texts, dtype=object)[inside],
                                   strict=True):
-            label = Text(*((location, 0.0) if which == "x" else (0.0, location)), str(text),
-                         fontsize=fontsize, ha="center" if which == "x" else "right",
+            x, y = (location, 0.0) if which == "x" else (0.0, location)
+            label = Text(x=x, y=y, text=str(text), fontsize=fontsize,
+                         ha="center" if which == "x" else "right",
                          va="top" if which == "x" else "center_baseline")
             fig.add_artist(label)
             made.append(label)
@@ -145,13 +146,13 @@ def fix_ticks(ax: Any, x: Ticks, y: Ticks, renderer: Any) -> None:
 
     fig = ax.get_figure(root=True)
     gap = ScaledTranslation(0.0, -(_TICK + _TICK_PAD) * PT, fig.dpi_scale_trans)
+    marker: Any  # matplotlib's tick markers: ints its annotations do not list
     for ticks, transform, marker in ((x, ax.get_xaxis_transform(), TICKDOWN),
                                      (y, ax.get_yaxis_transform(), TICKLEFT)):
         if not len(ticks.locations):
             continue
         flat = np.zeros(len(ticks.locations))
-        places = (ticks.locations, flat) if marker == TICKDOWN else (flat,
-                                                                           ticks.locations)
+        places = (ticks.locations, flat) if marker == TICKDOWN else (flat, ticks.locations)
         fig.add_artist(lines.Line2D(*places, transform=transform, linestyle="none",
                                     marker=marker, markersize=_TICK, color="black",
                                     markeredgewidth=_TICK_WIDTH))
