@@ -447,7 +447,7 @@ def figure_timeline(inspection: TraceInspection) -> Any:
                           for k, label in enumerate(labels)], alpha=0.8)
     plot.plot_edge_timeline({float(k): inspection.networks[label]
                              for k, label in enumerate(labels)}, ax=ax)
-    ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
+    _categories(ax.xaxis, labels)
     ax.set_xlim(-0.5, len(labels) - 0.5)
     ax.set_xlabel("window (time order)", fontsize=9)
 
@@ -460,25 +460,40 @@ def figure_timeline(inspection: TraceInspection) -> Any:
     return fig
 
 
+def _categories(axis: Any, labels: Sequence[str]) -> None:
+    """An axis of named columns or rows: a tick at 0, 1, ... labelled; no tick object made
+    (``set_xticks`` makes one per label, set up again at every draw)."""
+    from matplotlib.ticker import FixedFormatter, FixedLocator
+
+    axis.set_major_locator(FixedLocator(range(len(labels))))
+    axis.set_major_formatter(FixedFormatter(list(labels)))
+
+
 def _place_single(fig: Any, ax: Any, *, right: float, top: float = 8 * PT) -> None:
     """Put a figure's one axes where its texts leave room (inches): the y label and tick
     labels at its left, the x label and (rotated) tick labels below, ``right`` and ``top``
-    given. The first x tick label, rotated, may reach left of the axes: room for it too."""
+    given. The first x tick label, rotated, may reach left of the axes: room for it too.
+
+    The ticks are drawn by :func:`.fix_ticks`: the axes' locators name fixed places (columns
+    and rows), which its size does not change; 9 pt labels, those below slanted.
+    """
 
     renderer = renderer_of(fig)
     width, height = fig.get_size_inches()
-    xticks = [t for t in ax.get_xticklabels() if t.get_text()]
-    xtick = extent(xticks, renderer)[1]
+    xticks = axis_ticks(ax, "x", rotation=60, ha="right")
+    yticks = axis_ticks(ax, "y")
+    xtick = extent(xticks.labels, renderer)[1]
     left = (6 * PT + extent([ax.yaxis.label], renderer)[0] + 4 * PT
-            + extent(ax.get_yticklabels(), renderer)[0] + 7 * PT)
+            + extent(yticks.labels, renderer)[0] + 7 * PT)
     bottom = (4 * PT + extent([ax.xaxis.label], renderer)[1] + 4 * PT + xtick + 7 * PT)
-    if xticks:  # the first label ends at its tick, half a column in (rotated, ha="right")
+    if xticks.labels:  # the first label ends at its tick, half a column in (rotated)
         lo, hi = ax.get_xlim()
-        first = extent(xticks[:1], renderer)[0]
+        first = extent(xticks.labels[:1], renderer)[0]
         for _ in range(2):  # the column's width depends on the axes' width
             half = (width - left - right) * 0.5 / max(abs(hi - lo), 1.0)
             left = max(left, first - half + 6 * PT)
     put(ax, left, bottom, width - left - right, height - bottom - top)
+    fix_ticks(ax, xticks, yticks, renderer)
 
 
 def figure_evidence(inspection: TraceInspection) -> Any:
@@ -524,8 +539,8 @@ def figure_evidence(inspection: TraceInspection) -> Any:
                               "0.55" if key == "untestable" else "black"), []).append((c, r))
     plot.glyph_markers(ax, cells)
     ax.imshow(image, aspect="auto", interpolation="nearest")
-    ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
-    ax.set_yticks(range(len(pairs)), [f"{a}–{b}" for a, b in pairs], fontsize=9)
+    _categories(ax.xaxis, labels)
+    _categories(ax.yaxis, [f"{a}–{b}" for a, b in pairs])
     ax.set_ylabel("pair X–Y\n(arrow: → X drives Y in the rule's sense)", fontsize=9)
     handles = [Patch(facecolor=colour, edgecolor="0.5", label=_EVIDENCE_LEGEND.get(key, key))
                for key, colour in used.items()]
