@@ -134,7 +134,7 @@ def axis_ticks(ax: Any, which: str, *, labels: bool = True, fontsize: float = 9.
                             "va": "top" if which == "x" else "center_baseline", **props})
             fig.add_artist(label)
             made.append(label)
-    return Ticks(locations[inside], made, offset if labels or which == "y" else "")
+    return Ticks(locations[inside], made, offset)  # shown as the axis shows its labels
 
 
 def fix_ticks(ax: Any, x: Ticks, y: Ticks, renderer: Any) -> None:
@@ -167,11 +167,16 @@ def fix_ticks(ax: Any, x: Ticks, y: Ticks, renderer: Any) -> None:
     # the axis labels and the x offset go past the tick labels, as matplotlib puts them
     height = extent(x.labels, renderer)[1] * 72.0
     width = extent(y.labels, renderer)[0] * 72.0
+    # (past the tick marks alone where an axis shows no labels: its spine's extent held them)
     if x.labels:
         ax.xaxis.labelpad += _TICK + _TICK_PAD + height
         ax.xaxis.OFFSETTEXTPAD = ax.xaxis.OFFSETTEXTPAD + _TICK + _TICK_PAD + height
+    elif len(x.locations):
+        ax.xaxis.labelpad += _TICK
     if y.labels:
         ax.yaxis.labelpad += _TICK + _TICK_PAD + width
+    elif len(y.locations):
+        ax.yaxis.labelpad += _TICK
     for axis, ticks in ((ax.xaxis, x), (ax.yaxis, y)):
         axis.set_major_locator(ticker.NullLocator())
         axis.set_major_formatter(_offset_only()(ticks.offset))
