@@ -95,13 +95,14 @@ class Ticks(NamedTuple):
 
 
 def axis_ticks(ax: Any, which: str, *, labels: bool = True, fontsize: float = 9.0,
-               **text: Any) -> Ticks:
+               rotation: float = 0.0, ha: str | None = None) -> Ticks:
     """The major ticks matplotlib would draw now on ``ax``'s ``which`` (``"x"``/``"y"``) axis.
 
     Its own locator and formatter, at the axes' present size and limits (how many ticks an
     axis gets depends on its length); the labels are texts of the figure, to be measured
-    with :func:`extent` and placed by :func:`fix_ticks`; ``text`` sets more of their
-    properties (``rotation=60, ha="right"``).
+    with :func:`extent` and placed by :func:`fix_ticks`, ``fontsize`` points, turned by
+    ``rotation`` degrees and aligned ``ha`` (default matplotlib's: centred below an x tick,
+    ending at a y tick).
 
     Examples
     --------
@@ -125,13 +126,13 @@ def axis_ticks(ax: Any, which: str, *, labels: bool = True, fontsize: float = 9.
     made = []
     if labels:
         fig = ax.get_figure(root=True)
-        props = text
         for location, text in zip(locations[inside], np.asarray(texts, dtype=object)[inside],
                                   strict=True):
             x, y = (location, 0.0) if which == "x" else (0.0, location)
             label = Text(x=x, y=y, text=str(text), fontsize=fontsize,
-                         **{"ha": "center" if which == "x" else "right",
-                            "va": "top" if which == "x" else "center_baseline", **props})
+                         rotation=rotation,
+                         ha=ha or ("center" if which == "x" else "right"),
+                         va="top" if which == "x" else "center_baseline")
             fig.add_artist(label)
             made.append(label)
     return Ticks(locations[inside], made, offset)  # shown as the axis shows its labels
