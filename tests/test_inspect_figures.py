@@ -178,12 +178,26 @@ def test_network_panels_keep_their_frame_and_everything_inside_the_canvas():
                if str(p.get_gid()).startswith("panel:")}
     assert set(squares) == set(ins.networks) and len(squares) >= 2
     by_label = {w.label: w for w in ins.windows}
+    # every panel's nodes: one collection of circles in data units (one path each)
+    (collection,) = [c for c in ax.collections if c.get_gid() == "nodes"]
+    centres = [path.get_extents().get_points().mean(axis=0) for path in collection.get_paths()]
+    assert len(centres) == len(squares) * len(ins.signals)
     for label, square in squares.items():
         assert to_hex(square.get_facecolor()) == to_hex(phase_color(by_label[label].phase))
         assert square.get_linewidth() > 0  # framed
-        nodes = [p for p in ax.patches if str(p.get_gid()).startswith("node:")
-                 and square.contains_point(ax.transData.transform(p.center))]
+        nodes = [c for c in centres if square.contains_point(ax.transData.transform(c))]
         assert len(nodes) == len(ins.signals)  # each network inside its own square
+    # every undecided pair a line (one subpath of one path), every decided one an arrow
+    from matplotlib.path import Path
+
+    from funcnet.plot.network_diagram import direction_edges
+
+    edges = pd.concat([direction_edges(net) for net in ins.networks.values()])
+    lines = [p.get_path() for p in ax.patches if p.get_gid() == "edges:none"]
+    starts = sum(int((path.codes == Path.MOVETO).sum()) for path in lines)
+    assert starts == int((edges["kind"] == "none").sum())
+    arrows = [p for p in ax.patches if str(p.get_gid()).startswith("edge:")]
+    assert len(arrows) == int((edges["kind"] == "directed").sum())
     titles = {t.get_gid().removeprefix("title:") for t in ax.texts
               if str(t.get_gid()).startswith("title:")}
     assert titles == {w.label for w in ins.windows}
@@ -206,3 +220,66 @@ def test_every_figure_of_a_page_keeps_its_texts_inside_and_apart():
         fig = getattr(inspect_figures, f"figure_{name}")(ins)
         assert fig.get_layout_engine() is None
         assert layout_faults(fig) == [], name
+
+
+def _twin_figures(x, y, shown_x):
+    """The same axes twice: matplotlib's own ticks, and those of axis_ticks/fix_ticks."""
+    from matplotlib.figure import Figure
+
+    from funcnet.report.figure_geometry import renderer_of
+
+    figs = []
+    for _ in range(2):
+        fig = Figure(figsize=(4.0, 3.0))
+        ax = fig.add_axes((0.25, 0.2, 0.7, 0.65))
+        ax.plot(x, y)
+        ax.tick_params(labelsize=9)
+        if not shown_x:
+            ax.tick_params(labelbottom=False)
+        ax.set_xlabel("time [s]", fontsize=9)
+        ax.set_ylabel("value", fontsize=9)
+        ax.set_title("a title", loc="left", fontsize=10)
+        renderer_of(fig)
+        figs.append((fig, ax))
+    return figs
+
+
+def test_fixed_ticks_are_where_and_what_matplotlib_draws():
+    """axis_ticks + fix_ticks against matplotlib's own ticks on the same axes: the same tick
+    labels at the same places (within a pixel), the same offset texts, the axis labels and
+    the title moved as matplotlib moves them."""
+    from funcnet.report.figure_geometry import axis_ticks, fix_ticks
+
+    t = 1e5 + np.linspace(0.1, 0.15, 200)  # an offset on x ("+1e5"), and on y ("1e−5")
+    for y, shown_x in ((1e-5 * np.sin(100 * t), True), (40 + 3 * np.cos(100 * t), False)):
+        (old, old_ax), (new, new_ax) = _twin_figures(t, y, shown_x)
+        renderer = new.canvas.get_renderer()
+        fix_ticks(new_ax, axis_ticks(new_ax, "x", labels=shown_x), axis_ticks(new_ax, "y"),
+                  renderer)
+        old.canvas.draw()
+        new.canvas.draw()
+        drawn = [label for axis in (old_ax.xaxis, old_ax.yaxis)
+                 for at, label in zip(axis.get_majorticklocs(), axis.get_ticklabels(),
+                                      strict=False)
+                 if label.get_visible() and label.get_text()
+                 and min(axis.get_view_interval()) <= at <= max(axis.get_view_interval())]
+        made = [t for t in new.artists if hasattr(t, "get_text")]
+        assert [t.get_text() for t in drawn] == [t.get_text() for t in made]
+        assert len(made) >= (8 if shown_x else 3)
+        for a, b in [*zip(drawn, made, strict=True),
+                     (old_ax.xaxis.label, new_ax.xaxis.label),
+                     (old_ax.yaxis.label, new_ax.yaxis.label),
+                     (old_ax.xaxis.offsetText, new_ax.xaxis.offsetText),
+                     (old_ax.yaxis.offsetText, new_ax.yaxis.offsetText),
+                     (old_ax._left_title, new_ax._left_title)]:
+            assert a.get_text() == b.get_text()
+            assert a.get_visible() == b.get_visible()
+            box_a, box_b = a.get_window_extent(renderer), b.get_window_extent(renderer)
+            assert np.allclose(box_a.get_points(), box_b.get_points(), atol=1.0), (
+                a.get_text(), box_a, box_b)
+        if shown_x:  # the offsets were there to compare (the second case: x's, hidden)
+            assert new_ax.yaxis.offsetText.get_text() and new_ax.xaxis.offsetText.get_text()
+        else:
+            assert not new_ax.xaxis.offsetText.get_visible() and new_ax.xaxis.label.get_text()
+        # matplotlib's own tick objects left with nothing to draw
+        assert len(new_ax.xaxis.get_major_locator()()) == 0

@@ -68,6 +68,7 @@ _EXPORTS = {
     "save_network": "funcnet.plot.network_diagram",
     "edge_evidence": "funcnet.plot.network_diagram",
     "NO_COUPLING_EVIDENCE": "funcnet.plot.network_diagram",
+    "NetworkPieces": "funcnet.plot.network_diagram",
 }
 
 __getattr__, __dir__, __all__ = attach(__name__, _EXPORTS)

@@ -2,6 +2,7 @@
 
 from funcnet.plot.network_diagram import (
     NO_COUPLING_EVIDENCE as NO_COUPLING_EVIDENCE,
+    NetworkPieces as NetworkPieces,
     add_network_legend as add_network_legend,
     edge_evidence as edge_evidence,
     network_edges as network_edges,

@@ -14,7 +14,7 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -48,6 +48,7 @@ __all__ = [
     "edge_evidence",
     "direction_edges",
     "ARROWS",
+    "NetworkPieces",
 ]
 
 #: Whose arrows a drawing shows: the paper's rule (``kind``) or the ``direction`` reading.
@@ -243,20 +244,66 @@ def edge_evidence(net: FunctionalNetwork, edges: pd.DataFrame) -> list[str] | No
     pairs = net.pairs
     if "evidence" not in pairs.columns:
         return None
-    labels = pairs["evidence"].where(pairs["evidence"].notna(), "").astype(str)
-    if not (labels != "").any():
+    # lists, not Series: a Series of strings read item by item costs more than the drawing
+    labels = ["" if pd.isna(v) else str(v) for v in pairs["evidence"].tolist()]
+    if not any(labels):
         return None
-    reading = {frozenset((str(x), str(y))): label
-               for x, y, label in zip(pairs["x"], pairs["y"], labels, strict=True)}
+    reading = {frozenset((str(x), str(y))): label for x, y, label in zip(
+        pairs["x"].tolist(), pairs["y"].tolist(), labels, strict=True)}
     return [reading.get(frozenset((str(a), str(b))), "")
-            for a, b in zip(edges["source"], edges["target"], strict=True)]
+            for a, b in zip(edges["source"].tolist(), edges["target"].tolist(), strict=True)]
+
+
+class NetworkPieces:
+    """The nodes and undecided lines of many networks in one axes, gathered by
+    :func:`plot_network` (``pieces=``) and drawn by :meth:`draw` as a few artists: one
+    collection of every node, one path of every undecided line of a style (a patch each
+    cost more to set up and draw than the rest of a figure of forty networks).
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from funcnet.network import FunctionalNetwork
+    >>> pairs = pd.DataFrame({"x": ["A"], "y": ["B"], "kind": ["x->y"], "weight": [0.2],
+    ...                       "direction": ["none"]})
+    >>> ax, pieces = Figure().add_subplot(), NetworkPieces()
+    >>> for at in ((0.0, 0.0), (3.0, 0.0)):
+    ...     _ = plot_network(FunctionalNetwork.from_pairs(pairs), ax, arrows="direction",
+    ...                      at=at, pieces=pieces)
+    >>> pieces.draw(ax)
+    >>> [(c.get_gid(), len(c.get_paths())) for c in ax.collections]
+    [('nodes', 4)]
+    >>> [(p.get_gid(), len(p.get_path().to_polygons(closed_only=False))) for p in ax.patches]
+    [('edges:none', 2)]
+    """
+
+    def __init__(self) -> None:
+        self.nodes: list[Circle] = []
+        self.lines: dict[tuple[float, str], list[BezierPath]] = {}
+
+    def draw(self, ax: Axes) -> None:
+        """Add what was gathered to ``ax``: the lines under the arrows, the nodes over them
+        (the zorders of :func:`plot_network`'s own patches)."""
+        from matplotlib.collections import PatchCollection
+
+        for (width, colour), paths in self.lines.items():
+            line = PathPatch(BezierPath.make_compound_path(*paths), fill=False,
+                             linewidth=width, edgecolor=colour, capstyle="round",
+                             joinstyle="round", zorder=1)
+            line.set_gid("edges:none")
+            ax.add_artist(line)
+        if self.nodes:
+            nodes = PatchCollection(self.nodes, match_original=True, zorder=3)
+            nodes.set_gid("nodes")
+            ax.add_collection(nodes, autolim=False)
 
 
 def _draw_edge(ax: Axes, edge: Any, reading: str, position: Mapping[Any, tuple[float, float]],
                radius: Mapping[Any, float], width_scale: float, min_width: float,
-               fontsize: float) -> None:
+               fontsize: float, pieces: NetworkPieces | None = None) -> None:
     """One edge of :func:`plot_network`: an arrow styled by its kind, degeneracy and coupling
-    evidence, or a pale line when the direction is undecided."""
+    evidence, or a pale line when the direction is undecided (gathered in ``pieces``, where
+    given)."""
     bidirectional = edge.kind == "bidirectional"
     width = max(min_width, width_scale * edge.weight)
     color = BIDIRECTIONAL_COLOR if bidirectional else DIRECTED_COLOR
@@ -264,10 +311,13 @@ def _draw_edge(ax: Axes, edge: Any, reading: str, position: Mapping[Any, tuple[f
     if edge.kind == "none":  # undecided: a line, no head, no weight to read
         # arc3's curve built once in data units (equal aspect: the same arc), not an arrow
         # patch laid out at every draw; a gap of about 2 pt at the rims
-        line = PathPatch(_arc(*_trim(position[edge.source], position[edge.target],
-                                     radius[edge.source] + _UNDECIDED_GAP,
-                                     radius[edge.target] + _UNDECIDED_GAP), 0.08),
-                         fill=False, linewidth=min_width, edgecolor=UNDECIDED_COLOR,
+        arc = _arc(*_trim(position[edge.source], position[edge.target],
+                          radius[edge.source] + _UNDECIDED_GAP,
+                          radius[edge.target] + _UNDECIDED_GAP), 0.08)
+        if pieces is not None:
+            pieces.lines.setdefault((min_width, UNDECIDED_COLOR), []).append(arc)
+            return
+        line = PathPatch(arc, fill=False, linewidth=min_width, edgecolor=UNDECIDED_COLOR,
                          capstyle="round", joinstyle="round", zorder=1)
         line.set_gid(f"edge:{edge.source}->{edge.target}:none")
         ax.add_artist(line)
@@ -301,15 +351,19 @@ def _draw_edge(ax: Axes, edge: Any, reading: str, position: Mapping[Any, tuple[f
 def _draw_nodes(ax: Axes, nodes: Sequence[Any], present: Sequence[Any],
                 label: Mapping[Any, str], position: Mapping[Any, tuple[float, float]],
                 radius: Mapping[Any, float], node_color: str, fontsize: float,
-                names: dict[tuple[str, float, str], list[Any]] | None = None) -> None:
+                names: dict[tuple[str, float, str], list[Any]] | None = None,
+                pieces: NetworkPieces | None = None) -> None:
     """The nodes of :func:`plot_network`: a circle and a name each, dashed when absent; the
-    names collected in ``names`` instead of drawn, where given."""
+    names collected in ``names`` and the circles in ``pieces`` instead of drawn, where given."""
     for name in nodes:
         circle = Circle(position[name], radius[name], facecolor=node_color, edgecolor="0.2",
                         linewidth=0.8, zorder=3,
                         linestyle="-" if name in present else "--")
         circle.set_gid(f"node:{name}")
-        ax.add_artist(circle)  # not add_patch, names not in the layout: inside fixed limits
+        if pieces is not None:
+            pieces.nodes.append(circle)
+        else:
+            ax.add_artist(circle)  # not add_patch, names not in the layout: fixed limits
         text = label.get(name, str(name))
         size = fontsize * min(1.0, 4.0 / max(len(text), 1)) ** 0.5
         if names is not None:
@@ -335,6 +389,7 @@ def plot_network(
     arrows: str = "rule",
     at: tuple[float, float] | None = None,
     names: dict[tuple[str, float, str], list[Any]] | None = None,
+    pieces: NetworkPieces | None = None,
 ) -> Axes:
     """Draw a functional network in a circular layout (paper section 3.4, Fig. 9-11).
 
@@ -385,6 +440,9 @@ def plot_network(
         Collect the node names here instead of drawing them: ``(name, font size, colour)`` to
         the places it goes, for :func:`funcnet.plot.glyph_markers` to draw each name once over
         many networks.
+    pieces : NetworkPieces, optional
+        Gather the nodes' circles and the undecided lines here instead of drawing them, for
+        :meth:`NetworkPieces.draw` to draw those of many networks as a few artists.
 
     Returns
     -------
@@ -436,7 +494,8 @@ def plot_network(
     cx, cy = (0.0, 0.0) if at is None else (float(at[0]), float(at[1]))
     position = {name: (cx + np.cos(angle[name]), cy + np.sin(angle[name])) for name in nodes}
     radius = {name: _node_radius(label.get(name, str(name)), node_size) for name in nodes}
-    _draw_nodes(ax, nodes, present, label, position, radius, node_color, fontsize, names)
+    _draw_nodes(ax, nodes, present, label, position, radius, node_color, fontsize, names,
+                pieces)
     for group, members in (groups or {}).items():
         placed = [angle[m] for m in members if m in angle]
         if placed:
@@ -448,9 +507,10 @@ def plot_network(
         raise ParameterError.of("arrows", f"must be one of {list(ARROWS)}, got {arrows!r}")
     edges = network_edges(net) if arrows == "rule" else direction_edges(net)
     readings = edge_evidence(net, edges)
-    for k, edge in enumerate(edges.itertuples(index=False)):
+    columns = (edges[c].tolist() for c in ("source", "target", "weight", "kind", "degenerate"))
+    for k, edge in enumerate(map(_Edge._make, zip(*columns, strict=True))):
         _draw_edge(ax, edge, "" if readings is None else readings[k], position, radius,
-                   width_scale, min_width, fontsize)
+                   width_scale, min_width, fontsize, pieces)
     if at is not None:
         return ax
     ax.set_xlim(-1.3, 1.3)
@@ -472,6 +532,17 @@ def plot_network(
                   bbox_to_anchor=(0.5, 0.0), ncol=2, fontsize=max(9.0, fontsize - 1), frameon=False,
                   handlelength=2.5)
     return ax
+
+
+class _Edge(NamedTuple):
+    """One row of an edges table, as :func:`_draw_edge` reads it (built from the columns'
+    lists: ``itertuples`` made a class and a Series per column for every network)."""
+
+    source: Any
+    target: Any
+    weight: float
+    kind: str
+    degenerate: bool
 
 
 def _node_radius(name: Any, node_size: float) -> float:

@@ -18,7 +18,15 @@ from typing import Any
 import numpy as np
 
 from funcnet.inspection import TraceInspection
-from funcnet.report.figure_geometry import PT, extent, legend_extent, put, renderer_of
+from funcnet.report.figure_geometry import (
+    PT,
+    axis_ticks,
+    extent,
+    fix_ticks,
+    legend_extent,
+    put,
+    renderer_of,
+)
 from funcnet.robot import Window
 
 __all__ = ["figure_motion", "figure_networks", "figure_timeline", "figure_evidence",
@@ -200,9 +208,11 @@ def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> Non
             - (7 * PT + xtick + 4 * PT + text + 4 * PT)) / (rows + 1)
     tops = [height - head - size] + [height - head - below_top - size - r * (size + between)
                                      - size for r in range(rows)]
-    for k, ax in enumerate([top, *(ax for column in grid for ax in column)]):
+    every = [top, *(ax for column in grid for ax in column)]
+    for k, ax in enumerate(every):
         put(ax, 0.0, tops[0 if k == 0 else 1 + (k - 1) % rows], width, size)
-    ticks = {ax: _ytick_width(ax, renderer) for column in grid for ax in [top, *column]}
+    yticks = {ax: axis_ticks(ax, "y") for ax in every}  # at the final heights, as drawn
+    ticks = {ax: extent(yticks[ax].labels, renderer)[0] for ax in every}
     left = 4 * PT + text + 4 * PT + 7 * PT + max(ticks[ax] for ax in [top, *grid[0]])
     gap = 17 * PT + max((ticks[ax] for column in grid[1:] for ax in column), default=0.0)
     right = _motion_right(width - left - (cols - 1) * gap, cols, last_title)
@@ -212,6 +222,12 @@ def _place_motion(fig: Any, top: Any, grid: list[list[Any]], legend: Any) -> Non
         for r in range(rows):
             put(grid[k][r], left + k * (column + gap), tops[1 + r], column, size)
     legend.set_bbox_to_anchor((0.5, 1.0 - 4 * PT / height), transform=fig.transFigure)
+    # the time ticks at the final widths, every axis's before any is fixed (a column's rows
+    # share their ticker); labelled under the whole trace and each column's last row
+    xticks = {ax: axis_ticks(ax, "x", labels=ax is top or ax is rows_of[-1])
+              for rows_of in [[top], *grid] for ax in rows_of}
+    for ax in every:
+        fix_ticks(ax, xticks[ax], yticks[ax], renderer)
 
 
 def _motion_titles(fig: Any, grid: list[list[Any]], renderer: Any) -> tuple[float, float]:
@@ -246,12 +262,6 @@ def _motion_right(room: float, cols: int, title: float) -> float:
     if cols < 2:
         return 0.2
     return max(0.2, (title + 2 * PT - room / cols) / (1.0 - 1.0 / cols))
-
-
-def _ytick_width(ax: Any, renderer: Any) -> float:
-    """The widest y tick label of axes as now placed (inches)."""
-
-    return extent(ax.yaxis.get_majorticklabels(), renderer)[0]
 
 
 def _shade_gaps(ax: Any, inspection: TraceInspection, within: tuple[float, float]) -> None:
@@ -299,6 +309,7 @@ def figure_networks(inspection: TraceInspection) -> Any:
     fig, ax, scale = _network_canvas(rows, cols)
     degenerate = dropped = with_evidence = False
     names: dict[tuple[str, float, str], list[Any]] = {}  # every panel's node names, drawn once
+    pieces = plot.NetworkPieces()  # and its nodes and undecided lines
     # 4 pt above the square: a text in data units shifted, cheaper to draw than an annotation
     above = ax.transData + ScaledTranslation(0.0, 4 * PT, fig.dpi_scale_trans)
     for w, (r, c) in zip(inspection.windows, cells, strict=True):
@@ -312,10 +323,11 @@ def figure_networks(inspection: TraceInspection) -> Any:
             continue
         ax.add_patch(_panel_square(centre, plot.phase_color(w.phase), w.label))
         plot.plot_network(net, ax, nodes=list(inspection.signals), legend=False,
-                          arrows="direction", at=centre, names=names)
+                          arrows="direction", at=centre, names=names, pieces=pieces)
         degenerate |= bool(plot.network_edges(net)["degenerate"].any())
         dropped |= bool(net.window and net.window.get("dropped"))
         with_evidence |= "evidence" in net.pairs.columns
+    pieces.draw(ax)
     plot.glyph_markers(ax, names, prefix="name")
     handles = plot.network_legend_handles(degenerate=degenerate, evidence=with_evidence)
     if dropped:
@@ -372,7 +384,7 @@ def _panels(inspection: TraceInspection) -> tuple[list[tuple[int, int]], int, in
     windows wrapped at :data:`_MAX_NETWORK_COLUMNS` columns: never two networks in one panel.
     """
     windows = inspection.windows
-    moves = [_move_of(inspection, w) for w in windows]
+    moves = _moves_of(inspection, windows)
     kinds = _kinds_present(windows)
     if len(set(zip(moves, (str(w.phase) for w in windows), strict=True))) == len(windows):
         order = sorted(set(moves)) or [0]
@@ -396,10 +408,17 @@ def _panels(inspection: TraceInspection) -> tuple[list[tuple[int, int]], int, in
     return cells, row, cols
 
 
-def _move_of(inspection: TraceInspection, window: Window) -> int:
-    rows = inspection.phases[(inspection.phases["start"] <= window.start)
-                             & (inspection.phases["stop"] > window.start)]
-    return int(rows["move"].iloc[0]) if len(rows) else 0
+def _moves_of(inspection: TraceInspection, windows: Sequence[Window]) -> list[int]:
+    """Each window's move: that of the first phase holding its start (0 where none does);
+    the phase table read once as arrays, not filtered per window."""
+    phases = inspection.phases
+    start, stop = (phases[c].to_numpy(dtype=float) for c in ("start", "stop"))
+    moves = phases["move"].to_numpy()
+    found = []
+    for window in windows:
+        holding = np.flatnonzero((start <= window.start) & (stop > window.start))
+        found.append(int(moves[holding[0]]) if len(holding) else 0)
+    return found
 
 
 def figure_timeline(inspection: TraceInspection) -> Any:
@@ -428,7 +447,7 @@ def figure_timeline(inspection: TraceInspection) -> Any:
                           for k, label in enumerate(labels)], alpha=0.8)
     plot.plot_edge_timeline({float(k): inspection.networks[label]
                              for k, label in enumerate(labels)}, ax=ax)
-    ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
+    _categories(ax.xaxis, labels)
     ax.set_xlim(-0.5, len(labels) - 0.5)
     ax.set_xlabel("window (time order)", fontsize=9)
 
@@ -441,25 +460,40 @@ def figure_timeline(inspection: TraceInspection) -> Any:
     return fig
 
 
+def _categories(axis: Any, labels: Sequence[str]) -> None:
+    """An axis of named columns or rows: a tick at 0, 1, ... labelled; no tick object made
+    (``set_xticks`` makes one per label, set up again at every draw)."""
+    from matplotlib.ticker import FixedFormatter, FixedLocator
+
+    axis.set_major_locator(FixedLocator(range(len(labels))))
+    axis.set_major_formatter(FixedFormatter(list(labels)))
+
+
 def _place_single(fig: Any, ax: Any, *, right: float, top: float = 8 * PT) -> None:
     """Put a figure's one axes where its texts leave room (inches): the y label and tick
     labels at its left, the x label and (rotated) tick labels below, ``right`` and ``top``
-    given. The first x tick label, rotated, may reach left of the axes: room for it too."""
+    given. The first x tick label, rotated, may reach left of the axes: room for it too.
+
+    The ticks are drawn by :func:`.fix_ticks`: the axes' locators name fixed places (columns
+    and rows), which its size does not change; 9 pt labels, those below slanted.
+    """
 
     renderer = renderer_of(fig)
     width, height = fig.get_size_inches()
-    xticks = [t for t in ax.get_xticklabels() if t.get_text()]
-    xtick = extent(xticks, renderer)[1]
+    xticks = axis_ticks(ax, "x", rotation=60, ha="right")
+    yticks = axis_ticks(ax, "y")
+    xtick = extent(xticks.labels, renderer)[1]
     left = (6 * PT + extent([ax.yaxis.label], renderer)[0] + 4 * PT
-            + extent(ax.get_yticklabels(), renderer)[0] + 7 * PT)
+            + extent(yticks.labels, renderer)[0] + 7 * PT)
     bottom = (4 * PT + extent([ax.xaxis.label], renderer)[1] + 4 * PT + xtick + 7 * PT)
-    if xticks:  # the first label ends at its tick, half a column in (rotated, ha="right")
+    if xticks.labels:  # the first label ends at its tick, half a column in (rotated)
         lo, hi = ax.get_xlim()
-        first = extent(xticks[:1], renderer)[0]
+        first = extent(xticks.labels[:1], renderer)[0]
         for _ in range(2):  # the column's width depends on the axes' width
             half = (width - left - right) * 0.5 / max(abs(hi - lo), 1.0)
             left = max(left, first - half + 6 * PT)
     put(ax, left, bottom, width - left - right, height - bottom - top)
+    fix_ticks(ax, xticks, yticks, renderer)
 
 
 def figure_evidence(inspection: TraceInspection) -> Any:
@@ -505,8 +539,8 @@ def figure_evidence(inspection: TraceInspection) -> Any:
                               "0.55" if key == "untestable" else "black"), []).append((c, r))
     plot.glyph_markers(ax, cells)
     ax.imshow(image, aspect="auto", interpolation="nearest")
-    ax.set_xticks(range(len(labels)), labels, rotation=60, ha="right", fontsize=9)
-    ax.set_yticks(range(len(pairs)), [f"{a}–{b}" for a, b in pairs], fontsize=9)
+    _categories(ax.xaxis, labels)
+    _categories(ax.yaxis, [f"{a}–{b}" for a, b in pairs])
     ax.set_ylabel("pair X–Y\n(arrow: → X drives Y in the rule's sense)", fontsize=9)
     handles = [Patch(facecolor=colour, edgecolor="0.5", label=_EVIDENCE_LEGEND.get(key, key))
                for key, colour in used.items()]
