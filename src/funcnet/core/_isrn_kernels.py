@@ -396,12 +396,17 @@ def _pack_rows(
 
 
 @njit(cache=True, inline="always")
-def _transpose_block(packed: Array, w: int, r: int, block: Array) -> None:
+def _transpose_block(packed: Array, w: int, r: int, block: Array) -> bool:
     """``block[j]`` bit ``k`` = bit ``j`` of ``packed[64 r + k, w]``: the 64 x 64 bit block
-    transposed in place by swapping ever smaller off-diagonal halves (Hacker's Delight 7-3)."""
+    transposed in place by swapping ever smaller off-diagonal halves (Hacker's Delight 7-3);
+    False (and the block left as read) when it holds no bit."""
+    any_bit = np.uint64(0)
     for k in range(64):
         v = 64 * r + k
         block[k] = packed[v, w] if v < packed.shape[0] else np.uint64(0)
+        any_bit |= block[k]
+    if not any_bit:  # most blocks of a recurrence are empty: their transpose too
+        return False
     j = 32
     mask = np.uint64(0xFFFFFFFF)
     while j:
@@ -413,6 +418,7 @@ def _transpose_block(packed: Array, w: int, r: int, block: Array) -> None:
                 block[k + j] ^= t
         j >>= 1
         mask ^= mask << np.uint64(j)
+    return True
 
 
 @njit(cache=True, parallel=True)
@@ -423,7 +429,8 @@ def _transpose_packed(packed: Array, n_cols: int) -> Array:
     for w in prange(n_words):
         block = np.empty(64, dtype=np.uint64)
         for r in range(out.shape[1]):
-            _transpose_block(packed, w, r, block)
+            if not _transpose_block(packed, w, r, block):
+                continue
             for j in range(min(64, n_cols - 64 * w)):
                 out[64 * w + j, r] = block[j]
     return out
