@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Mapping
 from fractions import Fraction
 from typing import Any, TypeVar
 
@@ -69,7 +70,7 @@ def _draw(rng: np.random.Generator, n_rows: int, n_cols: int) -> tuple[Array, Ar
 
 
 @functools.lru_cache(maxsize=8)
-def _first_draw(n_rows: int, n_cols: int, rank: int) -> tuple[Array, Array, dict[str, Any]]:
+def _first_draw(n_rows: int, n_cols: int, rank: int) -> tuple[Array, Array, Mapping[str, Any]]:
     """The first :func:`_draw` of the generator seeded ``[n_rows, n_cols, rank]``, and the
     generator's state after it. The blocks of a network share their size and rank: the cross
     blocks of all its pairs draw the same sample positions, made once."""
@@ -191,7 +192,7 @@ def _rate_rows(
     n_cols = bt.shape[1]
     # the generator seeded [rows, cols, rank]: its first draw made once per size and rank, its
     # state after it resumed for a wider bracket's draw
-    state: dict[str, Any] | None = None
+    state: Mapping[str, Any] | None = None
     for width in _BRACKET_WIDTHS:
         if n_pairs <= _DIRECT_PAIRS:
             lo, hi, share = -math.inf, math.inf, 1.0
