@@ -454,17 +454,54 @@ def _starts(plan: ShiftPlan) -> tuple[np.ndarray, np.ndarray]:
 
 
 def shift_bits(rows: np.ndarray) -> np.ndarray:
-    """A recurrence's packed rows (``PackedRecurrence.rows``: symmetric, no self-loops) as the
-    shift lattice reads them, with one spare zero word per row: the bits the test makes of its
-    :func:`recurrent_pairs`, without the dense matrix and the list. A signal in many pairs is
-    made into bits once (:func:`shift_test`)."""
+    """A recurrence's packed rows as the shift lattice reads them.
+
+    The bits :func:`dependence_test` makes of a matrix's :func:`recurrent_pairs`, without the
+    dense matrix and the list: a signal in many pairs is made into bits once
+    (:func:`shift_test`).
+
+    Parameters
+    ----------
+    rows : ndarray of uint64, shape (M, words)
+        ``PackedRecurrence.rows`` of an auto-recurrence (symmetric, no self-loops).
+
+    Returns
+    -------
+    ndarray of uint64, shape (M, words + 1)
+        The rows with one spare zero word each (a read of 64 bits at any offset inside a row
+        has the word after it).
+
+    Examples
+    --------
+    >>> rows = np.array([[0b110], [0b001], [0b001]], dtype=np.uint64)  # pairs (0, 1), (0, 2)
+    >>> shift_bits(rows).tolist()
+    [[6, 0], [1, 0], [1, 0]]
+    """
     return np.pad(np.asarray(rows, dtype=np.uint64), ((0, 0), (0, 1)))
 
 
 def shift_test(bits_x: np.ndarray, bits_y: np.ndarray, plan: ShiftPlan, *,
                theiler: int = 0) -> DependenceResult:
-    """:func:`dependence_test` on a shift lattice, of two recurrences as :func:`shift_bits`:
-    the same result, bit for bit.
+    """:func:`dependence_test` on a shift lattice, of two recurrences as :func:`shift_bits`.
+
+    Parameters
+    ----------
+    bits_x, bits_y : ndarray of uint64, shape (M, words + 1)
+        :func:`shift_bits` of X's and Y's recurrences.
+    plan : ShiftPlan
+        From :func:`shift_plan` for this ``M``.
+    theiler : int
+        Pairs of times with ``|i - j| <= theiler`` are not counted.
+
+    Returns
+    -------
+    DependenceResult
+        The same as :func:`dependence_test` of the dense matrices, bit for bit.
+
+    Raises
+    ------
+    ParameterError
+        Bits of another shape than ``(M, words + 1)``.
 
     Examples
     --------
