@@ -67,6 +67,9 @@ Y. Benjamini, Y. Hochberg, "Controlling the false discovery rate", J. R. Stat. S
 289-300 (1995).
 M. Thiel, M. C. Romano, J. Kurths, M. Rolfs, R. Kliegl, "Twin surrogates to test for complex
 synchronisation", Europhys. Lett. 75, 535-541 (2006).
+
+Length: over 600 lines because the test reads its recurrences in two forms that belong
+together, dense matrices and each signal's packed rows made into bits once.
 """
 
 from __future__ import annotations
