@@ -9,9 +9,10 @@ import pytest
 
 from funcnet.core.embedding import embed
 from funcnet.core.recurrence import auto_recurrence
+from funcnet.errors import ParameterError
 from funcnet.evidence import dependence_test, shift_plan
 from funcnet.evidence._kernels import _window_counts, _windows
-from funcnet.evidence.dependence import recurrent_pairs
+from funcnet.evidence.dependence import recurrent_pairs, shift_bits, shift_test
 from funcnet.validation import systems
 
 
@@ -92,6 +93,29 @@ def test_a_long_window_test_is_the_scans():
     assert result.statistic == old[0, 0]
     assert np.array_equal(result.null_statistics, old[1:, 0])
     assert result.p_value == pytest.approx(1 / 21)  # coupled: the observed window first
+
+
+@pytest.mark.parametrize("theiler", [0, 2])
+def test_the_packed_rows_test_is_the_dense_matrices_test(theiler):
+    # a signal's packed rows made into bits once: the bits the kernel makes of its pairs list,
+    # and the test's every number (the scan of every listed pair, written out, for the windows)
+    data = systems.henon_pair(900, 0.4, seed=5)
+    packed = [auto_recurrence(embed(data[:, k], 3, 1), rr=0.05, theiler=theiler)
+              for k in (0, 1)]
+    a_x, a_y = (a.to_dense().astype(np.uint8) for a in packed)
+    bits_x, bits_y = (shift_bits(a.rows) for a in packed)
+    plan = shift_plan(a_x.shape[0], 30, min_shift=9)
+    got = shift_test(bits_x, bits_y, plan, theiler=theiler)
+    want = dependence_test(a_x, a_y, plan, theiler=theiler)
+    old = scanned(a_y, recurrent_pairs(a_x), recurrent_pairs(a_y),
+                  np.concatenate([[plan.observed], plan.starts_x]),
+                  np.concatenate([[plan.observed], plan.starts_y]), plan.length, theiler)
+    assert got.statistic == want.statistic == old[0, 0]
+    assert np.array_equal(got.null_statistics, old[1:, 0])
+    assert (got.p_value, got.direction_index, got.direction_p) == (
+        want.p_value, want.direction_index, want.direction_p)
+    with pytest.raises(ParameterError, match="bits_y"):
+        shift_test(bits_x, bits_y[:, :-1], plan)
 
 
 @pytest.mark.parametrize("dtype", [np.uint8, bool, np.int64, np.float64])

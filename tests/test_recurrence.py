@@ -310,6 +310,35 @@ def test_bracket_fallback_when_the_sample_misses(monkeypatch, limit):
     assert calls
 
 
+def test_sample_draws_are_the_seeded_generators_each_time(monkeypatch):
+    # the first draw of a size and rank is made once for all its blocks; a wider bracket
+    # resumes the generator after it: the draws are those of one generator seeded
+    # [rows, cols, rank], every time
+    rng = np.random.default_rng([700, 650, 1234])
+    first, second = (order_statistic._draw(rng, 700, 650) for _ in range(2))
+    for _ in range(2):
+        rows, cols, state = order_statistic._first_draw(700, 650, 1234)
+        assert np.array_equal(rows, first[0]) and np.array_equal(cols, first[1])
+        assert not rows.flags.writeable
+    draws = []
+    sample = order_statistic._sample_bracket
+    monkeypatch.setattr(order_statistic, "_BRACKET_WIDTHS", (0.0, 0.0, math.inf))
+    monkeypatch.setattr(order_statistic, "_sample_bracket",
+                        lambda *args: draws.append(args[-1]) or sample(*args))
+    x = make_signal("noise", 800, 5)
+    xs = reference_embed(x, 2, 1)
+    expected, eps = reference_cross(xs, xs[::-1].copy(), cr=0.05)
+    result = cross_recurrence(xs, xs[::-1].copy(), cr=0.05)
+    assert result.eps == eps
+    np.testing.assert_array_equal(result.to_dense(), expected)
+    m = xs.shape[0]
+    seeded = np.random.default_rng([m, m, result.rank])
+    assert len(draws) == 2  # each zero-width bracket missed
+    for got in draws:
+        want = order_statistic._draw(seeded, m, m)
+        assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1])
+
+
 @settings(max_examples=200, deadline=None)
 @given(
     eps=st.floats(1e-6, 1e3),

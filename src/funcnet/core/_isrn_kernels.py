@@ -395,19 +395,44 @@ def _pack_rows(
     return packed, int(degree.sum())
 
 
+@njit(cache=True, inline="always")
+def _transpose_block(packed: Array, w: int, r: int, block: Array) -> bool:
+    """``block[j]`` bit ``k`` = bit ``j`` of ``packed[64 r + k, w]``: the 64 x 64 bit block
+    transposed in place by swapping ever smaller off-diagonal halves (Hacker's Delight 7-3);
+    False (and the block left as read) when it holds no bit."""
+    any_bit = np.uint64(0)
+    for k in range(64):
+        v = 64 * r + k
+        block[k] = packed[v, w] if v < packed.shape[0] else np.uint64(0)
+        any_bit |= block[k]
+    if not any_bit:  # most blocks of a recurrence are empty: their transpose too
+        return False
+    j = 32
+    mask = np.uint64(0xFFFFFFFF)
+    while j:
+        shift = np.uint64(j)
+        for k in range(64):
+            if k & j == 0:
+                t = ((block[k] >> shift) ^ block[k + j]) & mask
+                block[k] ^= t << shift
+                block[k + j] ^= t
+        j >>= 1
+        mask ^= mask << np.uint64(j)
+    return True
+
+
 @njit(cache=True, parallel=True)
 def _transpose_packed(packed: Array, n_cols: int) -> Array:
     n_rows, n_words = packed.shape
     out = np.zeros((n_cols, (n_rows + 63) // 64), dtype=np.uint64)
     # Each iteration owns the 64 output rows of one input word column: no write conflicts.
     for w in prange(n_words):
-        for v in range(n_rows):
-            word = packed[v, w]
-            bit = np.uint64(1) << np.uint64(v & 63)
-            while word:
-                u = w * 64 + np.int64(_lowest_bit(word))
-                out[u, v >> 6] |= bit
-                word &= word - np.uint64(1)
+        block = np.empty(64, dtype=np.uint64)
+        for r in range(out.shape[1]):
+            if not _transpose_block(packed, w, r, block):
+                continue
+            for j in range(min(64, n_cols - 64 * w)):
+                out[64 * w + j, r] = block[j]
     return out
 
 

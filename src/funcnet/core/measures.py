@@ -62,15 +62,18 @@ from funcnet.core.embedding import MIN_STATES, signal_states, thinned
 from funcnet.core.recurrence import (
     PackedRecurrence,
     _check_channels,
+    _check_states,
+    _cross_block,
     _isrn_blocks,
+    _state_range,
     auto_recurrence,
-    cross_recurrence,
 )
 from funcnet.core.thresholds import (
     _auto_candidates,
     _auto_rank,
     _cross_rank,
     _unordered_rank,
+    block_threshold,
     signal_thresholds,
 )
 from funcnet.errors import (
@@ -727,14 +730,16 @@ def pairwise_cross_measures(
         auto_recurrence(s, rr=rate, eps=eps, parameters=p, name=name)
         for s, (rate, eps), name in zip(states, thresholds, called, strict=True)
     ]
+    # each signal's states checked, and their ranges taken, once for all its pairs
+    checked = [_check_states(s, name) for s, name in zip(states, called, strict=True)]
+    ranges = [_state_range(s) for s in checked]
+    target, eps_xy = block_threshold(p, cr, cross_eps, auto=False)
     results = {}
     labelled = {}  # the same results keyed by names, for the warnings
     for i in range(n):
         for j in range(i + 1, n):
-            cr_ij = cross_recurrence(
-                states[i], states[j], cr=cr, eps=cross_eps, parameters=p,
-                names=(called[i], called[j]),
-            )
+            cr_ij = _cross_block(checked[i], checked[j], target, eps_xy, p,
+                                 (called[i], called[j]), (ranges[i], ranges[j]))
             result = isrn_measures(
                 autos[i], autos[j], cr_ij, parameters=p.for_pair(i, j),
                 names=(labels[i], labels[j]),

@@ -71,6 +71,7 @@ Length: over 600 lines because of the numpydoc of nine public names; the code is
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from typing import Any, Unpack
 
@@ -224,15 +225,25 @@ def _check_states(states: Any, name: str) -> np.ndarray:
     return array
 
 
-def _check_key_range(blocks: tuple[np.ndarray, ...], metric: str, label: str) -> None:
+def _state_range(states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each coordinate's least and greatest value over the states (what
+    :func:`_check_key_range` reads of a block)."""
+    return states.min(axis=0), states.max(axis=0)
+
+
+def _check_key_range(blocks: tuple[np.ndarray, ...], metric: str, label: str,
+                     ranges: Sequence[tuple[np.ndarray, np.ndarray]] | None = None) -> None:
     """Raise unless every distance of the states in ``blocks`` is finite in float64.
 
     The bound uses each coordinate's full range, computed as the kernels compute keys; rounding
     is monotone, so a finite bound guarantees finite keys (it may refuse amplitudes within a
-    factor ``dim`` of the overflow).
+    factor ``dim`` of the overflow). ``ranges``: the blocks' :func:`_state_range`, when the
+    caller has them (a signal in many pairs).
     """
-    low = np.min([b.min(axis=0) for b in blocks], axis=0)
-    high = np.max([b.max(axis=0) for b in blocks], axis=0)
+    if ranges is None:
+        ranges = [_state_range(b) for b in blocks]
+    low = np.min([r[0] for r in ranges], axis=0)
+    high = np.max([r[1] for r in ranges], axis=0)
     with np.errstate(over="ignore", invalid="ignore"):
         span = high - low
         if metric == "euclidean":
@@ -416,14 +427,24 @@ def cross_recurrence(
     p = resolve(parameters, overrides, allowed=("metric", "rule"))
     target, eps = block_threshold(p, cr, eps, auto=False)
     x_name, y_name = names
-    x_states = _check_states(x_states, x_name)
-    y_states = _check_states(y_states, y_name)
+    return _cross_block(_check_states(x_states, x_name), _check_states(y_states, y_name),
+                        target, eps, p, names)
+
+
+def _cross_block(
+    x_states: np.ndarray, y_states: np.ndarray, target: float | None, eps: float | None,
+    p: NetworkParameters, names: tuple[str, str],
+    ranges: tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]] | None = None,
+) -> PackedRecurrence:
+    """:func:`cross_recurrence` of checked states (:func:`_check_states`) at the block's
+    threshold (:func:`block_threshold`); ``ranges`` their :func:`_state_range` when known."""
+    x_name, y_name = names
     if x_states.shape[1] != y_states.shape[1]:
         raise SignalError(
             f"states of {x_name} and {y_name} must have the same dim, got {x_states.shape[1]} "
             f"and {y_states.shape[1]}"
         )
-    _check_key_range((x_states, y_states), p.metric, f"signals {x_name} and {y_name}")
+    _check_key_range((x_states, y_states), p.metric, f"signals {x_name} and {y_name}", ranges)
     n_candidates = x_states.shape[0] * y_states.shape[0]
     pyunicorn = p.rule == "pyunicorn"
     rank = None if target is None else _cross_rank(target, n_candidates, pyunicorn)

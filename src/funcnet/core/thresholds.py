@@ -22,7 +22,9 @@ plus the packed rows.
 
 from __future__ import annotations
 
+import functools
 import math
+from collections.abc import Mapping
 from fractions import Fraction
 from typing import Any, TypeVar
 
@@ -59,17 +61,33 @@ _BAND_LIMIT = 1 << 22
 _BAND_SLACK = 2.0
 
 
-def _sample_bracket(
-    a: Array, bt: Array, auto: bool, theiler: int, metric: int, quantile: float, width: float,
-    rng: np.random.Generator,
-) -> tuple[float, float, float]:
-    """Keys [lo, hi] that bracket the ``quantile`` of all candidate keys w.h.p., and the share
-    of the sample inside (what the band is expected to hold)."""
+def _draw(rng: np.random.Generator, n_rows: int, n_cols: int) -> tuple[Array, Array]:
+    """Rows and columns of twice the sample's pairs (the auto block drops its Theiler band)."""
     # About one pair in a thousand: the bracket then holds about 2 % of the pairs at M = 2000
     # and 0.7 % at M = 20000 (its width shrinks as 1 / sqrt(sample size)).
-    size = min(1 << 18, max(1 << 14, a.shape[0] * bt.shape[1] >> 10))
-    rows = rng.integers(0, a.shape[0], size=2 * size)
-    cols = rng.integers(0, bt.shape[1], size=2 * size)
+    size = min(1 << 18, max(1 << 14, n_rows * n_cols >> 10))
+    return rng.integers(0, n_rows, size=2 * size), rng.integers(0, n_cols, size=2 * size)
+
+
+@functools.lru_cache(maxsize=8)
+def _first_draw(n_rows: int, n_cols: int, rank: int) -> tuple[Array, Array, Mapping[str, Any]]:
+    """The first :func:`_draw` of the generator seeded ``[n_rows, n_cols, rank]``, and the
+    generator's state after it. The blocks of a network share their size and rank: the cross
+    blocks of all its pairs draw the same sample positions, made once."""
+    rng = np.random.default_rng([n_rows, n_cols, rank])
+    rows, cols = _draw(rng, n_rows, n_cols)
+    rows.flags.writeable = cols.flags.writeable = False  # shared by every caller
+    return rows, cols, rng.bit_generator.state
+
+
+def _sample_bracket(
+    a: Array, bt: Array, auto: bool, theiler: int, metric: int, quantile: float, width: float,
+    draw: tuple[Array, Array],
+) -> tuple[float, float, float]:
+    """Keys [lo, hi] that bracket the ``quantile`` of all candidate keys w.h.p., and the share
+    of the sample inside (what the band is expected to hold), from a :func:`_draw`."""
+    rows, cols = draw
+    size = rows.size // 2
     if auto:
         keep = np.abs(rows - cols) > theiler
         rows, cols = rows[keep], cols[keep]
@@ -171,14 +189,23 @@ def _rate_rows(
 
     Returns ``(eps, packed rows, number of bits set)``.
     """
-    rng = np.random.default_rng([a.shape[0], bt.shape[1], rank])
     n_cols = bt.shape[1]
+    # the generator seeded [rows, cols, rank]: its first draw made once per size and rank, its
+    # state after it resumed for a wider bracket's draw
+    state: Mapping[str, Any] | None = None
     for width in _BRACKET_WIDTHS:
         if n_pairs <= _DIRECT_PAIRS:
             lo, hi, share = -math.inf, math.inf, 1.0
         elif math.isfinite(width):
+            if state is None:
+                rows, cols, state = _first_draw(a.shape[0], n_cols, rank)
+            else:
+                rng = np.random.default_rng()
+                rng.bit_generator.state = state
+                rows, cols = _draw(rng, a.shape[0], n_cols)
+                state = rng.bit_generator.state
             lo, hi, share = _sample_bracket(
-                a, bt, auto, theiler, metric, rank / n_pairs, width, rng
+                a, bt, auto, theiler, metric, rank / n_pairs, width, (rows, cols)
             )
         else:
             lo, hi, share = _bisect_bracket(a, bt, auto, theiler, metric, rank)

@@ -175,13 +175,6 @@ def _packed_rows(pairs: Array, m: Int) -> Array:
 
 
 @njit(cache=True, inline="always")
-def _word(bits: Array, row: Int, word: Int, shift: np.uint64, back: np.uint64) -> np.uint64:
-    """64 bits of ``bits[row]`` from bit ``64 word + shift`` on, ``back = 63 - shift``
-    (the second shift in two steps: no shift by 64 when ``shift`` is 0)."""
-    return (bits[row, word] >> shift) | ((bits[row, word + 1] << np.uint64(1)) << back)
-
-
-@njit(cache=True, inline="always")
 def _bit(bits: Array, row: Int, column: Int) -> int:
     return int((bits[row, column >> 6] >> np.uint64(column & 63)) & np.uint64(1))
 
@@ -209,20 +202,21 @@ def _window_bits(bits_x: Array, bits_y: Array, start_x: Int, start_y: Int, lengt
     for u in range(length):
         r_x = start_x + u
         r_y = start_y + u
+        # the row's words as views: one load per word, no index arithmetic in the loop
+        xs = bits_x[r_x, word_x : word_x + words + 1]
+        ys = bits_y[r_y, word_y : word_y + words + 1]
         cx = np.uint64(0)
         cy = np.uint64(0)
         cxy = np.uint64(0)
-        for w in range(words - 1):
-            xw = _word(bits_x, r_x, word_x + w, shift_x, back_x)
-            yw = _word(bits_y, r_y, word_y + w, shift_y, back_y)
+        for w in range(words):
+            xw = (xs[w] >> shift_x) | ((xs[w + 1] << np.uint64(1)) << back_x)
+            yw = (ys[w] >> shift_y) | ((ys[w + 1] << np.uint64(1)) << back_y)
+            if w == words - 1:
+                xw &= last
+                yw &= last
             cx += _popcount(xw)
             cy += _popcount(yw)
             cxy += _popcount(xw & yw)
-        xw = _word(bits_x, r_x, word_x + words - 1, shift_x, back_x) & last
-        yw = _word(bits_y, r_y, word_y + words - 1, shift_y, back_y) & last
-        cx += _popcount(xw)
-        cy += _popcount(yw)
-        cxy += _popcount(xw & yw)
         nx, ny, nxy = np.int64(cx), np.int64(cy), np.int64(cxy)
         for v in range(max(0, u - theiler), min(length, u + theiler + 1)):
             if v != u:
@@ -241,6 +235,20 @@ def _window_bits(bits_x: Array, bits_y: Array, start_x: Int, start_y: Int, lengt
 
 
 @njit(cache=True, parallel=True)
+def _bit_windows(bits_x: Array, bits_y: Array, starts_x: Array, starts_y: Array, length: Int,
+                 theiler: Int) -> Array:
+    """:func:`_window_bits` of every window ``(starts_x[k], starts_y[k])``: shape (K, 3), from
+    matrices already as bits (:func:`_packed_rows`; a signal in many pairs is packed once)."""
+    out = np.empty((starts_x.size, 3), dtype=np.float64)
+    for k in prange(starts_x.size):
+        phi, xy, yx = _window_bits(bits_x, bits_y, starts_x[k], starts_y[k], length, theiler)
+        out[k, 0] = phi
+        out[k, 1] = xy
+        out[k, 2] = yx
+    return out
+
+
+@njit(cache=True, parallel=True)
 def _windows(a_y: Array, pairs_x: Array, pairs_y: Array, starts_x: Array, starts_y: Array,
              length: Int, theiler: Int) -> Array:
     """:func:`_window_counts` of every window ``(starts_x[k], starts_y[k])``: shape (K, 3).
@@ -253,17 +261,10 @@ def _windows(a_y: Array, pairs_x: Array, pairs_y: Array, starts_x: Array, starts
     """
     n = starts_x.size
     m = a_y.shape[0]
-    out = np.empty((n, 3), dtype=np.float64)
     if _sorted_upper(pairs_x, m) and _sorted_upper(pairs_y, m):
-        bits_x = _packed_rows(pairs_x, m)
-        bits_y = _packed_rows(pairs_y, m)
-        for k in prange(n):
-            phi, xy, yx = _window_bits(bits_x, bits_y, starts_x[k], starts_y[k], length,
-                                       theiler)
-            out[k, 0] = phi
-            out[k, 1] = xy
-            out[k, 2] = yx
-        return out
+        return _bit_windows(_packed_rows(pairs_x, m), _packed_rows(pairs_y, m), starts_x,
+                            starts_y, length, theiler)
+    out = np.empty((n, 3), dtype=np.float64)
     for k in prange(n):
         phi, xy, yx = _window_counts(a_y, pairs_x, pairs_y, starts_x[k], starts_y[k], length,
                                      theiler)

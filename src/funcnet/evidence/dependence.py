@@ -67,6 +67,9 @@ Y. Benjamini, Y. Hochberg, "Controlling the false discovery rate", J. R. Stat. S
 289-300 (1995).
 M. Thiel, M. C. Romano, J. Kurths, M. Rolfs, R. Kliegl, "Twin surrogates to test for complex
 synchronisation", Europhys. Lett. 75, 535-541 (2006).
+
+Length: over 600 lines because the test reads its recurrences in two forms that belong
+together, dense matrices and each signal's packed rows made into bits once.
 """
 
 from __future__ import annotations
@@ -78,7 +81,7 @@ from typing import Any
 import numpy as np
 
 from funcnet.errors import ParameterError
-from funcnet.evidence._kernels import _index_windows, _upper_pairs, _windows
+from funcnet.evidence._kernels import _bit_windows, _index_windows, _upper_pairs, _windows
 from funcnet.evidence.surrogates import TwinPlan, twin_plan
 
 __all__ = [
@@ -92,6 +95,8 @@ __all__ = [
     "check_surrogate_method",
     "dependence_test",
     "recurrent_pairs",
+    "shift_bits",
+    "shift_test",
     "default_surrogates",
     "benjamini_hochberg",
 ]
@@ -438,11 +443,92 @@ def dependence_test(a_x: np.ndarray, a_y: np.ndarray, plan: ShiftPlan | TwinPlan
         # The observed window is the identity sequence of Y's states, on the same kernel.
         indices = np.vstack([np.arange(m, dtype=np.int64)[None, :], plan.indices])
         return _result(_index_windows(a_x, a_y, indices, int(theiler)), plan.surrogates)
-    starts_x = np.concatenate([[plan.observed], plan.starts_x]).astype(np.int64)
-    starts_y = np.concatenate([[plan.observed], plan.starts_y]).astype(np.int64)
+    starts_x, starts_y = _starts(plan)
     pairs_x, pairs_y = ((recurrent_pairs(a_x), recurrent_pairs(a_y)) if recurrent is None
                         else recurrent)
     values = _windows(a_y, pairs_x, pairs_y, starts_x, starts_y, plan.length, int(theiler))
+    return _result(values, plan.surrogates)
+
+
+def _starts(plan: ShiftPlan) -> tuple[np.ndarray, np.ndarray]:
+    """The windows' starts in X and in Y: the observed one first, then the surrogates'."""
+    return (np.concatenate([[plan.observed], plan.starts_x]).astype(np.int64),
+            np.concatenate([[plan.observed], plan.starts_y]).astype(np.int64))
+
+
+def shift_bits(rows: np.ndarray) -> np.ndarray:
+    """A recurrence's packed rows as the shift lattice reads them.
+
+    The bits :func:`dependence_test` makes of a matrix's :func:`recurrent_pairs`, without the
+    dense matrix and the list: a signal in many pairs is made into bits once
+    (:func:`shift_test`).
+
+    Parameters
+    ----------
+    rows : ndarray of uint64, shape (M, words)
+        ``PackedRecurrence.rows`` of an auto-recurrence (symmetric, no self-loops).
+
+    Returns
+    -------
+    ndarray of uint64, shape (M, words + 1)
+        The rows with one spare zero word each (a read of 64 bits at any offset inside a row
+        has the word after it).
+
+    Examples
+    --------
+    >>> rows = np.array([[0b110], [0b001], [0b001]], dtype=np.uint64)  # pairs (0, 1), (0, 2)
+    >>> shift_bits(rows).tolist()
+    [[6, 0], [1, 0], [1, 0]]
+    """
+    return np.pad(np.asarray(rows, dtype=np.uint64), ((0, 0), (0, 1)))
+
+
+def shift_test(bits_x: np.ndarray, bits_y: np.ndarray, plan: ShiftPlan, *,
+               theiler: int = 0) -> DependenceResult:
+    """:func:`dependence_test` on a shift lattice, of two recurrences as :func:`shift_bits`.
+
+    Parameters
+    ----------
+    bits_x, bits_y : ndarray of uint64, shape (M, words + 1)
+        :func:`shift_bits` of X's and Y's recurrences.
+    plan : ShiftPlan
+        From :func:`shift_plan` for this ``M``.
+    theiler : int
+        Pairs of times with ``|i - j| <= theiler`` are not counted.
+
+    Returns
+    -------
+    DependenceResult
+        The same as :func:`dependence_test` of the dense matrices, bit for bit.
+
+    Raises
+    ------
+    ParameterError
+        Bits of another shape than ``(M, words + 1)``.
+
+    Examples
+    --------
+    >>> from funcnet.core.embedding import embed
+    >>> from funcnet.core.recurrence import auto_recurrence
+    >>> from funcnet.validation.systems import henon_pair
+    >>> data = henon_pair(300, 0.6, seed=0)
+    >>> a_x, a_y = (auto_recurrence(embed(data[:, k], 2, 1), rr=0.05) for k in (0, 1))
+    >>> plan = shift_plan(299, 99, min_shift=2)
+    >>> bits = shift_test(shift_bits(a_x.rows), shift_bits(a_y.rows), plan)
+    >>> dense = dependence_test(a_x.to_dense().view(np.uint8), a_y.to_dense().view(np.uint8),
+    ...                         plan)
+    >>> bits.p_value == dense.p_value, bits.statistic == dense.statistic
+    (True, True)
+    """
+    m = plan.n_states
+    for name, bits in (("bits_x", bits_x), ("bits_y", bits_y)):
+        if np.shape(bits) != (m, (m + 63) // 64 + 1):
+            raise ParameterError.of(name, f"must have shape ({m}, {(m + 63) // 64 + 1}), got "
+                                    f"{np.shape(bits)}")
+    starts_x, starts_y = _starts(plan)
+    values = _bit_windows(np.ascontiguousarray(bits_x, dtype=np.uint64),
+                          np.ascontiguousarray(bits_y, dtype=np.uint64), starts_x, starts_y,
+                          plan.length, int(theiler))
     return _result(values, plan.surrogates)
 
 

@@ -47,7 +47,9 @@ from funcnet.evidence.dependence import (
     default_surrogates,
     dependence_test,
     planned_surrogates,
-    recurrent_pairs,
+    shift_bits,
+    shift_plan,
+    shift_test,
     surrogate_plan,
 )
 from funcnet.evidence.interval import AsymmetryInterval, asymmetry_intervals
@@ -354,8 +356,8 @@ class _Prepared:
     states: list[np.ndarray]
     autos: list[PackedRecurrence]
     dense: list[np.ndarray]
-    # each signal's recurrent pairs, for all its pairs' shift tests (None for twins)
-    recurrent: list[np.ndarray] | None
+    # each signal's recurrence as bits, for all its pairs' shift tests (None for twins)
+    bits: list[np.ndarray] | None
     decorrelation: list[int]
     span: int
     cr: float
@@ -402,13 +404,14 @@ def _prepare(signals: list[Any], p: NetworkParameters, called: list[str],
         auto_recurrence(s, rr=rate, eps=eps, parameters=p, name=c)
         for s, (rate, eps), c in zip(states, thresholds, called, strict=True)
     ] if test or autos else []
-    # the dense matrices' bytes read as uint8: 0 and 1, as a copy to uint8 would hold them
-    dense = [a.to_dense().view(np.uint8) for a in packed] if test else []
-    recurrent = ([recurrent_pairs(d) for d in dense] if test and surrogate_method == "shift"
-                 else None)
+    shift = test and surrogate_method == "shift"
+    # twins read the dense matrices (their bytes as uint8: 0 and 1, as a copy to uint8 would
+    # hold them); the shift lattice the packed rows, made into bits once per signal
+    dense = [a.to_dense().view(np.uint8) for a in packed] if test and not shift else []
+    bits = [shift_bits(a.rows) for a in packed] if shift else None
     decorrelation = [decorrelation_time(s) for s in signals] if test else []
     return _Prepared(called=called, states=states, autos=packed, dense=dense,
-                     recurrent=recurrent, decorrelation=decorrelation,
+                     bits=bits, decorrelation=decorrelation,
                      span=(p.dim - 1) * p.delay + 1, cr=cr, cross_eps=cross_eps, step=step)
 
 
@@ -469,14 +472,19 @@ def _test_pair(prepared: _Prepared, p: NetworkParameters, i: int, j: int, k: int
 def _run_test(prepared: _Prepared, p: NetworkParameters, i: int, j: int, k: int, seed: int,
               surrogate_method: str) -> DependenceResult | None:
     """The dependence test of one pair on the prepared recurrences (None: too short)."""
+    bits = prepared.bits
+    if bits is not None:  # the shift lattice, as surrogate_plan makes it
+        try:
+            shifts = shift_plan(bits[j].shape[0], k, min_shift=prepared.min_shift(i, j))
+        except ParameterError:
+            return None
+        return shift_test(bits[i], bits[j], shifts, theiler=p.theiler)
     try:
         plan = surrogate_plan(surrogate_method, prepared.dense[j], k,
                               min_shift=prepared.min_shift(i, j), seed=[int(seed), i, j])
     except ParameterError:
         return None
-    recurrent = prepared.recurrent
-    return dependence_test(prepared.dense[i], prepared.dense[j], plan, theiler=p.theiler,
-                           recurrent=None if recurrent is None else (recurrent[i], recurrent[j]))
+    return dependence_test(prepared.dense[i], prepared.dense[j], plan, theiler=p.theiler)
 
 
 def _pair_evidence(e: Mapping[str, Any], cp: float, dp: float, alpha: float) -> PairEvidence:
