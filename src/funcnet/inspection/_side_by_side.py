@@ -7,11 +7,11 @@ and gives back what each returned, in the order given, whatever the scheduling.
 
 Processes where they can be forked safely: much of a computation is Python and pandas, which
 hold the GIL, so only processes keep two cores busy. A forked child inherits the jobs (nothing
-is pickled on the way in); its result and warnings come back pickled. Forking is safe while
-Numba's thread pool has not started in this process (its OpenMP layer cannot start again in a
-forked child), which is the case for a command reading a recording and inspecting it: the
-pool starts in the children. Otherwise threads: their hot kernels release the GIL (NumPy,
-BLAS, Numba's parallel kernels and those compiled ``nogil``).
+is pickled on the way in); its result and warnings come back pickled. Forking is safe on
+Linux while Numba's thread pool has not started in this process (its OpenMP layer cannot
+start again in a forked child), which is the case for a command reading a recording and
+inspecting it: the pool starts in the children. Otherwise threads: their hot kernels release
+the GIL (NumPy, BLAS, Numba's parallel kernels and those compiled ``nogil``).
 
 Warnings are the one shared state: the filters and ``warnings.showwarning`` belong to the
 process, and ``warnings.catch_warnings`` is not thread-safe (a thread entering it changes the
@@ -97,9 +97,10 @@ def default_workers() -> int:
 
 
 def forkable() -> bool:
-    """Whether jobs may run in forked processes: the platform forks, and Numba's thread pool
-    has not started in this process (a child forked from a process whose OpenMP pool runs
-    hangs in its first parallel region).
+    """Whether jobs may run in forked processes: on Linux (macOS forks, but its system
+    libraries, BLAS among them, are not promised to work in a forked child), while Numba's
+    thread pool has not started in this process (a child forked from a process whose OpenMP
+    pool runs hangs in its first parallel region).
 
     Examples
     --------
@@ -110,7 +111,7 @@ def forkable() -> bool:
 
     from numba.np.ufunc import parallel
 
-    return ("fork" in multiprocessing.get_all_start_methods()
+    return (sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods()
             and not getattr(parallel, "_is_initialized", True))
 
 

@@ -363,11 +363,11 @@ def inspect_robot(
         ``progress(done, total, description)``, called in the calling thread.
     workers : int, optional
         Computations side by side: the robot network with its evidence and each axis's
-        inspection are independent. In forked processes where this process may fork (Numba's
-        thread pool not started here yet, as in a command that reads a recording and inspects
-        it), in threads otherwise. Default the cores this process may use, at most 4, in the
-        main thread (1 in any other); 1 computes them one after the other in the calling
-        thread.
+        inspection are independent. In forked processes where this process may fork (on Linux,
+        Numba's thread pool not started here yet, as in a command that reads a recording and
+        inspects it), in threads otherwise. Default the cores this process may use, at most 4,
+        in the main thread (1 in any other); 1 computes them one after the other in the
+        calling thread.
         The results are the same bit for bit, and so are the warnings and their order (each
         computation's, in the order robot network, axis 1, axis 2, ...): those of the others
         are emitted once they are done. No callback may enter ``warnings.catch_warnings``.
