@@ -290,6 +290,18 @@ def test_band_overflow_fallback_is_exact(monkeypatch, kind):
     np.testing.assert_array_equal(result.to_dense(), expected)
 
 
+def _exact_reversed_cross():
+    """A noise signal's states against themselves reversed at cr = 0.05: the cross recurrence,
+    checked equal to the brute-force one (threshold and every cell), and the states."""
+    x = make_signal("noise", 800, 5)
+    xs = reference_embed(x, 2, 1)
+    expected, eps = reference_cross(xs, xs[::-1].copy(), cr=0.05)
+    result = cross_recurrence(xs, xs[::-1].copy(), cr=0.05)
+    assert result.eps == eps
+    np.testing.assert_array_equal(result.to_dense(), expected)
+    return xs, result
+
+
 @pytest.mark.parametrize("limit", [1 << 22, 1000])
 def test_bracket_fallback_when_the_sample_misses(monkeypatch, limit):
     # A zero-width bracket almost surely misses the order statistic; the next, unbounded one
@@ -301,12 +313,7 @@ def test_bracket_fallback_when_the_sample_misses(monkeypatch, limit):
     monkeypatch.setattr(
         order_statistic, "_bisect_bracket", lambda *args: calls.append(args) or bisect(*args)
     )
-    x = make_signal("noise", 800, 5)
-    xs = reference_embed(x, 2, 1)
-    expected, eps = reference_cross(xs, xs[::-1].copy(), cr=0.05)
-    result = cross_recurrence(xs, xs[::-1].copy(), cr=0.05)
-    assert result.eps == eps
-    np.testing.assert_array_equal(result.to_dense(), expected)
+    _exact_reversed_cross()
     assert calls
 
 
@@ -325,12 +332,7 @@ def test_sample_draws_are_the_seeded_generators_each_time(monkeypatch):
     monkeypatch.setattr(order_statistic, "_BRACKET_WIDTHS", (0.0, 0.0, math.inf))
     monkeypatch.setattr(order_statistic, "_sample_bracket",
                         lambda *args: draws.append(args[-1]) or sample(*args))
-    x = make_signal("noise", 800, 5)
-    xs = reference_embed(x, 2, 1)
-    expected, eps = reference_cross(xs, xs[::-1].copy(), cr=0.05)
-    result = cross_recurrence(xs, xs[::-1].copy(), cr=0.05)
-    assert result.eps == eps
-    np.testing.assert_array_equal(result.to_dense(), expected)
+    xs, result = _exact_reversed_cross()
     m = xs.shape[0]
     seeded = np.random.default_rng([m, m, result.rank])
     assert len(draws) == 2  # each zero-width bracket missed

@@ -196,7 +196,7 @@ def _task(job: Callable[[], T], numba_threads: int,
     """Run ``job`` in this thread with its own sink: (its warnings, result or error, ok)."""
     caught: list[_Caught] = []
     _SINK.caught, _SINK.base, _SINK.outside = caught, sys._getframe(), outside
-    # Numba's thread count is per calling thread: each job has its share of the cores.
+    # Numba's thread count is per calling thread (and per child): each job has what it is given.
     numba.set_num_threads(numba_threads)
     try:
         return caught, job(), True
