@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from funcnet.report.inspect_figures import ARROWS, _cell_readings, figure_evidence
+from funcnet.report.inspect_figures import ARROWS, _cell_readings, evidence_informs, figure_evidence
 
 
 def _reference(pairs: pd.DataFrame, a: str, b: str) -> tuple[str, str]:
@@ -283,3 +283,39 @@ def test_fixed_ticks_are_where_and_what_matplotlib_draws():
             assert not new_ax.xaxis.offsetText.get_visible() and new_ax.xaxis.label.get_text()
         # matplotlib's own tick objects left with nothing to draw
         assert len(new_ax.xaxis.get_major_locator()()) == 0
+
+
+def test_the_evidence_figure_informs_unless_every_cell_is_untestable():
+    from types import SimpleNamespace
+
+    def inspection(*tables):
+        return SimpleNamespace(networks={str(k): SimpleNamespace(pairs=t)
+                                         for k, t in enumerate(tables)})
+
+    untestable = _pairs(True).assign(evidence="untestable")  # one pair degenerate
+    assert not evidence_informs(inspection(untestable, untestable.iloc[1:]))
+    assert evidence_informs(inspection(untestable, _pairs(True)))  # one coupled-directed cell
+    assert evidence_informs(inspection(_pairs(False)))  # no evidence: coloured by kind
+
+
+def test_a_page_whose_every_pair_is_untestable_says_so_instead_of_figure_4(tmp_path):
+    import dataclasses
+    import warnings
+
+    from funcnet.inspection import inspect_recording
+    from funcnet.report.inspect import write_inspection
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ins = inspect_recording(_one_move(), evidence=False, backlash=False)
+        write_inspection(ins, tmp_path / "kinds")
+        tested = inspect_recording(_one_move(), backlash=False)
+        untestable = dataclasses.replace(tested, networks={
+            label: dataclasses.replace(net, pairs=net.pairs.assign(evidence="untestable"))
+            for label, net in tested.networks.items()})
+        write_inspection(untestable, tmp_path / "untestable")
+    assert (tmp_path / "kinds" / "figures" / "evidence.png").exists()
+    assert not (tmp_path / "untestable" / "figures" / "evidence.png").exists()
+    page = (tmp_path / "untestable" / "index.html").read_text()
+    assert "Figure 4 (pairs × windows" in page and "is not drawn: every pair" in page
+    assert (tmp_path / "untestable" / "figures" / "timeline.png").exists()

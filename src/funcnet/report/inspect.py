@@ -54,6 +54,7 @@ from funcnet.report.html import (
 )
 from funcnet.report.inspect_figures import (
     ARROWS,
+    evidence_informs,
     figure_evidence,
     figure_lost_motion,
     figure_motion,
@@ -218,14 +219,21 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
         "window, windows in time order and equally spaced, shaded by phase. A pair that keeps "
         "its arrow across the moves is a property of the axis; one that flips between moves "
         "of the same kind is not to be read.")
-    add(3, "evidence", figure_evidence,
-        "Figure 4 — pairs × windows: the arrow of each pair (→ X → Y, ← Y → X, ↔ "
-        "bidirectional, × conflict, – left out), the cell coloured by what the evidence says "
-        "about it" + (" (coupling test and direction index of funcnet.evidence). A near-white "
-                      "cell with a grey arrow is untestable: its window left the test too few "
-                      "surrogates to reject at α whatever the data; the arrow is the rule's, "
-                      "not a finding." if ins.evidence
-                      else " (evidence not computed: coloured by kind)."))
+    if not ins.networks or evidence_informs(ins):
+        add(3, "evidence", figure_evidence,
+            "Figure 4 — pairs × windows: the arrow of each pair (→ X → Y, ← Y → X, ↔ "
+            "bidirectional, × conflict, – left out), the cell coloured by what the evidence says "
+            "about it" + (" (coupling test and direction index of funcnet.evidence). A "
+                          "near-white cell with a grey arrow is untestable: its window left the "
+                          "test too few surrogates to reject at α whatever the data; the arrow "
+                          "is the rule's, not a finding." if ins.evidence
+                          else " (evidence not computed: coloured by kind)."))
+    else:  # every cell untestable: the figure would repeat Figure 3's arrows in grey
+        step(progress, 3, steps, "figure: evidence")
+        figures.append(("evidence", "", "<p>Figure 4 (pairs × windows, each cell coloured by "
+                        "its evidence) is not drawn: every pair of every window is untestable, "
+                        "its window leaving the test too few surrogates to reject at α whatever "
+                        "the data. Its arrows would be the rule's of Figure 3, not findings.</p>"))
     add(4, "lost-motion", figure_lost_motion,
         f"Figure 5 — motor minus arm position (MP − AP, {scale_of(ins).fine}) around the start "
         "of the move "

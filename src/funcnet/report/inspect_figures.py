@@ -331,8 +331,8 @@ def figure_networks(inspection: TraceInspection) -> Any:
     plot.glyph_markers(ax, names, prefix="name")
     handles = plot.network_legend_handles(degenerate=degenerate, evidence=with_evidence)
     if dropped:
-        handles.append(Line2D([], [], color="0.2", linestyle="--", marker="o", markersize=9,
-                              markerfacecolor="white", linewidth=0,
+        handles.append(Line2D([], [], color="0.2", linestyle="none", marker="o", markersize=9,
+                              markerfacecolor="white",
                               label="dashed node: left out (constant in the window)"))
     legend = fig.legend(handles=handles, loc="upper center", ncol=3, fontsize=9,
                         frameon=False, handlelength=2.5, borderaxespad=0.0)
@@ -554,6 +554,24 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     legend.set_bbox_to_anchor((1.0 - (right - 8 * PT) / width, 1.0 - 8 * PT / height),
                               transform=fig.transFigure)
     return fig
+
+
+def evidence_informs(inspection: TraceInspection) -> bool:
+    """Whether :func:`figure_evidence` shows more than the edge timeline: not when no cell has a
+    reading but untestable (or degenerate, or left out), the rule's arrows in grey.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> import pandas as pd
+    >>> pairs = pd.DataFrame({"x": ["RP"], "y": ["AP"], "degenerate": [False],
+    ...                       "evidence": ["untestable"], "kind": ["X->Y"]})
+    >>> evidence_informs(SimpleNamespace(networks={"cruise": SimpleNamespace(pairs=pairs)}))
+    False
+    """
+    keys = {key for net in inspection.networks.values()
+            for key, _ in _cell_readings(net.pairs).values()}
+    return "untestable" not in keys or bool(keys - {"untestable", "degenerate"})
 
 
 def _cell_readings(pairs: Any) -> dict[tuple[str, str], tuple[str, str]]:
