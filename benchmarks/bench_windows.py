@@ -16,6 +16,8 @@ Run from the repository root::
    0.05 s after its braking): one :func:`funcnet.window_networks` call (batched) after a
    warm-up call on two windows, against the same function on the per-window path and pyunicorn
    (10 pairs per window), both timed on an evenly spread sample of the windows; both rules.
+   Three rounds, each the batched call then pyunicorn on a third of its sample: the batched
+   times and the ratio are the rounds' medians (the machine's speed drifts within a minute).
    The sample's networks are asserted equal (``==``) to the per-window path's. The batched call
    is timed again with the direction reading replaced by a constant (its share of the time),
    and pyunicorn's CPU time is measured beside its wall time (a loaded machine inflates wall).
@@ -46,6 +48,7 @@ DIM, DELAY, RATE = 3, 10, 0.05
 PAIR_SAMPLES = (150, 300, 600, 1000, 2000)
 TRACE = Path(__file__).resolve().parents[2] / "shared/data/sinumerik/axis7-braking-trace.xml"
 NODES = ["RP", "AP", "MP", "V", "AC"]
+ROUNDS = 3  # of the timeline: batched call and a third of the pyunicorn sample
 
 
 @contextmanager
@@ -227,13 +230,36 @@ def timeline(skip_pyunicorn: bool, n_sample: int) -> None:
             return window_networks(recording, chosen, signals=NODES, **options)
 
         batched(windows[:2])  # warm-up
-        wall, _, cpu, networks = timed(lambda: batched(windows), 1)
         with without_direction():
             bare, _, bare_cpu, _ = timed(lambda: batched(windows), 1)
-        per_window = wall / len(windows)
         with per_window_path():
             batched(sample[:2])
             path_wall, _, _, singles = timed(lambda: batched(sample), 1)
+        # Rounds: the batched call, then pyunicorn on every ROUNDS-th window of its sample; the
+        # ratio is the median of the rounds' (this machine's speed drifts within a minute).
+        metric = options.get("metric", "euclidean")
+        chosen = sample[: min(30, len(sample))]
+        walls, cpus, references, reference_cpus, ratios, cpu_ratios = ([] for _ in range(6))
+        for start in range(ROUNDS):
+            wall, _, cpu, networks = timed(lambda: batched(windows), 1)
+            seconds = cpu_seconds = 0.0
+            for window in chosen[start::ROUNDS]:
+                part = recording.window(window.start, window.stop).data[NODES].to_numpy()
+                part = (part - part.min(axis=0)) / np.ptp(part, axis=0)
+                for i, j in zip(*np.triu_indices(5, k=1), strict=True):
+                    seconds += pyunicorn_measures(part[:, i], part[:, j], metric)[0]
+                    cpu_seconds += PYUNICORN_CPU[0]
+            count = len(chosen[start::ROUNDS])
+            walls.append(wall)
+            cpus.append(cpu)
+            references.append(seconds / count)
+            reference_cpus.append(cpu_seconds / count)
+            ratios.append(references[-1] * len(windows) / wall)
+            cpu_ratios.append(reference_cpus[-1] * len(windows) / cpu)
+            if skip_pyunicorn:
+                break
+        wall, cpu = statistics.median(walls), statistics.median(cpus)
+        per_window = wall / len(windows)
         path = path_wall / len(sample)
         reasons = 0
         for window in sample:
@@ -247,25 +273,17 @@ def timeline(skip_pyunicorn: bool, n_sample: int) -> None:
                                 != alone.pairs["direction_reason"]).sum())
         label = f"{options.get('rule', 'funcnet')}, {options.get('metric', 'euclidean')}"
         print(f"({label}: direction {cpu - bare_cpu:.2f} CPU s; {reasons} reasons of the "
-              f"sample print another p-value than the per-window path)")
+              f"sample print another p-value than the per-window path; pyunicorn / batched "
+              f"in each round: {', '.join(f'{r:.0f}x' for r in ratios)})")
         row = (f"| {label} | {wall:.2f} ({cpu:.2f}) | {bare:.2f} ({bare_cpu:.2f}) | "
                f"{per_window * 1e3:.2f} | {path * 1e3:.1f} |")
         if skip_pyunicorn:
             print(f"{row} skipped | {path / per_window:.0f}x | |")
             continue
-        seconds = cpu_seconds = 0.0
-        metric = options.get("metric", "euclidean")
-        for window in sample[: min(30, len(sample))]:
-            part = recording.window(window.start, window.stop).data[NODES].to_numpy()
-            part = (part - part.min(axis=0)) / np.ptp(part, axis=0)
-            for i, j in zip(*np.triu_indices(5, k=1), strict=True):
-                seconds += pyunicorn_measures(part[:, i], part[:, j], metric)[0]
-                cpu_seconds += PYUNICORN_CPU[0]
-        reference = seconds / min(30, len(sample))
-        reference_cpu = cpu_seconds / min(30, len(sample))
-        print(f"{row} {reference * 1e3:.0f} ({reference_cpu * 1e3:.0f}) | "
-              f"{path / per_window:.0f}x | {reference / per_window:.0f}x "
-              f"({reference_cpu * len(windows) / cpu:.0f}x) |")
+        print(f"{row} {statistics.median(references) * 1e3:.0f} "
+              f"({statistics.median(reference_cpus) * 1e3:.0f}) | "
+              f"{path / per_window:.0f}x | {statistics.median(ratios):.0f}x "
+              f"({statistics.median(cpu_ratios):.0f}x) |")
 
 
 def paper(plan: Path) -> None:

@@ -338,3 +338,30 @@ def test_measures_of_some_pairs_are_those_of_all():
     some = result.measures(1, [4, 0, 2])
     assert list(some) == [result.pairs[4], result.pairs[0], result.pairs[2]]
     assert all(some[pair] == every[pair] for pair in some)
+
+
+def test_each_window_has_the_warnings_its_own_pairs_table_calls_for(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Windows flagged alike share their warnings' text; each is still its own, located, and
+    those of windows with a degenerate pair print that window's rates."""
+    from funcnet.pipeline import window_warnings
+
+    batched: list[Any] = []
+    original = funcnet.pipeline._batched_networks
+    monkeypatch.setattr(funcnet.pipeline, "_batched_networks",
+                        lambda *a, **k: batched.append(original(*a, **k)) or batched[-1])
+    rec = _recording()
+    windows = [Window(f"w{k}", 0.1 + 0.05 * k, 0.4 + 0.05 * k) for k in range(50)]
+    problems = set()
+    for case in (0, 4):
+        batched.clear()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            window_networks(rec, windows, parameters=NetworkParameters(**CASES[case]))
+        networks, found = batched[0]
+        assert len(networks) == len(windows)
+        _same_warnings(found, window_warnings(networks))
+        assert len({(w.problem, w.pairs) for w in found}) < len(found)  # some alike
+        problems |= {w.problem for w in found}
+    assert problems == {"eps_order", "rate_exceeded", "degenerate"}

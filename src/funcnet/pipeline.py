@@ -690,8 +690,12 @@ def _window_tables(recording: Recording, windows: Sequence[Window], parts: Seque
     ends = np.searchsorted(kept["source"].to_numpy(dtype=np.int64),
                            np.arange(len(windows) + 1) * n_pairs)
     # a window's warnings read its flagged pairs alone (threshold_warnings lists no other)
-    flags = ~result["eps_ordered"] | result["rate_exceeded"] | result["degenerate"]
-    flagged = [np.flatnonzero(row).tolist() for row in flags]
+    unordered, exceeded, degenerate = (~result["eps_ordered"], result["rate_exceeded"],
+                                       result["degenerate"])
+    flagged = [np.flatnonzero(row).tolist() for row in unordered | exceeded | degenerate]
+    # Without a degenerate pair (whose warning prints its rates) a window's warnings name its
+    # flagged pairs only: windows flagged alike share them.
+    alike: dict[bytes, list[FuncnetWarning]] = {}
     networks, found = {}, []
     for w, window in enumerate(windows):
         # Slices with a fresh index, not reset_index: that copies every block of every slice.
@@ -700,8 +704,13 @@ def _window_tables(recording: Recording, windows: Sequence[Window], parts: Seque
         window_edges = edges.iloc[ends[w] : ends[w + 1]]
         window_edges.index = pd.RangeIndex(ends[w + 1] - ends[w])
         if flagged[w]:  # else no warning: spare building the results
-            found += [warning.located(str(window.label))
-                      for warning in threshold_warnings(result.measures(w, flagged[w]))]
+            key = unordered[w].tobytes() + exceeded[w].tobytes()
+            if degenerate[w].any():
+                own = threshold_warnings(result.measures(w, flagged[w]))
+            else:
+                own = alike.get(key) or alike.setdefault(
+                    key, threshold_warnings(result.measures(w, flagged[w])))
+            found += [warning.located(str(window.label)) for warning in own]
         networks[str(window.label)] = FunctionalNetwork(
             nodes=result.names, pairs=pairs,
             edges=window_edges, parameters=p,
