@@ -230,10 +230,11 @@ def _trace_sections(ins: TraceInspection, out: Path, progress: Progress) -> list
                           else " (evidence not computed: coloured by kind)."))
     else:  # every cell untestable: the figure would repeat Figure 3's arrows in grey
         step(progress, 3, steps, "figure: evidence")
-        figures.append(("evidence", "", "<p>Figure 4 (pairs × windows, each cell coloured by "
-                        "its evidence) is not drawn: every pair of every window is untestable, "
-                        "its window leaving the test too few surrogates to reject at α whatever "
-                        "the data. Its arrows would be the rule's of Figure 3, not findings.</p>"))
+        figures.append(("evidence", "", "<figure><figcaption>Figure 4 (pairs × windows, each "
+                        "cell coloured by its evidence) is not drawn: every pair of every window "
+                        "is untestable, its window leaving the test too few surrogates to reject "
+                        "at α whatever the data. Its arrows would be the rule's of Figure 3, not "
+                        "findings.</figcaption></figure>"))
     add(4, "lost-motion", figure_lost_motion,
         f"Figure 5 — motor minus arm position (MP − AP, {scale_of(ins).fine}) around the start "
         "of the move "
