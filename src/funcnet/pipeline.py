@@ -704,12 +704,13 @@ def _window_tables(recording: Recording, windows: Sequence[Window], parts: Seque
         window_edges = edges.iloc[ends[w] : ends[w + 1]]
         window_edges.index = pd.RangeIndex(ends[w + 1] - ends[w])
         if flagged[w]:  # else no warning: spare building the results
-            key = unordered[w].tobytes() + exceeded[w].tobytes()
             if degenerate[w].any():
                 own = threshold_warnings(result.measures(w, flagged[w]))
             else:
-                own = alike.get(key) or alike.setdefault(
-                    key, threshold_warnings(result.measures(w, flagged[w])))
+                key = unordered[w].tobytes() + exceeded[w].tobytes()
+                if key not in alike:
+                    alike[key] = threshold_warnings(result.measures(w, flagged[w]))
+                own = alike[key]
             found += [warning.located(str(window.label)) for warning in own]
         networks[str(window.label)] = FunctionalNetwork(
             nodes=result.names, pairs=pairs,
