@@ -102,6 +102,15 @@ def _new_axes(ax: Axes | None, figsize: tuple[float, float] = (4.0, 4.0)) -> Axe
 
 
 
+def _category_ticks(axis: Any, labels: Sequence[str]) -> None:
+    """An axis of named columns or rows: a tick at 0, 1, ... labelled; no tick object made
+    (``set_xticks`` makes one per label, set up again at every draw)."""
+    from matplotlib.ticker import FixedFormatter, FixedLocator
+
+    axis.set_major_locator(FixedLocator(range(len(labels))))
+    axis.set_major_formatter(FixedFormatter(list(labels)))
+
+
 def signal_color(name: Any) -> str:
     """The colour of a signal in every figure: :data:`SIGNAL_COLORS`, else a stable extra colour.
 

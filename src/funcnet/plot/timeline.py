@@ -10,10 +10,17 @@ import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.collections import PathCollection
 from matplotlib.lines import Line2D
-from matplotlib.ticker import FixedFormatter, FixedLocator
 
 from funcnet.errors import ParameterError
-from funcnet.plot.style import _BIDIRECTIONAL, _CONFLICT, _X_Y, _Y_X, KIND_COLORS, _new_axes
+from funcnet.plot.style import (
+    _BIDIRECTIONAL,
+    _CONFLICT,
+    _X_Y,
+    _Y_X,
+    KIND_COLORS,
+    _category_ticks,
+    _new_axes,
+)
 
 if TYPE_CHECKING:
     from funcnet.network import FunctionalNetwork
@@ -121,9 +128,7 @@ def plot_edge_timeline(
                             s=np.maximum(4.0, size_scale * weights[mask]), marker=marker,
                             color=KIND_COLORS[kind], label=label, linewidths=0)
         points.set_gid(f"kind:{kind}")
-    # a tick per track without a tick object made per label (set_yticks makes them)
-    ax.yaxis.set_major_locator(FixedLocator(range(len(pair_names))))
-    ax.yaxis.set_major_formatter(FixedFormatter(pair_names))
+    _category_ticks(ax.yaxis, pair_names)
     ax.tick_params(axis="y", labelsize=9)
     ax.set_ylabel("pair X–Y", fontsize=9)
     ax.set_ylim(-0.7, len(pair_names) - 0.3)

@@ -438,6 +438,7 @@ def figure_timeline(inspection: TraceInspection) -> Any:
     from matplotlib.figure import Figure
 
     from funcnet import plot
+    from funcnet.plot.style import _category_ticks
 
     labels = [w.label for w in inspection.windows if w.label in inspection.networks]
     fig = Figure(figsize=(max(8.0, 0.55 * len(labels) + 4.5), 4.6))
@@ -447,7 +448,7 @@ def figure_timeline(inspection: TraceInspection) -> Any:
                           for k, label in enumerate(labels)], alpha=0.8)
     plot.plot_edge_timeline({float(k): inspection.networks[label]
                              for k, label in enumerate(labels)}, ax=ax)
-    _categories(ax.xaxis, labels)
+    _category_ticks(ax.xaxis, labels)
     ax.set_xlim(-0.5, len(labels) - 0.5)
     ax.set_xlabel("window (time order)", fontsize=9)
 
@@ -458,15 +459,6 @@ def figure_timeline(inspection: TraceInspection) -> Any:
                  if isinstance(legend, Legend))
     _place_single(fig, ax, right=4.5 * PT + widest + 4 * PT)
     return fig
-
-
-def _categories(axis: Any, labels: Sequence[str]) -> None:
-    """An axis of named columns or rows: a tick at 0, 1, ... labelled; no tick object made
-    (``set_xticks`` makes one per label, set up again at every draw)."""
-    from matplotlib.ticker import FixedFormatter, FixedLocator
-
-    axis.set_major_locator(FixedLocator(range(len(labels))))
-    axis.set_major_formatter(FixedFormatter(list(labels)))
 
 
 def _place_single(fig: Any, ax: Any, *, right: float, top: float = 8 * PT) -> None:
@@ -515,6 +507,7 @@ def figure_evidence(inspection: TraceInspection) -> Any:
     from matplotlib.patches import Patch
 
     from funcnet import plot
+    from funcnet.plot.style import _category_ticks
 
     labels = [w.label for w in inspection.windows if w.label in inspection.networks]
     signals = list(inspection.signals)
@@ -539,8 +532,8 @@ def figure_evidence(inspection: TraceInspection) -> Any:
                               "0.55" if key == "untestable" else "black"), []).append((c, r))
     plot.glyph_markers(ax, cells)
     ax.imshow(image, aspect="auto", interpolation="nearest")
-    _categories(ax.xaxis, labels)
-    _categories(ax.yaxis, [f"{a}–{b}" for a, b in pairs])
+    _category_ticks(ax.xaxis, labels)
+    _category_ticks(ax.yaxis, [f"{a}–{b}" for a, b in pairs])
     ax.set_ylabel("pair X–Y\n(arrow: → X drives Y in the rule's sense)", fontsize=9)
     handles = [Patch(facecolor=colour, edgecolor="0.5", label=_EVIDENCE_LEGEND.get(key, key))
                for key, colour in used.items()]
